@@ -1,0 +1,503 @@
+//! Tile design parameters and the path-length inequalities (thesis chapter 6).
+//!
+//! Along one tile of length `2d`: `c` is the distance from the tile edge to a magnet's final
+//! position, `a = s + e` the path length (`s` inside the centre half of the tile, `e` outside
+//! it) and `b` the distance between a tile's two magnets at rest, so `2c + 2a + b = 2d`.
+//! [`Design::report`] evaluates inequalities (6.1) to (6.10) with their two sides and margins;
+//! [`Design::check`] turns the first failure into an error naming it.
+
+use std::f64::consts::PI;
+
+/// Permeability of free space, H/m (the thesis' value, 4 pi 1e-7).
+pub const MU0: f64 = 4.0 * PI * 1e-7;
+
+/// Tile and magnet design. Lengths in millimetres, mass in grams, remanence in tesla.
+///
+/// Defaults are the thesis design (SPEC section 4): 30 mm tiles (`d` = 15 mm), `s` = 0.3 mm,
+/// path length `a` = 5 mm (so `e` = 4.7 mm), `c = d/2 - e`, 3 mm x 5 mm NdFeB magnets of
+/// 0.625 g with a remanence of 1.3 T (grade N42, a typical value; the thesis gives no grade).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Design {
+    /// Across-flats tile width `w`, mm. Default 30.
+    pub tile_width: f64,
+    /// Half the tile length along the chain, `d`, mm. Default 15 (= w/2).
+    pub d: f64,
+    /// How far inside the centre half of the tile the magnets rest, `s`, mm. Default 0.3.
+    pub s: f64,
+    /// Path length outside the centre half, `e`, mm. Default 4.7.
+    pub e: f64,
+    /// Distance from the tile edge to a magnet's final position, `c`, mm; `None` for the
+    /// thesis' layout `c = d/2 - e`. Default `None`.
+    pub c: Option<f64>,
+    /// Magnet diameter, mm. Default 3.
+    pub magnet_diameter: f64,
+    /// Magnet height, mm. Default 5.
+    pub magnet_height: f64,
+    /// Magnet remanence, T. Default 1.3.
+    pub remanence: f64,
+    /// Magnet mass, g. Default 0.625.
+    pub magnet_mass: f64,
+}
+
+impl Default for Design {
+    fn default() -> Design {
+        Design {
+            tile_width: 30.0,
+            d: 15.0,
+            s: 0.3,
+            e: 4.7,
+            c: None,
+            magnet_diameter: 3.0,
+            magnet_height: 5.0,
+            remanence: 1.3,
+            magnet_mass: 0.625,
+        }
+    }
+}
+
+/// Why a design was rejected.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DesignError {
+    /// A parameter that is not a finite number in its allowed range.
+    #[error("design parameter `{name}` = {value}: expected {expected}")]
+    BadParameter {
+        /// The parameter's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// An inequality of thesis chapter 6 that does not hold.
+    #[error(
+        "inequality ({id}) {statement} fails: {lhs_name} = {lhs:.6} mm, {rhs_name} = {rhs:.6} mm"
+    )]
+    Inequality {
+        /// The thesis' equation number, e.g. `6.9`.
+        id: &'static str,
+        /// The inequality as written, e.g. `s < e/3`.
+        statement: &'static str,
+        /// Name of the left side.
+        lhs_name: &'static str,
+        /// Value of the left side.
+        lhs: f64,
+        /// Name of the right side.
+        rhs_name: &'static str,
+        /// Value of the right side.
+        rhs: f64,
+    },
+}
+
+/// How one inequality stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Standing {
+    /// It holds with room to spare.
+    Holds,
+    /// It holds only with equality, at the edge of its range (e.g. (6.1) at `s = 0`: the
+    /// chain is marginally stable and any disturbance cascades). A warning, not an error.
+    Marginal,
+    /// It fails.
+    Fails,
+}
+
+/// One inequality evaluated for a design.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct InequalityCheck {
+    /// The thesis' equation number.
+    pub id: &'static str,
+    /// The inequality as written.
+    pub statement: &'static str,
+    /// Left side, name and value (mm).
+    pub lhs_name: &'static str,
+    /// Left side value, mm.
+    pub lhs: f64,
+    /// Right side, name.
+    pub rhs_name: &'static str,
+    /// Right side value, mm.
+    pub rhs: f64,
+    /// `(rhs - lhs) / max(|lhs|, |rhs|)`: positive when the inequality holds with room.
+    pub relative_margin: f64,
+    /// Whether it holds.
+    pub standing: Standing,
+}
+
+/// Relative tolerance under which two sides count as equal (so `s = e/3` given as a fraction
+/// of `e` is recognised as the edge despite rounding): 1e-12.
+pub const EQUALITY_TOLERANCE: f64 = 1e-12;
+
+impl Design {
+    /// The thesis design.
+    pub fn thesis() -> Design {
+        Design::default()
+    }
+
+    /// The same design with another `s`, mm.
+    pub fn with_s(mut self, s: f64) -> Design {
+        self.s = s;
+        self
+    }
+
+    /// The same design with another `e`, mm.
+    pub fn with_e(mut self, e: f64) -> Design {
+        self.e = e;
+        self
+    }
+
+    /// The same design with another tile width, mm (and `d` = half of it).
+    pub fn with_tile_width(mut self, w: f64) -> Design {
+        self.tile_width = w;
+        self.d = 0.5 * w;
+        self
+    }
+
+    /// The path length `a = s + e`, mm.
+    pub fn a(&self) -> f64 {
+        self.s + self.e
+    }
+
+    /// The distance from the tile edge to a magnet's final position, mm.
+    pub fn c(&self) -> f64 {
+        self.c.unwrap_or(0.5 * self.d - self.e)
+    }
+
+    /// The rest distance between a tile's two magnets, `b = 2d - 2c - 2a`, mm
+    /// (`d - 2s` in the thesis' layout).
+    pub fn b(&self) -> f64 {
+        2.0 * self.d - 2.0 * self.c() - 2.0 * self.a()
+    }
+
+    /// The rest distance between neighbouring magnets of two tiles, `2c + 2a`, mm
+    /// (`d + 2s` in the thesis' layout).
+    pub fn inter_tile_rest_distance(&self) -> f64 {
+        2.0 * self.c() + 2.0 * self.a()
+    }
+
+    /// The magnet volume, m^3.
+    pub fn magnet_volume_m3(&self) -> f64 {
+        let r = 0.5 * self.magnet_diameter * 1e-3;
+        PI * r * r * self.magnet_height * 1e-3
+    }
+
+    /// The magnetic moment of one magnet, A m^2: `Br V / mu0`.
+    pub fn moment(&self) -> f64 {
+        self.remanence * self.magnet_volume_m3() / MU0
+    }
+
+    /// Checks that every parameter is a finite number in range.
+    pub fn validate(&self) -> Result<(), DesignError> {
+        let positive: [(&'static str, f64); 7] = [
+            ("tile_width", self.tile_width),
+            ("d", self.d),
+            ("e", self.e),
+            ("magnet_diameter", self.magnet_diameter),
+            ("magnet_height", self.magnet_height),
+            ("remanence", self.remanence),
+            ("magnet_mass", self.magnet_mass),
+        ];
+        for (name, value) in positive {
+            if !value.is_finite() || value <= 0.0 {
+                return Err(DesignError::BadParameter {
+                    name,
+                    value,
+                    expected: "a finite number > 0",
+                });
+            }
+        }
+        if !self.s.is_finite() || self.s < 0.0 {
+            return Err(DesignError::BadParameter {
+                name: "s",
+                value: self.s,
+                expected: "a finite number >= 0",
+            });
+        }
+        if let Some(c) = self.c {
+            if !c.is_finite() || c < 0.0 {
+                return Err(DesignError::BadParameter {
+                    name: "c",
+                    value: c,
+                    expected: "a finite number >= 0",
+                });
+            }
+        }
+        if 2.0 * self.d > self.tile_width * (1.0 + EQUALITY_TOLERANCE) {
+            return Err(DesignError::BadParameter {
+                name: "d",
+                value: self.d,
+                expected: "at most half the tile width (the magnets' track lies inside the tile)",
+            });
+        }
+        if self.magnet_diameter >= self.tile_width {
+            return Err(DesignError::BadParameter {
+                name: "magnet_diameter",
+                value: self.magnet_diameter,
+                expected: "less than the tile width",
+            });
+        }
+        Ok(())
+    }
+
+    /// Every inequality (6.1) to (6.10), evaluated. Parameters are not validated here.
+    pub fn report(&self) -> Vec<InequalityCheck> {
+        let (a, b, c, d, s, e) = (self.a(), self.b(), self.c(), self.d, self.s, self.e);
+        // (id, statement, lhs name, lhs, rhs name, rhs, strict, equality is only a warning)
+        // (id, statement, lhs name, lhs, rhs name, rhs, strict, equality is only a warning).
+        // The reduced forms (6.6), (6.9), (6.10) come first so that a failure is named by
+        // the parameter rule it breaks; (6.3) and (6.4) reduce to (6.9) in the thesis layout.
+        let rows: [(
+            &'static str,
+            &'static str,
+            &'static str,
+            f64,
+            &'static str,
+            f64,
+            bool,
+            bool,
+        ); 10] = [
+            ("6.6", "0 <= s", "0", 0.0, "s", s, false, false),
+            ("6.9", "s < e/3", "s", s, "e/3", e / 3.0, true, false),
+            (
+                "6.10",
+                "e < d/2 (thesis 6.7, restated as 6.10)",
+                "e",
+                e,
+                "d/2",
+                0.5 * d,
+                true,
+                false,
+            ),
+            (
+                "6.8",
+                "4s <= s + e (each magnet can travel the 4s that starts the next)",
+                "4s",
+                4.0 * s,
+                "s+e",
+                s + e,
+                false,
+                false,
+            ),
+            (
+                "6.1",
+                "b < 2c + 2a (at rest the chain does not actuate by itself)",
+                "b",
+                b,
+                "2c+2a",
+                2.0 * c + 2.0 * a,
+                true,
+                true,
+            ),
+            (
+                "6.2",
+                "c + a < b (the RI can start M1)",
+                "c+a",
+                c + a,
+                "b",
+                b,
+                true,
+                false,
+            ),
+            (
+                "6.3",
+                "2c + 2a < a + b (M2 turns to M3 once M1 has moved)",
+                "2c+2a",
+                2.0 * c + 2.0 * a,
+                "a+b",
+                a + b,
+                true,
+                false,
+            ),
+            (
+                "6.4",
+                "2c + a < b (M3 starts)",
+                "2c+a",
+                2.0 * c + a,
+                "b",
+                b,
+                true,
+                false,
+            ),
+            (
+                "6.5",
+                "2c + a < b (left half of 2c + a < b < 2c + 2a)",
+                "2c+a",
+                2.0 * c + a,
+                "b",
+                b,
+                true,
+                false,
+            ),
+            (
+                "6.5",
+                "b < 2c + 2a (right half of 2c + a < b < 2c + 2a)",
+                "b",
+                b,
+                "2c+2a",
+                2.0 * c + 2.0 * a,
+                true,
+                true,
+            ),
+        ];
+        rows.iter()
+            .map(
+                |&(id, statement, lhs_name, lhs, rhs_name, rhs, strict, warn_on_equal)| {
+                    let scale = lhs.abs().max(rhs.abs());
+                    let relative_margin = if scale > 0.0 {
+                        (rhs - lhs) / scale
+                    } else {
+                        0.0
+                    };
+                    let equal =
+                        (rhs - lhs).abs() <= EQUALITY_TOLERANCE * scale.max(f64::MIN_POSITIVE);
+                    let standing = if equal {
+                        if !strict || warn_on_equal {
+                            if strict {
+                                Standing::Marginal
+                            } else {
+                                Standing::Holds
+                            }
+                        } else {
+                            Standing::Fails
+                        }
+                    } else if lhs < rhs {
+                        Standing::Holds
+                    } else {
+                        Standing::Fails
+                    };
+                    InequalityCheck {
+                        id,
+                        statement,
+                        lhs_name,
+                        lhs,
+                        rhs_name,
+                        rhs,
+                        relative_margin,
+                        standing,
+                    }
+                },
+            )
+            .collect()
+    }
+
+    /// Validates the parameters and every inequality; the first failure is the error.
+    /// Marginal inequalities (equality where the thesis allows it as a limit, e.g. `s = 0`)
+    /// pass: see [`Design::warnings`].
+    pub fn check(&self) -> Result<Vec<InequalityCheck>, DesignError> {
+        self.validate()?;
+        let report = self.report();
+        if let Some(f) = report.iter().find(|r| r.standing == Standing::Fails) {
+            return Err(DesignError::Inequality {
+                id: f.id,
+                statement: f.statement,
+                lhs_name: f.lhs_name,
+                lhs: f.lhs,
+                rhs_name: f.rhs_name,
+                rhs: f.rhs,
+            });
+        }
+        Ok(report)
+    }
+
+    /// The inequalities that hold only with equality (warnings).
+    pub fn warnings(&self) -> Vec<InequalityCheck> {
+        self.report()
+            .into_iter()
+            .filter(|r| r.standing == Standing::Marginal)
+            .collect()
+    }
+
+    /// The change that `s` makes to the two rest forces against `s = 0`, as fractions:
+    /// `(partner, neighbour)`. The partner in the same tile sits `d - 2s` away instead of `d`
+    /// (stronger by `(d/(d-2s))^4 - 1`, +17.73% for the thesis design); the neighbour in the
+    /// next tile `d + 2s` away (weaker by `1 - (d/(d+2s))^4`, -14.52%). The thesis quotes these
+    /// two figures with the labels inter- and intra-tile the other way round.
+    pub fn rest_force_change(&self) -> (f64, f64) {
+        let d = self.d;
+        let f = |r: f64| r.powi(-4);
+        (
+            f(self.b()) / f(d) - 1.0,
+            f(self.inter_tile_rest_distance()) / f(d) - 1.0,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thesis_design_passes() {
+        let d = Design::thesis();
+        let report = d.check().unwrap();
+        assert!(
+            report.iter().all(|r| r.standing == Standing::Holds),
+            "{report:#?}"
+        );
+        assert!((d.b() - 14.4).abs() < 1e-12);
+        assert!((d.c() - 2.8).abs() < 1e-12);
+        assert!((2.0 * d.c() + 2.0 * d.a() + d.b() - 2.0 * d.d).abs() < 1e-12);
+    }
+
+    #[test]
+    fn s_at_or_above_e_over_3_fails_6_9() {
+        let e = 4.7;
+        for s in [e / 3.0, e / 3.0 + 0.01, 1.6] {
+            let err = Design::thesis().with_s(s).check().unwrap_err();
+            match &err {
+                DesignError::Inequality { id, .. } => assert_eq!(*id, "6.9", "s = {s}: {err}"),
+                other => panic!("s = {s}: {other}"),
+            }
+            assert!(err.to_string().contains("(6.9)"), "{err}");
+        }
+        assert!(Design::thesis().with_s(e / 3.0 - 0.01).check().is_ok());
+    }
+
+    #[test]
+    fn e_at_or_above_d_over_2_fails() {
+        for e in [7.5, 8.0] {
+            let err = Design::thesis().with_e(e).check().unwrap_err();
+            let msg = err.to_string();
+            assert!(msg.contains("(6.10)"), "{msg}");
+        }
+        // named as (6.10) in the report in any case
+        let r = Design::thesis().with_e(8.0).report();
+        assert!(r
+            .iter()
+            .any(|c| c.id == "6.10" && c.standing == Standing::Fails));
+    }
+
+    #[test]
+    fn s_zero_is_a_warning() {
+        let d = Design::thesis().with_s(0.0);
+        assert!(d.check().is_ok());
+        let w = d.warnings();
+        assert!(w.iter().any(|c| c.id == "6.1"), "{w:#?}");
+    }
+
+    #[test]
+    fn bad_parameters_are_named() {
+        let e = Design::thesis().with_s(-0.1).check().unwrap_err();
+        assert!(e.to_string().contains("`s` = -0.1"), "{e}");
+        let e = Design::thesis().with_e(f64::NAN).check().unwrap_err();
+        assert!(e.to_string().contains("`e` = NaN"), "{e}");
+        let e = Design {
+            remanence: -1.0,
+            ..Design::thesis()
+        }
+        .check()
+        .unwrap_err();
+        assert!(e.to_string().contains("remanence"), "{e}");
+    }
+
+    #[test]
+    fn force_change_matches_thesis_figures() {
+        let (partner, neighbour) = Design::thesis().rest_force_change();
+        // the thesis truncates to 17.73% and 14.52%
+        assert!((partner - 0.1773).abs() < 1e-4, "{partner}");
+        assert!((neighbour + 0.1452).abs() < 1e-4, "{neighbour}");
+        // and the ratio is about 7:5
+        let ratio = (1.0 + partner) / (1.0 + neighbour);
+        assert!((ratio - 1.4).abs() < 0.03, "{ratio}");
+    }
+}

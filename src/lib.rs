@@ -1,0 +1,52 @@
+//! # foldchain
+//!
+//! Design and simulation of self-folding magnetic tile chains: octagon tiles holding magnets
+//! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
+//! initiator starts them (see `SPEC.md` and the thesis it follows).
+//!
+//! This crate is the core model: paths, tiles and joints ([`Path`], [`Tile`], [`JointOutcome`]),
+//! chains in their three forms ([`Chain`], [`FoldWord`], JSON), exact and floating-point
+//! kinematics of the octagon chain ([`kinematics`]), and the tile design with the path-length
+//! inequalities ([`Design`]).
+//!
+//! ```
+//! use foldchain::{kinematics, Chain, Design};
+//!
+//! // A tight U-turn: two left folds, one LL tile.
+//! let chain = Chain::parse("SSLLSS").unwrap();
+//! assert_eq!(chain.to_tile_list(), "SS*3 SL LL LS SS*3");
+//! let word = chain.to_word().unwrap();
+//! let poses = kinematics::final_poses(&word);
+//! // the return row runs sqrt2 * w from the first, exactly
+//! let w = 30.0;
+//! let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
+//! assert!((pitch - 2f64.sqrt() * w).abs() < 1e-12);
+//! // the thesis design satisfies inequalities (6.1) to (6.10)
+//! assert!(Design::thesis().check().is_ok());
+//! ```
+
+mod bom;
+mod chain;
+pub mod design;
+pub mod dipole;
+mod error;
+pub mod exact;
+mod joint;
+pub mod kinematics;
+mod octagon;
+mod path;
+mod pose;
+mod tile;
+mod word;
+
+pub use bom::BillOfMaterials;
+pub use chain::{Chain, MAX_TILES};
+pub use design::{Design, DesignError, InequalityCheck, Standing};
+pub use error::ChainError;
+pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+pub use joint::{Fold, JointOutcome};
+pub use octagon::Octagon;
+pub use path::Path;
+pub use pose::Pose;
+pub use tile::{ParseTileError, Part, Tile};
+pub use word::FoldWord;

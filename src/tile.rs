@@ -1,0 +1,159 @@
+//! Tiles: an ordered pair of paths, and the physical part each one is.
+//!
+//! A tile's first path faces the reaction-initiator end of the chain, its second path the far
+//! end. A tile turned round by 180 degrees swaps its paths and mirrors them, so the nine
+//! ordered pairs are six physical parts.
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::Path;
+
+/// A tile: the path towards the reaction initiator, then the path away from it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Tile {
+    /// The path nearer the reaction-initiator end.
+    pub first: Path,
+    /// The path nearer the far end of the chain.
+    pub second: Path,
+}
+
+/// A physical tile part: the tiles that are one part turned round.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+pub enum Part {
+    /// Two straight paths (SS).
+    SS,
+    /// One straight and one curved path: the SL and RS tiles.
+    RS,
+    /// One curved and one straight path: the LS and SR tiles.
+    SR,
+    /// Two paths curved the same way: the LL and RR tiles.
+    RR,
+    /// The LR tile (turned round it is itself), for diagonal runs.
+    LR,
+    /// The RL tile (turned round it is itself), for diagonal runs.
+    RL,
+}
+
+impl Part {
+    /// The part's name, as the thesis writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Part::SS => "SS",
+            Part::RS => "RS",
+            Part::SR => "SR",
+            Part::RR => "RR",
+            Part::LR => "LR",
+            Part::RL => "RL",
+        }
+    }
+}
+
+impl fmt::Display for Part {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Tile {
+    /// A tile from its two paths.
+    pub const fn new(first: Path, second: Path) -> Tile {
+        Tile { first, second }
+    }
+
+    /// All nine tiles: SS SL SR LS LL LR RS RL RR.
+    pub const ALL: [Tile; 9] = [
+        Tile::new(Path::S, Path::S),
+        Tile::new(Path::S, Path::L),
+        Tile::new(Path::S, Path::R),
+        Tile::new(Path::L, Path::S),
+        Tile::new(Path::L, Path::L),
+        Tile::new(Path::L, Path::R),
+        Tile::new(Path::R, Path::S),
+        Tile::new(Path::R, Path::L),
+        Tile::new(Path::R, Path::R),
+    ];
+
+    /// The straight tile SS.
+    pub const STRAIGHT: Tile = Tile::new(Path::S, Path::S);
+
+    /// The same part turned round by 180 degrees: paths swapped and mirrored.
+    pub fn turned(self) -> Tile {
+        Tile::new(self.second.mirrored(), self.first.mirrored())
+    }
+
+    /// The physical part this tile is.
+    pub fn part(self) -> Part {
+        use Path::*;
+        match (self.first, self.second) {
+            (S, S) => Part::SS,
+            (S, L) | (R, S) => Part::RS,
+            (L, S) | (S, R) => Part::SR,
+            (L, L) | (R, R) => Part::RR,
+            (L, R) => Part::LR,
+            (R, L) => Part::RL,
+        }
+    }
+}
+
+/// A tile name that is not two of the letters S, L, R.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("'{0}' is not a tile: expected two of the letters S, L, R (e.g. SL)")]
+pub struct ParseTileError(pub String);
+
+impl FromStr for Tile {
+    type Err = ParseTileError;
+
+    fn from_str(s: &str) -> Result<Tile, ParseTileError> {
+        let mut chars = s.chars();
+        match (chars.next(), chars.next(), chars.next()) {
+            (Some(a), Some(b), None) => match (Path::from_char(a), Path::from_char(b)) {
+                (Some(first), Some(second)) => Ok(Tile::new(first, second)),
+                _ => Err(ParseTileError(s.to_string())),
+            },
+            _ => Err(ParseTileError(s.to_string())),
+        }
+    }
+}
+
+impl fmt::Display for Tile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}{}", self.first, self.second)
+    }
+}
+
+impl serde::Serialize for Tile {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Tile {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Tile, D::Error> {
+        let s = <std::borrow::Cow<'de, str>>::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nine_tiles_six_parts() {
+        let parts: std::collections::BTreeSet<Part> = Tile::ALL.iter().map(|t| t.part()).collect();
+        assert_eq!(parts.len(), 6);
+        for t in Tile::ALL {
+            assert_eq!(t.turned().part(), t.part(), "{t} turned is {}", t.turned());
+            assert_eq!(t.turned().turned(), t);
+            assert_eq!(t.to_string().parse::<Tile>().unwrap(), t);
+        }
+        assert_eq!("SL".parse::<Tile>().unwrap().turned().to_string(), "RS");
+        assert_eq!("LS".parse::<Tile>().unwrap().turned().to_string(), "SR");
+        assert!("S".parse::<Tile>().is_err());
+        assert!("SSS".parse::<Tile>().is_err());
+        assert!("SX".parse::<Tile>().is_err());
+    }
+}
