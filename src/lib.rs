@@ -14,7 +14,7 @@
 //!
 //! // A tight U-turn: two left folds, one LL tile.
 //! let chain = Chain::parse("SSLLSS").unwrap();
-//! assert_eq!(chain.to_tile_list(), "SS*3 SL LL LS SS*3");
+//! assert_eq!(chain.to_tile_list(), "SS SS SL LL LS SS SS");
 //! let word = chain.to_word().unwrap();
 //! let poses = kinematics::final_poses(&word);
 //! // the return row runs sqrt2 * w from the first, exactly
@@ -25,11 +25,13 @@
 //! assert!(Design::thesis().check().is_ok());
 //! ```
 
+pub mod atomic;
 mod bom;
 mod chain;
 pub mod design;
 pub mod dipole;
 mod error;
+pub mod input;
 pub mod exact;
 mod joint;
 pub mod kinematics;
