@@ -28,11 +28,12 @@
 pub mod atomic;
 mod bom;
 mod chain;
+pub mod collision;
 pub mod design;
 pub mod dipole;
 mod error;
-pub mod input;
 pub mod exact;
+pub mod input;
 mod joint;
 pub mod kinematics;
 mod octagon;
