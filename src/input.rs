@@ -47,29 +47,53 @@ pub enum InputError {
 pub fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
     let path = FsPath::new(arg);
     if path.is_file() {
-        let size = std::fs::metadata(path).map_err(|source| InputError::Read { path: path.into(), source })?.len();
+        let size = std::fs::metadata(path)
+            .map_err(|source| InputError::Read {
+                path: path.into(),
+                source,
+            })?
+            .len();
         if size > MAX_CHAIN_FILE_BYTES {
-            return Err(InputError::TooLarge { path: path.into(), size, max: MAX_CHAIN_FILE_BYTES });
+            return Err(InputError::TooLarge {
+                path: path.into(),
+                size,
+                max: MAX_CHAIN_FILE_BYTES,
+            });
         }
-        let bytes = std::fs::read(path).map_err(|source| InputError::Read { path: path.into(), source })?;
+        let bytes = std::fs::read(path).map_err(|source| InputError::Read {
+            path: path.into(),
+            source,
+        })?;
         let text = String::from_utf8(bytes).map_err(|e| InputError::Read {
             path: path.into(),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidData, format!("not UTF-8 text ({e})")),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("not UTF-8 text ({e})"),
+            ),
         })?;
         let body: String = text
             .lines()
             .filter(|l| !l.trim_start().starts_with('#'))
             .collect::<Vec<_>>()
             .join("\n");
-        return Chain::parse(&body).map_err(|source| InputError::Chain { origin: path.display().to_string(), source });
+        return Chain::parse(&body).map_err(|source| InputError::Chain {
+            origin: path.display().to_string(),
+            source,
+        });
     }
     if path.is_dir() {
         return Err(InputError::Read {
             path: path.into(),
-            source: std::io::Error::new(std::io::ErrorKind::InvalidInput, "is a directory, not a chain file"),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "is a directory, not a chain file",
+            ),
         });
     }
-    Chain::parse(arg).map_err(|source| InputError::Chain { origin: format!("chain argument '{}'", abbreviate(arg)), source })
+    Chain::parse(arg).map_err(|source| InputError::Chain {
+        origin: format!("chain argument '{}'", abbreviate(arg)),
+        source,
+    })
 }
 
 fn abbreviate(s: &str) -> String {
@@ -88,7 +112,10 @@ mod tests {
     fn inline_and_file() {
         assert_eq!(read_chain_arg("SLLS").unwrap().len(), 5);
         let e = read_chain_arg("SLXS").unwrap_err().to_string();
-        assert!(e.contains("chain argument 'SLXS'") && e.contains("'X'"), "{e}");
+        assert!(
+            e.contains("chain argument 'SLXS'") && e.contains("'X'"),
+            "{e}"
+        );
         let dir = std::env::temp_dir().join(format!("foldchain-input-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let f = dir.join("c.txt");
