@@ -1,0 +1,84 @@
+//! Why a shape could not be planned: bad input (exit 2) or a shape the chain cannot fill
+//! (exit 1).
+
+use std::path::PathBuf;
+
+/// An error of [`crate::plan_svg_file`] or [`crate::plan_svg_str`].
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PlanError {
+    /// The file could not be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The text is not a readable SVG document.
+    #[error("{name}: not a readable SVG file: {reason}")]
+    BadSvg {
+        /// The file name (or `<string>`).
+        name: String,
+        /// What the XML or SVG parser said.
+        reason: String,
+    },
+    /// The drawing holds no filled area to plan.
+    #[error("{name}: no filled area: {reason}")]
+    NoFilledArea {
+        /// The file name (or `<string>`).
+        name: String,
+        /// What was found instead.
+        reason: String,
+    },
+    /// An outline crosses itself.
+    #[error("{name}: self-intersecting outline in {element}: edge {first} crosses edge {second} near ({x:.3}, {y:.3}); draw the outline without crossings (use separate shapes or a hole instead)")]
+    SelfIntersecting {
+        /// The file name (or `<string>`).
+        name: String,
+        /// The element (its id, or its index).
+        element: String,
+        /// One edge of the flattened outline.
+        first: usize,
+        /// The edge it crosses.
+        second: usize,
+        /// Where, in user units.
+        x: f64,
+        /// Where, in user units.
+        y: f64,
+    },
+    /// An option value that cannot be used.
+    #[error("bad option {option}: {reason}")]
+    BadOption {
+        /// The option.
+        option: &'static str,
+        /// Why.
+        reason: String,
+    },
+    /// The shape is valid but no collision-free chain was found that fills it.
+    #[error("{name}: cannot plan this shape: {reason}")]
+    Unplannable {
+        /// The file name (or `<string>`).
+        name: String,
+        /// Which part failed and what would be needed.
+        reason: String,
+    },
+}
+
+impl PlanError {
+    /// True for errors in the input (file, SVG, options): exit code 2. False for a valid
+    /// shape the planner cannot fill: exit code 1.
+    pub fn is_bad_input(&self) -> bool {
+        !matches!(self, PlanError::Unplannable { .. })
+    }
+
+    /// The exit code a binary should use: 2 for bad input, 1 for an unplannable shape.
+    pub fn exit_code(&self) -> i32 {
+        if self.is_bad_input() {
+            2
+        } else {
+            1
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! The plan: the chain that fills a shape, its poses in the drawing and its fit.
+
+use std::collections::BTreeMap;
+
+use crate::Turns;
+
+/// One tile centre of the folded chain, in the SVG's user units.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PlanPose {
+    /// Centre x, SVG user units.
+    pub x: f64,
+    /// Centre y, SVG user units (SVG y points down the page).
+    pub y: f64,
+    /// The direction the chain runs through the tile, degrees in `[0, 360)` measured in SVG
+    /// coordinates from +x towards +y (so 90 points down the page).
+    pub heading_deg: f64,
+}
+
+/// Fit measures of a plan, each a share in `[0, 1]`.
+///
+/// Both are estimated on sample points: `covered_share` on a grid of about 250,000 points
+/// over the shape's bounding box, `outside_share` on 25 points per tile (a 5 x 5 grid over
+/// the tile's square of side w, kept where inside the octagon); the estimates are good to
+/// about 1 percent.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Metrics {
+    /// The share of the shape's area covered by tiles.
+    pub covered_share: f64,
+    /// The share of the chain's area that lies outside the shape.
+    pub outside_share: f64,
+    /// The shape's area, SVG user units squared.
+    pub shape_area: f64,
+    /// The chain's area (tiles times the octagon area), SVG user units squared.
+    pub chain_area: f64,
+}
+
+impl Metrics {
+    /// One number for comparisons (lower is better): the share of the shape left uncovered
+    /// plus the share of the chain outside it.
+    pub fn fit_error(&self) -> f64 {
+        (1.0 - self.covered_share) + self.outside_share
+    }
+}
+
+/// A planned chain: what `fold-plan --json` prints and `fold-run --plan` reads.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Plan {
+    /// The SVG file planned (as given), or `<string>`.
+    pub source: String,
+    /// Number of tiles.
+    pub tiles: usize,
+    /// The chain as a run-length tile list (`SS*12 SL LL ...`).
+    pub tile_list: String,
+    /// The fold word, one letter per joint (`S*11 L L ...`; `FoldWord::parse` reads it).
+    pub word: String,
+    /// The direction (degrees, SVG coordinates, in `[0, 180)`) along which the rows are
+    /// stacked: the axis the shape is monotone to. Rows run orthogonal to it.
+    pub axis_deg: f64,
+    /// The tile width (across flats), SVG user units.
+    pub tile_size: f64,
+    /// The turn style used (tight or loose).
+    pub turns: Turns,
+    /// Number of 180 degree U-turns.
+    pub u_turns: usize,
+    /// Number of single 90 degree turns (joins between cells).
+    pub quarter_turns: usize,
+    /// Number of monotone cells the shape was split into (1 for a monotone shape).
+    pub cells: usize,
+    /// Count per physical part (SS, RS, SR, RR, ...).
+    pub bom: BTreeMap<String, usize>,
+    /// Fit measures.
+    pub metrics: Metrics,
+    /// The affine map from the chain's own frame (tile 0 at the origin heading +x, in units
+    /// of the tile width, as `foldchain::kinematics` computes it with w = 1) to SVG user
+    /// units, as an SVG matrix `[a, b, c, d, e, f]`: `x' = a x + c y + e`,
+    /// `y' = b x + d y + f`. Its determinant is negative: the drawing is seen from above with
+    /// y pointing down, so L folds appear as left turns on the page.
+    pub chain_to_svg: [f64; 6],
+    /// One pose per tile centre, SVG user units.
+    pub poses: Vec<PlanPose>,
+}
+
+impl Plan {
+    /// The plan as pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// A plan read back from its JSON.
+    pub fn from_json(text: &str) -> Result<Plan, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+
+    /// The fold word, parsed.
+    pub fn fold_word(&self) -> Result<foldchain::FoldWord, foldchain::ChainError> {
+        foldchain::FoldWord::parse(&self.word)
+    }
+
+    /// The one-line summary `fold-plan` prints.
+    pub fn summary(&self) -> String {
+        format!(
+            "{} tiles, {} {} U-turns, {} 90-degree turns, {} cell(s), axis {:.1} deg, tile {:.4} units; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
+            self.tiles,
+            self.u_turns,
+            self.turns,
+            self.quarter_turns,
+            self.cells,
+            self.axis_deg,
+            self.tile_size,
+            100.0 * self.metrics.covered_share,
+            100.0 * self.metrics.outside_share
+        )
+    }
+}

@@ -1,0 +1,1 @@
+//! Preview SVG: the target outline, the planned tiles over it and the fold order.
