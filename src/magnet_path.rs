@@ -1,0 +1,249 @@
+//! The walled channel a magnet slides in, as a real parametric curve in the tile's frame
+//! (SPEC section 4): a straight path, or `s` straight towards the next magnet followed by a
+//! circular arc to a final point past the hinge.
+//!
+//! In a tile's frame the chain runs along +x through the centre. The tile's first path (the
+//! one facing the reaction initiator) lies on the -x side, its second path on the +x side;
+//! both start at the rest point `(-+b/2, 0)` and move away from the tile centre.
+//!
+//! **Curved paths.** The final point `F` lies `r` (the magnet radius, 1.5 mm) past the hinge
+//! laterally, `y_F = side/2 + r` on the fold side, and as near the shared face as the walls
+//! allow: the magnet centre keeps the straight path's end distance `c` from the diagonal face
+//! that closes the fold, so `x_F = w/2 - r - c sqrt2`. After the fold the two magnets of the
+//! pair then sit `2c` apart, as on straight paths. The arc runs from `Q` (the rest point moved
+//! `s` towards the next magnet) to `F` and is tangent at `F` to the tile's cross axis (the
+//! thesis' "horizontal" line through the final point: its figures draw the chain vertically):
+//! the two paths of a folding pair then end parallel, the angle between them closing
+//! monotonically to zero as the thesis requires. (An arc tangent to the chain axis at `F`
+//! would have to start backwards from `Q` with the thesis' dimensions.)
+
+use std::f64::consts::SQRT_2;
+
+use crate::{Design, Path};
+
+/// Which end of its tile a path lies at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PathEnd {
+    /// The first path, on the -x side (towards the reaction initiator).
+    First,
+    /// The second path, on the +x side.
+    Second,
+}
+
+/// A magnet path in its tile's frame, parametrised by arc length `u` in `[0, length]`, mm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MagnetPath {
+    /// The path kind.
+    pub kind: Path,
+    /// Which end of the tile it lies at.
+    pub end: PathEnd,
+    /// Rest point x (mm, tile frame), always on the axis.
+    rest_x: f64,
+    /// Length of the straight part (the whole path when straight), mm.
+    straight: f64,
+    /// Arc centre and radius (tile frame, mm), and the arc's start angle (radians, negative).
+    arc: Option<Arc>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Arc {
+    cx: f64,
+    cy: f64,
+    radius: f64,
+    start: f64,
+}
+
+/// Why a curved path cannot be built for a design.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PathError {
+    /// The final point of a curved path does not lie beyond the end of its straight part.
+    #[error("curved path cannot be built: its final point x = {x_final:.4} mm (w/2 - r - c sqrt2) does not lie beyond the end of its straight part at x = {x_straight:.4} mm (b/2 + s); use a smaller c or s, or wider tiles")]
+    Degenerate {
+        /// Final point x.
+        x_final: f64,
+        /// End of the straight part.
+        x_straight: f64,
+    },
+}
+
+impl MagnetPath {
+    /// The path of kind `kind` at end `end` of a tile built to `design`.
+    pub fn new(kind: Path, end: PathEnd, design: &Design) -> Result<MagnetPath, PathError> {
+        let sign = match end {
+            PathEnd::First => -1.0,
+            PathEnd::Second => 1.0,
+        };
+        let rest_x = sign * 0.5 * design.b();
+        let lateral = match kind {
+            Path::S => {
+                return Ok(MagnetPath {
+                    kind,
+                    end,
+                    rest_x,
+                    straight: design.a(),
+                    arc: None,
+                })
+            }
+            Path::L => 1.0,
+            Path::R => -1.0,
+        };
+        let w = design.tile_width;
+        let r = 0.5 * design.magnet_diameter;
+        let half_side = 0.5 * w * (SQRT_2 - 1.0);
+        let y_f = half_side + r;
+        let x_f = 0.5 * w - r - design.c() * SQRT_2;
+        let x_q = 0.5 * design.b() + design.s;
+        let dx = x_f - x_q;
+        if !(dx > 0.0) {
+            return Err(PathError::Degenerate {
+                x_final: x_f,
+                x_straight: x_q,
+            });
+        }
+        // Circle through Q = (x_q, 0) and F = (x_f, y_f), centre on the line y = y_f (so its
+        // tangent at F is the cross axis): centre (x_f - R, y_f), R = (dx^2 + y_f^2) / 2dx.
+        let radius = (dx * dx + y_f * y_f) / (2.0 * dx);
+        let start = (-y_f).atan2(radius - dx);
+        Ok(MagnetPath {
+            kind,
+            end,
+            rest_x,
+            straight: design.s,
+            arc: Some(Arc {
+                cx: sign * (x_f - radius),
+                cy: lateral * y_f,
+                radius,
+                start,
+            }),
+        })
+    }
+
+    /// The arc length of the whole path, mm.
+    pub fn length(&self) -> f64 {
+        self.straight + self.arc.map_or(0.0, |a| a.radius * -a.start)
+    }
+
+    /// The point at arc length `u` (clamped to the path), tile frame, mm.
+    pub fn point_at(&self, u: f64) -> (f64, f64) {
+        let u = u.clamp(0.0, self.length());
+        let sign = self.sign();
+        if u <= self.straight {
+            return (self.rest_x + sign * u, 0.0);
+        }
+        match self.arc {
+            None => (self.rest_x + sign * self.straight, 0.0),
+            Some(a) => {
+                let phi = a.start + (u - self.straight) / a.radius;
+                let lateral = a.cy.signum();
+                (
+                    a.cx + sign * a.radius * phi.cos(),
+                    a.cy + lateral * a.radius * phi.sin(),
+                )
+            }
+        }
+    }
+
+    /// The rest point, tile frame.
+    pub fn rest(&self) -> (f64, f64) {
+        (self.rest_x, 0.0)
+    }
+
+    /// The final point, tile frame.
+    pub fn end_point(&self) -> (f64, f64) {
+        self.point_at(self.length())
+    }
+
+    /// Whether the path is curved.
+    pub fn is_curved(&self) -> bool {
+        self.arc.is_some()
+    }
+
+    /// Points along the path for drawing, at most `max_step` mm apart.
+    pub fn polyline(&self, max_step: f64) -> Vec<(f64, f64)> {
+        let len = self.length();
+        let n = ((len / max_step.max(1e-6)).ceil() as usize).clamp(1, 512);
+        let mut pts = vec![self.rest()];
+        if self.is_curved() {
+            pts.push(self.point_at(self.straight));
+        }
+        for i in 1..=n {
+            let u = len * i as f64 / n as f64;
+            if u > self.straight {
+                pts.push(self.point_at(u));
+            }
+        }
+        pts
+    }
+
+    fn sign(&self) -> f64 {
+        match self.end {
+            PathEnd::First => -1.0,
+            PathEnd::Second => 1.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
+        ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt()
+    }
+
+    #[test]
+    fn straight_path_runs_a_to_c_from_the_edge() {
+        let d = Design::thesis();
+        let p = MagnetPath::new(Path::S, PathEnd::Second, &d).unwrap();
+        assert!((p.length() - d.a()).abs() < 1e-12);
+        assert!((p.end_point().0 - (d.d - d.c())).abs() < 1e-12);
+        let q = MagnetPath::new(Path::S, PathEnd::First, &d).unwrap();
+        assert!((q.end_point().0 + (d.d - d.c())).abs() < 1e-12);
+    }
+
+    #[test]
+    fn curved_path_is_continuous_and_ends_past_the_hinge() {
+        let d = Design::thesis();
+        for kind in [Path::L, Path::R] {
+            for end in [PathEnd::First, PathEnd::Second] {
+                let p = MagnetPath::new(kind, end, &d).unwrap();
+                let n = 2000;
+                let step = p.length() / n as f64;
+                for i in 0..n {
+                    let a = p.point_at(i as f64 * step);
+                    let b = p.point_at((i + 1) as f64 * step);
+                    // arc length parametrisation: chords never longer than the step
+                    assert!(dist(a, b) <= step * (1.0 + 1e-9), "{kind:?} {end:?} {i}");
+                    // the straight part meets the arc at an angle: chords there are shorter
+                    assert!(dist(a, b) >= step * 0.8, "{kind:?} {end:?} {i}");
+                }
+                let (x, y) = p.end_point();
+                let lateral = if kind == Path::L { 1.0 } else { -1.0 };
+                let half_side = 15.0 * (SQRT_2 - 1.0);
+                assert!((y * lateral - (half_side + 1.5)).abs() < 1e-9, "{y}");
+                assert!((x.abs() - (15.0 - 1.5 - 2.8 * SQRT_2)).abs() < 1e-9, "{x}");
+                // monotone away from the tile centre and towards the fold side
+                let mut prev = p.point_at(0.0);
+                for i in 1..=n {
+                    let q = p.point_at(i as f64 * step);
+                    assert!(q.0.abs() >= prev.0.abs() - 1e-12);
+                    assert!(q.1 * lateral >= prev.1 * lateral - 1e-12);
+                    prev = q;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn folded_pair_ends_two_c_apart() {
+        // tile j's second path L and tile j+1's first path L, tile j+1 turned 90 degrees
+        // about the hinge: the two final points are 2c apart, as on straight paths.
+        let d = Design::thesis();
+        let a = MagnetPath::new(Path::L, PathEnd::Second, &d).unwrap().end_point();
+        let b = MagnetPath::new(Path::L, PathEnd::First, &d).unwrap().end_point();
+        let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);
+        let b = next.transform_point(b);
+        assert!((dist(a, b) - 2.0 * d.c()).abs() < 1e-9, "{}", dist(a, b));
+    }
+}
