@@ -29,7 +29,6 @@ pub mod atomic;
 mod bom;
 mod chain;
 pub mod collision;
-pub mod count;
 pub mod design;
 pub mod dipole;
 pub mod engine;
