@@ -29,6 +29,7 @@ pub mod atomic;
 mod bom;
 mod chain;
 pub mod collision;
+pub mod count;
 pub mod design;
 pub mod dipole;
 pub mod engine;

@@ -1,0 +1,702 @@
+//! Counting the fold words that fold without self-intersection (thesis Table 5.1), and the
+//! chance that a chain of random tiles folds cleanly.
+//!
+//! A depth-first search grows words one joint at a time. Under sequential folding a prefix
+//! that collides makes every extension collide (the first tiles move the same way whatever
+//! follows), so invalid prefixes are cut. Appending tile `m + 1` adds exactly these motions to
+//! check, all with the closed-form sweep test of [`crate::collision::sweep`]:
+//! - for every earlier fold `k`, tile `m + 1` rides at the end of the straight tail that
+//!   turns about hinge `k`, against the fixed tiles `0..=k`;
+//! - if joint `m` folds, tile `m + 1` turns about hinge `m` against tiles `0..m`.
+//!
+//! Final-shape overlaps are the ends of these sweeps, so nothing else is needed; a fold whose
+//! tail has grown out of reach of everything fixed is dropped from the search below it. No
+//! rule about letters is used: every count comes from the geometry. Mirror images (L and R
+//! swapped) fold alike, so only words whose first turn is L are searched and counted twice.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rayon::prelude::*;
+
+use crate::collision::sweep::{first_contact, V2};
+use crate::collision::{check_word, CheckOptions};
+use crate::exact::ExactPose;
+use crate::kinematics::{exact_hinge, next_exact_pose};
+use crate::{Fold, FoldWord, Octagon};
+
+/// What to count.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CountOptions {
+    /// Shortest chain counted, in tiles. Default 2.
+    pub min_tiles: usize,
+    /// Longest chain counted, in tiles. Default 6.
+    pub max_tiles: usize,
+    /// Count words with adjacent opposite folds (L then R), which need LR/RL tiles. Default
+    /// `false`, as in the thesis.
+    pub allow_opposite: bool,
+    /// Check only the final shape, not the fold sweeps. Default `false`.
+    pub final_only: bool,
+    /// Also compute the exact probability that a chain of tiles drawn uniformly from the nine
+    /// propagates to its end and folds cleanly. Default `false`.
+    pub random: bool,
+    /// Count only part `k` (1-based) of `m` disjoint parts of the search. Default `None`.
+    pub shard: Option<(usize, usize)>,
+    /// Touching tolerance in tile widths (see [`CheckOptions::tolerance`]). Default `1e-7`.
+    pub tolerance: f64,
+}
+
+impl Default for CountOptions {
+    fn default() -> CountOptions {
+        CountOptions {
+            min_tiles: 2,
+            max_tiles: 6,
+            allow_opposite: false,
+            final_only: false,
+            random: false,
+            shard: None,
+            tolerance: CheckOptions::default().tolerance,
+        }
+    }
+}
+
+impl CountOptions {
+    /// Counts chains of `min` to `max` tiles.
+    pub fn with_tiles(mut self, min: usize, max: usize) -> CountOptions {
+        self.min_tiles = min;
+        self.max_tiles = max;
+        self
+    }
+    /// Counts words with adjacent opposite folds too.
+    pub fn with_allow_opposite(mut self, allow: bool) -> CountOptions {
+        self.allow_opposite = allow;
+        self
+    }
+    /// Checks only final shapes.
+    pub fn with_final_only(mut self, final_only: bool) -> CountOptions {
+        self.final_only = final_only;
+        self
+    }
+    /// Computes the random-chain probability too.
+    pub fn with_random(mut self, random: bool) -> CountOptions {
+        self.random = random;
+        self
+    }
+    /// Counts only part `k` (1-based) of `m`.
+    pub fn with_shard(mut self, k: usize, m: usize) -> CountOptions {
+        self.shard = Some((k, m));
+        self
+    }
+}
+
+/// Why a count could not be made.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CountError {
+    /// Bad tile range.
+    #[error("tile range {min}..={max}: expected 1 <= min <= max <= {limit}")]
+    BadRange {
+        /// Shortest.
+        min: usize,
+        /// Longest.
+        max: usize,
+        /// The largest length supported.
+        limit: usize,
+    },
+    /// Bad shard.
+    #[error("shard {k}/{m}: expected 1 <= k <= m")]
+    BadShard {
+        /// Part.
+        k: usize,
+        /// Parts.
+        m: usize,
+    },
+}
+
+/// The largest chain length counted (the weights of the random-chain probability are exact
+/// integers up to this length).
+pub const MAX_COUNT_TILES: usize = 40;
+
+/// One row of the table: chains of `tiles` tiles.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CountRow {
+    /// Tiles in the chain.
+    pub tiles: usize,
+    /// All fold words, `3^(tiles - 1)`.
+    pub candidates: u128,
+    /// Words searched under the options: without adjacent opposite folds unless they are
+    /// allowed.
+    pub searched: u128,
+    /// Words that fold without self-intersection.
+    pub valid: u128,
+    /// Probability that a chain of uniformly random tiles propagates to its end and folds
+    /// without self-intersection (with `random`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub p_random: Option<f64>,
+    /// The same as an exact fraction `numerator/9^(tiles-1)` (with `random`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub p_random_exact: Option<String>,
+    /// The thesis' `(7/9)^(tiles-1)`, which ignores self-intersection (with `random`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub p_propagates: Option<f64>,
+}
+
+/// Per-length tallies of one search.
+#[derive(Clone, Debug, Default)]
+struct Tally {
+    valid: Vec<u128>,
+    /// Sum over valid words of 5^(number of straight joints).
+    weight: Vec<u128>,
+}
+
+impl Tally {
+    fn new(n: usize) -> Tally {
+        Tally { valid: vec![0; n + 1], weight: vec![0; n + 1] }
+    }
+    fn add(&mut self, o: &Tally) {
+        for (a, b) in self.valid.iter_mut().zip(&o.valid) {
+            *a += b;
+        }
+        for (a, b) in self.weight.iter_mut().zip(&o.weight) {
+            *a += b;
+        }
+    }
+}
+
+/// Counts valid fold words for every length in the options' range. `progress(done, total)`
+/// is called as parts of the search finish.
+pub fn count_valid(opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<Vec<CountRow>, CountError> {
+    if opts.min_tiles < 1 || opts.min_tiles > opts.max_tiles || opts.max_tiles > MAX_COUNT_TILES {
+        return Err(CountError::BadRange { min: opts.min_tiles, max: opts.max_tiles, limit: MAX_COUNT_TILES });
+    }
+    if let Some((k, m)) = opts.shard {
+        if k < 1 || k > m {
+            return Err(CountError::BadShard { k, m });
+        }
+    }
+    let n = opts.max_tiles;
+    let main = search(n, opts.allow_opposite, opts, progress);
+    let random = if opts.random {
+        Some(if opts.allow_opposite { main.clone() } else { search(n, true, opts, progress) })
+    } else {
+        None
+    };
+    let mut rows = Vec::new();
+    for tiles in opts.min_tiles..=n {
+        let joints = (tiles - 1) as u32;
+        let candidates = 3u128.pow(joints);
+        let searched = if opts.allow_opposite { candidates } else { words_without_opposite(tiles) };
+        let mut row = CountRow {
+            tiles,
+            candidates,
+            searched,
+            valid: main.valid[tiles],
+            p_random: None,
+            p_random_exact: None,
+            p_propagates: None,
+        };
+        if let Some(r) = &random {
+            let den = 9u128.pow(joints);
+            row.p_random = Some(r.weight[tiles] as f64 / den as f64);
+            row.p_random_exact = Some(format!("{}/{}", r.weight[tiles], den));
+            row.p_propagates = Some((7.0f64 / 9.0).powi(joints as i32));
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Words of `tiles - 1` letters with no L next to R.
+fn words_without_opposite(tiles: usize) -> u128 {
+    // ending in S, ending in L (R the same by symmetry)
+    let (mut s, mut l) = (1u128, 0u128);
+    for _ in 0..tiles.saturating_sub(1) {
+        let (ns, nl) = (s + 2 * l, s + l);
+        s = ns;
+        l = nl;
+    }
+    s + 2 * l
+}
+
+/// A fold whose sweep later tiles are checked against.
+#[derive(Clone, Copy, Debug)]
+struct FoldRec {
+    /// The joint.
+    k: usize,
+    pivot: V2,
+    theta: f64,
+    /// Squared distance from the pivot beyond which nothing fixed reaches.
+    reach2: f64,
+    /// Centre of tile k and the tail direction.
+    base: V2,
+    dir: V2,
+}
+
+struct Searcher {
+    n: usize,
+    allow_opposite: bool,
+    final_only: bool,
+    outline: [V2; 8],
+    radius: f64,
+}
+
+/// Growing state of one word.
+struct Stack {
+    poses: Vec<ExactPose>,
+    centres: Vec<V2>,
+    letters: Vec<Fold>,
+    /// active folds per depth
+    active: Vec<Vec<FoldRec>>,
+}
+
+const PREFIX_JOINTS: usize = 9;
+
+fn search(n: usize, allow_opposite: bool, opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) -> Tally {
+    let o = Octagon::new(1.0);
+    let s = Searcher {
+        n,
+        allow_opposite,
+        final_only: opts.final_only,
+        outline: o.inset_vertices(opts.tolerance),
+        radius: o.circumradius(),
+    };
+    // Split the search at a fixed prefix depth: prefixes are shared out to threads and
+    // shards; lengths up to the prefix depth are counted by shard 1 alone.
+    let depth = PREFIX_JOINTS.min(n - 1);
+    let mut top = Tally::new(n);
+    let mut prefixes: Vec<Vec<Fold>> = Vec::new();
+    let mut st = Stack::new(n);
+    s.collect(&mut st, depth, &mut top, &mut prefixes);
+    let (k, m) = opts.shard.unwrap_or((1, 1));
+    if k != 1 {
+        top = Tally::new(n);
+    }
+    let mine: Vec<&Vec<Fold>> = prefixes.iter().enumerate().filter(|(i, _)| i % m == k - 1).map(|(_, p)| p).collect();
+    let total = mine.len() as u64;
+    let done = AtomicU64::new(0);
+    let deep = mine
+        .par_iter()
+        .map(|p| {
+            let mut st = Stack::new(n);
+            let mut t = Tally::new(n);
+            for &f in p.iter() {
+                // the prefix is valid: replay it without checks
+                st.push_unchecked(f, &s);
+            }
+            s.dfs(&mut st, &mut t);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+            t
+        })
+        .reduce(|| Tally::new(n), |mut a, b| {
+            a.add(&b);
+            a
+        });
+    top.add(&deep);
+    top
+}
+
+impl Stack {
+    fn new(n: usize) -> Stack {
+        let mut st = Stack {
+            poses: Vec::with_capacity(n),
+            centres: Vec::with_capacity(n),
+            letters: Vec::with_capacity(n),
+            active: Vec::with_capacity(n),
+        };
+        st.poses.push(ExactPose::default());
+        st.centres.push((0.0, 0.0));
+        st.active.push(Vec::new());
+        st
+    }
+
+    fn has_turn(&self) -> bool {
+        self.letters.iter().any(|&f| f != Fold::S)
+    }
+
+    fn straight_joints(&self) -> u32 {
+        self.letters.iter().filter(|&&f| f == Fold::S).count() as u32
+    }
+
+    fn pop(&mut self) {
+        self.poses.pop();
+        self.centres.pop();
+        self.letters.pop();
+        self.active.pop();
+    }
+
+    /// Appends a joint and tile without checking (a prefix known to be valid).
+    fn push_unchecked(&mut self, f: Fold, s: &Searcher) {
+        let (active, _) = s.extend(self, f, false);
+        self.commit(f, active);
+    }
+
+    fn commit(&mut self, f: Fold, active: Vec<FoldRec>) {
+        let m = self.poses.len() - 1;
+        let p = next_exact_pose(self.poses[m], f);
+        self.poses.push(p);
+        self.centres.push(p.centre.to_f64(1.0));
+        self.letters.push(f);
+        self.active.push(active);
+    }
+}
+
+#[inline]
+fn dist2(a: V2, b: V2) -> f64 {
+    (a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)
+}
+
+impl Searcher {
+    fn at(&self, c: V2) -> [V2; 8] {
+        self.outline.map(|(x, y)| (x + c.0, y + c.1))
+    }
+
+    /// The folds that stay active after appending joint `f`, and whether the new tile
+    /// collides (when `check`).
+    fn extend(&self, st: &Stack, f: Fold, check: bool) -> (Vec<FoldRec>, bool) {
+        let m = st.poses.len() - 1;
+        let pm = st.poses[m];
+        let new = next_exact_pose(pm, f);
+        let r = self.radius;
+        let mut active = Vec::with_capacity(st.active[m].len() + 1);
+        if self.final_only {
+            if check {
+                for i in 0..m {
+                    if crate::collision::lattice_overlap_pub(st.poses[i].centre, new.centre) {
+                        return (active, true);
+                    }
+                }
+            }
+            return (active, false);
+        }
+        // the new tile at the end of every earlier fold's straight tail
+        for fr in &st.active[m] {
+            let steps = (m + 1 - fr.k) as f64;
+            let s = (fr.base.0 + steps * fr.dir.0, fr.base.1 + steps * fr.dir.1);
+            let rr = dist2(s, fr.pivot).sqrt();
+            if (rr - r) * (rr - r) > fr.reach2 && rr > r {
+                continue; // out of reach now and for every later tile: drop the fold
+            }
+            active.push(*fr);
+            if !check {
+                continue;
+            }
+            let lo = (rr - 2.0 * r).max(0.0);
+            let (lo2, hi2) = (lo * lo, (rr + 2.0 * r) * (rr + 2.0 * r));
+            let moving = self.at(s);
+            let sweep = AngularSweep::new(s, rr, fr.pivot, fr.theta, r);
+            for i in 0..=fr.k {
+                let d2 = dist2(st.centres[i], fr.pivot);
+                if d2 < lo2 || d2 > hi2 || !sweep.may_reach(st.centres[i], d2.sqrt(), r) {
+                    continue;
+                }
+                if first_contact(&moving, &self.at(st.centres[i]), fr.pivot, fr.theta).is_some() {
+                    return (active, true);
+                }
+            }
+        }
+        // the new joint's own fold
+        if let Some(h) = exact_hinge(pm, f) {
+            let pivot = h.to_f64(1.0);
+            let theta = f.quarter_turns() as f64 * std::f64::consts::FRAC_PI_2;
+            let base = st.centres[m];
+            let s = step_dir(pm);
+            let start = (base.0 + s.0, base.1 + s.1);
+            let mut reach: f64 = 0.0;
+            for i in 0..=m {
+                reach = reach.max(dist2(st.centres[i], pivot).sqrt() + r);
+            }
+            if check {
+                let moving = self.at(start);
+                let rr = dist2(start, pivot).sqrt();
+                let sweep = AngularSweep::new(start, rr, pivot, theta, r);
+                for i in 0..m {
+                    let d = dist2(st.centres[i], pivot).sqrt();
+                    if (d - rr).abs() > 2.0 * r || !sweep.may_reach(st.centres[i], d, r) {
+                        continue;
+                    }
+                    if first_contact(&moving, &self.at(st.centres[i]), pivot, theta).is_some() {
+                        return (active, true);
+                    }
+                }
+            }
+            active.push(FoldRec { k: m, pivot, theta, reach2: reach * reach, base, dir: s });
+        }
+        (active, false)
+    }
+
+    fn letters_after(&self, st: &Stack) -> Vec<Fold> {
+        let last = st.letters.last().copied();
+        let mirror_free = !st.has_turn();
+        Fold::ALL
+            .iter()
+            .copied()
+            .filter(|&f| !(mirror_free && f == Fold::R))
+            .filter(|&f| self.allow_opposite || !last.is_some_and(|l| l.is_opposite(f)))
+            .collect()
+    }
+
+    fn record(&self, st: &Stack, t: &mut Tally) {
+        let tiles = st.poses.len();
+        let mult: u128 = if st.has_turn() { 2 } else { 1 };
+        t.valid[tiles] += mult;
+        t.weight[tiles] += mult * 5u128.pow(st.straight_joints());
+    }
+
+    /// Depth-first search below the current (valid, recorded) word.
+    fn dfs(&self, st: &mut Stack, t: &mut Tally) {
+        if st.poses.len() >= self.n {
+            return;
+        }
+        for f in self.letters_after(st) {
+            let (active, hit) = self.extend(st, f, true);
+            if hit {
+                continue;
+            }
+            st.commit(f, active);
+            self.record(st, t);
+            self.dfs(st, t);
+            st.pop();
+        }
+    }
+
+    /// Search down to `depth` joints, recording every valid word on the way and collecting
+    /// the valid words of exactly `depth` joints as prefixes for the deep search.
+    fn collect(&self, st: &mut Stack, depth: usize, t: &mut Tally, out: &mut Vec<Vec<Fold>>) {
+        if st.letters.is_empty() {
+            t.valid[1] += 1;
+            t.weight[1] += 1;
+        }
+        if st.letters.len() == depth {
+            out.push(st.letters.clone());
+            return;
+        }
+        for f in self.letters_after(st) {
+            let (active, hit) = self.extend(st, f, true);
+            if hit {
+                continue;
+            }
+            st.commit(f, active);
+            self.record(st, t);
+            self.collect(st, depth, t, out);
+            st.pop();
+        }
+    }
+}
+
+/// The angles swept by a tile whose centre, at distance `radius` from the pivot, turns by
+/// `theta`: a cheap test that a fixed tile lies outside them, so no contact is possible.
+struct AngularSweep {
+    /// Start of the swept angles (radians), counter-clockwise.
+    from: f64,
+    /// Width of the swept angles, including the moving tile's own half-width.
+    width: f64,
+    pivot: V2,
+}
+
+impl AngularSweep {
+    fn new(centre: V2, radius: f64, pivot: V2, theta: f64, r: f64) -> AngularSweep {
+        let a = (centre.1 - pivot.1).atan2(centre.0 - pivot.0);
+        let half = if radius > r { (r / radius).asin() } else { std::f64::consts::PI };
+        let (lo, hi) = if theta >= 0.0 { (a, a + theta) } else { (a + theta, a) };
+        AngularSweep { from: lo - half, width: hi - lo + 2.0 * half, pivot }
+    }
+
+    /// Whether a tile of circumradius `r` centred at `c`, `d` from the pivot, can meet the
+    /// swept tile. Conservative: a small safety margin is added.
+    fn may_reach(&self, c: V2, d: f64, r: f64) -> bool {
+        if d <= r || self.width >= std::f64::consts::TAU {
+            return true;
+        }
+        let half = (r / d).asin() + 1e-9;
+        let a = (c.1 - self.pivot.1).atan2(c.0 - self.pivot.0);
+        // angle of c's centre measured from the sweep start, into [0, 2 pi)
+        let rel = (a - self.from).rem_euclid(std::f64::consts::TAU);
+        rel <= self.width + half || rel >= std::f64::consts::TAU - half
+    }
+}
+
+/// The direction from a tile's centre to the next one's while straight.
+fn step_dir(p: ExactPose) -> V2 {
+    crate::collision::unit_pub(p.heading)
+}
+
+/// Estimate of the random-chain probability by sampling, with its 95% (Wilson) interval.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RandomEstimate {
+    /// Tiles in the chain.
+    pub tiles: usize,
+    /// Chains sampled.
+    pub samples: u64,
+    /// Chains that propagated to the end and folded cleanly.
+    pub successes: u64,
+    /// The estimate.
+    pub p: f64,
+    /// Lower end of the 95% interval.
+    pub low: f64,
+    /// Upper end of the 95% interval.
+    pub high: f64,
+}
+
+/// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds the
+/// part that propagation reaches and counts those that reach the end and fold cleanly.
+/// Deterministic for a given `seed`.
+pub fn estimate_random(tiles: usize, samples: u64, seed: u64, opts: &CheckOptions) -> RandomEstimate {
+    let chunks = 64u64;
+    let per = samples.div_ceil(chunks);
+    let successes: u64 = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let mut rng = SplitMix64(seed ^ (c.wrapping_mul(0x9E37_79B9_7F4A_7C15)));
+            let count = per.min(samples.saturating_sub(c * per));
+            let mut ok = 0u64;
+            for _ in 0..count {
+                // each joint independently: the second path of one tile and the first of the
+                // next are independent uniform letters
+                let mut folds = Vec::with_capacity(tiles.saturating_sub(1));
+                let mut inhibited = false;
+                for _ in 1..tiles {
+                    let a = rng.below(3);
+                    let b = rng.below(3);
+                    let f = match (a, b) {
+                        (1, 1) => Fold::L,
+                        (2, 2) => Fold::R,
+                        (1, 2) | (2, 1) => {
+                            inhibited = true;
+                            break;
+                        }
+                        _ => Fold::S,
+                    };
+                    folds.push(f);
+                }
+                if !inhibited && check_word(&FoldWord::from_folds(folds), opts).is_ok() {
+                    ok += 1;
+                }
+            }
+            ok
+        })
+        .sum();
+    let (p, low, high) = wilson(successes, samples);
+    RandomEstimate { tiles, samples, successes, p, low, high }
+}
+
+/// The Wilson score interval at 95%.
+fn wilson(k: u64, n: u64) -> (f64, f64, f64) {
+    if n == 0 {
+        return (f64::NAN, 0.0, 1.0);
+    }
+    let z = 1.959_963_984_540_054;
+    let (k, n) = (k as f64, n as f64);
+    let p = k / n;
+    let den = 1.0 + z * z / n;
+    let centre = (p + z * z / (2.0 * n)) / den;
+    let half = z * ((p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt()) / den;
+    (p, (centre - half).max(0.0), (centre + half).min(1.0))
+}
+
+/// A small, fast, seedable generator (SplitMix64): enough for sampling chains.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        ((self.next() >> 11) as f64 / (1u64 << 53) as f64 * n as f64) as u64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn none(_: u64, _: u64) {}
+
+    /// Thesis Table 5.1.
+    #[test]
+    fn table_5_1() {
+        let rows = count_valid(&CountOptions::default().with_tiles(2, 6), &none).unwrap();
+        let got: Vec<(usize, u128, u128)> = rows.iter().map(|r| (r.tiles, r.candidates, r.valid)).collect();
+        assert_eq!(got, vec![(2, 3, 3), (3, 9, 7), (4, 27, 17), (5, 81, 35), (6, 243, 79)]);
+    }
+
+    /// The search agrees with checking every word on its own (all words, LR allowed).
+    #[test]
+    fn search_agrees_with_word_by_word_check() {
+        for allow in [false, true] {
+            for final_only in [false, true] {
+                let opts = CountOptions::default().with_tiles(1, 8).with_allow_opposite(allow).with_final_only(final_only);
+                let rows = count_valid(&opts, &none).unwrap();
+                for row in rows {
+                    let joints = row.tiles - 1;
+                    let mut valid = 0u128;
+                    for code in 0..3usize.pow(joints as u32) {
+                        let mut c = code;
+                        let folds: Vec<Fold> = (0..joints)
+                            .map(|_| {
+                                let f = Fold::ALL[c % 3];
+                                c /= 3;
+                                f
+                            })
+                            .collect();
+                        let w = FoldWord::from_folds(folds);
+                        if !allow && w.first_opposite_pair().is_some() {
+                            continue;
+                        }
+                        if check_word(&w, &CheckOptions::default().with_final_only(final_only)).is_ok() {
+                            valid += 1;
+                        }
+                    }
+                    assert_eq!(row.valid, valid, "tiles {} allow {allow} final_only {final_only}", row.tiles);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shards_add_up() {
+        let whole = count_valid(&CountOptions::default().with_tiles(2, 12), &none).unwrap();
+        let mut sum = vec![0u128; whole.len()];
+        for k in 1..=3 {
+            let part = count_valid(&CountOptions::default().with_tiles(2, 12).with_shard(k, 3), &none).unwrap();
+            for (s, r) in sum.iter_mut().zip(&part) {
+                *s += r.valid;
+            }
+        }
+        assert_eq!(sum, whole.iter().map(|r| r.valid).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn random_probability_is_exact_and_below_propagation() {
+        let rows = count_valid(&CountOptions::default().with_tiles(2, 6).with_random(true), &none).unwrap();
+        // two tiles: never self-intersects, so it is the propagation probability 7/9
+        assert_eq!(rows[0].p_random_exact.as_deref(), Some("7/9"));
+        for r in &rows {
+            assert!(r.p_random.unwrap() <= r.p_propagates.unwrap() + 1e-15);
+        }
+        // five tiles: LLLL-like words fail, so strictly below (7/9)^4
+        assert!(rows[3].p_random.unwrap() < rows[3].p_propagates.unwrap());
+        // Monte Carlo agrees with the exact figure within its interval
+        let est = estimate_random(6, 40_000, 7, &CheckOptions::default());
+        let exact = rows[4].p_random.unwrap();
+        assert!(est.low <= exact && exact <= est.high, "{est:?} vs {exact}");
+    }
+
+    #[test]
+    fn bad_options_are_errors() {
+        assert!(count_valid(&CountOptions::default().with_tiles(5, 3), &none).is_err());
+        assert!(count_valid(&CountOptions::default().with_tiles(2, 99), &none).is_err());
+        assert!(count_valid(&CountOptions::default().with_shard(0, 3), &none).is_err());
+        assert!(count_valid(&CountOptions::default().with_shard(4, 3), &none).is_err());
+    }
+
+    #[test]
+    fn counting_words_without_opposite_folds() {
+        assert_eq!(words_without_opposite(2), 3);
+        assert_eq!(words_without_opposite(3), 7);
+        assert_eq!(words_without_opposite(4), 17);
+        assert_eq!(words_without_opposite(5), 41);
+    }
+}
