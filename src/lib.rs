@@ -35,6 +35,7 @@ pub mod dipole;
 pub mod engine;
 mod error;
 pub mod exact;
+pub mod fold_run;
 pub mod input;
 mod joint;
 pub mod kinematics;
@@ -42,6 +43,7 @@ pub mod magnet_path;
 mod octagon;
 mod path;
 mod pose;
+pub mod render;
 mod tile;
 mod word;
 

@@ -173,19 +173,27 @@ impl Geometry {
         (ri < partner - LENGTH_TOLERANCE * self.w, ri, partner)
     }
 
-    /// The distance between the final points of magnet `k` and the one it heads for
-    /// (straight frame): used by the speed law.
+    /// The distance between the final points of magnet `k` and the one it heads for, in
+    /// the final shape (a folding pair measured after its fold: `2c`, as a straight pair):
+    /// used by the speed law.
     pub fn end_gap(&self, k: usize) -> f64 {
-        let t = k / 2;
-        let end = self.end_in(k, t);
         if k == 0 {
-            return dist(end, self.ri_position());
+            return dist(self.end_in(0, 0), self.ri_position());
         }
-        let other = if k % 2 == 1 { k + 1 } else { k - 1 };
-        if other >= self.magnets() {
+        let (a, b) = if k % 2 == 1 { (k, k + 1) } else { (k - 1, k) };
+        if b >= self.magnets() {
             return 0.0;
         }
-        dist(end, self.end_in(other, t))
+        let j = a / 2;
+        let pa = self.path(a).end_point();
+        let pb = self.path(b).end_point();
+        let angle = match (self.tiles[j].second, self.tiles[j + 1].first) {
+            (Path::L, Path::L) => std::f64::consts::FRAC_PI_2,
+            (Path::R, Path::R) => -std::f64::consts::FRAC_PI_2,
+            _ => 0.0,
+        };
+        let pb = crate::kinematics::joint_transform(angle, self.w).transform_point(pb);
+        dist(pa, pb)
     }
 
     /// Whether the pair closing joint `j` diverges: its path ends lie farther apart than its
@@ -248,7 +256,9 @@ impl Geometry {
                         hi = mid;
                     }
                 }
-                return Trigger::At(hi);
+                // the sequential edge (s = e/3): a crossing within rounding of the path end
+                // is at the end, so the next magnet starts exactly as this one arrives
+                return Trigger::At(if len - hi <= tol { len } else { hi });
             }
             if v.abs() < best.1 {
                 best = (u, v.abs());

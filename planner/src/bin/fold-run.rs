@@ -1,0 +1,209 @@
+//! `fold-run`: derive when every magnet moves and every joint folds, check the folding for
+//! self-intersection, and draw it. Exit 0 when the chain folds completely and cleanly, 1 when
+//! it collides, is inhibited or stalls, 2 for bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{anyhow, bail, Context};
+use clap::Parser;
+use foldchain::engine::{SValue, SpeedLaw, TileDesigns, DEFAULT_DRAG};
+use foldchain::fold_run::{fold_run, read_plan_file, FoldRunOptions};
+use foldchain::Chain;
+use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
+
+/// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
+#[derive(Parser, Debug)]
+#[command(name = "fold-run", version, about)]
+struct Args {
+    /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
+    /// target shape `SHAPE.svg` to plan and fold in one go.
+    chain: Option<String>,
+    /// Read the chain from fold-plan's JSON.
+    #[arg(long, value_name = "PLAN.json")]
+    plan: Option<PathBuf>,
+    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
+    /// thesis design.
+    #[arg(long, value_name = "DESIGN.json")]
+    design: Option<PathBuf>,
+    /// s for every tile: millimetres (0.3, 0.3mm) or a fraction of e (e/3, 0.25e).
+    #[arg(long, value_name = "MM")]
+    s: Option<String>,
+    /// Output directory (default out/<name>/).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Number of step frames (default: 40, fewer for long chains).
+    #[arg(long, value_name = "N")]
+    frames: Option<usize>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Speed law: overdamped (seconds) or unit (1 mm/s, the transition diagram's timeline).
+    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
+    speed: String,
+    /// Drag coefficient of the overdamped law, N s/m.
+    #[arg(long, default_value_t = DEFAULT_DRAG)]
+    drag: f64,
+    /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
+    #[arg(long, value_name = "A..B")]
+    transition: Option<String>,
+    /// SHAPE.svg only: about this many tiles.
+    #[arg(long)]
+    tiles: Option<usize>,
+    /// SHAPE.svg only: tile width in SVG user units.
+    #[arg(long)]
+    tile_size: Option<f64>,
+    /// SHAPE.svg only: tight, loose or auto.
+    #[arg(long)]
+    turns: Option<Turns>,
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(args) {
+        Ok(code) => ExitCode::from(code),
+        Err(e) => {
+            eprintln!("fold-run: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn sanitize(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .take(40)
+        .collect();
+    if s.is_empty() { "run".into() } else { s }
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into())
+}
+
+/// Bad input is an `Err` (exit 2); outcomes are exit codes.
+fn run(args: Args) -> anyhow::Result<u8> {
+    let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
+    let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
+        (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
+        (None, None) => bail!("no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"),
+        (None, Some(plan)) => (read_plan_file(plan)?, stem(plan)),
+        (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
+            let path = Path::new(arg);
+            let mut po = PlanOptions::default();
+            if let Some(n) = args.tiles {
+                if n == 0 {
+                    bail!("--tiles 0: expected at least 1");
+                }
+                po = po.with_tiles(n);
+            }
+            if let Some(w) = args.tile_size {
+                if !w.is_finite() || w <= 0.0 {
+                    bail!("--tile-size {w}: expected a finite number > 0");
+                }
+                po = po.with_tile_size(w);
+            }
+            if let Some(t) = args.turns {
+                po = po.with_turns(t);
+            }
+            let plan = match plan_svg_file(path, &po) {
+                Ok(p) => p,
+                Err(e) if e.is_bad_input() => return Err(anyhow!(e)),
+                Err(e) => {
+                    eprintln!("fold-run: cannot plan {}: {e:#}", path.display());
+                    return Ok(1);
+                }
+            };
+            let word = plan.fold_word().with_context(|| format!("plan of {}", path.display()))?;
+            (word.to_chain(), stem(path))
+        }
+        (Some(arg), None) => {
+            if shape_opts_given {
+                bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg");
+            }
+            let chain = foldchain::input::read_chain_arg(arg)?;
+            let name = if Path::new(arg).is_file() { stem(Path::new(arg)) } else { sanitize(arg.trim()) };
+            (chain, name)
+        }
+    };
+    let mut designs = match &args.design {
+        Some(p) => TileDesigns::from_file(p)?,
+        None => TileDesigns::default(),
+    };
+    if let Some(s) = &args.s {
+        designs = designs.with_s(SValue::parse(s)?);
+        designs.validate("--s")?;
+    }
+    let speed = match args.speed.as_str() {
+        "unit" => SpeedLaw::Unit,
+        _ => {
+            if !args.drag.is_finite() || args.drag <= 0.0 {
+                bail!("--drag {}: expected a finite number > 0 (N s/m)", args.drag);
+            }
+            SpeedLaw::Overdamped { drag: args.drag }
+        }
+    };
+    if args.frames == Some(0) {
+        bail!("--frames 0: expected at least 1");
+    }
+    let transition_tiles = match &args.transition {
+        None => None,
+        Some(t) => {
+            let (a, b) = t
+                .split_once("..")
+                .and_then(|(a, b)| Some((a.trim().parse::<usize>().ok()?, b.trim().parse::<usize>().ok()?)))
+                .filter(|(a, b)| a <= b)
+                .ok_or_else(|| anyhow!("--transition '{t}': expected A..B with whole numbers A <= B"))?;
+            Some((a, b))
+        }
+    };
+    let opts = FoldRunOptions {
+        name: name.clone(),
+        designs,
+        engine: foldchain::engine::EngineOptions::default().with_speed(speed),
+        out_dir: args.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name)),
+        frames: args.frames,
+        transition_tiles,
+        ..FoldRunOptions::default()
+    };
+    let bar = (chain.len() > 2000).then(|| {
+        let b = indicatif::ProgressBar::new(1);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let mut progress = |stage: &str, done: usize, total: usize| {
+        if let Some(b) = &bar {
+            b.set_message(stage.to_string());
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    };
+    let report = fold_run(&chain, &opts, &mut progress)?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let s = &report.summary;
+    if args.json {
+        println!("{}", s.to_json());
+    } else {
+        println!(
+            "{}: {} tiles, {} in {:.4} s, {} events, {} folds, at most {} magnets moving; wrote {}",
+            name,
+            s.tiles,
+            s.result,
+            s.duration_s,
+            s.events,
+            s.folds.len(),
+            s.max_moving_magnets,
+            report.out_dir.display()
+        );
+        if let Some(r) = &s.reason {
+            println!("  {r}");
+        }
+    }
+    Ok(if s.completed { 0 } else { 1 })
+}

@@ -1,0 +1,303 @@
+//! `fold-run` as a library call: run the event engine on a chain, check the fold schedule for
+//! self-intersection, and write the pictures and JSON into one output directory.
+//!
+//! Everything is written into a temporary directory beside the target, which is renamed into
+//! place only when every file is complete: a failed run leaves no half-written output (an
+//! older run's directory of the same name is replaced only then).
+
+mod plan_file;
+
+use std::fmt::Write as _;
+use std::path::{Path as FsPath, PathBuf};
+
+use crate::atomic::{write_atomic, WriteError};
+use crate::collision::{check_schedule, CheckOptions, Collision, ScheduleError};
+use crate::engine::{
+    energy_curve, fold_schedule, joint_angles_at, run, EngineError, EngineOptions, Summary,
+    TileDesigns, Timeline,
+};
+use crate::kinematics::poses_at_angles;
+use crate::render::{energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, DETAIL_TILES};
+use crate::{Chain, Fold, FoldWord};
+
+pub use plan_file::{read_plan_file, PlanFileError};
+
+/// Options of a run. Defaults: thesis design, overdamped speed law, `out/run`, frames chosen
+/// by chain length ([`default_frames`]), transition diagram of the first six tiles.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FoldRunOptions {
+    /// The run's name (titles).
+    pub name: String,
+    /// The tile designs.
+    pub designs: TileDesigns,
+    /// The engine options.
+    pub engine: EngineOptions,
+    /// The output directory.
+    pub out_dir: PathBuf,
+    /// Number of step frames; `None` for [`default_frames`].
+    pub frames: Option<usize>,
+    /// Tiles shown in the transition diagram (inclusive); `None` for the first six.
+    pub transition_tiles: Option<(usize, usize)>,
+    /// The collision check's options.
+    pub check: CheckOptions,
+}
+
+impl Default for FoldRunOptions {
+    fn default() -> FoldRunOptions {
+        FoldRunOptions {
+            name: "run".into(),
+            designs: TileDesigns::default(),
+            engine: EngineOptions::default(),
+            out_dir: PathBuf::from("out/run"),
+            frames: None,
+            transition_tiles: None,
+            check: CheckOptions::default(),
+        }
+    }
+}
+
+/// The default number of step frames: 40 for short chains, fewer for long ones (a frame of
+/// a long chain is drawn lean, but each still holds every tile).
+pub fn default_frames(tiles: usize) -> usize {
+    match tiles {
+        0..=50 => 40,
+        51..=DETAIL_TILES => 24,
+        401..=20_000 => 12,
+        _ => 6,
+    }
+}
+
+/// Why a run could not be made (all bad input or an unwritable output: exit 2).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum FoldRunError {
+    /// The engine refused the input.
+    #[error(transparent)]
+    Engine(#[from] EngineError),
+    /// An output file or directory could not be written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+    /// The fold schedule was malformed (an engine bug, reported rather than hidden).
+    #[error("fold schedule: {0}")]
+    Schedule(ScheduleError),
+}
+
+/// What a run produced.
+#[derive(Debug)]
+pub struct FoldRunReport {
+    /// The summary (also in `summary.json`).
+    pub summary: Summary,
+    /// The output directory.
+    pub out_dir: PathBuf,
+    /// The files written, relative to it.
+    pub files: Vec<String>,
+    /// The timeline.
+    pub timeline: Timeline,
+}
+
+/// The fold word of what actually folds: each joint's fold if it turned, else S.
+pub fn folded_word(tl: &Timeline) -> FoldWord {
+    let mut folds = vec![Fold::S; tl.tiles().saturating_sub(1)];
+    for f in &tl.folds {
+        folds[f.joint] = f.fold;
+    }
+    FoldWord::from_folds(folds)
+}
+
+/// Runs the engine and the collision check only (no files).
+pub fn simulate(
+    chain: &Chain,
+    designs: &TileDesigns,
+    engine: &EngineOptions,
+    check: &CheckOptions,
+) -> Result<(Timeline, Summary), FoldRunError> {
+    let tl = run(chain, designs, engine)?;
+    let (collision, undecided) = check_timeline(&tl, check)?;
+    let mut summary = Summary::new(&tl, collision.as_ref());
+    if let Some(msg) = undecided {
+        summary.completed = false;
+        summary.result = "undecided";
+        summary.reason = Some(msg);
+    }
+    Ok((tl, summary))
+}
+
+fn check_timeline(
+    tl: &Timeline,
+    check: &CheckOptions,
+) -> Result<(Option<Collision>, Option<String>), FoldRunError> {
+    if tl.tiles() < 2 {
+        return Ok((None, None));
+    }
+    let word = folded_word(tl);
+    let schedule = fold_schedule(tl);
+    match check_schedule(&word, &schedule, check) {
+        Ok(()) => Ok((None, None)),
+        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
+        Err(e @ ScheduleError::Undecided { .. }) => {
+            Ok((None, Some(format!("collision check undecided: {e}"))))
+        }
+        Err(e) => Err(FoldRunError::Schedule(e)),
+    }
+}
+
+/// Runs the engine, checks the folding and writes every output into `opts.out_dir`.
+/// `progress(stage, done, total)` is called as the work goes on.
+pub fn fold_run(
+    chain: &Chain,
+    opts: &FoldRunOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<FoldRunReport, FoldRunError> {
+    progress("engine", 0, 1);
+    let (tl, summary) = simulate(chain, &opts.designs, &opts.engine, &opts.check)?;
+    progress("engine", 1, 1);
+    let collision_tiles = summary.first_collision.map(|c| c.tiles);
+    let duration = tl.duration();
+    let frames = opts.frames.unwrap_or_else(|| default_frames(tl.tiles())).max(1);
+    let times: Vec<f64> = (0..frames)
+        .map(|i| {
+            if frames == 1 {
+                duration
+            } else {
+                duration * i as f64 / (frames - 1) as f64
+            }
+        })
+        .collect();
+    let w = tl.geometry.w;
+    let mut view = FrameView::around(poses_at_angles(&vec![0.0; tl.tiles() - 1], w), w);
+    for &t in times.iter().chain(std::iter::once(&duration)) {
+        view = view.union(FrameView::around(poses_at_angles(&joint_angles_at(&tl, t), w), w));
+    }
+    let collision_time = summary.first_collision.and_then(|c| c.time);
+    let mut files: Vec<(String, String)> = Vec::new();
+    for (i, &t) in times.iter().enumerate() {
+        progress("frames", i, frames);
+        let hit = collision_time.is_some_and(|ct| t >= ct);
+        let fo = FrameOptions {
+            title: opts.name.clone(),
+            collision: if hit { collision_tiles } else { None },
+            note: None,
+        };
+        files.push((format!("step-{i:04}.svg"), frame_svg(&tl, t, &view, &fo)));
+    }
+    progress("frames", frames, frames);
+    let final_note = format!(
+        "{}{}",
+        summary.result,
+        summary
+            .reason
+            .as_ref()
+            .map(|r| format!(": {r}"))
+            .unwrap_or_default()
+    );
+    let fo = FrameOptions {
+        title: opts.name.clone(),
+        collision: collision_tiles,
+        note: Some(abbreviate(&final_note, 150)),
+    };
+    files.push(("final.svg".into(), frame_svg(&tl, duration, &view, &fo)));
+    let (a, b) = opts
+        .transition_tiles
+        .unwrap_or((0, 5.min(tl.tiles() - 1)));
+    files.push((
+        "transition.svg".into(),
+        transition_svg(&tl, a, b, &format!("{}: transition diagram, tiles {a} to {}", opts.name, b.min(tl.tiles() - 1))),
+    ));
+    progress("energy", 0, 1);
+    let samples = if tl.tiles() <= 10_000 { 400 } else { 100 };
+    let curve = energy_curve(&tl, samples);
+    files.push((
+        "energy.svg".into(),
+        energy_svg(&tl, &curve, &format!("{}: total dipole energy", opts.name)),
+    ));
+    progress("energy", 1, 1);
+    files.push(("timeline.json".into(), timeline_json(&tl)));
+    let mut summary_json = summary.to_json();
+    summary_json.push('\n');
+    files.push(("summary.json".into(), summary_json));
+    write_dir(&opts.out_dir, &files, progress)?;
+    Ok(FoldRunReport {
+        summary,
+        out_dir: opts.out_dir.clone(),
+        files: files.into_iter().map(|(n, _)| n).collect(),
+        timeline: tl,
+    })
+}
+
+fn abbreviate(s: &str, max: usize) -> String {
+    if s.chars().count() > max {
+        format!("{}...", s.chars().take(max - 3).collect::<String>())
+    } else {
+        s.to_string()
+    }
+}
+
+/// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
+/// (index: the magnet, or the joint for fold, inhibited and stalled events).
+pub fn timeline_json(tl: &Timeline) -> String {
+    let mut s = String::with_capacity(40 * tl.events.len() + 200);
+    let _ = write!(
+        s,
+        "{{\"tiles\":{},\"speed_law\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[\n",
+        tl.tiles(),
+        serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into())
+    );
+    for (i, e) in tl.events.iter().enumerate() {
+        if i > 0 {
+            s.push_str(",\n");
+        }
+        s.push_str(&e.to_json());
+    }
+    s.push_str("\n]}\n");
+    s
+}
+
+fn write_dir(
+    dir: &FsPath,
+    files: &[(String, String)],
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<(), WriteError> {
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into());
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    crate::atomic::create_dir_all(&parent)?;
+    let pid = std::process::id();
+    let tmp = parent.join(format!(".{name}.tmp{pid}"));
+    let old = parent.join(format!(".{name}.old{pid}"));
+    let werr = |path: &FsPath, source: std::io::Error| WriteError {
+        path: path.to_path_buf(),
+        source,
+    };
+    let _ = std::fs::remove_dir_all(&tmp);
+    let result = (|| {
+        std::fs::create_dir(&tmp).map_err(|e| werr(&tmp, e))?;
+        for (i, (file, body)) in files.iter().enumerate() {
+            progress("writing", i, files.len());
+            write_atomic(&tmp.join(file), body.as_bytes())?;
+        }
+        if dir.is_dir() {
+            std::fs::rename(dir, &old).map_err(|e| werr(dir, e))?;
+        } else if dir.exists() {
+            return Err(werr(
+                dir,
+                std::io::Error::new(std::io::ErrorKind::AlreadyExists, "exists and is not a directory"),
+            ));
+        }
+        if let Err(e) = std::fs::rename(&tmp, dir) {
+            let _ = std::fs::rename(&old, dir);
+            return Err(werr(dir, e));
+        }
+        let _ = std::fs::remove_dir_all(&old);
+        progress("writing", files.len(), files.len());
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    result
+}
