@@ -18,8 +18,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
-use crate::collision::sweep::{first_contact, V2};
-use crate::collision::{check_word, CheckOptions};
+use crate::collision::sweep::{quarter_contact_within, V2};
+use crate::collision::{check_word, lattice_overlap_pub as lattice_overlap, CheckOptions};
 use crate::exact::ExactPose;
 use crate::kinematics::{exact_hinge, next_exact_pose};
 use crate::{Fold, FoldWord, Octagon};
@@ -218,17 +218,21 @@ fn words_without_opposite(tiles: usize) -> u128 {
 }
 
 /// A fold whose sweep later tiles are checked against.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct FoldRec {
-    /// The joint.
-    k: usize,
     pivot: V2,
     theta: f64,
-    /// Squared distance from the pivot beyond which nothing fixed reaches.
-    reach2: f64,
-    /// Centre of tile k and the tail direction.
+    /// Distance from the pivot beyond which nothing fixed reaches.
+    reach: f64,
+    /// Centre of the folding tile and the straight tail's direction.
     base: V2,
     dir: V2,
+}
+
+/// A fixed tile seen from a fold's pivot: its squared distance.
+#[derive(Clone, Copy, Debug, Default)]
+struct Seen {
+    d2: f64,
 }
 
 struct Searcher {
@@ -239,13 +243,21 @@ struct Searcher {
     radius: f64,
 }
 
-/// Growing state of one word.
+/// Growing state of one word; nothing is allocated while searching.
 struct Stack {
     poses: Vec<ExactPose>,
     centres: Vec<V2>,
     letters: Vec<Fold>,
-    /// active folds per depth
-    active: Vec<Vec<FoldRec>>,
+    /// Per depth (tiles - 1): the folds whose tails later tiles must still be checked in,
+    /// as a bit set over joints.
+    active: Vec<u64>,
+    /// Per joint: its fold, valid while that joint folds in the current word.
+    folds: Vec<FoldRec>,
+    /// Per joint `k`: the fixed tiles `0..=k` seen from its pivot.
+    seen: Vec<Vec<Seen>>,
+    /// Number of straight joints and whether a turn has been made.
+    straight: u32,
+    turns: u32,
 }
 
 const PREFIX_JOINTS: usize = 9;
@@ -265,6 +277,8 @@ fn search(n: usize, allow_opposite: bool, opts: &CountOptions, progress: &(dyn F
     let mut top = Tally::new(n);
     let mut prefixes: Vec<Vec<Fold>> = Vec::new();
     let mut st = Stack::new(n);
+    top.valid[1] += 1;
+    top.weight[1] += 1;
     s.collect(&mut st, depth, &mut top, &mut prefixes);
     let (k, m) = opts.shard.unwrap_or((1, 1));
     if k != 1 {
@@ -280,16 +294,21 @@ fn search(n: usize, allow_opposite: bool, opts: &CountOptions, progress: &(dyn F
             let mut t = Tally::new(n);
             for &f in p.iter() {
                 // the prefix is valid: replay it without checks
-                st.push_unchecked(f, &s);
+                if let Some(active) = s.extend(&mut st, f, false) {
+                    st.commit(f, active);
+                }
             }
             s.dfs(&mut st, &mut t);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
             t
         })
-        .reduce(|| Tally::new(n), |mut a, b| {
-            a.add(&b);
-            a
-        });
+        .reduce(
+            || Tally::new(n),
+            |mut a, b| {
+                a.add(&b);
+                a
+            },
+        );
     top.add(&deep);
     top
 }
@@ -301,41 +320,40 @@ impl Stack {
             centres: Vec::with_capacity(n),
             letters: Vec::with_capacity(n),
             active: Vec::with_capacity(n),
+            folds: vec![FoldRec::default(); n],
+            seen: (0..n).map(|k| vec![Seen::default(); k + 1]).collect(),
+            straight: 0,
+            turns: 0,
         };
         st.poses.push(ExactPose::default());
         st.centres.push((0.0, 0.0));
-        st.active.push(Vec::new());
+        st.active.push(0);
         st
-    }
-
-    fn has_turn(&self) -> bool {
-        self.letters.iter().any(|&f| f != Fold::S)
-    }
-
-    fn straight_joints(&self) -> u32 {
-        self.letters.iter().filter(|&&f| f == Fold::S).count() as u32
     }
 
     fn pop(&mut self) {
         self.poses.pop();
         self.centres.pop();
-        self.letters.pop();
         self.active.pop();
+        match self.letters.pop() {
+            Some(Fold::S) => self.straight -= 1,
+            Some(_) => self.turns -= 1,
+            None => {}
+        }
     }
 
-    /// Appends a joint and tile without checking (a prefix known to be valid).
-    fn push_unchecked(&mut self, f: Fold, s: &Searcher) {
-        let (active, _) = s.extend(self, f, false);
-        self.commit(f, active);
-    }
-
-    fn commit(&mut self, f: Fold, active: Vec<FoldRec>) {
+    fn commit(&mut self, f: Fold, active: u64) {
         let m = self.poses.len() - 1;
         let p = next_exact_pose(self.poses[m], f);
         self.poses.push(p);
         self.centres.push(p.centre.to_f64(1.0));
         self.letters.push(f);
         self.active.push(active);
+        if f == Fold::S {
+            self.straight += 1;
+        } else {
+            self.turns += 1;
+        }
     }
 }
 
@@ -349,96 +367,113 @@ impl Searcher {
         self.outline.map(|(x, y)| (x + c.0, y + c.1))
     }
 
-    /// The folds that stay active after appending joint `f`, and whether the new tile
-    /// collides (when `check`).
-    fn extend(&self, st: &Stack, f: Fold, check: bool) -> (Vec<FoldRec>, bool) {
-        let m = st.poses.len() - 1;
-        let pm = st.poses[m];
-        let new = next_exact_pose(pm, f);
+    /// Whether tile `c` (at distance `rr` from the fold's pivot, angle `a`) turning with the
+    /// fold meets any of the fixed tiles `seen` (skipping tile `skip`).
+    #[allow(clippy::too_many_arguments)]
+    fn sweep_hits(&self, st: &Stack, fr: &FoldRec, seen: &[Seen], c: V2, rr: f64, skip: Option<usize>) -> bool {
         let r = self.radius;
-        let mut active = Vec::with_capacity(st.active[m].len() + 1);
-        if self.final_only {
-            if check {
-                for i in 0..m {
-                    if crate::collision::lattice_overlap_pub(st.poses[i].centre, new.centre) {
-                        return (active, true);
-                    }
-                }
-            }
-            return (active, false);
-        }
-        // the new tile at the end of every earlier fold's straight tail
-        for fr in &st.active[m] {
-            let steps = (m + 1 - fr.k) as f64;
-            let s = (fr.base.0 + steps * fr.dir.0, fr.base.1 + steps * fr.dir.1);
-            let rr = dist2(s, fr.pivot).sqrt();
-            if (rr - r) * (rr - r) > fr.reach2 && rr > r {
-                continue; // out of reach now and for every later tile: drop the fold
-            }
-            active.push(*fr);
-            if !check {
+        let lo = (rr - 2.0 * r).max(0.0);
+        let (lo2, hi2) = (lo * lo * (1.0 - 1e-12), (rr + 2.0 * r) * (rr + 2.0 * r) * (1.0 + 1e-12));
+        // The moving centre stays in the quadrant spanned by its start direction u0 and u0
+        // turned a quarter turn (u1); every point of the moving tile lies within r of that
+        // quadrant, so a fixed tile can only be met if its centre is within 2r of it.
+        let u0 = ((c.0 - fr.pivot.0) / rr, (c.1 - fr.pivot.1) / rr);
+        let u1 = if fr.theta >= 0.0 { (-u0.1, u0.0) } else { (u0.1, -u0.0) };
+        let margin = -2.0 * r - 1e-9;
+        let mut moving: Option<[V2; 8]> = None;
+        for (i, sn) in seen.iter().enumerate() {
+            if sn.d2 < lo2 || sn.d2 > hi2 || Some(i) == skip {
                 continue;
             }
-            let lo = (rr - 2.0 * r).max(0.0);
-            let (lo2, hi2) = (lo * lo, (rr + 2.0 * r) * (rr + 2.0 * r));
-            let moving = self.at(s);
-            let sweep = AngularSweep::new(s, rr, fr.pivot, fr.theta, r);
-            for i in 0..=fr.k {
-                let d2 = dist2(st.centres[i], fr.pivot);
-                if d2 < lo2 || d2 > hi2 || !sweep.may_reach(st.centres[i], d2.sqrt(), r) {
-                    continue;
+            let p = (st.centres[i].0 - fr.pivot.0, st.centres[i].1 - fr.pivot.1);
+            if rr > 0.0 && (p.0 * u0.0 + p.1 * u0.1 < margin || p.0 * u1.0 + p.1 * u1.1 < margin) {
+                continue;
+            }
+            let mv = moving.get_or_insert_with(|| self.at(c));
+            let ci = st.centres[i];
+            if quarter_contact_within(mv, c, &self.at(ci), ci, r, fr.pivot, fr.theta > 0.0) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Appends joint `f` and checks the new tile (when `check`). `None` if it collides;
+    /// otherwise the folds still active below it. Fills the new fold's table when `f` folds.
+    fn extend(&self, st: &mut Stack, f: Fold, check: bool) -> Option<u64> {
+        let m = st.poses.len() - 1;
+        let pm = st.poses[m];
+        let r = self.radius;
+        if self.final_only {
+            if check {
+                let new = next_exact_pose(pm, f);
+                if (0..m).any(|i| lattice_overlap(st.poses[i].centre, new.centre)) {
+                    return None;
                 }
-                if first_contact(&moving, &self.at(st.centres[i]), fr.pivot, fr.theta).is_some() {
-                    return (active, true);
-                }
+            }
+            return Some(0);
+        }
+        let mut active = 0u64;
+        // the new tile at the end of every earlier fold's straight tail
+        let mut bits = st.active[m];
+        while bits != 0 {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let fr = st.folds[k];
+            let steps = (m + 1 - k) as f64;
+            let c = (fr.base.0 + steps * fr.dir.0, fr.base.1 + steps * fr.dir.1);
+            let rr = dist2(c, fr.pivot).sqrt();
+            if rr - r > fr.reach {
+                continue; // out of reach now and for every later tile: drop the fold
+            }
+            active |= 1 << k;
+            if check && self.sweep_hits(st, &fr, &st.seen[k], c, rr, None) {
+                return None;
             }
         }
         // the new joint's own fold
         if let Some(h) = exact_hinge(pm, f) {
             let pivot = h.to_f64(1.0);
-            let theta = f.quarter_turns() as f64 * std::f64::consts::FRAC_PI_2;
             let base = st.centres[m];
-            let s = step_dir(pm);
-            let start = (base.0 + s.0, base.1 + s.1);
+            let dir = step_dir(pm);
             let mut reach: f64 = 0.0;
             for i in 0..=m {
-                reach = reach.max(dist2(st.centres[i], pivot).sqrt() + r);
+                let c = st.centres[i];
+                let d2 = dist2(c, pivot);
+                reach = reach.max(d2);
+                st.seen[m][i] = Seen { d2 };
             }
+            let reach = reach.sqrt() + r;
+            let fr = FoldRec { pivot, theta: f.quarter_turns() as f64 * std::f64::consts::FRAC_PI_2, reach, base, dir };
+            st.folds[m] = fr;
             if check {
-                let moving = self.at(start);
-                let rr = dist2(start, pivot).sqrt();
-                let sweep = AngularSweep::new(start, rr, pivot, theta, r);
-                for i in 0..m {
-                    let d = dist2(st.centres[i], pivot).sqrt();
-                    if (d - rr).abs() > 2.0 * r || !sweep.may_reach(st.centres[i], d, r) {
-                        continue;
-                    }
-                    if first_contact(&moving, &self.at(st.centres[i]), pivot, theta).is_some() {
-                        return (active, true);
-                    }
+                let c = (base.0 + dir.0, base.1 + dir.1);
+                let rr = dist2(c, pivot).sqrt();
+                // the folding tile itself is the hinged neighbour: never tested
+                if self.sweep_hits(st, &fr, &st.seen[m], c, rr, Some(m)) {
+                    return None;
                 }
             }
-            active.push(FoldRec { k: m, pivot, theta, reach2: reach * reach, base, dir: s });
+            active |= 1 << m;
         }
-        (active, false)
+        Some(active)
     }
 
-    fn letters_after(&self, st: &Stack) -> Vec<Fold> {
+    fn letters_after(&self, st: &Stack) -> impl Iterator<Item = Fold> {
         let last = st.letters.last().copied();
-        let mirror_free = !st.has_turn();
+        let mirror_free = st.turns == 0;
+        let allow_opposite = self.allow_opposite;
         Fold::ALL
-            .iter()
-            .copied()
-            .filter(|&f| !(mirror_free && f == Fold::R))
-            .filter(|&f| self.allow_opposite || !last.is_some_and(|l| l.is_opposite(f)))
-            .collect()
+            .into_iter()
+            .filter(move |&f| !(mirror_free && f == Fold::R))
+            .filter(move |&f| allow_opposite || !last.is_some_and(|l| l.is_opposite(f)))
     }
 
     fn record(&self, st: &Stack, t: &mut Tally) {
         let tiles = st.poses.len();
-        let mult: u128 = if st.has_turn() { 2 } else { 1 };
+        let mult: u128 = if st.turns > 0 { 2 } else { 1 };
         t.valid[tiles] += mult;
-        t.weight[tiles] += mult * 5u128.pow(st.straight_joints());
+        t.weight[tiles] += mult * 5u128.pow(st.straight);
     }
 
     /// Depth-first search below the current (valid, recorded) word.
@@ -447,10 +482,7 @@ impl Searcher {
             return;
         }
         for f in self.letters_after(st) {
-            let (active, hit) = self.extend(st, f, true);
-            if hit {
-                continue;
-            }
+            let Some(active) = self.extend(st, f, true) else { continue };
             st.commit(f, active);
             self.record(st, t);
             self.dfs(st, t);
@@ -461,56 +493,17 @@ impl Searcher {
     /// Search down to `depth` joints, recording every valid word on the way and collecting
     /// the valid words of exactly `depth` joints as prefixes for the deep search.
     fn collect(&self, st: &mut Stack, depth: usize, t: &mut Tally, out: &mut Vec<Vec<Fold>>) {
-        if st.letters.is_empty() {
-            t.valid[1] += 1;
-            t.weight[1] += 1;
-        }
         if st.letters.len() == depth {
             out.push(st.letters.clone());
             return;
         }
         for f in self.letters_after(st) {
-            let (active, hit) = self.extend(st, f, true);
-            if hit {
-                continue;
-            }
+            let Some(active) = self.extend(st, f, true) else { continue };
             st.commit(f, active);
             self.record(st, t);
             self.collect(st, depth, t, out);
             st.pop();
         }
-    }
-}
-
-/// The angles swept by a tile whose centre, at distance `radius` from the pivot, turns by
-/// `theta`: a cheap test that a fixed tile lies outside them, so no contact is possible.
-struct AngularSweep {
-    /// Start of the swept angles (radians), counter-clockwise.
-    from: f64,
-    /// Width of the swept angles, including the moving tile's own half-width.
-    width: f64,
-    pivot: V2,
-}
-
-impl AngularSweep {
-    fn new(centre: V2, radius: f64, pivot: V2, theta: f64, r: f64) -> AngularSweep {
-        let a = (centre.1 - pivot.1).atan2(centre.0 - pivot.0);
-        let half = if radius > r { (r / radius).asin() } else { std::f64::consts::PI };
-        let (lo, hi) = if theta >= 0.0 { (a, a + theta) } else { (a + theta, a) };
-        AngularSweep { from: lo - half, width: hi - lo + 2.0 * half, pivot }
-    }
-
-    /// Whether a tile of circumradius `r` centred at `c`, `d` from the pivot, can meet the
-    /// swept tile. Conservative: a small safety margin is added.
-    fn may_reach(&self, c: V2, d: f64, r: f64) -> bool {
-        if d <= r || self.width >= std::f64::consts::TAU {
-            return true;
-        }
-        let half = (r / d).asin() + 1e-9;
-        let a = (c.1 - self.pivot.1).atan2(c.0 - self.pivot.0);
-        // angle of c's centre measured from the sweep start, into [0, 2 pi)
-        let rel = (a - self.from).rem_euclid(std::f64::consts::TAU);
-        rel <= self.width + half || rel >= std::f64::consts::TAU - half
     }
 }
 

@@ -113,6 +113,136 @@ pub fn first_contact(moving: &[V2], fixed: &[V2], pivot: V2, theta: f64) -> Opti
     best
 }
 
+/// Whether `v`, turning a quarter turn about `pivot` (counter-clockwise when `left`), lies
+/// on the segment `a`-`b` at some moment: [`arc_hits_segment`] with `theta = +-pi/2`, without
+/// computing the angle (a crossing point is within the quarter turn exactly when it is on the
+/// turning side of the start direction and not behind the pivot).
+#[inline]
+pub fn quarter_arc_hits_segment(v: V2, pivot: V2, left: bool, a: V2, b: V2) -> bool {
+    let pv = sub(v, pivot);
+    let r2 = dot(pv, pv);
+    let d = sub(b, a);
+    let ac = sub(a, pivot);
+    let qa = dot(d, d);
+    if qa == 0.0 {
+        return false;
+    }
+    let qb = 2.0 * dot(d, ac);
+    let qc = dot(ac, ac) - r2;
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc < 0.0 {
+        return false;
+    }
+    let sq = disc.sqrt();
+    let q = -0.5 * (qb + qb.signum() * sq);
+    let (t1, t2) = if q != 0.0 { (q / qa, qc / q) } else { (-qb / (2.0 * qa), -qb / (2.0 * qa)) };
+    for t in [t1, t2] {
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        let x = (ac.0 + t * d.0, ac.1 + t * d.1);
+        let c = cross(pv, x);
+        if dot(pv, x) >= 0.0 && if left { c >= 0.0 } else { c <= 0.0 } {
+            return true;
+        }
+    }
+    false
+}
+
+/// Whether two octagons within `r` of their centres meet while `moving` turns a quarter turn
+/// about `pivot` (counter-clockwise when `left`), assuming they are apart at the start: the
+/// yes/no form of [`first_contact_within`] for full folds.
+pub fn quarter_contact_within(
+    moving: &[V2; 8],
+    moving_centre: V2,
+    fixed: &[V2; 8],
+    fixed_centre: V2,
+    r: f64,
+    pivot: V2,
+    left: bool,
+) -> bool {
+    let ring = |c: V2| {
+        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
+        let lo = (d - r).max(0.0);
+        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
+    };
+    let (m_lo, m_hi) = ring(moving_centre);
+    let (f_lo, f_hi) = ring(fixed_centre);
+    for &v in moving {
+        let rho = dot(sub(v, pivot), sub(v, pivot));
+        if rho < f_lo || rho > f_hi {
+            continue;
+        }
+        for e in 0..8 {
+            if quarter_arc_hits_segment(v, pivot, left, fixed[e], fixed[(e + 1) % 8]) {
+                return true;
+            }
+        }
+    }
+    for &v in fixed {
+        let rho = dot(sub(v, pivot), sub(v, pivot));
+        if rho < m_lo || rho > m_hi {
+            continue;
+        }
+        for e in 0..8 {
+            if quarter_arc_hits_segment(v, pivot, !left, moving[e], moving[(e + 1) % 8]) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// [`first_contact`] for two polygons known to lie within distance `r` of the centres
+/// `moving_centre` and `fixed_centre`: vertices whose arc stays outside the annulus that holds
+/// the other polygon are skipped, which leaves the result unchanged and saves most of the
+/// work.
+#[allow(clippy::too_many_arguments)]
+pub fn first_contact_within(
+    moving: &[V2; 8],
+    moving_centre: V2,
+    fixed: &[V2; 8],
+    fixed_centre: V2,
+    r: f64,
+    pivot: V2,
+    theta: f64,
+) -> Option<f64> {
+    let ring = |c: V2| {
+        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
+        let lo = (d - r).max(0.0);
+        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
+    };
+    let (m_lo, m_hi) = ring(moving_centre);
+    let (f_lo, f_hi) = ring(fixed_centre);
+    let mut best: Option<f64> = None;
+    let mut consider = |phi: Option<f64>| {
+        if let Some(p) = phi {
+            if best.is_none_or(|b| p < b) {
+                best = Some(p);
+            }
+        }
+    };
+    for &v in moving {
+        let rho = dot(sub(v, pivot), sub(v, pivot));
+        if rho < f_lo || rho > f_hi {
+            continue;
+        }
+        for e in 0..8 {
+            consider(arc_hits_segment(v, pivot, theta, fixed[e], fixed[(e + 1) % 8]));
+        }
+    }
+    for &v in fixed {
+        let rho = dot(sub(v, pivot), sub(v, pivot));
+        if rho < m_lo || rho > m_hi {
+            continue;
+        }
+        for e in 0..8 {
+            consider(arc_hits_segment(v, pivot, -theta, moving[e], moving[(e + 1) % 8]));
+        }
+    }
+    best
+}
+
 /// Whether two convex polygons (counter-clockwise) overlap, by separating axes; touching
 /// counts as overlapping.
 pub fn convex_overlap(p: &[V2], q: &[V2]) -> bool {
@@ -208,6 +338,28 @@ mod tests {
                 expect,
                 "gap {gap}"
             );
+        }
+    }
+
+    #[test]
+    fn quarter_predicate_agrees_with_angles() {
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
+        };
+        for _ in 0..20_000 {
+            let (v, p, a, b) = ((rnd(), rnd()), (rnd(), rnd()), (rnd(), rnd()), (rnd(), rnd()));
+            for left in [true, false] {
+                let theta = if left { std::f64::consts::FRAC_PI_2 } else { -std::f64::consts::FRAC_PI_2 };
+                assert_eq!(
+                    quarter_arc_hits_segment(v, p, left, a, b),
+                    arc_hits_segment(v, p, theta, a, b).is_some(),
+                    "{v:?} {p:?} {a:?} {b:?} {left}"
+                );
+            }
         }
     }
 
