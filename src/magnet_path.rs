@@ -164,7 +164,11 @@ impl MagnetPath {
         let len = self.length();
         let n = ((len / max_step.max(1e-6)).ceil() as usize).clamp(1, 512);
         let mut pts = vec![self.rest()];
-        if self.is_curved() {
+        if !self.is_curved() {
+            pts.push(self.end_point());
+            return pts;
+        }
+        {
             pts.push(self.point_at(self.straight));
         }
         for i in 1..=n {

@@ -15,7 +15,7 @@ use std::collections::BinaryHeap;
 
 use crate::engine::designs::TileDesigns;
 use crate::engine::event::{Event, EventKind};
-use crate::engine::geometry::{Geometry, Trigger};
+use crate::engine::geometry::{FastMap, Geometry, Trigger};
 use crate::engine::speed::{Motion, SpeedLaw};
 use crate::magnet_path::PathError;
 use crate::{Chain, Fold, Path};
@@ -182,10 +182,29 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
 
     // motions, deduplicated by (path, end gap)
     let mut motions: Vec<Motion> = Vec::new();
-    let mut motion_index: std::collections::HashMap<(u32, u64), u32> = Default::default();
+    // The end gap depends on the two paths of the pair and the fold between them only.
+    let mut motion_index: FastMap<(u32, u32, u8), u32> = Default::default();
     let mut motion_of = Vec::with_capacity(n);
+    let tiles = chain.tiles();
     for k in 0..n {
-        let key = (geometry.path_id(k), geometry.end_gap(k).to_bits());
+        let other = if k == 0 {
+            u32::MAX
+        } else if k % 2 == 1 {
+            if k + 1 < n { geometry.path_id(k + 1) } else { u32::MAX - 1 }
+        } else {
+            geometry.path_id(k - 1)
+        };
+        let j = if k % 2 == 1 { k / 2 } else { (k / 2).wrapping_sub(1) };
+        let fold = if k == 0 || j + 1 >= tiles.len() {
+            0
+        } else {
+            match (tiles[j].second, tiles[j + 1].first) {
+                (Path::L, Path::L) => 1,
+                (Path::R, Path::R) => 2,
+                _ => 0,
+            }
+        };
+        let key = (geometry.path_id(k), other, fold);
         let id = *motion_index.entry(key).or_insert_with(|| {
             let p = geometry.path(k);
             motions.push(Motion::new(p.length(), geometry.end_gap(k), geometry.design(k / 2), opts.speed));
@@ -194,7 +213,6 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
         motion_of.push(id);
     }
 
-    let tiles = chain.tiles();
     let fold_of = |j: usize| -> Fold {
         match (tiles[j].second, tiles[j + 1].first) {
             (Path::L, Path::L) => Fold::L,
