@@ -150,7 +150,10 @@ struct Tally {
 
 impl Tally {
     fn new(n: usize) -> Tally {
-        Tally { valid: vec![0; n + 1], weight: vec![0; n + 1] }
+        Tally {
+            valid: vec![0; n + 1],
+            weight: vec![0; n + 1],
+        }
     }
     fn add(&mut self, o: &Tally) {
         for (a, b) in self.valid.iter_mut().zip(&o.valid) {
@@ -164,9 +167,16 @@ impl Tally {
 
 /// Counts valid fold words for every length in the options' range. `progress(done, total)`
 /// is called as parts of the search finish.
-pub fn count_valid(opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<Vec<CountRow>, CountError> {
+pub fn count_valid(
+    opts: &CountOptions,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Result<Vec<CountRow>, CountError> {
     if opts.min_tiles < 1 || opts.min_tiles > opts.max_tiles || opts.max_tiles > MAX_COUNT_TILES {
-        return Err(CountError::BadRange { min: opts.min_tiles, max: opts.max_tiles, limit: MAX_COUNT_TILES });
+        return Err(CountError::BadRange {
+            min: opts.min_tiles,
+            max: opts.max_tiles,
+            limit: MAX_COUNT_TILES,
+        });
     }
     if let Some((k, m)) = opts.shard {
         if k < 1 || k > m {
@@ -176,7 +186,11 @@ pub fn count_valid(opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) ->
     let n = opts.max_tiles;
     let main = search(n, opts.allow_opposite, opts, progress);
     let random = if opts.random {
-        Some(if opts.allow_opposite { main.clone() } else { search(n, true, opts, progress) })
+        Some(if opts.allow_opposite {
+            main.clone()
+        } else {
+            search(n, true, opts, progress)
+        })
     } else {
         None
     };
@@ -184,7 +198,11 @@ pub fn count_valid(opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) ->
     for tiles in opts.min_tiles..=n {
         let joints = (tiles - 1) as u32;
         let candidates = 3u128.pow(joints);
-        let searched = if opts.allow_opposite { candidates } else { words_without_opposite(tiles) };
+        let searched = if opts.allow_opposite {
+            candidates
+        } else {
+            words_without_opposite(tiles)
+        };
         let mut row = CountRow {
             tiles,
             candidates,
@@ -262,7 +280,12 @@ struct Stack {
 
 const PREFIX_JOINTS: usize = 9;
 
-fn search(n: usize, allow_opposite: bool, opts: &CountOptions, progress: &(dyn Fn(u64, u64) + Sync)) -> Tally {
+fn search(
+    n: usize,
+    allow_opposite: bool,
+    opts: &CountOptions,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> Tally {
     let o = Octagon::new(1.0);
     let s = Searcher {
         n,
@@ -284,7 +307,12 @@ fn search(n: usize, allow_opposite: bool, opts: &CountOptions, progress: &(dyn F
     if k != 1 {
         top = Tally::new(n);
     }
-    let mine: Vec<&Vec<Fold>> = prefixes.iter().enumerate().filter(|(i, _)| i % m == k - 1).map(|(_, p)| p).collect();
+    let mine: Vec<&Vec<Fold>> = prefixes
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i % m == k - 1)
+        .map(|(_, p)| p)
+        .collect();
     let total = mine.len() as u64;
     let done = AtomicU64::new(0);
     let deep = mine
@@ -370,15 +398,30 @@ impl Searcher {
     /// Whether tile `c` (at distance `rr` from the fold's pivot, angle `a`) turning with the
     /// fold meets any of the fixed tiles `seen` (skipping tile `skip`).
     #[allow(clippy::too_many_arguments)]
-    fn sweep_hits(&self, st: &Stack, fr: &FoldRec, seen: &[Seen], c: V2, rr: f64, skip: Option<usize>) -> bool {
+    fn sweep_hits(
+        &self,
+        st: &Stack,
+        fr: &FoldRec,
+        seen: &[Seen],
+        c: V2,
+        rr: f64,
+        skip: Option<usize>,
+    ) -> bool {
         let r = self.radius;
         let lo = (rr - 2.0 * r).max(0.0);
-        let (lo2, hi2) = (lo * lo * (1.0 - 1e-12), (rr + 2.0 * r) * (rr + 2.0 * r) * (1.0 + 1e-12));
+        let (lo2, hi2) = (
+            lo * lo * (1.0 - 1e-12),
+            (rr + 2.0 * r) * (rr + 2.0 * r) * (1.0 + 1e-12),
+        );
         // The moving centre stays in the quadrant spanned by its start direction u0 and u0
         // turned a quarter turn (u1); every point of the moving tile lies within r of that
         // quadrant, so a fixed tile can only be met if its centre is within 2r of it.
         let u0 = ((c.0 - fr.pivot.0) / rr, (c.1 - fr.pivot.1) / rr);
-        let u1 = if fr.theta >= 0.0 { (-u0.1, u0.0) } else { (u0.1, -u0.0) };
+        let u1 = if fr.theta >= 0.0 {
+            (-u0.1, u0.0)
+        } else {
+            (u0.1, -u0.0)
+        };
         let margin = -2.0 * r - 1e-9;
         let mut moving: Option<[V2; 8]> = None;
         for (i, sn) in seen.iter().enumerate() {
@@ -444,7 +487,13 @@ impl Searcher {
                 st.seen[m][i] = Seen { d2 };
             }
             let reach = reach.sqrt() + r;
-            let fr = FoldRec { pivot, theta: f.quarter_turns() as f64 * std::f64::consts::FRAC_PI_2, reach, base, dir };
+            let fr = FoldRec {
+                pivot,
+                theta: f.quarter_turns() as f64 * std::f64::consts::FRAC_PI_2,
+                reach,
+                base,
+                dir,
+            };
             st.folds[m] = fr;
             if check {
                 let c = (base.0 + dir.0, base.1 + dir.1);
@@ -482,7 +531,9 @@ impl Searcher {
             return;
         }
         for f in self.letters_after(st) {
-            let Some(active) = self.extend(st, f, true) else { continue };
+            let Some(active) = self.extend(st, f, true) else {
+                continue;
+            };
             st.commit(f, active);
             self.record(st, t);
             self.dfs(st, t);
@@ -498,7 +549,9 @@ impl Searcher {
             return;
         }
         for f in self.letters_after(st) {
-            let Some(active) = self.extend(st, f, true) else { continue };
+            let Some(active) = self.extend(st, f, true) else {
+                continue;
+            };
             st.commit(f, active);
             self.record(st, t);
             self.collect(st, depth, t, out);
@@ -532,7 +585,12 @@ pub struct RandomEstimate {
 /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds the
 /// part that propagation reaches and counts those that reach the end and fold cleanly.
 /// Deterministic for a given `seed`.
-pub fn estimate_random(tiles: usize, samples: u64, seed: u64, opts: &CheckOptions) -> RandomEstimate {
+pub fn estimate_random(
+    tiles: usize,
+    samples: u64,
+    seed: u64,
+    opts: &CheckOptions,
+) -> RandomEstimate {
     let chunks = 64u64;
     let per = samples.div_ceil(chunks);
     let successes: u64 = (0..chunks)
@@ -568,7 +626,14 @@ pub fn estimate_random(tiles: usize, samples: u64, seed: u64, opts: &CheckOption
         })
         .sum();
     let (p, low, high) = wilson(successes, samples);
-    RandomEstimate { tiles, samples, successes, p, low, high }
+    RandomEstimate {
+        tiles,
+        samples,
+        successes,
+        p,
+        low,
+        high,
+    }
 }
 
 /// The Wilson score interval at 95%.
@@ -611,8 +676,14 @@ mod tests {
     #[test]
     fn table_5_1() {
         let rows = count_valid(&CountOptions::default().with_tiles(2, 6), &none).unwrap();
-        let got: Vec<(usize, u128, u128)> = rows.iter().map(|r| (r.tiles, r.candidates, r.valid)).collect();
-        assert_eq!(got, vec![(2, 3, 3), (3, 9, 7), (4, 27, 17), (5, 81, 35), (6, 243, 79)]);
+        let got: Vec<(usize, u128, u128)> = rows
+            .iter()
+            .map(|r| (r.tiles, r.candidates, r.valid))
+            .collect();
+        assert_eq!(
+            got,
+            vec![(2, 3, 3), (3, 9, 7), (4, 27, 17), (5, 81, 35), (6, 243, 79)]
+        );
     }
 
     /// The search agrees with checking every word on its own (all words, LR allowed).
@@ -620,7 +691,10 @@ mod tests {
     fn search_agrees_with_word_by_word_check() {
         for allow in [false, true] {
             for final_only in [false, true] {
-                let opts = CountOptions::default().with_tiles(1, 8).with_allow_opposite(allow).with_final_only(final_only);
+                let opts = CountOptions::default()
+                    .with_tiles(1, 8)
+                    .with_allow_opposite(allow)
+                    .with_final_only(final_only);
                 let rows = count_valid(&opts, &none).unwrap();
                 for row in rows {
                     let joints = row.tiles - 1;
@@ -638,11 +712,17 @@ mod tests {
                         if !allow && w.first_opposite_pair().is_some() {
                             continue;
                         }
-                        if check_word(&w, &CheckOptions::default().with_final_only(final_only)).is_ok() {
+                        if check_word(&w, &CheckOptions::default().with_final_only(final_only))
+                            .is_ok()
+                        {
                             valid += 1;
                         }
                     }
-                    assert_eq!(row.valid, valid, "tiles {} allow {allow} final_only {final_only}", row.tiles);
+                    assert_eq!(
+                        row.valid, valid,
+                        "tiles {} allow {allow} final_only {final_only}",
+                        row.tiles
+                    );
                 }
             }
         }
@@ -653,7 +733,11 @@ mod tests {
         let whole = count_valid(&CountOptions::default().with_tiles(2, 12), &none).unwrap();
         let mut sum = vec![0u128; whole.len()];
         for k in 1..=3 {
-            let part = count_valid(&CountOptions::default().with_tiles(2, 12).with_shard(k, 3), &none).unwrap();
+            let part = count_valid(
+                &CountOptions::default().with_tiles(2, 12).with_shard(k, 3),
+                &none,
+            )
+            .unwrap();
             for (s, r) in sum.iter_mut().zip(&part) {
                 *s += r.valid;
             }
@@ -663,7 +747,11 @@ mod tests {
 
     #[test]
     fn random_probability_is_exact_and_below_propagation() {
-        let rows = count_valid(&CountOptions::default().with_tiles(2, 6).with_random(true), &none).unwrap();
+        let rows = count_valid(
+            &CountOptions::default().with_tiles(2, 6).with_random(true),
+            &none,
+        )
+        .unwrap();
         // two tiles: never self-intersects, so it is the propagation probability 7/9
         assert_eq!(rows[0].p_random_exact.as_deref(), Some("7/9"));
         for r in &rows {

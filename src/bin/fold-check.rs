@@ -40,10 +40,15 @@ fn main() -> ExitCode {
 
 fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if !(args.tolerance.is_finite() && args.tolerance >= 0.0 && args.tolerance < 0.01) {
-        anyhow::bail!("--tolerance {}: expected a number from 0 up to 0.01 tile widths", args.tolerance);
+        anyhow::bail!(
+            "--tolerance {}: expected a number from 0 up to 0.01 tile widths",
+            args.tolerance
+        );
     }
     let chain = read_chain_arg(&args.chain)?;
-    let opts = CheckOptions::default().with_final_only(args.final_only).with_tolerance(args.tolerance);
+    let opts = CheckOptions::default()
+        .with_final_only(args.final_only)
+        .with_tolerance(args.tolerance);
     let verdict = check_chain(&chain, &opts);
     if args.json {
         let out = serde_json::json!({ "tiles": chain.len(), "final_only": args.final_only, "result": verdict });
@@ -52,10 +57,17 @@ fn run(args: &Args) -> anyhow::Result<ExitCode> {
         match &verdict {
             Verdict::Valid => println!("valid"),
             Verdict::Inhibited { joint } => {
-                println!("inhibited: propagation stops at joint {joint} (tiles {joint} and {})", joint + 1)
+                println!(
+                    "inhibited: propagation stops at joint {joint} (tiles {joint} and {})",
+                    joint + 1
+                )
             }
             Verdict::Collides(c) => println!("collision: {c}"),
         }
     }
-    Ok(if verdict == Verdict::Valid { ExitCode::SUCCESS } else { ExitCode::from(1) })
+    Ok(if verdict == Verdict::Valid {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }

@@ -61,9 +61,13 @@ fn main() -> ExitCode {
 }
 
 fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
-    let bad = || anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8");
+    let bad =
+        || anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8");
     let (k, m) = s.split_once('/').ok_or_else(bad)?;
-    let (k, m): (usize, usize) = (k.trim().parse().map_err(|_| bad())?, m.trim().parse().map_err(|_| bad())?);
+    let (k, m): (usize, usize) = (
+        k.trim().parse().map_err(|_| bad())?,
+        m.trim().parse().map_err(|_| bad())?,
+    );
     if k < 1 || k > m {
         return Err(bad());
     }
@@ -81,10 +85,16 @@ struct Progress {
 impl Progress {
     fn new() -> Progress {
         let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-        if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} parts, {elapsed} (eta {eta})") {
+        if let Ok(style) = ProgressStyle::with_template(
+            "{msg} [{bar:40}] {pos}/{len} parts, {elapsed} (eta {eta})",
+        ) {
             bar.set_style(style.progress_chars("=> "));
         }
-        Progress { bar, start: Instant::now(), shown: Mutex::new(false) }
+        Progress {
+            bar,
+            start: Instant::now(),
+            shown: Mutex::new(false),
+        }
     }
 
     fn update(&self, msg: &str, done: u64, total: u64) {
@@ -110,7 +120,9 @@ fn run(args: &Args) -> anyhow::Result<()> {
         opts = opts.with_shard(k, m);
     }
     if args.random && opts.shard.is_some() {
-        anyhow::bail!("--random cannot be combined with --shard (the probability needs the whole search)");
+        anyhow::bail!(
+            "--random cannot be combined with --shard (the probability needs the whole search)"
+        );
     }
     if args.random && args.samples == 0 {
         anyhow::bail!("--samples 0: expected at least one sample");
@@ -133,10 +145,18 @@ fn run(args: &Args) -> anyhow::Result<()> {
         }
         let check = CheckOptions::default().with_final_only(args.final_only);
         for row in rows.iter_mut().filter(|r| r.p_random.is_none()) {
-            let est = estimate_random(row.tiles, args.samples, args.seed ^ row.tiles as u64, &check);
+            let est = estimate_random(
+                row.tiles,
+                args.samples,
+                args.seed ^ row.tiles as u64,
+                &check,
+            );
             row.p_random = Some(est.p);
             row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
-            row.p_random_exact = Some(format!("~{:.6} (95% {:.6}..{:.6}, {} samples)", est.p, est.low, est.high, est.samples));
+            row.p_random_exact = Some(format!(
+                "~{:.6} (95% {:.6}..{:.6}, {} samples)",
+                est.p, est.low, est.high, est.samples
+            ));
         }
     }
     progress.bar.finish_and_clear();
@@ -158,11 +178,23 @@ fn print_table(rows: &[CountRow], args: &Args) {
         (false, true) => "adjacent LR/RL not used, final shape only",
         (true, true) => "adjacent LR/RL allowed, final shape only",
     };
-    println!("# valid fold words ({mode}){}", args.shard.as_deref().map(|s| format!(", shard {s}")).unwrap_or_default());
+    println!(
+        "# valid fold words ({mode}){}",
+        args.shard
+            .as_deref()
+            .map(|s| format!(", shard {s}"))
+            .unwrap_or_default()
+    );
     if args.random {
-        println!("{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact", "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)");
+        println!(
+            "{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact",
+            "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)"
+        );
     } else {
-        println!("{:>5} {:>22} {:>16} {:>16}", "tiles", "candidates", "searched", "valid");
+        println!(
+            "{:>5} {:>22} {:>16} {:>16}",
+            "tiles", "candidates", "searched", "valid"
+        );
     }
     for r in rows {
         if args.random {
@@ -177,7 +209,10 @@ fn print_table(rows: &[CountRow], args: &Args) {
                 r.p_random_exact.as_deref().unwrap_or("")
             );
         } else {
-            println!("{:>5} {:>22} {:>16} {:>16}", r.tiles, r.candidates, r.searched, r.valid);
+            println!(
+                "{:>5} {:>22} {:>16} {:>16}",
+                r.tiles, r.candidates, r.searched, r.valid
+            );
         }
     }
 }

@@ -15,7 +15,7 @@ use parry2d_f64::partitioning::Bvh;
 use crate::exact::{ExactPose, QuarterTurns};
 use crate::{kinematics, Chain, FoldWord, Octagon};
 
-use super::sweep::{first_contact, V2};
+use super::sweep::{first_contact_within, quarter_contact_within, V2};
 use super::{final_overlap, CheckOptions, Collision};
 
 /// The outcome of checking a chain of tiles.
@@ -79,6 +79,27 @@ impl TileGeometry {
             radius: o.circumradius(),
             half_side: 0.5 * o.side(),
         }
+    }
+
+    /// Whether a tile centred at `fixed`, and one centred at `moving` turning a quarter turn
+    /// about `pivot` (the way `theta`'s sign says), can meet at all: the moving centre stays
+    /// in the quadrant spanned by its start direction and that direction turned, so the fixed
+    /// centre must be within two circumradii of that quadrant.
+    pub fn may_meet(&self, moving: V2, fixed: V2, pivot: V2, theta: f64) -> bool {
+        let (mx, my) = (moving.0 - pivot.0, moving.1 - pivot.1);
+        let rr = (mx * mx + my * my).sqrt();
+        if rr == 0.0 {
+            return true;
+        }
+        let u0 = (mx / rr, my / rr);
+        let u1 = if theta >= 0.0 {
+            (-u0.1, u0.0)
+        } else {
+            (u0.1, -u0.0)
+        };
+        let p = (fixed.0 - pivot.0, fixed.1 - pivot.1);
+        let margin = -2.0 * self.radius - 1e-9;
+        p.0 * u0.0 + p.1 * u0.1 >= margin && p.0 * u1.0 + p.1 * u1.1 >= margin
     }
 
     pub fn at(&self, c: V2) -> [V2; 8] {
@@ -231,8 +252,16 @@ impl<'a> Sweeper<'a> {
                 if i == k && j == k + 1 {
                     continue; // hinged neighbours: they only touch at the hinge and the closing walls
                 }
-                let moving = self.geo.at(tail_centre(t));
-                if let Some(phi) = first_contact(&moving, &fixed, pivot, theta) {
+                let c = tail_centre(t);
+                if !self.geo.may_meet(c, ci, pivot, theta) {
+                    continue;
+                }
+                let moving = self.geo.at(c);
+                let r = self.geo.radius;
+                if !quarter_contact_within(&moving, c, &fixed, ci, r, pivot, theta > 0.0) {
+                    continue;
+                }
+                if let Some(phi) = first_contact_within(&moving, c, &fixed, ci, r, pivot, theta) {
                     if best.is_none_or(|(b, bi, bj)| (phi, i, j) < (b, bi, bj)) {
                         best = Some((phi, i, j));
                     }
@@ -290,6 +319,89 @@ mod tests {
             check_chain(&clean, &CheckOptions::default()),
             Verdict::Valid
         );
+    }
+
+    /// Every pair, every sweep, no broad phase: the reference the fast path must match.
+    fn brute_force(word: &FoldWord, tolerance: f64) -> Option<(usize, usize, usize)> {
+        let poses = kinematics::final_poses(word);
+        let geo = TileGeometry::new(tolerance);
+        let centres: Vec<V2> = poses.iter().map(|p| p.centre.to_f64(1.0)).collect();
+        for (k, &fold) in word.folds().iter().enumerate() {
+            let Some(h) = kinematics::exact_hinge(poses[k], fold) else {
+                continue;
+            };
+            let pivot = h.to_f64(1.0);
+            let theta = fold.quarter_turns() as f64 * FRAC_PI_2;
+            let u = unit(poses[k].heading);
+            let mut best: Option<(f64, usize, usize)> = None;
+            for j in k + 1..centres.len() {
+                let s = (j - k) as f64;
+                let c = (centres[k].0 + s * u.0, centres[k].1 + s * u.1);
+                for (i, &ci) in centres.iter().enumerate().take(k + 1) {
+                    if i == k && j == k + 1 {
+                        continue;
+                    }
+                    if let Some(phi) = first_contact_within(
+                        &geo.at(c),
+                        c,
+                        &geo.at(ci),
+                        ci,
+                        geo.radius,
+                        pivot,
+                        theta,
+                    ) {
+                        if best.is_none_or(|b| (phi, i, j) < b) {
+                            best = Some((phi, i, j));
+                        }
+                    }
+                }
+            }
+            if let Some((_, i, j)) = best {
+                return Some((k, i, j));
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn fast_path_matches_brute_force_on_random_words() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut collided = 0;
+        for round in 0..400 {
+            let n = 5 + (next() % 60) as usize;
+            // mostly straight with some turns, so that many words get far before colliding
+            let folds: Vec<crate::Fold> = (0..n)
+                .map(|_| match next() % 10 {
+                    0 | 1 => crate::Fold::L,
+                    2 | 3 => crate::Fold::R,
+                    _ => crate::Fold::S,
+                })
+                .collect();
+            let w = FoldWord::from_folds(folds);
+            let fast = check_word(&w, &CheckOptions::default())
+                .err()
+                .map(|c| (c.joint.unwrap_or(usize::MAX), c.tiles.0, c.tiles.1));
+            let slow = brute_force(&w, CheckOptions::default().tolerance);
+            assert_eq!(fast, slow, "round {round} word {w}");
+            collided += fast.is_some() as usize;
+        }
+        assert!(collided > 50 && collided < 350, "{collided}");
+    }
+
+    #[test]
+    fn valid_final_shape_can_collide_while_folding() {
+        // LSLLSR: the final shape is clean, but while joint 3 folds the still-straight tail
+        // swings tile 6 through tile 0.
+        let w = FoldWord::parse("LSLLSR").unwrap();
+        assert!(check_word(&w, &CheckOptions::default().with_final_only(true)).is_ok());
+        let c = check_word(&w, &CheckOptions::default()).unwrap_err();
+        assert_eq!((c.joint, c.tiles), (Some(3), (0, 6)));
     }
 
     #[test]

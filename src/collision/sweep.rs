@@ -135,7 +135,11 @@ pub fn quarter_arc_hits_segment(v: V2, pivot: V2, left: bool, a: V2, b: V2) -> b
     }
     let sq = disc.sqrt();
     let q = -0.5 * (qb + qb.signum() * sq);
-    let (t1, t2) = if q != 0.0 { (q / qa, qc / q) } else { (-qb / (2.0 * qa), -qb / (2.0 * qa)) };
+    let (t1, t2) = if q != 0.0 {
+        (q / qa, qc / q)
+    } else {
+        (-qb / (2.0 * qa), -qb / (2.0 * qa))
+    };
     for t in [t1, t2] {
         if !(0.0..=1.0).contains(&t) {
             continue;
@@ -228,7 +232,13 @@ pub fn first_contact_within(
             continue;
         }
         for e in 0..8 {
-            consider(arc_hits_segment(v, pivot, theta, fixed[e], fixed[(e + 1) % 8]));
+            consider(arc_hits_segment(
+                v,
+                pivot,
+                theta,
+                fixed[e],
+                fixed[(e + 1) % 8],
+            ));
         }
     }
     for &v in fixed {
@@ -237,7 +247,13 @@ pub fn first_contact_within(
             continue;
         }
         for e in 0..8 {
-            consider(arc_hits_segment(v, pivot, -theta, moving[e], moving[(e + 1) % 8]));
+            consider(arc_hits_segment(
+                v,
+                pivot,
+                -theta,
+                moving[e],
+                moving[(e + 1) % 8],
+            ));
         }
     }
     best
@@ -351,9 +367,18 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
         };
         for _ in 0..20_000 {
-            let (v, p, a, b) = ((rnd(), rnd()), (rnd(), rnd()), (rnd(), rnd()), (rnd(), rnd()));
+            let (v, p, a, b) = (
+                (rnd(), rnd()),
+                (rnd(), rnd()),
+                (rnd(), rnd()),
+                (rnd(), rnd()),
+            );
             for left in [true, false] {
-                let theta = if left { std::f64::consts::FRAC_PI_2 } else { -std::f64::consts::FRAC_PI_2 };
+                let theta = if left {
+                    std::f64::consts::FRAC_PI_2
+                } else {
+                    -std::f64::consts::FRAC_PI_2
+                };
                 assert_eq!(
                     quarter_arc_hits_segment(v, p, left, a, b),
                     arc_hits_segment(v, p, theta, a, b).is_some(),
