@@ -95,7 +95,7 @@ impl MagnetPath {
         let x_f = 0.5 * w - r - design.c() * SQRT_2;
         let x_q = 0.5 * design.b() + design.s;
         let dx = x_f - x_q;
-        if !(dx > 0.0) {
+        if dx.is_nan() || dx <= 0.0 {
             return Err(PathError::Degenerate {
                 x_final: x_f,
                 x_straight: x_q,
@@ -189,6 +189,7 @@ impl MagnetPath {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
 
@@ -244,8 +245,12 @@ mod tests {
         // tile j's second path L and tile j+1's first path L, tile j+1 turned 90 degrees
         // about the hinge: the two final points are 2c apart, as on straight paths.
         let d = Design::thesis();
-        let a = MagnetPath::new(Path::L, PathEnd::Second, &d).unwrap().end_point();
-        let b = MagnetPath::new(Path::L, PathEnd::First, &d).unwrap().end_point();
+        let a = MagnetPath::new(Path::L, PathEnd::Second, &d)
+            .unwrap()
+            .end_point();
+        let b = MagnetPath::new(Path::L, PathEnd::First, &d)
+            .unwrap()
+            .end_point();
         let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);
         let b = next.transform_point(b);
         assert!((dist(a, b) - 2.0 * d.c()).abs() < 1e-9, "{}", dist(a, b));

@@ -1,11 +1,13 @@
 //! The event engine against the thesis (chapter 6 and 7): overlap set by s, the 4s rule, the
 //! sequential edge, inhibition, stalls, and the three-tile experiments.
 
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     joint_of_magnet, run, EngineOptions, EventKind, Outcome, SpeedLaw, TileDesigns, Timeline,
 };
 use foldchain::fold_run::simulate;
-use foldchain::collision::CheckOptions;
 use foldchain::{Chain, Design};
 
 fn run_with(chain: &str, designs: TileDesigns, speed: SpeedLaw) -> Timeline {
@@ -18,7 +20,11 @@ fn run_with(chain: &str, designs: TileDesigns, speed: SpeedLaw) -> Timeline {
 }
 
 fn straight20(s: f64, speed: SpeedLaw) -> Timeline {
-    run_with("S*19", TileDesigns::global(Design::thesis().with_s(s)), speed)
+    run_with(
+        "S*19",
+        TileDesigns::global(Design::thesis().with_s(s)),
+        speed,
+    )
 }
 
 #[test]
@@ -54,7 +60,10 @@ fn intermediate_s_overlaps_as_the_geometry_predicts() {
         assert_eq!(tl.max_moving_magnets(), expect, "s = {s}");
         for k in 0..39 {
             let t = tl.start_of(k).unwrap();
-            assert!((t - 4.0 * s * k as f64).abs() < 1e-9, "s = {s}, k = {k}: {t}");
+            assert!(
+                (t - 4.0 * s * k as f64).abs() < 1e-9,
+                "s = {s}, k = {k}: {t}"
+            );
         }
     }
     // overdamped: the same trigger points, so more overlap for smaller s
@@ -78,7 +87,11 @@ fn sl_sr_sl_propagates_as_ss_ss_ss() {
     }
     // the same events (the curved paths change their timing, not what happens)
     let kinds = |tl: &Timeline| {
-        let mut v = tl.events.iter().map(|e| (e.kind, e.index)).collect::<Vec<_>>();
+        let mut v = tl
+            .events
+            .iter()
+            .map(|e| (e.kind, e.index))
+            .collect::<Vec<_>>();
         v.sort();
         v
     };
@@ -142,7 +155,12 @@ fn s_above_e_over_3_stalls_where_the_geometry_says() {
     }
     let m = expect.expect("the override breaks the chain");
     match &tl.outcome {
-        Outcome::Stalled { joint, magnet, reason, .. } => {
+        Outcome::Stalled {
+            joint,
+            magnet,
+            reason,
+            ..
+        } => {
             assert_eq!(*magnet, m, "{reason}");
             assert_eq!(*joint, joint_of_magnet(m));
             assert!(reason.contains("short"), "{reason}");
@@ -155,7 +173,11 @@ fn s_above_e_over_3_stalls_where_the_geometry_says() {
 fn curved_path_must_start_the_next_magnet_before_its_closest_approach() {
     // s = 0.5 mm is < e/3, so straight paths propagate, but the curve turns away before the
     // next magnet is as near as its partner: propagation stalls at the first fold.
-    let tl = run_with("SSLSS", TileDesigns::global(Design::thesis().with_s(0.5)), SpeedLaw::default());
+    let tl = run_with(
+        "SSLSS",
+        TileDesigns::global(Design::thesis().with_s(0.5)),
+        SpeedLaw::default(),
+    );
     match &tl.outcome {
         Outcome::Stalled { joint, reason, .. } => {
             assert_eq!(*joint, 2, "{reason}");
@@ -172,7 +194,12 @@ fn curved_path_must_start_the_next_magnet_before_its_closest_approach() {
 fn thesis_three_tile_experiments_complete() {
     // 7.3: linear propagation then a 90 degree fold; two folds making 180 degrees; and the
     // other two three-tile cases
-    for (word, folds) in [("SL", vec![1]), ("LL", vec![0, 1]), ("SS", vec![]), ("LS", vec![0])] {
+    for (word, folds) in [
+        ("SL", vec![1]),
+        ("LL", vec![0, 1]),
+        ("SS", vec![]),
+        ("LS", vec![0]),
+    ] {
         let (tl, summary) = simulate(
             &Chain::parse(word).unwrap(),
             &TileDesigns::default(),
@@ -185,7 +212,8 @@ fn thesis_three_tile_experiments_complete() {
         assert_eq!(summary.folds, folds, "{word}");
         assert_eq!(summary.first_collision, None);
         let angles = foldchain::engine::joint_angles_at(&tl, tl.duration());
-        let expect = foldchain::kinematics::final_angles(&foldchain::FoldWord::parse(word).unwrap());
+        let expect =
+            foldchain::kinematics::final_angles(&foldchain::FoldWord::parse(word).unwrap());
         assert_eq!(angles, expect, "{word}");
     }
 }
@@ -194,7 +222,10 @@ fn thesis_three_tile_experiments_complete() {
 fn mixed_s_mixes_sequential_and_simultaneous_stretches() {
     let e = Design::thesis().e;
     let designs = TileDesigns::from_json(
-        &format!(r#"{{"global": {{"s": {}}}, "tiles": [{{"from": 10, "to": 19, "s": 0.0}}]}}"#, e / 3.0),
+        &format!(
+            r#"{{"global": {{"s": {}}}, "tiles": [{{"from": 10, "to": 19, "s": 0.0}}]}}"#,
+            e / 3.0
+        ),
         "test",
     )
     .unwrap();

@@ -1,5 +1,7 @@
 //! `fold-run` end to end: outputs, exit codes, bad input.
 
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -22,38 +24,92 @@ fn summary(dir: &Path) -> serde_json::Value {
 fn folds_a_u_turn_and_writes_everything() {
     let d = tmp("uturn");
     let out = d.join("u");
-    let o = bin().args(["SSLLSS", "--out", out.to_str().unwrap(), "--frames", "5", "--json"]).output().unwrap();
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = bin()
+        .args([
+            "SSLLSS",
+            "--out",
+            out.to_str().unwrap(),
+            "--frames",
+            "5",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let printed: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let s = summary(&out);
     assert_eq!(printed, s);
     assert_eq!(s["completed"], true);
     assert_eq!(s["folds"], serde_json::json!([2, 3]));
     assert_eq!(s["inhibited_at"], serde_json::Value::Null);
-    for f in ["step-0000.svg", "step-0004.svg", "final.svg", "transition.svg", "energy.svg", "timeline.json"] {
+    for f in [
+        "step-0000.svg",
+        "step-0004.svg",
+        "final.svg",
+        "transition.svg",
+        "energy.svg",
+        "timeline.json",
+    ] {
         assert!(out.join(f).is_file(), "{f}");
     }
     assert!(!out.join("step-0005.svg").exists());
-    let tl: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("timeline.json")).unwrap()).unwrap();
-    assert_eq!(tl["events"].as_array().unwrap().len() as u64, s["events"].as_u64().unwrap());
+    let tl: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("timeline.json")).unwrap()).unwrap();
+    assert_eq!(
+        tl["events"].as_array().unwrap().len() as u64,
+        s["events"].as_u64().unwrap()
+    );
     // no temporary directories left beside the output
-    let left: Vec<_> = std::fs::read_dir(&d).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(left.len(), 1, "{left:?}");
 }
 
 #[test]
 fn stops_exit_1_and_say_where() {
     let d = tmp("stops");
-    let o = bin().args(["SS SL RS SS", "--out", d.join("a").to_str().unwrap(), "--json"]).output().unwrap();
+    let o = bin()
+        .args([
+            "SS SL RS SS",
+            "--out",
+            d.join("a").to_str().unwrap(),
+            "--json",
+        ])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(summary(&d.join("a"))["inhibited_at"], 1);
-    let o = bin().args(["S*9", "--s", "0.4e", "--out", d.join("b").to_str().unwrap()]).output().unwrap();
+    let o = bin()
+        .args(["S*9", "--s", "0.4e", "--out", d.join("b").to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(summary(&d.join("b"))["stalled_at"], 0);
-    let o = bin().args(["SLLLLS", "--out", d.join("c").to_str().unwrap()]).output().unwrap();
+    let o = bin()
+        .args(["SLLLLS", "--out", d.join("c").to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert!(summary(&d.join("c"))["first_collision"]["time"].is_number());
-    let o = bin().args(["S*19", "--s", "e/3", "--speed", "unit", "--out", d.join("e").to_str().unwrap()]).output().unwrap();
+    let o = bin()
+        .args([
+            "S*19",
+            "--s",
+            "e/3",
+            "--speed",
+            "unit",
+            "--out",
+            d.join("e").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(summary(&d.join("e"))["max_moving_magnets"], 1);
 }
@@ -61,14 +117,32 @@ fn stops_exit_1_and_say_where() {
 #[test]
 fn reads_a_plan_and_a_design() {
     let d = tmp("plan");
-    std::fs::write(d.join("p.json"), r#"{"source": "x", "word": "S*3 L L S*3", "tiles": 9}"#).unwrap();
-    std::fs::write(d.join("d.json"), r#"{"global": {"s": 0.2}, "tiles": [{"from": 0, "to": 2, "s": 0}]}"#).unwrap();
+    std::fs::write(
+        d.join("p.json"),
+        r#"{"source": "x", "word": "S*3 L L S*3", "tiles": 9}"#,
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("d.json"),
+        r#"{"global": {"s": 0.2}, "tiles": [{"from": 0, "to": 2, "s": 0}]}"#,
+    )
+    .unwrap();
     let o = bin()
-        .args(["--plan", d.join("p.json").to_str().unwrap(), "--design", d.join("d.json").to_str().unwrap()])
+        .args([
+            "--plan",
+            d.join("p.json").to_str().unwrap(),
+            "--design",
+            d.join("d.json").to_str().unwrap(),
+        ])
         .args(["--out", d.join("o").to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert_eq!(summary(&d.join("o"))["tiles"], 9);
 }
 
@@ -89,12 +163,21 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
         (vec![p("")], "directory"),
         (vec!["--plan".into(), p("bad-plan.json")], "bad-plan.json"),
         (vec!["--plan".into(), p("missing.json")], "missing.json"),
-        (vec!["SLLS".into(), "--design".into(), p("nan.json")], "nan.json"),
-        (vec!["SLLS".into(), "--design".into(), p("neg.json")], "`s` = -0.5"),
+        (
+            vec!["SLLS".into(), "--design".into(), p("nan.json")],
+            "nan.json",
+        ),
+        (
+            vec!["SLLS".into(), "--design".into(), p("neg.json")],
+            "`s` = -0.5",
+        ),
         (vec!["SLLS".into(), "--s".into(), "-1".into()], "'-1'"),
         (vec!["SLLS".into(), "--s".into(), "NaN".into()], "'NaN'"),
         (vec!["SLLS".into(), "--drag=-3".into()], "--drag"),
-        (vec!["SLLS".into(), "--frames".into(), "0".into()], "--frames"),
+        (
+            vec!["SLLS".into(), "--frames".into(), "0".into()],
+            "--frames",
+        ),
         (vec![], "no chain"),
     ];
     for (args, needle) in cases {
@@ -105,7 +188,10 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
         assert!(!out.exists(), "{args:?} wrote output");
     }
     // an output directory that cannot be written: its parent is a file
-    let o2 = bin().args(["SLLS", "--out", d.join("a-file/sub").to_str().unwrap()]).output().unwrap();
+    let o2 = bin()
+        .args(["SLLS", "--out", d.join("a-file/sub").to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(o2.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o2.stderr).contains("a-file"));
 }

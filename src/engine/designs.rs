@@ -301,6 +301,7 @@ impl TileDesigns {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
 
@@ -308,10 +309,16 @@ mod tests {
     fn s_values() {
         assert_eq!(SValue::parse("0.3").unwrap(), SValue::Millimetres(0.3));
         assert_eq!(SValue::parse("0.3mm").unwrap(), SValue::Millimetres(0.3));
-        assert_eq!(SValue::parse("e/3").unwrap(), SValue::FractionOfE(1.0 / 3.0));
+        assert_eq!(
+            SValue::parse("e/3").unwrap(),
+            SValue::FractionOfE(1.0 / 3.0)
+        );
         assert_eq!(SValue::parse("0.25e").unwrap(), SValue::FractionOfE(0.25));
         assert_eq!(SValue::parse("0.25*e").unwrap(), SValue::FractionOfE(0.25));
-        assert_eq!(SValue::parse("2e/9").unwrap(), SValue::FractionOfE(2.0 / 9.0));
+        assert_eq!(
+            SValue::parse("2e/9").unwrap(),
+            SValue::FractionOfE(2.0 / 9.0)
+        );
         assert_eq!(SValue::parse("0").unwrap(), SValue::Millimetres(0.0));
         for bad in ["-0.1", "NaN", "inf", "e/0", "x", "", "e/-3", "0.3m", "1e/x"] {
             assert!(SValue::parse(bad).is_err(), "{bad}");
@@ -336,7 +343,10 @@ mod tests {
         assert_eq!(index, vec![0, 0, 1, 1, 0, 0]);
         assert_eq!(designs[1].s, 0.0);
         let e = TileDesigns::from_json(r#"{"s": -1}"#, "x.json").unwrap_err();
-        assert!(e.to_string().contains("x.json") && e.to_string().contains("`s`"), "{e}");
+        assert!(
+            e.to_string().contains("x.json") && e.to_string().contains("`s`"),
+            "{e}"
+        );
         let e = TileDesigns::from_json(r#"{"q": 1}"#, "x.json").unwrap_err();
         assert!(e.to_string().contains("unknown field"), "{e}");
         let e = TileDesigns::from_json("{", "x.json").unwrap_err();

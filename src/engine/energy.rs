@@ -42,7 +42,11 @@ fn unit_energy(tl: &Timeline, unit: Unit, t: f64, moment: f64) -> f64 {
             let ri = tl.geometry.ri_position();
             pair(ri, tl.local_position(0, t), true) + pair(ri, tl.local_position(1, t), false)
         }
-        Unit::Tile(i) => pair(tl.local_position(2 * i, t), tl.local_position(2 * i + 1, t), true),
+        Unit::Tile(i) => pair(
+            tl.local_position(2 * i, t),
+            tl.local_position(2 * i + 1, t),
+            true,
+        ),
         Unit::Joint(j) => {
             let angle = tl.fold_at(j).map_or(0.0, |f| fold_angle(tl, f, t));
             let next = joint_transform(angle, tl.geometry.w);
@@ -132,6 +136,7 @@ pub fn energy_curve(tl: &Timeline, samples: usize) -> Vec<EnergySample> {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
     use crate::engine::{run, EngineOptions, TileDesigns};
@@ -140,7 +145,12 @@ mod tests {
     #[test]
     fn energy_falls_and_matches_a_direct_sum() {
         let chain = Chain::parse("SSLS").unwrap();
-        let tl = run(&chain, &TileDesigns::global(Design::thesis()), &EngineOptions::default()).unwrap();
+        let tl = run(
+            &chain,
+            &TileDesigns::global(Design::thesis()),
+            &EngineOptions::default(),
+        )
+        .unwrap();
         let curve = energy_curve(&tl, 50);
         assert!(curve.last().unwrap().energy_j < curve[0].energy_j);
         // the sweep agrees with summing every unit directly
@@ -153,7 +163,12 @@ mod tests {
             for j in 0..tl.tiles() - 1 {
                 direct += unit_energy(&tl, Unit::Joint(j), s.time, moment);
             }
-            assert!((direct - s.energy_j).abs() < 1e-12 * direct.abs(), "{} {}", direct, s.energy_j);
+            assert!(
+                (direct - s.energy_j).abs() < 1e-12 * direct.abs(),
+                "{} {}",
+                direct,
+                s.energy_j
+            );
         }
     }
 }

@@ -69,7 +69,12 @@ pub struct Event {
 impl Event {
     /// The event as one compact JSON array `[time, "kind", index]`.
     pub fn to_json(&self) -> String {
-        format!("[{},\"{}\",{}]", json_f64(self.time), self.kind.name(), self.index)
+        format!(
+            "[{},\"{}\",{}]",
+            json_f64(self.time),
+            self.kind.name(),
+            self.index
+        )
     }
 }
 

@@ -99,6 +99,7 @@ fn refine(
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
     use crate::engine::{run, EngineOptions, TileDesigns};
@@ -107,7 +108,12 @@ mod tests {
     #[test]
     fn tracks_follow_the_law_within_tolerance() {
         let chain = Chain::parse("SLLS").unwrap();
-        let tl = run(&chain, &TileDesigns::global(Design::thesis()), &EngineOptions::default()).unwrap();
+        let tl = run(
+            &chain,
+            &TileDesigns::global(Design::thesis()),
+            &EngineOptions::default(),
+        )
+        .unwrap();
         let sched = fold_schedule(&tl);
         assert_eq!(sched.tracks.len(), 2);
         for (tr, f) in sched.tracks.iter().zip(&tl.folds) {

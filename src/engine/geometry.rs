@@ -98,7 +98,11 @@ pub struct Geometry {
 impl Geometry {
     /// The geometry of `chain` with per-tile designs `designs` (index per tile, empty when all
     /// tiles use `designs[0]`).
-    pub fn new(chain: &Chain, designs: Vec<Design>, tile_design: Vec<u32>) -> Result<Geometry, PathError> {
+    pub fn new(
+        chain: &Chain,
+        designs: Vec<Design>,
+        tile_design: Vec<u32>,
+    ) -> Result<Geometry, PathError> {
         let d0 = designs[0];
         let mut g = Geometry {
             w: d0.tile_width,
@@ -123,12 +127,20 @@ impl Geometry {
 
     fn ensure_path(&mut self, tile: usize, second: bool) -> Result<u32, PathError> {
         let di = self.design_index(tile);
-        let kind = if second { self.tiles[tile].second } else { self.tiles[tile].first };
+        let kind = if second {
+            self.tiles[tile].second
+        } else {
+            self.tiles[tile].first
+        };
         let key = (kind, second, di);
         if let Some(&i) = self.path_index.get(&key) {
             return Ok(i);
         }
-        let end = if second { PathEnd::Second } else { PathEnd::First };
+        let end = if second {
+            PathEnd::Second
+        } else {
+            PathEnd::First
+        };
         let p = MagnetPath::new(kind, end, &self.designs[di as usize])?;
         self.paths.push(p);
         let i = (self.paths.len() - 1) as u32;
@@ -242,7 +254,7 @@ impl Geometry {
             m % 2 == 1,
             self.path_id(m - 1),
             self.design_index(m / 2),
-            self.design_index((m + 1) / 2),
+            self.design_index(m.div_ceil(2)),
         );
         if let Some(&t) = self.trigger_cache.get(&key) {
             return t;
@@ -326,6 +338,7 @@ fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
     use crate::JointOutcome;
@@ -346,7 +359,13 @@ mod tests {
             }
         }
         let mut g = geometry("SSSS", Design::thesis().with_s(1.7));
-        assert!(matches!(g.trigger(1), Trigger::Never { before_end: false, .. }));
+        assert!(matches!(
+            g.trigger(1),
+            Trigger::Never {
+                before_end: false,
+                ..
+            }
+        ));
     }
 
     #[test]
@@ -371,7 +390,7 @@ mod tests {
         // thesis design: a curved path starts the next magnet; a larger s (still < e/3)
         // does not, because the curve turns away first.
         let mut g = geometry("SLS", Design::thesis());
-        let m = 2 * 1 + 2; // tile 1's second path is L; it starts magnet 4
+        let m = 4; // magnet 3, on tile 1 second path (L), starts magnet 4
         assert!(matches!(g.trigger(m), Trigger::At(_)), "{:?}", g.trigger(m));
         let mut g = geometry("SLS", Design::thesis().with_s(0.5));
         match g.trigger(m) {

@@ -166,7 +166,11 @@ impl Queue {
 }
 
 /// Runs the event engine on `chain` with `designs`.
-pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result<Timeline, EngineError> {
+pub fn run(
+    chain: &Chain,
+    designs: &TileDesigns,
+    opts: &EngineOptions,
+) -> Result<Timeline, EngineError> {
     if let SpeedLaw::Overdamped { drag } = opts.speed {
         if !drag.is_finite() || drag <= 0.0 {
             return Err(EngineError::BadDrag(drag));
@@ -190,11 +194,19 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
         let other = if k == 0 {
             u32::MAX
         } else if k % 2 == 1 {
-            if k + 1 < n { geometry.path_id(k + 1) } else { u32::MAX - 1 }
+            if k + 1 < n {
+                geometry.path_id(k + 1)
+            } else {
+                u32::MAX - 1
+            }
         } else {
             geometry.path_id(k - 1)
         };
-        let j = if k % 2 == 1 { k / 2 } else { (k / 2).wrapping_sub(1) };
+        let j = if k % 2 == 1 {
+            k / 2
+        } else {
+            (k / 2).wrapping_sub(1)
+        };
         let fold = if k == 0 || j + 1 >= tiles.len() {
             0
         } else {
@@ -207,7 +219,12 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
         let key = (geometry.path_id(k), other, fold);
         let id = *motion_index.entry(key).or_insert_with(|| {
             let p = geometry.path(k);
-            motions.push(Motion::new(p.length(), geometry.end_gap(k), geometry.design(k / 2), opts.speed));
+            motions.push(Motion::new(
+                p.length(),
+                geometry.end_gap(k),
+                geometry.design(k / 2),
+                opts.speed,
+            ));
             (motions.len() - 1) as u32
         });
         motion_of.push(id);
@@ -291,7 +308,9 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
                 let m = i + 1;
                 if m + 1 < n {
                     match geometry.trigger(m) {
-                        Trigger::At(u) => queue.push(t + motion.time_to(u), EventKind::TriggerReached, i),
+                        Trigger::At(u) => {
+                            queue.push(t + motion.time_to(u), EventKind::TriggerReached, i)
+                        }
                         Trigger::Never {
                             u,
                             shortfall,
@@ -347,7 +366,10 @@ pub fn run(chain: &Chain, designs: &TileDesigns, opts: &EngineOptions) -> Result
                 queue.push(t, EventKind::MagnetStarts, m);
             }
             EventKind::MagnetArrives => moving -= 1,
-            EventKind::FoldStarts | EventKind::FoldEnds | EventKind::Inhibited | EventKind::Stalled => {}
+            EventKind::FoldStarts
+            | EventKind::FoldEnds
+            | EventKind::Inhibited
+            | EventKind::Stalled => {}
         }
     }
     // An outcome found after an earlier one keeps the earliest (set_outcome), but stalls are
@@ -462,6 +484,7 @@ impl Timeline {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
     use crate::Design;

@@ -60,7 +60,7 @@ impl Motion {
             SpeedLaw::Overdamped { drag } => {
                 let m = design.moment();
                 let k = 3.0 * MU0 / (4.0 * std::f64::consts::PI) * m * m; // N m^4
-                // gamma (rho^5 - r^5) / 5K with lengths in metres = 1e-15 * (same in mm)
+                                                                          // gamma (rho^5 - r^5) / 5K with lengths in metres = 1e-15 * (same in mm)
                 Some(drag * 1e-15 / (5.0 * k))
             }
         };
@@ -109,6 +109,7 @@ impl Motion {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
 

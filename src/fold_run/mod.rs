@@ -153,7 +153,10 @@ pub fn fold_run(
     progress("engine", 1, 1);
     let collision_tiles = summary.first_collision.map(|c| c.tiles);
     let duration = tl.duration();
-    let frames = opts.frames.unwrap_or_else(|| default_frames(tl.tiles())).max(1);
+    let frames = opts
+        .frames
+        .unwrap_or_else(|| default_frames(tl.tiles()))
+        .max(1);
     let times: Vec<f64> = (0..frames)
         .map(|i| {
             if frames == 1 {
@@ -166,7 +169,10 @@ pub fn fold_run(
     let w = tl.geometry.w;
     let mut view = FrameView::around(poses_at_angles(&vec![0.0; tl.tiles() - 1], w), w);
     for &t in times.iter().chain(std::iter::once(&duration)) {
-        view = view.union(FrameView::around(poses_at_angles(&joint_angles_at(&tl, t), w), w));
+        view = view.union(FrameView::around(
+            poses_at_angles(&joint_angles_at(&tl, t), w),
+            w,
+        ));
     }
     let collision_time = summary.first_collision.and_then(|c| c.time);
     let mut files: Vec<(String, String)> = Vec::new();
@@ -196,12 +202,19 @@ pub fn fold_run(
         note: Some(abbreviate(&final_note, 150)),
     };
     files.push(("final.svg".into(), frame_svg(&tl, duration, &view, &fo)));
-    let (a, b) = opts
-        .transition_tiles
-        .unwrap_or((0, 5.min(tl.tiles() - 1)));
+    let (a, b) = opts.transition_tiles.unwrap_or((0, 5.min(tl.tiles() - 1)));
     files.push((
         "transition.svg".into(),
-        transition_svg(&tl, a, b, &format!("{}: transition diagram, tiles {a} to {}", opts.name, b.min(tl.tiles() - 1))),
+        transition_svg(
+            &tl,
+            a,
+            b,
+            &format!(
+                "{}: transition diagram, tiles {a} to {}",
+                opts.name,
+                b.min(tl.tiles() - 1)
+            ),
+        ),
     ));
     progress("energy", 0, 1);
     let samples = if tl.tiles() <= 10_000 { 400 } else { 100 };
@@ -236,9 +249,9 @@ fn abbreviate(s: &str, max: usize) -> String {
 /// (index: the magnet, or the joint for fold, inhibited and stalled events).
 pub fn timeline_json(tl: &Timeline) -> String {
     let mut s = String::with_capacity(40 * tl.events.len() + 200);
-    let _ = write!(
+    let _ = writeln!(
         s,
-        "{{\"tiles\":{},\"speed_law\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[\n",
+        "{{\"tiles\":{},\"speed_law\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[",
         tl.tiles(),
         serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into())
     );
@@ -285,7 +298,10 @@ fn write_dir(
         } else if dir.exists() {
             return Err(werr(
                 dir,
-                std::io::Error::new(std::io::ErrorKind::AlreadyExists, "exists and is not a directory"),
+                std::io::Error::new(
+                    std::io::ErrorKind::AlreadyExists,
+                    "exists and is not a directory",
+                ),
             ));
         }
         if let Err(e) = std::fs::rename(&tmp, dir) {

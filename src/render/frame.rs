@@ -26,7 +26,12 @@ pub struct FrameView {
 impl FrameView {
     /// A view holding every pose in `poses` (tile centres), padded by a tile.
     pub fn around(poses: impl IntoIterator<Item = Pose>, w: f64) -> FrameView {
-        let mut b = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut b = (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        );
         for p in poses {
             b = (b.0.min(p.x), b.1.min(p.y), b.2.max(p.x), b.3.max(p.y));
         }
@@ -84,10 +89,7 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         n(px_h + 40.0)
     );
     let moving_tile = |i: usize| tl.is_moving(2 * i, t) || tl.is_moving(2 * i + 1, t);
-    let folding_joint = |j: usize| {
-        tl.fold_at(j)
-            .is_some_and(|f| t >= f.start && t < f.end)
-    };
+    let folding_joint = |j: usize| tl.fold_at(j).is_some_and(|f| t >= f.start && t < f.end);
     let in_collision = |i: usize| opts.collision.is_some_and(|(a, b)| a == i || b == i);
     let oct = Octagon::new(w);
     let tiles = tl.tiles();
@@ -138,10 +140,10 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
             }
         }
         // hinges of fold joints
-        for j in 0..tiles.saturating_sub(1) {
+        for (j, pose) in poses.iter().enumerate().take(tiles.saturating_sub(1)) {
             if let Some(f) = tl.fold_at(j) {
                 let (hx, hy) = oct.hinge(f.fold == crate::Fold::L);
-                let (x, y) = poses[j].transform_point((hx, hy));
+                let (x, y) = pose.transform_point((hx, hy));
                 let col = if folding_joint(j) { "#1a56b8" } else { "#333" };
                 let _ = writeln!(
                     s,
@@ -164,7 +166,11 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
                     n(ty(y)),
                     n((r * scale).max(1.0)),
                     if moving { "#ff9800" } else { "#222" },
-                    if moving { n((0.5 * r * scale).max(1.5)) } else { "0.5".into() }
+                    if moving {
+                        n((0.5 * r * scale).max(1.5))
+                    } else {
+                        "0.5".into()
+                    }
                 );
             }
         }
@@ -199,7 +205,11 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         let mut shown = 0;
         for (i, p) in poses.iter().enumerate() {
             if shown < 2000 && (moving_tile(i) || in_collision(i)) {
-                let fill = if in_collision(i) { "#f28b82" } else { "#c6dbf7" };
+                let fill = if in_collision(i) {
+                    "#f28b82"
+                } else {
+                    "#c6dbf7"
+                };
                 polygon(&mut s, p, fill, "#55524c");
                 shown += 1;
             }
@@ -217,7 +227,9 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         n(tx(rx) - (r * scale).max(1.5) - 2.0),
         n(ty(ry) + 4.0)
     );
-    let moving = (0..tl.geometry.magnets()).filter(|&k| tl.is_moving(k, t)).count();
+    let moving = (0..tl.geometry.magnets())
+        .filter(|&k| tl.is_moving(k, t))
+        .count();
     let _ = writeln!(
         s,
         r##"<text x="8" y="{}" font-size="13" fill="#222">{}  t = {:.4} s  ({} moving)</text>"##,
@@ -231,7 +243,11 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
             s,
             r##"<text x="8" y="{}" font-size="12" fill="{}">{}</text>"##,
             n(px_h + 34.0),
-            if opts.collision.is_some() { "#c5221f" } else { "#444" },
+            if opts.collision.is_some() {
+                "#c5221f"
+            } else {
+                "#444"
+            },
             esc(note)
         );
     }

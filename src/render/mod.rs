@@ -13,7 +13,9 @@ pub use transition::transition_svg;
 
 /// Escapes text for SVG.
 pub(crate) fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// A number for SVG attributes: two decimals, no trailing zeros.

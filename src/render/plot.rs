@@ -92,7 +92,7 @@ impl Axes {
 
 /// About six round tick values covering `[a, b]`.
 pub(crate) fn ticks(a: f64, b: f64) -> Vec<f64> {
-    if !(b > a) || !a.is_finite() || !b.is_finite() {
+    if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) || !a.is_finite() || !b.is_finite() {
         return vec![a];
     }
     let raw = (b - a) / 6.0;
@@ -130,8 +130,10 @@ pub fn energy_svg(tl: &Timeline, curve: &[EnergySample], title: &str) -> String 
     let ys: Vec<f64> = curve.iter().map(|c| c.energy_j * 1e3).collect();
     let (mut lo, mut hi) = ys
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| (a.min(y), b.max(y)));
-    if !(hi > lo) {
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| {
+            (a.min(y), b.max(y))
+        });
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         lo -= 1.0;
         hi += 1.0;
     }

@@ -72,14 +72,26 @@ fn main() -> ExitCode {
 fn sanitize(name: &str) -> String {
     let s: String = name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .take(40)
         .collect();
-    if s.is_empty() { "run".into() } else { s }
+    if s.is_empty() {
+        "run".into()
+    } else {
+        s
+    }
 }
 
 fn stem(p: &Path) -> String {
-    p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into())
+    p.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into())
 }
 
 /// Bad input is an `Err` (exit 2); outcomes are exit codes.
@@ -87,7 +99,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
     let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
         (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
-        (None, None) => bail!("no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"),
+        (None, None) => bail!(
+            "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
+        ),
         (None, Some(plan)) => (read_plan_file(plan)?, stem(plan)),
         (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
             let path = Path::new(arg);
@@ -115,7 +129,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
                     return Ok(1);
                 }
             };
-            let word = plan.fold_word().with_context(|| format!("plan of {}", path.display()))?;
+            let word = plan
+                .fold_word()
+                .with_context(|| format!("plan of {}", path.display()))?;
             (word.to_chain(), stem(path))
         }
         (Some(arg), None) => {
@@ -123,7 +139,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg");
             }
             let chain = foldchain::input::read_chain_arg(arg)?;
-            let name = if Path::new(arg).is_file() { stem(Path::new(arg)) } else { sanitize(arg.trim()) };
+            let name = if Path::new(arg).is_file() {
+                stem(Path::new(arg))
+            } else {
+                sanitize(arg.trim())
+            };
             (chain, name)
         }
     };
@@ -152,9 +172,16 @@ fn run(args: Args) -> anyhow::Result<u8> {
         Some(t) => {
             let (a, b) = t
                 .split_once("..")
-                .and_then(|(a, b)| Some((a.trim().parse::<usize>().ok()?, b.trim().parse::<usize>().ok()?)))
+                .and_then(|(a, b)| {
+                    Some((
+                        a.trim().parse::<usize>().ok()?,
+                        b.trim().parse::<usize>().ok()?,
+                    ))
+                })
                 .filter(|(a, b)| a <= b)
-                .ok_or_else(|| anyhow!("--transition '{t}': expected A..B with whole numbers A <= B"))?;
+                .ok_or_else(|| {
+                    anyhow!("--transition '{t}': expected A..B with whole numbers A <= B")
+                })?;
             Some((a, b))
         }
     };
@@ -162,7 +189,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
         name: name.clone(),
         designs,
         engine: foldchain::engine::EngineOptions::default().with_speed(speed),
-        out_dir: args.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name)),
+        out_dir: args
+            .out
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("out").join(&name)),
         frames: args.frames,
         transition_tiles,
         ..FoldRunOptions::default()
