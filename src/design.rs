@@ -242,142 +242,69 @@ impl Design {
     /// Every inequality (6.1) to (6.10), evaluated. Parameters are not validated here.
     pub fn report(&self) -> Vec<InequalityCheck> {
         let (a, b, c, d, s, e) = (self.a(), self.b(), self.c(), self.d, self.s, self.e);
-        // (id, statement, lhs name, lhs, rhs name, rhs, strict, equality is only a warning)
-        // (id, statement, lhs name, lhs, rhs name, rhs, strict, equality is only a warning).
         // The reduced forms (6.6), (6.9), (6.10) come first so that a failure is named by
         // the parameter rule it breaks; (6.3) and (6.4) reduce to (6.9) in the thesis layout.
-        let rows: [(
-            &'static str,
-            &'static str,
-            &'static str,
-            f64,
-            &'static str,
-            f64,
-            bool,
-            bool,
-        ); 10] = [
-            ("6.6", "0 <= s", "0", 0.0, "s", s, false, false),
-            ("6.9", "s < e/3", "s", s, "e/3", e / 3.0, true, false),
-            (
+        let strict = Kind::Strict;
+        vec![
+            evaluate("6.6", "0 <= s", ("0", 0.0), ("s", s), Kind::NonStrict),
+            evaluate("6.9", "s < e/3", ("s", s), ("e/3", e / 3.0), strict),
+            evaluate(
                 "6.10",
                 "e < d/2 (thesis 6.7, restated as 6.10)",
-                "e",
-                e,
-                "d/2",
-                0.5 * d,
-                true,
-                false,
+                ("e", e),
+                ("d/2", 0.5 * d),
+                strict,
             ),
-            (
+            evaluate(
                 "6.8",
                 "4s <= s + e (each magnet can travel the 4s that starts the next)",
-                "4s",
-                4.0 * s,
-                "s+e",
-                s + e,
-                false,
-                false,
+                ("4s", 4.0 * s),
+                ("s+e", s + e),
+                Kind::NonStrict,
             ),
-            (
+            evaluate(
                 "6.1",
                 "b < 2c + 2a (at rest the chain does not actuate by itself)",
-                "b",
-                b,
-                "2c+2a",
-                2.0 * c + 2.0 * a,
-                true,
-                true,
+                ("b", b),
+                ("2c+2a", 2.0 * c + 2.0 * a),
+                Kind::StrictWarnOnEquality,
             ),
-            (
+            evaluate(
                 "6.2",
                 "c + a < b (the RI can start M1)",
-                "c+a",
-                c + a,
-                "b",
-                b,
-                true,
-                false,
+                ("c+a", c + a),
+                ("b", b),
+                strict,
             ),
-            (
+            evaluate(
                 "6.3",
                 "2c + 2a < a + b (M2 turns to M3 once M1 has moved)",
-                "2c+2a",
-                2.0 * c + 2.0 * a,
-                "a+b",
-                a + b,
-                true,
-                false,
+                ("2c+2a", 2.0 * c + 2.0 * a),
+                ("a+b", a + b),
+                strict,
             ),
-            (
+            evaluate(
                 "6.4",
                 "2c + a < b (M3 starts)",
-                "2c+a",
-                2.0 * c + a,
-                "b",
-                b,
-                true,
-                false,
+                ("2c+a", 2.0 * c + a),
+                ("b", b),
+                strict,
             ),
-            (
+            evaluate(
                 "6.5",
                 "2c + a < b (left half of 2c + a < b < 2c + 2a)",
-                "2c+a",
-                2.0 * c + a,
-                "b",
-                b,
-                true,
-                false,
+                ("2c+a", 2.0 * c + a),
+                ("b", b),
+                strict,
             ),
-            (
+            evaluate(
                 "6.5",
                 "b < 2c + 2a (right half of 2c + a < b < 2c + 2a)",
-                "b",
-                b,
-                "2c+2a",
-                2.0 * c + 2.0 * a,
-                true,
-                true,
+                ("b", b),
+                ("2c+2a", 2.0 * c + 2.0 * a),
+                Kind::StrictWarnOnEquality,
             ),
-        ];
-        rows.iter()
-            .map(
-                |&(id, statement, lhs_name, lhs, rhs_name, rhs, strict, warn_on_equal)| {
-                    let scale = lhs.abs().max(rhs.abs());
-                    let relative_margin = if scale > 0.0 {
-                        (rhs - lhs) / scale
-                    } else {
-                        0.0
-                    };
-                    let equal =
-                        (rhs - lhs).abs() <= EQUALITY_TOLERANCE * scale.max(f64::MIN_POSITIVE);
-                    let standing = if equal {
-                        if !strict || warn_on_equal {
-                            if strict {
-                                Standing::Marginal
-                            } else {
-                                Standing::Holds
-                            }
-                        } else {
-                            Standing::Fails
-                        }
-                    } else if lhs < rhs {
-                        Standing::Holds
-                    } else {
-                        Standing::Fails
-                    };
-                    InequalityCheck {
-                        id,
-                        statement,
-                        lhs_name,
-                        lhs,
-                        rhs_name,
-                        rhs,
-                        relative_margin,
-                        standing,
-                    }
-                },
-            )
-            .collect()
+        ]
     }
 
     /// Validates the parameters and every inequality; the first failure is the error.
@@ -419,6 +346,54 @@ impl Design {
             f(self.b()) / f(d) - 1.0,
             f(self.inter_tile_rest_distance()) / f(d) - 1.0,
         )
+    }
+}
+
+/// How an inequality treats equality.
+#[derive(Clone, Copy)]
+enum Kind {
+    /// `<=`: equality holds.
+    NonStrict,
+    /// `<`: equality fails.
+    Strict,
+    /// `<`, but equality is the thesis' limiting case: a warning.
+    StrictWarnOnEquality,
+}
+
+fn evaluate(
+    id: &'static str,
+    statement: &'static str,
+    (lhs_name, lhs): (&'static str, f64),
+    (rhs_name, rhs): (&'static str, f64),
+    kind: Kind,
+) -> InequalityCheck {
+    let scale = lhs.abs().max(rhs.abs());
+    let relative_margin = if scale > 0.0 {
+        (rhs - lhs) / scale
+    } else {
+        0.0
+    };
+    let equal = (rhs - lhs).abs() <= EQUALITY_TOLERANCE * scale.max(f64::MIN_POSITIVE);
+    let standing = if equal {
+        match kind {
+            Kind::NonStrict => Standing::Holds,
+            Kind::Strict => Standing::Fails,
+            Kind::StrictWarnOnEquality => Standing::Marginal,
+        }
+    } else if lhs < rhs {
+        Standing::Holds
+    } else {
+        Standing::Fails
+    };
+    InequalityCheck {
+        id,
+        statement,
+        lhs_name,
+        lhs,
+        rhs_name,
+        rhs,
+        relative_margin,
+        standing,
     }
 }
 
