@@ -82,7 +82,7 @@ impl Shape {
             let mut rings = Vec::new();
             for sp in subpaths {
                 let ring = flatten(&sp, tol);
-                if ring.points.len() >= 3 && ring_area(&ring).abs() > 1e-12 * size * size {
+                if ring.points.len() >= 3 {
                     if let Some((i, j, p)) = self_intersection(&ring) {
                         return Err(PlanError::SelfIntersecting {
                             name: name.to_string(),
@@ -93,7 +93,9 @@ impl Shape {
                             y: -p.1,
                         });
                     }
-                    rings.push(ring);
+                    if ring_area(&ring).abs() > 1e-12 * size * size {
+                        rings.push(ring);
+                    }
                 }
             }
             if !rings.is_empty() {
@@ -160,6 +162,11 @@ impl Shape {
     /// The shape mirrored: x scaled by `sx`, y by `sy` (each +1 or -1).
     pub fn mirrored(&self, sx: f64, sy: f64) -> Shape {
         self.mapped(|(x, y)| (sx * x, sy * y))
+    }
+
+    /// The shape scaled by `k` about the origin.
+    pub fn scaled(&self, k: f64) -> Shape {
+        self.mapped(|(x, y)| (k * x, k * y))
     }
 
     fn mapped(&self, f: impl Fn((f64, f64)) -> (f64, f64)) -> Shape {
@@ -234,20 +241,17 @@ impl Shape {
             }
             for k in 0..4 {
                 let y = w[0] + h * (k as f64 + 0.5) / 4.0;
-                a += self
-                    .intervals_at(y)
-                    .iter()
-                    .map(|(p, q)| q - p)
-                    .sum::<f64>()
-                    * h
-                    / 4.0;
+                a += self.intervals_at(y).iter().map(|(p, q)| q - p).sum::<f64>() * h / 4.0;
             }
         }
         a
     }
 
     fn vertex_heights(&self) -> Vec<f64> {
-        let mut ys: Vec<f64> = self.rings().flat_map(|r| r.points.iter().map(|p| p.1)).collect();
+        let mut ys: Vec<f64> = self
+            .rings()
+            .flat_map(|r| r.points.iter().map(|p| p.1))
+            .collect();
         ys.sort_by(f64::total_cmp);
         ys.dedup();
         ys
@@ -274,7 +278,10 @@ impl Shape {
             }
             let y = 0.5 * (w[0] + w[1]);
             let iv = self.intervals_at(y);
-            let pieces = 1 + iv.windows(2).filter(|p| p[1].0 - p[0].1 > 1e-9 * size).count();
+            let pieces = 1 + iv
+                .windows(2)
+                .filter(|p| p[1].0 - p[0].1 > 1e-9 * size)
+                .count();
             if pieces > 1 {
                 if best.is_none_or(|(n, _)| pieces > n) {
                     best = Some((pieces, y));
@@ -399,10 +406,24 @@ fn user_units_transform(data: &[u8], tree: &usvg::Tree) -> usvg::Transform {
         return id;
     };
     let root = doc.root_element();
-    let has_vb = root.attribute("viewBox").is_some();
     let has_ts = root.attribute("transform").is_some();
+    // usvg adds the wrapper only when the viewBox mapping is not the identity
+    let size = tree.size();
+    let vb_moves = root.attribute("viewBox").is_some_and(|vb| {
+        let v: Vec<f64> = vb
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|t| !t.is_empty())
+            .filter_map(|t| t.parse().ok())
+            .collect();
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-6 * (1.0 + b.abs());
+        !(v.len() == 4
+            && same(v[0], 0.0)
+            && same(v[1], 0.0)
+            && same(v[2], size.width() as f64)
+            && same(v[3], size.height() as f64))
+    });
     let children = tree.root().children();
-    if (has_vb || has_ts) && children.len() == 1 {
+    if (vb_moves || has_ts) && children.len() == 1 {
         if let usvg::Node::Group(g) = &children[0] {
             let t = g.transform();
             if !t.is_identity() {
@@ -573,12 +594,7 @@ fn self_intersection(r: &Ring) -> Option<(usize, usize, (f64, f64))> {
     None
 }
 
-fn segments_meet(
-    a: (f64, f64),
-    b: (f64, f64),
-    c: (f64, f64),
-    d: (f64, f64),
-) -> Option<(f64, f64)> {
+fn segments_meet(a: (f64, f64), b: (f64, f64), c: (f64, f64), d: (f64, f64)) -> Option<(f64, f64)> {
     let cross = |o: (f64, f64), p: (f64, f64), q: (f64, f64)| {
         (p.0 - o.0) * (q.1 - o.1) - (p.1 - o.1) * (q.0 - o.0)
     };
@@ -596,6 +612,7 @@ fn segments_meet(
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 
@@ -605,8 +622,11 @@ mod tests {
 
     #[test]
     fn rect_area_and_intervals() {
-        let s = Shape::from_svg_data(svg(r#"<rect x="10" y="20" width="30" height="40"/>"#).as_bytes(), "t")
-            .unwrap();
+        let s = Shape::from_svg_data(
+            svg(r#"<rect x="10" y="20" width="30" height="40"/>"#).as_bytes(),
+            "t",
+        )
+        .unwrap();
         assert!((s.area() - 1200.0).abs() < 1e-6, "{}", s.area());
         let iv = s.intervals_at(-30.0);
         assert_eq!(iv.len(), 1);
@@ -622,7 +642,8 @@ mod tests {
 
     #[test]
     fn circle_area_within_tolerance() {
-        let s = Shape::from_svg_data(svg(r#"<circle cx="50" cy="50" r="40"/>"#).as_bytes(), "t").unwrap();
+        let s = Shape::from_svg_data(svg(r#"<circle cx="50" cy="50" r="40"/>"#).as_bytes(), "t")
+            .unwrap();
         let exact = std::f64::consts::PI * 1600.0;
         assert!((s.area() - exact).abs() / exact < 0.01, "{}", s.area());
     }
@@ -645,7 +666,10 @@ mod tests {
         let t = svg(r#"<polygon id="bow" points="0,0 50,50 50,0 0,50"/>"#);
         let e = Shape::from_svg_data(t.as_bytes(), "bow.svg").unwrap_err();
         let m = e.to_string();
-        assert!(m.contains("bow.svg") && m.contains("bow") && m.contains("self-intersecting"), "{m}");
+        assert!(
+            m.contains("bow.svg") && m.contains("bow") && m.contains("self-intersecting"),
+            "{m}"
+        );
         assert!(e.is_bad_input());
     }
 
@@ -655,7 +679,10 @@ mod tests {
         let e = Shape::from_svg_data(t.as_bytes(), "x.svg").unwrap_err();
         assert!(matches!(e, PlanError::NoFilledArea { .. }), "{e}");
         let e = Shape::from_svg_data(b"<svg><rect", "y.svg").unwrap_err();
-        assert!(matches!(e, PlanError::BadSvg { .. }) && e.to_string().contains("y.svg"), "{e}");
+        assert!(
+            matches!(e, PlanError::BadSvg { .. }) && e.to_string().contains("y.svg"),
+            "{e}"
+        );
     }
 
     #[test]
