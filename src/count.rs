@@ -584,7 +584,7 @@ pub struct RandomEstimate {
 
 /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds the
 /// part that propagation reaches and counts those that reach the end and fold cleanly.
-/// Deterministic for a given `seed`.
+/// Deterministic for a given `seed` (and independent across lengths for one seed).
 pub fn estimate_random(
     tiles: usize,
     samples: u64,
@@ -596,7 +596,13 @@ pub fn estimate_random(
     let successes: u64 = (0..chunks)
         .into_par_iter()
         .map(|c| {
-            let mut rng = SplitMix64(seed ^ (c.wrapping_mul(0x9E37_79B9_7F4A_7C15)));
+            // independent streams: each chunk starts at a hashed point of the 2^64 cycle (a
+            // plain `seed ^ c` start would make the chunks shifted copies of one stream)
+            let mut rng = SplitMix64(mix64(
+                seed.wrapping_mul(0xD1B5_4A32_D192_ED03)
+                    ^ (tiles as u64).wrapping_mul(0x8CB9_2BA7_2F3D_8DD7)
+                    ^ c,
+            ));
             let count = per.min(samples.saturating_sub(c * per));
             let mut ok = 0u64;
             for _ in 0..count {
@@ -650,16 +656,20 @@ fn wilson(k: u64, n: u64) -> (f64, f64, f64) {
     (p, (centre - half).max(0.0), (centre + half).min(1.0))
 }
 
+/// The SplitMix64 finaliser: a bijective hash of 64 bits.
+fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
 /// A small, fast, seedable generator (SplitMix64): enough for sampling chains.
 struct SplitMix64(u64);
 
 impl SplitMix64 {
     fn next(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        mix64(self.0)
     }
     fn below(&mut self, n: u64) -> u64 {
         ((self.next() >> 11) as f64 / (1u64 << 53) as f64 * n as f64) as u64
@@ -760,9 +770,18 @@ mod tests {
         // five tiles: LLLL-like words fail, so strictly below (7/9)^4
         assert!(rows[3].p_random.unwrap() < rows[3].p_propagates.unwrap());
         // Monte Carlo agrees with the exact figure within its interval
-        let est = estimate_random(6, 40_000, 7, &CheckOptions::default());
+        // (seeds 1..=10: a 95% interval may miss now and then, not often)
         let exact = rows[4].p_random.unwrap();
-        assert!(est.low <= exact && exact <= est.high, "{est:?} vs {exact}");
+        let mut covered = 0;
+        for seed in 1..=10 {
+            let est = estimate_random(6, 20_000, seed, &CheckOptions::default());
+            covered += (est.low <= exact && exact <= est.high) as usize;
+            assert!((est.p - exact).abs() < 0.02, "{est:?} vs {exact}");
+        }
+        assert!(
+            covered >= 8,
+            "{covered} of 10 intervals hold the exact value"
+        );
     }
 
     #[test]

@@ -145,12 +145,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         }
         let check = CheckOptions::default().with_final_only(args.final_only);
         for row in rows.iter_mut().filter(|r| r.p_random.is_none()) {
-            let est = estimate_random(
-                row.tiles,
-                args.samples,
-                args.seed ^ row.tiles as u64,
-                &check,
-            );
+            let est = estimate_random(row.tiles, args.samples, args.seed, &check);
             row.p_random = Some(est.p);
             row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
             row.p_random_exact = Some(format!(
