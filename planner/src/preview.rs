@@ -146,7 +146,7 @@ pub fn to_svg_with_shape(shape: &Shape, plan: &Plan) -> String {
         r##"<text x="{:.4}" y="{:.4}" font-size="{:.4}" font-family="sans-serif" fill="#333">{}</text>"##,
         vx + 0.5 * m,
         vy + 0.7 * m,
-        0.45 * m,
+        0.6 * vw / 110.0,
         xml_escape(&format!("{}: {}", plan.source, plan.summary()))
     );
     s.push_str("</svg>\n");
