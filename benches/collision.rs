@@ -33,23 +33,41 @@ fn serpentine(tiles: usize, row: usize) -> FoldWord {
 }
 
 fn main() {
-    let max_n: usize = std::env::args().skip(1).find_map(|a| a.parse().ok()).unwrap_or(22);
+    let max_n: usize = std::env::args()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(22);
     println!("threads: {}", rayon::current_num_threads());
     println!("{:>5} {:>14} {:>10}", "N", "valid(N)", "seconds");
     let mut n = 12;
     while n <= max_n {
         let t = Instant::now();
-        let rows = count_valid(&CountOptions::default().with_tiles(n, n), &|_, _| {}).expect("valid options");
-        println!("{:>5} {:>14} {:>10.3}", n, rows[0].valid, t.elapsed().as_secs_f64());
+        let rows = count_valid(&CountOptions::default().with_tiles(n, n), &|_, _| {})
+            .expect("valid options");
+        println!(
+            "{:>5} {:>14} {:>10.3}",
+            n,
+            rows[0].valid,
+            t.elapsed().as_secs_f64()
+        );
         n += 2;
     }
     println!();
-    println!("{:>9} {:>6} {:>10} {:>8}", "tiles", "row", "seconds", "verdict");
+    println!(
+        "{:>9} {:>6} {:>10} {:>8}",
+        "tiles", "row", "seconds", "verdict"
+    );
     for tiles in [1_000usize, 10_000, 100_000, 1_000_000] {
         let row = (tiles as f64).sqrt().round() as usize;
         let w = serpentine(tiles, row);
         let t = Instant::now();
         let ok = check_word(&w, &CheckOptions::default()).is_ok();
-        println!("{:>9} {:>6} {:>10.3} {:>8}", tiles, row, t.elapsed().as_secs_f64(), if ok { "valid" } else { "collides" });
+        println!(
+            "{:>9} {:>6} {:>10.3} {:>8}",
+            tiles,
+            row,
+            t.elapsed().as_secs_f64(),
+            if ok { "valid" } else { "collides" }
+        );
     }
 }

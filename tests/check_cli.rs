@@ -45,7 +45,11 @@ fn sweeps_reject_what_the_final_shape_allows() {
 fn inhibited_tile_list_exits_1() {
     let o = check(&["SS SL RS SS"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stdout(&o).contains("inhibited") && stdout(&o).contains("joint 1"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("inhibited") && stdout(&o).contains("joint 1"),
+        "{}",
+        stdout(&o)
+    );
 }
 
 #[test]
@@ -97,34 +101,70 @@ fn table_5_1_from_fold_enum() {
         .as_array()
         .unwrap()
         .iter()
-        .map(|r| (r["tiles"].as_u64().unwrap(), r["candidates"].as_u64().unwrap(), r["valid"].as_u64().unwrap()))
+        .map(|r| {
+            (
+                r["tiles"].as_u64().unwrap(),
+                r["candidates"].as_u64().unwrap(),
+                r["valid"].as_u64().unwrap(),
+            )
+        })
         .collect();
-    assert_eq!(rows, vec![(2, 3, 3), (3, 9, 7), (4, 27, 17), (5, 81, 35), (6, 243, 79)]);
+    assert_eq!(
+        rows,
+        vec![(2, 3, 3), (3, 9, 7), (4, 27, 17), (5, 81, 35), (6, 243, 79)]
+    );
     // the text table says the same
     let o = fold_enum(&["--max-tiles", "6"]);
     let text = stdout(&o);
-    assert!(text.lines().any(|l| l.split_whitespace().collect::<Vec<_>>() == ["6", "243", "99", "79"]), "{text}");
+    assert!(
+        text.lines()
+            .any(|l| l.split_whitespace().collect::<Vec<_>>() == ["6", "243", "99", "79"]),
+        "{text}"
+    );
 }
 
 #[test]
 fn final_only_counts_more_from_seven_tiles() {
     let sweep = fold_enum(&["--min-tiles", "7", "--max-tiles", "7", "--json"]);
-    let fin = fold_enum(&["--min-tiles", "7", "--max-tiles", "7", "--json", "--final-only"]);
+    let fin = fold_enum(&[
+        "--min-tiles",
+        "7",
+        "--max-tiles",
+        "7",
+        "--json",
+        "--final-only",
+    ]);
     let a: serde_json::Value = serde_json::from_str(&stdout(&sweep)).unwrap();
     let b: serde_json::Value = serde_json::from_str(&stdout(&fin)).unwrap();
-    assert!(b["rows"][0]["valid"].as_u64() > a["rows"][0]["valid"].as_u64(), "{a} {b}");
+    assert!(
+        b["rows"][0]["valid"].as_u64() > a["rows"][0]["valid"].as_u64(),
+        "{a} {b}"
+    );
 }
 
 #[test]
 fn shards_add_up_from_the_command_line() {
-    let whole: serde_json::Value =
-        serde_json::from_str(&stdout(&fold_enum(&["--max-tiles", "13", "--min-tiles", "13", "--json"]))).unwrap();
+    let whole: serde_json::Value = serde_json::from_str(&stdout(&fold_enum(&[
+        "--max-tiles",
+        "13",
+        "--min-tiles",
+        "13",
+        "--json",
+    ])))
+    .unwrap();
     let mut sum = 0;
     for k in 1..=4 {
         let shard = format!("{k}/4");
-        let part: serde_json::Value =
-            serde_json::from_str(&stdout(&fold_enum(&["--max-tiles", "13", "--min-tiles", "13", "--json", "--shard", &shard])))
-                .unwrap();
+        let part: serde_json::Value = serde_json::from_str(&stdout(&fold_enum(&[
+            "--max-tiles",
+            "13",
+            "--min-tiles",
+            "13",
+            "--json",
+            "--shard",
+            &shard,
+        ])))
+        .unwrap();
         sum += part["rows"][0]["valid"].as_u64().unwrap();
     }
     assert_eq!(Some(sum), whole["rows"][0]["valid"].as_u64());
@@ -132,7 +172,16 @@ fn shards_add_up_from_the_command_line() {
 
 #[test]
 fn random_chains_column() {
-    let o = fold_enum(&["--max-tiles", "5", "--random", "--json", "--random-exact-max", "4", "--samples", "20000"]);
+    let o = fold_enum(&[
+        "--max-tiles",
+        "5",
+        "--random",
+        "--json",
+        "--random-exact-max",
+        "4",
+        "--samples",
+        "20000",
+    ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     let rows = v["rows"].as_array().unwrap();
@@ -153,6 +202,10 @@ fn fold_enum_bad_options_exit_2() {
     ] {
         let o = fold_enum(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
-        assert!(!stderr(&o).is_empty() && !stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+        assert!(
+            !stderr(&o).is_empty() && !stderr(&o).contains("panicked"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
     }
 }

@@ -204,7 +204,10 @@ pub fn fold_run(
     // the final picture is framed on the final shape alone (the step frames share one view
     // that holds every sweep, which for a long tail is far larger)
     let final_view = FrameView::around(poses_at_angles(&joint_angles_at(&tl, duration), w), w);
-    files.push(("final.svg".into(), frame_svg(&tl, duration, &final_view, &fo)));
+    files.push((
+        "final.svg".into(),
+        frame_svg(&tl, duration, &final_view, &fo),
+    ));
     let (a, b) = opts.transition_tiles.unwrap_or((0, 5.min(tl.tiles() - 1)));
     files.push((
         "transition.svg".into(),
