@@ -167,13 +167,8 @@ pub fn fold_run(
         })
         .collect();
     let w = tl.geometry.w;
-    let mut view = FrameView::around(poses_at_angles(&vec![0.0; tl.tiles() - 1], w), w);
-    for &t in times.iter().chain(std::iter::once(&duration)) {
-        view = view.union(FrameView::around(
-            poses_at_angles(&joint_angles_at(&tl, t), w),
-            w,
-        ));
-    }
+    // Each step is framed on the chain as it stands at that moment: one view holding every
+    // sweep would show a long straight tail and leave the folded part a speck.
     let collision_time = summary.first_collision.and_then(|c| c.time);
     let mut files: Vec<(String, String)> = Vec::new();
     for (i, &t) in times.iter().enumerate() {
@@ -184,6 +179,7 @@ pub fn fold_run(
             collision: if hit { collision_tiles } else { None },
             note: None,
         };
+        let view = FrameView::around(poses_at_angles(&joint_angles_at(&tl, t), w), w);
         files.push((format!("step-{i:04}.svg"), frame_svg(&tl, t, &view, &fo)));
     }
     progress("frames", frames, frames);
@@ -201,8 +197,6 @@ pub fn fold_run(
         collision: collision_tiles,
         note: Some(abbreviate(&final_note, 150)),
     };
-    // the final picture is framed on the final shape alone (the step frames share one view
-    // that holds every sweep, which for a long tail is far larger)
     let final_view = FrameView::around(poses_at_angles(&joint_angles_at(&tl, duration), w), w);
     files.push((
         "final.svg".into(),
