@@ -21,6 +21,7 @@ mod options;
 mod plan;
 mod planner;
 pub mod preview;
+mod rows;
 mod shape;
 
 pub use error::PlanError;

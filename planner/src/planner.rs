@@ -22,12 +22,13 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI, SQRT_2};
 
 use foldchain::{kinematics, BillOfMaterials, Fold, FoldWord};
 
+use rayon::prelude::*;
+
 use crate::check::check_folds;
 use crate::plan::{Metrics, PlanPose};
+use crate::rows::{solve_rows, Lattice, Style, LOOSE, TIGHT};
 use crate::{Plan, PlanError, PlanOptions, Shape, Turns, DEFAULT_TILES};
 
-/// Offsets across a row (tile widths) at which the shape is sampled for row costs.
-const ROW_SAMPLES: [f64; 3] = [-0.3, 0.0, 0.3];
 /// Horizontal and vertical phases tried, as shares of a column and of a row pitch.
 const PHASES: [f64; 3] = [0.0, 1.0 / 3.0, 2.0 / 3.0];
 /// At most this many row directions are compared by full planning.
@@ -39,27 +40,10 @@ const COARSE_TILES: usize = 3000;
 const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
 /// Plans tried (best first) until one passes the collision check.
 const MAX_CHECKED: usize = 8;
-
-/// The geometry of one turn style, in tile widths.
-#[derive(Clone, Copy, Debug)]
-struct Style {
-    turns: Turns,
-    /// Distance between consecutive rows.
-    pitch: f64,
-    /// Heights of the turn tiles above the row they leave.
-    turn_heights: &'static [f64],
-}
-
-const TIGHT: Style = Style {
-    turns: Turns::Tight,
-    pitch: SQRT_2,
-    turn_heights: &[FRAC_1_SQRT_2],
-};
-const LOOSE: Style = Style {
-    turns: Turns::Loose,
-    pitch: 1.0 + SQRT_2,
-    turn_heights: &[FRAC_1_SQRT_2, FRAC_1_SQRT_2 + 1.0],
-};
+/// The size search stops once the tile count is within this share of the target (0.1%:
+/// 100 tiles in 100,000; below 1,000 tiles it must be met exactly, or as near as the steps
+/// reach).
+const COUNT_TOLERANCE: f64 = 1e-3;
 
 /// One way to lay the serpentine: row direction and start corner.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -82,23 +66,6 @@ struct Serpentine {
     rows: Vec<(usize, i64, i64)>,
 }
 
-/// Per-row data: target length and prefix overlaps at column boundaries.
-struct RowData {
-    /// Mean length of the shape along the row.
-    len: f64,
-    /// `hi[j]`: mean measure of the shape on (-inf, x_j + 1/2].
-    hi: Vec<f64>,
-    /// `lo[j]`: mean measure of the shape on (-inf, x_j - 1/2].
-    lo: Vec<f64>,
-    /// Turn cost leaving this row at column j (outward side known from the row's parity).
-    turn: Vec<f64>,
-}
-
-/// Measure of `iv` on (-inf, x].
-fn measure_below(iv: &[(f64, f64)], x: f64) -> f64 {
-    iv.iter().map(|&(a, b)| (b.min(x) - a).max(0.0)).sum()
-}
-
 /// Solves the serpentine for a work-frame shape at unit tile width.
 fn solve(work: &Shape, style: Style, xp: f64, yp: f64, orient: Orientation) -> Option<Serpentine> {
     let (xmin, ymin, xmax, ymax) = work.bbox();
@@ -107,142 +74,37 @@ fn solve(work: &Shape, style: Style, xp: f64, yp: f64, orient: Orientation) -> O
     let cols = ((xmax - x0).ceil() as usize) + 3;
     let y0 = ymin + 0.5 + (yp - 1.0) * p;
     let nrows = (((ymax - y0) / p).ceil() as usize) + 2;
-    let mut rows: Vec<RowData> = Vec::with_capacity(nrows);
-    for k in 0..nrows {
-        let y = y0 + k as f64 * p;
-        let ivs: Vec<Vec<(f64, f64)>> = ROW_SAMPLES
-            .iter()
-            .map(|d| work.intervals_at(y + d))
-            .collect();
-        let ns = ROW_SAMPLES.len() as f64;
-        let len = ivs.iter().flatten().map(|(a, b)| b - a).sum::<f64>() / ns;
-        let mean_below = |x: f64| ivs.iter().map(|iv| measure_below(iv, x)).sum::<f64>() / ns;
-        let hi: Vec<f64> = (0..cols).map(|j| mean_below(x0 + j as f64 + 0.5)).collect();
-        let lo: Vec<f64> = (0..cols).map(|j| mean_below(x0 + j as f64 - 0.5)).collect();
-        let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
-        let turn_ivs: Vec<Vec<(f64, f64)>> = style
-            .turn_heights
-            .iter()
-            .map(|h| work.intervals_at(y + h))
-            .collect();
-        let turn: Vec<f64> = (0..cols)
-            .map(|j| {
-                let x = x0 + j as f64 + dir * FRAC_1_SQRT_2;
-                turn_ivs
-                    .iter()
-                    .map(|iv| 1.0 - (measure_below(iv, x + 0.5) - measure_below(iv, x - 0.5)))
-                    .sum()
-            })
-            .collect();
-        rows.push(RowData { len, hi, lo, turn });
-    }
-    let total: f64 = rows.iter().map(|r| r.len).sum();
-    let inf = f64::INFINITY;
-    let mut dp = vec![vec![inf; cols]; nrows];
-    // back[k][e] = (start column, whether row k is the first row)
-    let mut back = vec![vec![(0usize, true); cols]; nrows];
-    let mut before = 0.0;
-    let mut best: Option<(f64, usize, usize)> = None;
-    let mut after = total;
-    for k in 0..nrows {
-        after -= rows[k].len;
-        let r = &rows[k];
-        let prev = if k > 0 {
-            Some((&dp[k - 1], &rows[k - 1]))
-        } else {
-            None
-        };
-        let mut cur = vec![inf; cols];
-        let mut bk = vec![(0usize, true); cols];
-        if k % 2 == 0 {
-            // rightward: cost(s, e) = (e + 1) + len - 2 hi[e] + (2 lo[s] - s)
-            let mut first_min = (inf, 0usize);
-            let mut cont_min = (inf, 0usize);
-            for e in 0..cols {
-                let term_s = 2.0 * r.lo[e] - e as f64;
-                if before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let base = (e as f64 + 1.0) + r.len - 2.0 * r.hi[e];
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1, true);
-                }
-                if let Some((pd, pr)) = prev {
-                    // continuation needs s < e: cont_min holds s <= e - 1
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1, false);
-                    }
-                    let v = pd[e] + pr.turn[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
-            }
-        } else {
-            // leftward from s down to e: cost = (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
-            let mut first_min = (inf, 0usize);
-            let mut cont_min = (inf, 0usize);
-            for e in (0..cols).rev() {
-                let term_s = (e as f64 + 1.0) - 2.0 * r.hi[e];
-                if before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let base = r.len + 2.0 * r.lo[e] - e as f64;
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1, true);
-                }
-                if let Some((pd, pr)) = prev {
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1, false);
-                    }
-                    let v = pd[e] + pr.turn[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
-            }
-        }
-        for (e, &c) in cur.iter().enumerate() {
-            let t = c + after;
-            if best.is_none_or(|b| t < b.0) {
-                best = Some((t, k, e));
-            }
-        }
-        dp[k] = cur;
-        back[k] = bk;
-        before += r.len;
-    }
-    let (cost, mut k, mut e) = best?;
-    let mut out = Vec::new();
-    loop {
-        let (s, first) = back[k][e];
-        out.push((k, s as i64, e as i64));
-        if first || k == 0 {
-            break;
-        }
-        k -= 1;
-        e = s;
-    }
-    out.reverse();
+    let lat = Lattice {
+        x0,
+        y0,
+        cols,
+        nrows,
+    };
+    let sol = solve_rows(work, style, lat, None);
+    let (cost, k, e) = sol.best_end(|_| true)?;
     Some(Serpentine {
         orient,
         cost,
         x0,
         y0,
         pitch: p,
-        rows: out,
+        rows: sol.rows_to(k, e),
     })
 }
 
 impl Serpentine {
+    /// The number of tiles of its chain.
+    fn tiles(&self, style: Style) -> usize {
+        let row_tiles: usize = self
+            .rows
+            .iter()
+            .map(|&(_, s, e)| (e - s).unsigned_abs() as usize + 1)
+            .sum();
+        // a tight U-turn adds its LL/RR tile, a loose one that and a straight tile
+        let turn_tiles = if style.turns == Turns::Loose { 2 } else { 1 };
+        row_tiles + turn_tiles * self.rows.len().saturating_sub(1)
+    }
+
     /// The fold word: rows of straight joints, U-turns between them.
     fn word(&self, style: Style) -> FoldWord {
         let proper = self.orient.sx * self.orient.sy > 0.0;
@@ -323,12 +185,12 @@ fn work_to_svg(o: Orientation, w: f64) -> Affine {
     Affine { l, t: (0.0, 0.0) }
 }
 
-/// A checked candidate, ready to become a plan.
-struct Candidate {
-    serp: Serpentine,
+/// The serpentines of one turn style at the tile width the size search settled on.
+struct Sized {
     style: Style,
     w: f64,
-    word: FoldWord,
+    /// Every serpentine at that width, lowest cost first.
+    all: Vec<Serpentine>,
 }
 
 /// Plans a shape (physical frame).
@@ -354,20 +216,40 @@ pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Resul
     };
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
-    let mut best: Option<(Plan, f64)> = None;
+    // size every style (in parallel), measure the best unchecked plan of each, then check
+    // the styles best fit first: a long chain is checked once, not once per style
+    let sized: Vec<Result<Sized, String>> = styles
+        .par_iter()
+        .map(|&style| size_style(shape, opts, style, &directions))
+        .collect();
     let mut failures: Vec<String> = Vec::new();
-    for style in styles {
-        match plan_style(shape, opts, style, &directions, name) {
-            Ok(plan) => {
-                let score = plan.metrics.fit_error();
-                if best.as_ref().is_none_or(|b| score < b.1) {
-                    best = Some((plan, score));
+    let mut scored: Vec<(f64, Plan, Sized)> = Vec::new();
+    for r in sized {
+        match r {
+            Ok(sz) => {
+                if let Some(first) = sz.all.first() {
+                    let word = first.word(sz.style);
+                    let plan = to_plan(shape, first, sz.style, sz.w, &word, name);
+                    scored.push((plan.metrics.fit_error(), plan, sz));
                 }
             }
             Err(e) => failures.push(e),
         }
     }
-    let Some((mut plan, _)) = best else {
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best: Option<Plan> = None;
+    for (_, plan, sz) in scored {
+        match best_checked(&sz.all, sz.style) {
+            Ok((0, _)) => best = Some(plan),
+            Ok((i, word)) => best = Some(to_plan(shape, &sz.all[i], sz.style, sz.w, &word, name)),
+            Err(e) => {
+                failures.push(e);
+                continue;
+            }
+        }
+        break;
+    }
+    let Some(mut plan) = best else {
         return Err(PlanError::Unplannable {
             name: name.into(),
             reason: failures.join("; "),
@@ -435,25 +317,26 @@ fn pick_directions(shape: &Shape, monotone: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The best checked plan for one turn style.
-fn plan_style(
+/// The tile width for one turn style, with every serpentine at that width (best first),
+/// not yet checked for collisions.
+fn size_style(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     directions: &[f64],
-    name: &str,
-) -> Result<Plan, String> {
+) -> Result<Sized, String> {
     let area = shape.area();
     // area taken by one tile of a serpentine: one column of width w times the pitch
     let w_for = |n: usize| (area / (n as f64 * style.pitch)).sqrt();
+    let tiles_at = |w: f64| (area / (w * w * style.pitch)) as usize;
     if let Some(w) = opts.tile_size {
-        let dirs = if (area / (w * w * style.pitch)) as usize > COARSE_TILES {
+        let dirs = if tiles_at(w) > COARSE_TILES {
             coarse_direction(shape, style, directions, w_for(COARSE_TILES))
         } else {
             directions.to_vec()
         };
-        let c = best_checked(shape, style, &dirs, w)?;
-        return Ok(to_plan(shape, c, name));
+        let all = solve_all(shape, style, &dirs, w);
+        return Ok(Sized { style, w, all });
     }
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let dirs = if target > COARSE_TILES {
@@ -461,9 +344,10 @@ fn plan_style(
     } else {
         directions.to_vec()
     };
+    let tolerance = (COUNT_TOLERANCE * target as f64) as usize;
     let mut w = w_for(target);
-    let mut best: Option<(usize, Candidate)> = None;
-    let mut last_err = String::new();
+    // (miss, cost in user units, tile width, every serpentine at that width, best first)
+    let mut best: Option<(usize, f64, f64, Vec<Serpentine>)> = None;
     let mut tried: Vec<f64> = Vec::new();
     // secant-like steps on sqrt(tiles), then a few small steps around the best size: the
     // count jumps by whole rows, so the nearest count may lie between two steps
@@ -471,118 +355,86 @@ fn plan_style(
     for step in 0..16 {
         if step >= 8 {
             match &best {
-                Some((0, _)) | None => break,
-                Some((_, c)) => w = c.w * nudges[step - 8],
+                None => break,
+                Some((m, ..)) if *m <= tolerance => break,
+                Some((_, _, bw, _)) => w = bw * nudges[step - 8],
             }
         } else if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
             continue;
         }
         tried.push(w);
-        match best_unchecked(shape, style, &dirs, w) {
-            Ok(c) => {
-                let n = c.word.tiles();
-                let miss = n.abs_diff(target);
-                let better = best.as_ref().is_none_or(|(m, b)| {
-                    miss < *m || (miss == *m && c.serp.cost * c.w < b.serp.cost * b.w)
-                });
-                if step < 8 {
-                    w *= (n as f64 / target as f64).sqrt();
-                }
-                if better {
-                    best = Some((miss, c));
-                }
-                if miss == 0 {
-                    break;
-                }
-            }
-            Err(e) => {
-                last_err = e;
-                w *= 0.97;
-            }
+        let all = solve_all(shape, style, &dirs, w);
+        let Some(first) = all.first() else {
+            w *= 0.97;
+            continue;
+        };
+        let n = first.tiles(style);
+        let miss = n.abs_diff(target);
+        let cost = first.cost * w;
+        if step < 8 {
+            w *= (n as f64 / target as f64).sqrt();
+        }
+        if best
+            .as_ref()
+            .is_none_or(|(m, c, ..)| miss < *m || (miss == *m && cost < *c))
+        {
+            best = Some((miss, cost, tried[tried.len() - 1], all));
+        }
+        if miss <= tolerance {
+            break;
         }
     }
     match best {
         // the size is settled on unchecked plans (the check is the costly part on long
-        // chains); the plans at that size are now checked, best first
-        Some((_, c)) => Ok(to_plan(
-            shape,
-            best_checked(shape, style, &dirs, c.w)?,
-            name,
-        )),
-        None => Err(last_err),
+        // chains); the caller checks the plans at that size, best first
+        Some((_, _, w, all)) => Ok(Sized { style, w, all }),
+        None => Err(String::from("no serpentine found")),
     }
-}
-
-/// The lowest-cost serpentine at tile width `w`, not yet checked for collisions.
-fn best_unchecked(
-    shape: &Shape,
-    style: Style,
-    directions: &[f64],
-    w: f64,
-) -> Result<Candidate, String> {
-    let serp = solve_all(shape, style, directions, w)
-        .into_iter()
-        .min_by(|a, b| a.cost.total_cmp(&b.cost))
-        .ok_or_else(|| String::from("no serpentine found"))?;
-    let word = serp.word(style);
-    Ok(Candidate {
-        serp,
-        style,
-        w,
-        word,
-    })
 }
 
 /// The best direction on a coarse plan, for large plans.
 fn coarse_direction(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<f64> {
-    let mut all = solve_all(shape, style, directions, w);
-    all.sort_by(|a, b| a.cost.total_cmp(&b.cost));
-    match all.first() {
+    match solve_all(shape, style, directions, w).first() {
         Some(s) => vec![s.orient.angle],
         None => directions.to_vec(),
     }
 }
 
-/// Every serpentine over directions, corners and phases at tile width `w`.
+/// Every serpentine over directions, corners and phases at tile width `w`, lowest cost
+/// first (solved in parallel; the order is deterministic).
 fn solve_all(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Serpentine> {
-    let mut out = Vec::new();
+    let mut tasks = Vec::new();
     for &angle in directions {
         for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
-            let orient = Orientation { angle, sx, sy };
-            let work = shape.rotated(-angle).mirrored(sx, sy).scaled(1.0 / w);
-            for xp in PHASES {
-                for yp in PHASES {
-                    if let Some(s) = solve(&work, style, xp, yp, orient) {
-                        out.push(s);
-                    }
-                }
-            }
+            tasks.push(Orientation { angle, sx, sy });
         }
     }
+    let mut out: Vec<Serpentine> = tasks
+        .par_iter()
+        .flat_map_iter(|&orient| {
+            let work = shape
+                .rotated(-orient.angle)
+                .mirrored(orient.sx, orient.sy)
+                .scaled(1.0 / w);
+            PHASES
+                .iter()
+                .flat_map(|&xp| PHASES.iter().map(move |&yp| (xp, yp)))
+                .filter_map(|(xp, yp)| solve(&work, style, xp, yp, orient))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    out.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     out
 }
 
-/// The lowest-cost serpentine at tile width `w` that folds without collision.
-fn best_checked(
-    shape: &Shape,
-    style: Style,
-    directions: &[f64],
-    w: f64,
-) -> Result<Candidate, String> {
-    let mut all = solve_all(shape, style, directions, w);
-    all.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+/// The first serpentine of `all` (sorted, best first) that folds without collision: its
+/// index and fold word.
+fn best_checked(all: &[Serpentine], style: Style) -> Result<(usize, FoldWord), String> {
     let mut why = String::from("no serpentine found");
-    for serp in all.into_iter().take(MAX_CHECKED) {
+    for (i, serp) in all.iter().enumerate().take(MAX_CHECKED) {
         let word = serp.word(style);
         match check_folds(&word) {
-            Ok(()) => {
-                return Ok(Candidate {
-                    serp,
-                    style,
-                    w,
-                    word,
-                })
-            }
+            Ok(()) => return Ok((i, word)),
             Err(e) => why = format!("every candidate chain collides when folded (first: {e})"),
         }
     }
@@ -591,14 +443,20 @@ fn best_checked(
 
 /// Turns a checked candidate into the plan: poses from the exact kinematics, mapped into
 /// the drawing, and the fit measured on them.
-fn to_plan(shape: &Shape, c: Candidate, name: &str) -> Plan {
-    let o = c.serp.orient;
-    let w = c.w;
-    let (l, t) = c.serp.chain_to_work();
+fn to_plan(
+    shape: &Shape,
+    serp: &Serpentine,
+    style: Style,
+    w: f64,
+    word: &FoldWord,
+    name: &str,
+) -> Plan {
+    let o = serp.orient;
+    let (l, t) = serp.chain_to_work();
     let c2w = Affine { l, t };
     let w2s = work_to_svg(o, w);
     let c2s = w2s.after(&c2w);
-    let exact = kinematics::final_poses(&c.word);
+    let exact = kinematics::final_poses(word);
     let work_centres: Vec<(f64, f64)> = exact
         .iter()
         .map(|p| c2w.apply(p.centre.to_f64(1.0)))
@@ -622,25 +480,25 @@ fn to_plan(shape: &Shape, c: Candidate, name: &str) -> Plan {
         .collect();
     let work = shape.rotated(-o.angle).mirrored(o.sx, o.sy).scaled(1.0 / w);
     let metrics = measure(&work, &work_centres, w);
-    let chain = c.word.to_chain();
+    let chain = word.to_chain();
     let bom = BillOfMaterials::from_chain(&chain)
         .parts
         .into_iter()
         .map(|(p, n)| (p.to_string(), n))
         .collect();
-    let u_turns = c.serp.rows.len().saturating_sub(1);
+    let u_turns = serp.rows.len().saturating_sub(1);
     // the stacking axis: plan +y, in SVG coordinates
     let (s, co) = o.angle.sin_cos();
     let axis = (-co).atan2(-s).to_degrees().rem_euclid(180.0);
     let axis = if axis >= 180.0 - 1e-9 { 0.0 } else { axis };
     Plan {
         source: name.to_string(),
-        tiles: c.word.tiles(),
+        tiles: word.tiles(),
         tile_list: chain.to_tile_list(),
-        word: c.word.to_compact_string(),
+        word: word.to_compact_string(),
         axis_deg: (axis * 1e9).round() / 1e9 + 0.0,
         tile_size: w,
-        turns: c.style.turns,
+        turns: style.turns,
         u_turns,
         quarter_turns: 0,
         cells: 1,
@@ -658,61 +516,123 @@ fn in_octagon(dx: f64, dy: f64) -> bool {
     dx.abs() <= 0.5 && dy.abs() <= 0.5 && dx.abs() + dy.abs() <= FRAC_1_SQRT_2
 }
 
+/// Tile centres bucketed by unit cell (compressed rows), for "which tiles are near".
+struct CentreGrid {
+    x0: i64,
+    y0: i64,
+    nx: i64,
+    ny: i64,
+    /// `start[c]..start[c + 1]` indexes `ids` for cell `c`.
+    start: Vec<usize>,
+    ids: Vec<usize>,
+}
+
+impl CentreGrid {
+    fn new(centres: &[(f64, f64)]) -> CentreGrid {
+        let cell = |&(x, y): &(f64, f64)| (x.floor() as i64, y.floor() as i64);
+        let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
+        for c in centres.iter().map(cell) {
+            (x0, y0, x1, y1) = (x0.min(c.0), y0.min(c.1), x1.max(c.0), y1.max(c.1));
+        }
+        let (nx, ny) = if centres.is_empty() {
+            (0, 0)
+        } else {
+            (x1 - x0 + 1, y1 - y0 + 1)
+        };
+        let index = |(cx, cy): (i64, i64)| ((cy - y0) * nx + (cx - x0)) as usize;
+        let mut start = vec![0usize; (nx * ny) as usize + 1];
+        for c in centres.iter().map(cell) {
+            start[index(c) + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut fill = start.clone();
+        let mut ids = vec![0usize; centres.len()];
+        for (i, c) in centres.iter().map(cell).enumerate() {
+            let k = index(c);
+            ids[fill[k]] = i;
+            fill[k] += 1;
+        }
+        CentreGrid {
+            x0,
+            y0,
+            nx,
+            ny,
+            start,
+            ids,
+        }
+    }
+
+    /// The tiles whose centre lies in the cell `(cx, cy)`.
+    fn in_cell(&self, cx: i64, cy: i64) -> &[usize] {
+        let (i, j) = (cx - self.x0, cy - self.y0);
+        if i < 0 || j < 0 || i >= self.nx || j >= self.ny {
+            return &[];
+        }
+        let k = (j * self.nx + i) as usize;
+        &self.ids[self.start[k]..self.start[k + 1]]
+    }
+}
+
 /// The fit measures (see [`Metrics`]) in the work frame (unit tiles), areas scaled by `w^2`.
-fn measure(work: &Shape, centres: &[(f64, f64)], w: f64) -> Metrics {
-    let mut cache: HashMap<i64, Vec<(f64, f64)>> = HashMap::new();
-    let mut inside = |x: f64, y: f64| {
-        let key = (y * 1e7).round() as i64;
-        let iv = cache.entry(key).or_insert_with(|| work.intervals_at(y));
-        iv.iter().any(|&(a, b)| a <= x && x <= b)
-    };
+pub(crate) fn measure(work: &Shape, centres: &[(f64, f64)], w: f64) -> Metrics {
     let offs = [-0.4, -0.2, 0.0, 0.2, 0.4];
-    let (mut total, mut out) = (0usize, 0usize);
-    for &(x, y) in centres {
-        for dy in offs {
-            for dx in offs {
-                if in_octagon(dx, dy) {
-                    total += 1;
-                    if !inside(x + dx, y + dy) {
-                        out += 1;
+    // chunks of consecutive tiles share rows, so each chunk caches the lines it asks for
+    let (total, out) = centres
+        .par_chunks(4096)
+        .map(|chunk| {
+            let mut cache: HashMap<i64, Vec<(f64, f64)>> = HashMap::new();
+            let (mut total, mut out) = (0usize, 0usize);
+            for &(x, y) in chunk {
+                for dy in offs {
+                    let yy = y + dy;
+                    let key = (yy * 1e7).round() as i64;
+                    let iv = cache.entry(key).or_insert_with(|| work.intervals_at(yy));
+                    for dx in offs {
+                        if in_octagon(dx, dy) {
+                            total += 1;
+                            let xx = x + dx;
+                            if !iv.iter().any(|&(a, b)| a <= xx && xx <= b) {
+                                out += 1;
+                            }
+                        }
                     }
                 }
             }
-        }
-    }
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    for (i, &(x, y)) in centres.iter().enumerate() {
-        grid.entry((x.floor() as i64, y.floor() as i64))
-            .or_default()
-            .push(i);
-    }
+            (total, out)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    let grid = CentreGrid::new(centres);
     let (xmin, ymin, xmax, ymax) = work.bbox();
     let step = ((xmax - xmin) * (ymax - ymin) / 250_000.0).sqrt().max(1e-9);
-    let (mut in_shape, mut covered) = (0usize, 0usize);
-    let mut y = ymin + 0.5 * step;
-    while y < ymax {
-        let iv = work.intervals_at(y);
-        for &(a, b) in &iv {
-            let mut x = xmin + ((a - xmin) / step).ceil() * step + 0.5 * step;
-            while x <= b {
-                in_shape += 1;
-                let (cx, cy) = (x.floor() as i64, y.floor() as i64);
-                let hit = (-1..=1).any(|i| {
-                    (-1..=1).any(|j| {
-                        grid.get(&(cx + i, cy + j)).is_some_and(|v| {
-                            v.iter()
+    let lines = ((ymax - ymin) / step - 0.5).ceil().max(0.0) as usize;
+    let (in_shape, covered) = (0..lines)
+        .into_par_iter()
+        .map(|i| {
+            let y = ymin + (i as f64 + 0.5) * step;
+            let (mut in_shape, mut covered) = (0usize, 0usize);
+            for (a, b) in work.intervals_at(y) {
+                let mut x = xmin + ((a - xmin) / step).ceil() * step + 0.5 * step;
+                while x <= b {
+                    in_shape += 1;
+                    let (cx, cy) = (x.floor() as i64, y.floor() as i64);
+                    let hit = (-1..=1).any(|i| {
+                        (-1..=1).any(|j| {
+                            grid.in_cell(cx + i, cy + j)
+                                .iter()
                                 .any(|&t| in_octagon(x - centres[t].0, y - centres[t].1))
                         })
-                    })
-                });
-                if hit {
-                    covered += 1;
+                    });
+                    if hit {
+                        covered += 1;
+                    }
+                    x += step;
                 }
-                x += step;
             }
-        }
-        y += step;
-    }
+            (in_shape, covered)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
     let oct_area = 2.0 * (SQRT_2 - 1.0);
     Metrics {
         covered_share: if in_shape > 0 {
@@ -727,5 +647,32 @@ fn measure(work: &Shape, centres: &[(f64, f64)], w: f64) -> Metrics {
         },
         shape_area: work.area() * w * w,
         chain_area: centres.len() as f64 * oct_area * w * w,
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::Ring;
+
+    #[test]
+    fn tile_count_matches_the_word() {
+        let disc = Shape::from_rings(vec![Ring {
+            points: (0..64)
+                .map(|i| {
+                    let a = i as f64 * std::f64::consts::TAU / 64.0;
+                    (10.0 * a.cos(), 10.0 * a.sin())
+                })
+                .collect(),
+        }]);
+        for style in [TIGHT, LOOSE] {
+            let all = solve_all(&disc, style, &[0.0, 0.7], 1.0);
+            assert!(!all.is_empty());
+            for s in &all {
+                assert_eq!(s.tiles(style), s.word(style).tiles());
+            }
+            assert!(all.windows(2).all(|p| p[0].cost <= p[1].cost));
+        }
     }
 }

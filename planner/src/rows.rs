@@ -1,0 +1,305 @@
+//! The row programme: the exact dynamic programme over row ends of a serpentine in a work
+//! frame (rows along x at `y_k = y_0 + k p`, even rows running +x, odd rows -x, all tiles on
+//! columns `x_j = x_0 + j`), shared by the monotone planner and the cell planner.
+//!
+//! The cost of a row is the length of the symmetric difference between the span of its
+//! tiles and the shape along the row (the mean over [`ROW_SAMPLES`] lines across the tile),
+//! plus, for each turn tile, the part of it outside the shape. The cost of a row from column
+//! `s` to `e` splits into a term of `s` and a term of `e`, so the best predecessor of every
+//! end column is a running minimum: the programme takes O(rows x columns) and is exact over
+//! all row-length choices. Row tables are built in one merge pass per line (the column
+//! boundaries and the shape's intervals are both sorted), into flat buffers allocated once
+//! per programme.
+
+use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
+
+use crate::{Shape, Turns};
+
+/// Offsets across a row (tile widths) at which the shape is sampled for row costs.
+pub(crate) const ROW_SAMPLES: [f64; 3] = [-0.3, 0.0, 0.3];
+
+/// The geometry of one turn style, in tile widths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Style {
+    /// Tight or loose.
+    pub turns: Turns,
+    /// Distance between consecutive rows.
+    pub pitch: f64,
+    /// Heights of the turn tiles above the row they leave.
+    pub turn_heights: &'static [f64],
+}
+
+/// One LL/RR tile per U-turn.
+pub(crate) const TIGHT: Style = Style {
+    turns: Turns::Tight,
+    pitch: SQRT_2,
+    turn_heights: &[FRAC_1_SQRT_2],
+};
+/// Fold, straight tile, fold.
+pub(crate) const LOOSE: Style = Style {
+    turns: Turns::Loose,
+    pitch: 1.0 + SQRT_2,
+    turn_heights: &[FRAC_1_SQRT_2, FRAC_1_SQRT_2 + 1.0],
+};
+
+/// The lattice of a programme: column `j` at `x0 + j`, row `k` at `y0 + k * pitch`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lattice {
+    pub x0: f64,
+    pub y0: f64,
+    pub cols: usize,
+    pub nrows: usize,
+}
+
+/// A solved programme: the best cost of every row end, ready for back-tracking.
+pub(crate) struct Solved {
+    cols: usize,
+    nrows: usize,
+    /// `dp[k * cols + e]`: least cost of a chain whose last row is `k`, ending at `e`,
+    /// including the shape rows below the first row (free start) but not those above `k`.
+    dp: Vec<f64>,
+    /// Start column of the row, and whether it is the first row.
+    back: Vec<(u32, bool)>,
+    /// Shape length of the rows above `k` (left uncovered when the chain stops at `k`).
+    after: Vec<f64>,
+}
+
+/// Adds `sign * measure(iv on (-inf, b_m])` for the increasing boundaries `b_m = b0 + m`,
+/// `m = 0..out.len()`, in one merge pass.
+fn add_measures(iv: &[(f64, f64)], b0: f64, sign: f64, out: &mut [f64]) {
+    let mut i = 0;
+    let mut done = 0.0; // measure of the intervals wholly left of the boundary
+    for (m, o) in out.iter_mut().enumerate() {
+        let b = b0 + m as f64;
+        while i < iv.len() && iv[i].1 <= b {
+            done += iv[i].1 - iv[i].0;
+            i += 1;
+        }
+        let part = if i < iv.len() && iv[i].0 < b {
+            b - iv[i].0
+        } else {
+            0.0
+        };
+        *o += sign * (done + part);
+    }
+}
+
+/// Solves the programme on `work` (unit tiles). With `fixed_start = Some(c)` the chain must
+/// begin in row 0 at column `c` running +x, and that row holds at least two tiles (a fold
+/// before it may be opposite to the U-turn after it); otherwise the first row is free.
+pub(crate) fn solve_rows(
+    work: &Shape,
+    style: Style,
+    lat: Lattice,
+    fixed_start: Option<usize>,
+) -> Solved {
+    let Lattice {
+        x0,
+        y0,
+        cols,
+        nrows,
+    } = lat;
+    let p = style.pitch;
+    let ns = ROW_SAMPLES.len() as f64;
+    let w1 = cols + 1;
+    // bnd[k * w1 + m]: mean measure of the shape on (-inf, x0 - 1/2 + m] in row k
+    let mut bnd = vec![0.0; nrows * w1];
+    let mut turn = vec![0.0; nrows * cols];
+    let mut len = vec![0.0; nrows];
+    let mut tb = vec![0.0; w1];
+    for k in 0..nrows {
+        let y = y0 + k as f64 * p;
+        let b = &mut bnd[k * w1..(k + 1) * w1];
+        for d in ROW_SAMPLES {
+            let iv = work.intervals_at(y + d);
+            len[k] += iv.iter().map(|(a, b)| b - a).sum::<f64>() / ns;
+            add_measures(&iv, x0 - 0.5, 1.0 / ns, b);
+        }
+        let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let t = &mut turn[k * cols..(k + 1) * cols];
+        for h in style.turn_heights {
+            let iv = work.intervals_at(y + h);
+            tb.iter_mut().for_each(|v| *v = 0.0);
+            add_measures(&iv, x0 + dir * FRAC_1_SQRT_2 - 0.5, 1.0, &mut tb);
+            for (j, tj) in t.iter_mut().enumerate() {
+                *tj += 1.0 - (tb[j + 1] - tb[j]);
+            }
+        }
+    }
+    let total: f64 = len.iter().sum();
+    let inf = f64::INFINITY;
+    let mut dp = vec![inf; nrows * cols];
+    let mut back = vec![(0u32, true); nrows * cols];
+    let mut after = vec![0.0; nrows];
+    let mut before = 0.0;
+    let mut rest = total;
+    for k in 0..nrows {
+        rest -= len[k];
+        after[k] = rest;
+        let r_len = len[k];
+        let hi = |j: usize| bnd[k * w1 + j + 1];
+        let lo = |j: usize| bnd[k * w1 + j];
+        let (done, todo) = dp.split_at_mut(k * cols);
+        let cur = &mut todo[..cols];
+        let bk = &mut back[k * cols..(k + 1) * cols];
+        let prev = if k > 0 {
+            Some((&done[(k - 1) * cols..], &turn[(k - 1) * cols..k * cols]))
+        } else {
+            None
+        };
+        // a first row may start here (free start: any row; fixed: row 0 at column c only)
+        let first_ok = |s: usize| match fixed_start {
+            None => true,
+            Some(c) => k == 0 && s == c,
+        };
+        let first_len = if fixed_start.is_some() { 1 } else { 0 };
+        let mut first_min = (inf, 0usize);
+        let mut cont_min = (inf, 0usize);
+        if k % 2 == 0 {
+            // rightward: cost(s, e) = (e + 1) + len - 2 hi[e] + (2 lo[s] - s)
+            for e in 0..cols {
+                let term_s = 2.0 * lo(e) - e as f64;
+                let base = (e as f64 + 1.0) + r_len - 2.0 * hi(e);
+                // a fixed first row needs s <= e - 1: add s = e after using the minimum
+                if first_len == 0 && first_ok(e) && before + term_s < first_min.0 {
+                    first_min = (before + term_s, e);
+                }
+                let cf = base + first_min.0;
+                if cf < cur[e] {
+                    cur[e] = cf;
+                    bk[e] = (first_min.1 as u32, true);
+                }
+                if first_len == 1 && first_ok(e) && before + term_s < first_min.0 {
+                    first_min = (before + term_s, e);
+                }
+                if let Some((pd, pt)) = prev {
+                    // continuation needs s < e: cont_min holds s <= e - 1
+                    let cc = base + cont_min.0;
+                    if cc < cur[e] {
+                        cur[e] = cc;
+                        bk[e] = (cont_min.1 as u32, false);
+                    }
+                    let v = pd[e] + pt[e] + term_s;
+                    if v < cont_min.0 {
+                        cont_min = (v, e);
+                    }
+                }
+            }
+        } else {
+            // leftward from s down to e: cost = (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
+            for e in (0..cols).rev() {
+                let term_s = (e as f64 + 1.0) - 2.0 * hi(e);
+                if first_ok(e) && before + term_s < first_min.0 {
+                    first_min = (before + term_s, e);
+                }
+                let base = r_len + 2.0 * lo(e) - e as f64;
+                let cf = base + first_min.0;
+                if cf < cur[e] {
+                    cur[e] = cf;
+                    bk[e] = (first_min.1 as u32, true);
+                }
+                if let Some((pd, pt)) = prev {
+                    let cc = base + cont_min.0;
+                    if cc < cur[e] {
+                        cur[e] = cc;
+                        bk[e] = (cont_min.1 as u32, false);
+                    }
+                    let v = pd[e] + pt[e] + term_s;
+                    if v < cont_min.0 {
+                        cont_min = (v, e);
+                    }
+                }
+            }
+        }
+        if fixed_start.is_none() {
+            before += r_len;
+        }
+    }
+    Solved {
+        cols,
+        nrows,
+        dp,
+        back,
+        after,
+    }
+}
+
+impl Solved {
+    /// The best end `(cost, row, column)` among rows that `row_ok` accepts; the cost counts
+    /// the shape rows above the last row as uncovered.
+    pub(crate) fn best_end(&self, row_ok: impl Fn(usize) -> bool) -> Option<(f64, usize, usize)> {
+        let mut best: Option<(f64, usize, usize)> = None;
+        for k in (0..self.nrows).filter(|&k| row_ok(k)) {
+            let row = &self.dp[k * self.cols..(k + 1) * self.cols];
+            for (e, &c) in row.iter().enumerate() {
+                let t = c + self.after[k];
+                if t.is_finite() && best.is_none_or(|b| t < b.0) {
+                    best = Some((t, k, e));
+                }
+            }
+        }
+        best
+    }
+
+    /// The rows `(row k, start column, end column)` in chain order of the chain ending in
+    /// row `k` at column `e`.
+    pub(crate) fn rows_to(&self, mut k: usize, mut e: usize) -> Vec<(usize, i64, i64)> {
+        let mut out = Vec::new();
+        loop {
+            let (s, first) = self.back[k * self.cols + e];
+            out.push((k, s as i64, e as i64));
+            if first || k == 0 {
+                break;
+            }
+            k -= 1;
+            e = s as usize;
+        }
+        out.reverse();
+        out
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::Ring;
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::from_rings(vec![Ring {
+            points: vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1)],
+        }])
+    }
+
+    #[test]
+    fn merge_pass_matches_direct_measure() {
+        let iv = [(0.3, 1.7), (2.5, 2.6), (4.0, 9.2)];
+        let mut out = vec![0.0; 12];
+        add_measures(&iv, -0.5, 1.0, &mut out);
+        for (m, &v) in out.iter().enumerate() {
+            let b = -0.5 + m as f64;
+            let direct: f64 = iv.iter().map(|&(a, c)| (c.min(b) - a).max(0.0)).sum();
+            assert!((v - direct).abs() < 1e-12, "{m}: {v} vs {direct}");
+        }
+    }
+
+    #[test]
+    fn fixed_start_begins_where_asked_with_two_tiles() {
+        let s = rect(-0.5, -0.5, 9.5, 6.0);
+        let lat = Lattice {
+            x0: -3.0,
+            y0: 0.0,
+            cols: 16,
+            nrows: 6,
+        };
+        let sol = solve_rows(&s, TIGHT, lat, Some(3));
+        let (_, k, e) = sol.best_end(|_| true).unwrap();
+        let rows = sol.rows_to(k, e);
+        assert_eq!(rows[0].0, 0);
+        assert_eq!(rows[0].1, 3);
+        assert!(rows[0].2 > 3);
+        // the rectangle spans columns 3..=12 (x = 0..=9): rows fill it
+        assert_eq!(rows[1].2, 3, "{rows:?}");
+        assert!(rows.len() >= 4, "{rows:?}");
+    }
+}
