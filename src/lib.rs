@@ -43,6 +43,7 @@ pub mod magnet_path;
 mod octagon;
 mod path;
 mod pose;
+pub mod reference;
 pub mod render;
 mod tile;
 mod word;

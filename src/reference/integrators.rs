@@ -1,0 +1,328 @@
+//! The two integrators of the reference model, each a single step with an error estimate;
+//! step-size control and events are the driver's ([`crate::reference::events`]).
+//!
+//! - **Dormand-Prince 5(4)** (explicit, adaptive): seven stages, first same as last, the
+//!   fourth-order embedded solution for the error. Its stability region bounds the step by
+//!   about `3.3 / |lambda|` whatever the tolerance, so it pays for stiffness in steps.
+//! - **ROS2** (Verwer, Spee, Blom and Hundsdorfer 1999): a two-stage Rosenbrock method,
+//!   second order, L-stable, `gamma = 1 + 1/sqrt2`, the first-order `y + h k1` as the
+//!   embedded solution. It is second order for any approximation of the Jacobian (a
+//!   W-method), so the finite-difference banded Jacobian ([`crate::reference::banded`]) costs
+//!   no accuracy. Each step solves two band systems with one factorisation.
+//!
+//! Both are written here rather than taken from a crate: the model is small and banded, the
+//! events are the model's own (modes that clamp unknowns), and a general ODE crate (diffsol)
+//! would add minutes of build time on a two-core machine for no gain at these sizes.
+
+use crate::reference::banded::{Band, Singular};
+use crate::reference::dynamics::{Forces, Mode, Model};
+
+/// An integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Dormand-Prince 5(4), explicit.
+    Dopri5,
+    /// ROS2, linearly implicit (Rosenbrock), for stiff cases.
+    Ros2,
+}
+
+impl Method {
+    /// The name used in tables and JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dopri5 => "dopri5",
+            Method::Ros2 => "ros2",
+        }
+    }
+
+    /// The order of the embedded (error) solution, for the step-size law.
+    pub fn error_order(self) -> i32 {
+        match self {
+            Method::Dopri5 => 4,
+            Method::Ros2 => 1,
+        }
+    }
+}
+
+/// Work counters of a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct StepStats {
+    /// Accepted steps.
+    pub accepted: u64,
+    /// Rejected steps.
+    pub rejected: u64,
+    /// Right-hand-side evaluations (all of them, Jacobians and event location included).
+    pub rhs: u64,
+    /// Jacobian evaluations.
+    pub jacobians: u64,
+    /// LU factorisations.
+    pub factorisations: u64,
+    /// Trial steps spent locating events.
+    pub event_steps: u64,
+}
+
+const A: [[f64; 6]; 6] = [
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+const GAMMA: f64 = 1.0 + std::f64::consts::FRAC_1_SQRT_2;
+
+/// One integrator's working storage.
+#[derive(Debug)]
+pub struct Stepper {
+    /// The method.
+    pub method: Method,
+    k: Vec<Vec<f64>>,
+    tmp: Vec<f64>,
+    work: Forces,
+    jac: Band,
+    lu: Band,
+    jac_fresh: bool,
+}
+
+/// The result of one step attempt.
+#[derive(Clone, Debug)]
+pub struct Attempt {
+    /// The new state.
+    pub y: Vec<f64>,
+    /// Weighted RMS error over the free unknowns (accept when <= 1).
+    pub error: f64,
+}
+
+impl Stepper {
+    /// Storage for `model`.
+    pub fn new(method: Method, model: &Model) -> Stepper {
+        let n = model.len();
+        let bw = model.bandwidth();
+        Stepper {
+            method,
+            k: vec![vec![0.0; n]; 7],
+            tmp: vec![0.0; n],
+            work: Forces::default(),
+            jac: Band::zeros(n, bw, bw),
+            lu: Band::zeros(n, bw, bw),
+            jac_fresh: false,
+        }
+    }
+
+    /// Forgets the Jacobian (the state or the modes changed).
+    pub fn invalidate(&mut self) {
+        self.jac_fresh = false;
+    }
+
+    /// `dy/dt` at `y`.
+    pub fn rhs(
+        &mut self,
+        model: &Model,
+        modes: &[Mode],
+        y: &[f64],
+        out: &mut [f64],
+        stats: &mut StepStats,
+    ) {
+        stats.rhs += 1;
+        model.rhs(y, modes, &mut self.work, out);
+    }
+
+    /// One step of size `h` from `y0` (with `f0 = dy/dt(y0)`), tolerance `tol`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn attempt(
+        &mut self,
+        model: &Model,
+        modes: &[Mode],
+        y0: &[f64],
+        f0: &[f64],
+        h: f64,
+        tol: f64,
+        stats: &mut StepStats,
+    ) -> Result<Attempt, Singular> {
+        match self.method {
+            Method::Dopri5 => Ok(self.dopri5(model, modes, y0, f0, h, tol, stats)),
+            Method::Ros2 => self.ros2(model, modes, y0, f0, h, tol, stats),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn dopri5(
+        &mut self,
+        model: &Model,
+        modes: &[Mode],
+        y0: &[f64],
+        f0: &[f64],
+        h: f64,
+        tol: f64,
+        stats: &mut StepStats,
+    ) -> Attempt {
+        let n = y0.len();
+        self.k[0].copy_from_slice(f0);
+        let mut y = vec![0.0; n];
+        for s in 0..6 {
+            for i in 0..n {
+                let mut acc = 0.0;
+                for (j, a) in A[s].iter().enumerate().take(s + 1) {
+                    acc += a * self.k[j][i];
+                }
+                y[i] = y0[i] + h * acc;
+            }
+            let mut out = std::mem::take(&mut self.k[s + 1]);
+            self.rhs(model, modes, &y, &mut out, stats);
+            self.k[s + 1] = out;
+        }
+        // y is now the fifth-order solution (row 6 of A is b)
+        let mut sum = 0.0;
+        let mut count = 0usize;
+        for i in 0..n {
+            if modes[i] != Mode::Free {
+                continue;
+            }
+            let mut e = 0.0;
+            for (j, c) in E.iter().enumerate() {
+                e += c * self.k[j][i];
+            }
+            let sc = tol * (1.0 + y0[i].abs().max(y[i].abs()));
+            sum += (h * e / sc).powi(2);
+            count += 1;
+        }
+        let error = if count == 0 {
+            0.0
+        } else {
+            (sum / count as f64).sqrt()
+        };
+        Attempt { y, error }
+    }
+
+    /// The last stage's derivative, `dy/dt` at the new state (Dormand-Prince only).
+    pub fn last_derivative(&self) -> Option<&[f64]> {
+        (self.method == Method::Dopri5).then(|| self.k[6].as_slice())
+    }
+
+    fn jacobian(
+        &mut self,
+        model: &Model,
+        modes: &[Mode],
+        y0: &[f64],
+        f0: &[f64],
+        stats: &mut StepStats,
+    ) {
+        let n = y0.len();
+        let bw = model.bandwidth();
+        let groups = (2 * bw + 1).min(n);
+        self.jac.clear();
+        stats.jacobians += 1;
+        let mut y = y0.to_vec();
+        let mut f = vec![0.0; n];
+        let delta = |x: f64| if x > 0.5 { -1e-7 } else { 1e-7 };
+        for g in 0..groups {
+            y.copy_from_slice(y0);
+            let mut c = g;
+            while c < n {
+                y[c] += delta(y0[c]);
+                c += groups;
+            }
+            self.rhs(model, modes, &y, &mut f, stats);
+            let mut c = g;
+            while c < n {
+                let d = delta(y0[c]);
+                let lo = c.saturating_sub(bw);
+                let hi = (c + bw).min(n - 1);
+                for (i, fi) in f.iter().enumerate().take(hi + 1).skip(lo) {
+                    self.jac.set(i, c, (fi - f0[i]) / d);
+                }
+                c += groups;
+            }
+        }
+        self.jac_fresh = true;
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn ros2(
+        &mut self,
+        model: &Model,
+        modes: &[Mode],
+        y0: &[f64],
+        f0: &[f64],
+        h: f64,
+        tol: f64,
+        stats: &mut StepStats,
+    ) -> Result<Attempt, Singular> {
+        let n = y0.len();
+        if !self.jac_fresh {
+            self.jacobian(model, modes, y0, f0, stats);
+        }
+        let bw = model.bandwidth();
+        self.lu.clear();
+        for i in 0..n {
+            for j in i.saturating_sub(bw)..=(i + bw).min(n - 1) {
+                let id = if i == j { 1.0 } else { 0.0 };
+                self.lu.set(i, j, id - GAMMA * h * self.jac.get(i, j));
+            }
+        }
+        stats.factorisations += 1;
+        self.lu.factor()?;
+        let mut k1 = f0.to_vec();
+        self.lu.solve(&mut k1);
+        for i in 0..n {
+            self.tmp[i] = y0[i] + h * k1[i];
+        }
+        let mut k2 = vec![0.0; n];
+        let tmp = std::mem::take(&mut self.tmp);
+        self.rhs(model, modes, &tmp, &mut k2, stats);
+        self.tmp = tmp;
+        for i in 0..n {
+            k2[i] -= 2.0 * k1[i];
+        }
+        self.lu.solve(&mut k2);
+        let mut y = vec![0.0; n];
+        let mut sum = 0.0;
+        let mut count = 0usize;
+        for i in 0..n {
+            y[i] = y0[i] + h * (1.5 * k1[i] + 0.5 * k2[i]);
+            if modes[i] == Mode::Free {
+                let e = 0.5 * h * (k1[i] + k2[i]);
+                let sc = tol * (1.0 + y0[i].abs().max(y[i].abs()));
+                sum += (e / sc).powi(2);
+                count += 1;
+            }
+        }
+        let error = if count == 0 {
+            0.0
+        } else {
+            (sum / count as f64).sqrt()
+        };
+        Ok(Attempt { y, error })
+    }
+}

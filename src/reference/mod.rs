@@ -1,0 +1,35 @@
+//! The reference force integrator: the chain's motion from the point-dipole forces
+//! (SPEC (6.11), (6.12)), integrated in time, against which the event engine's inequalities
+//! are measured (issue 6).
+//!
+//! - [`dynamics`]: the overdamped model, magnets held to their paths, joints turning under
+//!   the magnets' torque and stopped by their walls, forces within a chain-index cutoff.
+//! - [`integrators`]: Dormand-Prince 5(4) (explicit) and ROS2 (Rosenbrock, for stiff cases).
+//! - [`banded`]: the banded Jacobian and LU the stiff integrator uses.
+//! - [`events`]: the hybrid driver and [`run_reference`], with the engine's event kinds and
+//!   summary fields.
+//! - [`scenes`]: the scenes `fold-validate` runs.
+//! - [`validate`]: errors against run time (the work-precision table and plot).
+//!
+//! ```
+//! use foldchain::reference::{run_reference, Method, ReferenceOptions};
+//! use foldchain::engine::{Outcome, TileDesigns};
+//! use foldchain::Chain;
+//!
+//! let chain = Chain::parse("SL").unwrap();
+//! let opts = ReferenceOptions::default().with_method(Method::Ros2).with_tolerance(1e-4);
+//! let run = run_reference(&chain, &TileDesigns::default(), &opts).unwrap();
+//! assert_eq!(run.outcome, Outcome::Completed);
+//! assert_eq!(run.folded_joints(), vec![1]);
+//! ```
+
+pub mod banded;
+pub mod dynamics;
+pub mod events;
+pub mod integrators;
+pub mod scenes;
+pub mod validate;
+
+pub use dynamics::{Model, ModelError, ModelOptions};
+pub use events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
+pub use integrators::{Method, StepStats};
