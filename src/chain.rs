@@ -10,8 +10,10 @@ use std::str::FromStr;
 use crate::word::{parse_count, runs};
 use crate::{ChainError, Fold, FoldWord, JointOutcome, Tile};
 
-/// The largest number of tiles the parsers accept (a guard against hostile run-length counts).
-pub const MAX_TILES: usize = 100_000_000;
+/// The largest number of tiles the parsers accept: twenty million, far beyond any chain built
+/// and within what the checks and the engine handle in a minute or so and a few GiB; a guard
+/// against hostile run-length counts such as `SS*99999999999`.
+pub const MAX_TILES: usize = 20_000_000;
 
 /// A chain of tiles, from the reaction-initiator end.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]

@@ -14,6 +14,16 @@ pub struct Pose {
     pub angle: f64,
 }
 
+/// An angle brought into `[-pi, pi)`, so that composing many turns keeps the angle's
+/// magnitude, and with it the rounding of its sine and cosine, bounded.
+fn wrap_angle(a: f64) -> f64 {
+    if (-std::f64::consts::PI..std::f64::consts::PI).contains(&a) {
+        a
+    } else {
+        (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+    }
+}
+
 impl Pose {
     /// The identity.
     pub const IDENTITY: Pose = Pose {
@@ -42,7 +52,7 @@ impl Pose {
     /// `self` then `other` in `self`'s frame: the pose of a frame given relative to this one.
     pub fn then(&self, other: &Pose) -> Pose {
         let (x, y) = self.transform_point((other.x, other.y));
-        Pose::new(x, y, self.angle + other.angle)
+        Pose::new(x, y, wrap_angle(self.angle + other.angle))
     }
 
     /// Rotation by `angle` about the point `centre`, applied after this pose.

@@ -164,7 +164,7 @@ pub(crate) fn parse_count(token: &str, digits: &str) -> Result<usize, ChainError
     }
     match digits.parse::<usize>() {
         Ok(0) => Err(bad()),
-        // a count of MAX_TILES is the longest tile run allowed (`SS*100000000`); word runs are
+        // a count of MAX_TILES is the longest tile run allowed (`SS*20000000`); word runs are
         // limited again by the caller, as MAX_TILES letters make one tile too many
         Ok(n) if n > MAX_TILES => Err(ChainError::TooLong { max: MAX_TILES }),
         Ok(n) => Ok(n),

@@ -445,7 +445,10 @@ proptest! {
             let tol = 16.0 * f64::EPSILON * size;
             let d = (from_k.0 - from_next.0).hypot(from_k.1 - from_next.1);
             prop_assert!(d <= tol, "joint {k}: hinge seen {d:e} apart (tol {tol:e})");
-            prop_assert!((poses[k + 1].angle - poses[k].angle - a).abs() <= tol);
+            // headings are kept in [-pi, pi): compare the turn modulo a full turn
+            let turn = poses[k + 1].angle - poses[k].angle - a;
+            let turn = (turn + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+            prop_assert!(turn.abs() <= tol, "joint {k}: turned {turn:e} off");
         }
     }
 }
