@@ -15,12 +15,14 @@
 //! println!("{}\n{}", plan.tile_list, plan.summary());
 //! ```
 
+mod cells;
 mod check;
 mod error;
 mod options;
 mod plan;
 mod planner;
 pub mod preview;
+mod route;
 mod rows;
 mod shape;
 

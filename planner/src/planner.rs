@@ -26,6 +26,7 @@ use rayon::prelude::*;
 
 use crate::check::check_folds;
 use crate::plan::{Metrics, PlanPose};
+use crate::route;
 use crate::rows::{solve_rows, Lattice, Style, LOOSE, TIGHT};
 use crate::{Plan, PlanError, PlanOptions, Shape, Turns, DEFAULT_TILES};
 
@@ -38,6 +39,8 @@ const COARSE_TILES: usize = 3000;
 /// A shape monotone in no direction is planned as one serpentine that bridges its gaps
 /// only while at most this share of the chain lies outside it; beyond, it is unplannable.
 const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
+/// Shapes monotone in some direction are also planned by cells up to this many tiles.
+const MAX_CELL_TILES: usize = 20_000;
 /// Plans tried (best first) until one passes the collision check.
 const MAX_CHECKED: usize = 8;
 /// The size search stops once the tile count is within this share of the target (0.1%:
@@ -141,9 +144,9 @@ impl Serpentine {
 
 /// An affine map `p -> L p + t` with `L` row-major.
 #[derive(Clone, Copy, Debug)]
-struct Affine {
-    l: [f64; 4],
-    t: (f64, f64),
+pub(crate) struct Affine {
+    pub l: [f64; 4],
+    pub t: (f64, f64),
 }
 
 impl Affine {
@@ -249,31 +252,91 @@ pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Resul
         }
         break;
     }
-    let Some(mut plan) = best else {
-        return Err(PlanError::Unplannable {
-            name: name.into(),
-            reason: failures.join("; "),
-        });
-    };
-    plan.cells = 1;
-    if monotone.is_empty() {
-        // a single serpentine over a shape that is monotone in no direction: say so
-        let pieces = (0..12)
-            .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
-            .min()
-            .unwrap_or(2);
-        if plan.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE {
-            return Err(PlanError::Unplannable {
-                name: name.into(),
-                reason: format!(
-                    "the shape is monotone in no direction (lines along every row direction meet it in {pieces} or more pieces), and one serpentine covers only {:.0}% of it with {:.0}% of the chain outside; it needs splitting into monotone cells joined by 90-degree turns",
-                    100.0 * plan.metrics.covered_share,
-                    100.0 * plan.metrics.outside_share
-                ),
-            });
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let tiles_est = opts.tile_size.map_or(target, |w| {
+        (shape.area() / (w * w * std::f64::consts::SQRT_2)) as usize
+    });
+    let parts = separate_parts(shape, tiles_est);
+    if monotone.is_empty() || parts > 1 {
+        // one serpentine over a shape that is monotone in no direction (or in separate
+        // parts) bridges its gaps:
+        // kept only while little of the chain lies outside
+        if let Some(p) = best.take() {
+            if p.metrics.outside_share <= MAX_OUTSIDE_NON_MONOTONE {
+                best = Some(p);
+            } else {
+                failures.push(format!(
+                    "one serpentine covers {:.0}% of the shape with {:.0}% of the chain outside",
+                    100.0 * p.metrics.covered_share,
+                    100.0 * p.metrics.outside_share
+                ));
+            }
         }
     }
-    Ok(plan)
+    // cells joined by turns, for shapes that split into several cells along some axis and
+    // plans small enough to route (a monotone shape keeps the better fit of the two)
+    if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
+        let by_cells: Vec<Result<Plan, String>> = styles
+            .par_iter()
+            .map(|&style| route::plan_by_cells(shape, opts, style, name))
+            .collect();
+        for r in by_cells {
+            match r {
+                Ok(p) => {
+                    if best
+                        .as_ref()
+                        .is_none_or(|b| p.metrics.fit_error() < b.metrics.fit_error())
+                    {
+                        best = Some(p);
+                    }
+                }
+                Err(e) => failures.push(format!("by cells: {e}")),
+            }
+        }
+    }
+    match best {
+        Some(plan) => Ok(plan),
+        None => {
+            let mut reason = String::new();
+            if parts > 1 {
+                reason = format!(
+                    "the shape is in {parts} separate parts and one chain would have to bridge the gaps between them; "
+                );
+            } else if monotone.is_empty() {
+                let pieces = (0..12)
+                    .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
+                    .min()
+                    .unwrap_or(2);
+                reason = format!(
+                    "the shape is monotone in no direction (lines along every row direction meet it in {pieces} or more pieces); "
+                );
+            }
+            failures.dedup();
+            reason.push_str(&failures.join("; "));
+            Err(PlanError::Unplannable {
+                name: name.into(),
+                reason,
+            })
+        }
+    }
+}
+
+/// The number of separate parts of the shape, at about `tiles` tiles (parts smaller than a
+/// tile are not counted).
+fn separate_parts(shape: &Shape, tiles: usize) -> usize {
+    let w = (shape.area() / (tiles.max(1) as f64 * std::f64::consts::SQRT_2)).sqrt();
+    route::cells_of(&shape.scaled(1.0 / w)).components()
+}
+
+/// True if some sweep axis splits the shape into two or more cells at about `tiles` tiles.
+fn splits_into_cells(shape: &Shape, tiles: usize) -> bool {
+    let w = (shape.area() / (tiles.max(1) as f64 * std::f64::consts::SQRT_2)).sqrt();
+    route::axes(shape).iter().any(|&a| {
+        route::cells_of(&shape.rotated(-a).scaled(1.0 / w))
+            .cells
+            .len()
+            > 1
+    })
 }
 
 /// Row directions to compare: the long-edge directions and the SVG axes where the shape is
@@ -441,8 +504,7 @@ fn best_checked(all: &[Serpentine], style: Style) -> Result<(usize, FoldWord), S
     Err(why)
 }
 
-/// Turns a checked candidate into the plan: poses from the exact kinematics, mapped into
-/// the drawing, and the fit measured on them.
+/// Turns a checked serpentine into the plan.
 fn to_plan(
     shape: &Shape,
     serp: &Serpentine,
@@ -453,59 +515,102 @@ fn to_plan(
 ) -> Plan {
     let o = serp.orient;
     let (l, t) = serp.chain_to_work();
-    let c2w = Affine { l, t };
-    let w2s = work_to_svg(o, w);
-    let c2s = w2s.after(&c2w);
-    let exact = kinematics::final_poses(word);
-    let work_centres: Vec<(f64, f64)> = exact
-        .iter()
-        .map(|p| c2w.apply(p.centre.to_f64(1.0)))
-        .collect();
-    let poses: Vec<PlanPose> = exact
-        .iter()
-        .map(|p| {
-            let (x, y) = c2s.apply(p.centre.to_f64(1.0));
-            let a = p.heading.to_radians();
-            let (dx, dy) = c2s.linear((a.cos(), a.sin()));
-            let mut h = dy.atan2(dx).to_degrees().rem_euclid(360.0);
-            if h >= 360.0 - 1e-9 {
-                h = 0.0;
-            }
-            PlanPose {
-                x,
-                y,
-                heading_deg: (h * 1e9).round() / 1e9 + 0.0,
-            }
-        })
-        .collect();
     let work = shape.rotated(-o.angle).mirrored(o.sx, o.sy).scaled(1.0 / w);
-    let metrics = measure(&work, &work_centres, w);
-    let chain = word.to_chain();
-    let bom = BillOfMaterials::from_chain(&chain)
-        .parts
-        .into_iter()
-        .map(|(p, n)| (p.to_string(), n))
-        .collect();
-    let u_turns = serp.rows.len().saturating_sub(1);
-    // the stacking axis: plan +y, in SVG coordinates
-    let (s, co) = o.angle.sin_cos();
-    let axis = (-co).atan2(-s).to_degrees().rem_euclid(180.0);
-    let axis = if axis >= 180.0 - 1e-9 { 0.0 } else { axis };
-    Plan {
-        source: name.to_string(),
-        tiles: word.tiles(),
-        tile_list: chain.to_tile_list(),
-        word: word.to_compact_string(),
-        axis_deg: (axis * 1e9).round() / 1e9 + 0.0,
-        tile_size: w,
-        turns: style.turns,
-        u_turns,
+    let shape_plan = Assembly {
+        work: &work,
+        chain_to_work: Affine { l, t },
+        work_to_svg: work_to_svg(o, w),
+        row_angle: o.angle,
+        style,
+        w,
+        u_turns: serp.rows.len().saturating_sub(1),
         quarter_turns: 0,
         cells: 1,
-        bom,
-        metrics,
-        chain_to_svg: [c2s.l[0], c2s.l[2], c2s.l[1], c2s.l[3], c2s.t.0, c2s.t.1],
-        poses,
+    };
+    shape_plan.to_plan(word, name)
+}
+
+/// What turns a checked fold word into a plan: the frames and the counts.
+pub(crate) struct Assembly<'a> {
+    /// The shape in the work frame (unit tiles), where the fit is measured.
+    pub work: &'a Shape,
+    pub chain_to_work: Affine,
+    pub work_to_svg: Affine,
+    /// The row direction of the stacking axis (physical frame, radians).
+    pub row_angle: f64,
+    pub style: Style,
+    pub w: f64,
+    pub u_turns: usize,
+    pub quarter_turns: usize,
+    pub cells: usize,
+}
+
+impl Assembly<'_> {
+    /// True if the exact kinematics of `word` put the tile centres where `centres` (work
+    /// frame) says, within 1e-6 tile widths.
+    pub(crate) fn agrees(&self, word: &FoldWord, centres: &[(f64, f64)]) -> bool {
+        let exact = kinematics::final_poses(word);
+        exact.len() == centres.len()
+            && exact.iter().zip(centres).all(|(p, &(x, y))| {
+                let (u, v) = self.chain_to_work.apply(p.centre.to_f64(1.0));
+                (u - x).abs() < 1e-6 && (v - y).abs() < 1e-6
+            })
+    }
+
+    /// The plan: poses from the exact kinematics, mapped into the drawing, and the fit
+    /// measured on them.
+    pub(crate) fn to_plan(&self, word: &FoldWord, name: &str) -> Plan {
+        let c2w = self.chain_to_work;
+        let c2s = self.work_to_svg.after(&c2w);
+        let exact = kinematics::final_poses(word);
+        let work_centres: Vec<(f64, f64)> = exact
+            .iter()
+            .map(|p| c2w.apply(p.centre.to_f64(1.0)))
+            .collect();
+        let poses: Vec<PlanPose> = exact
+            .iter()
+            .map(|p| {
+                let (x, y) = c2s.apply(p.centre.to_f64(1.0));
+                let a = p.heading.to_radians();
+                let (dx, dy) = c2s.linear((a.cos(), a.sin()));
+                let mut h = dy.atan2(dx).to_degrees().rem_euclid(360.0);
+                if h >= 360.0 - 1e-9 {
+                    h = 0.0;
+                }
+                PlanPose {
+                    x,
+                    y,
+                    heading_deg: (h * 1e9).round() / 1e9 + 0.0,
+                }
+            })
+            .collect();
+        let metrics = measure(self.work, &work_centres, self.w);
+        let chain = word.to_chain();
+        let bom = BillOfMaterials::from_chain(&chain)
+            .parts
+            .into_iter()
+            .map(|(p, n)| (p.to_string(), n))
+            .collect();
+        // the stacking axis: plan +y, in SVG coordinates
+        let (s, co) = self.row_angle.sin_cos();
+        let axis = (-co).atan2(-s).to_degrees().rem_euclid(180.0);
+        let axis = if axis >= 180.0 - 1e-9 { 0.0 } else { axis };
+        Plan {
+            source: name.to_string(),
+            tiles: word.tiles(),
+            tile_list: chain.to_tile_list(),
+            word: word.to_compact_string(),
+            axis_deg: (axis * 1e9).round() / 1e9 + 0.0,
+            tile_size: self.w,
+            turns: self.style.turns,
+            u_turns: self.u_turns,
+            quarter_turns: self.quarter_turns,
+            cells: self.cells,
+            bom,
+            metrics,
+            chain_to_svg: [c2s.l[0], c2s.l[2], c2s.l[1], c2s.l[3], c2s.t.0, c2s.t.1],
+            poses,
+        }
     }
 }
 
@@ -517,7 +622,7 @@ fn in_octagon(dx: f64, dy: f64) -> bool {
 }
 
 /// Tile centres bucketed by unit cell (compressed rows), for "which tiles are near".
-struct CentreGrid {
+pub(crate) struct CentreGrid {
     x0: i64,
     y0: i64,
     nx: i64,
@@ -528,7 +633,7 @@ struct CentreGrid {
 }
 
 impl CentreGrid {
-    fn new(centres: &[(f64, f64)]) -> CentreGrid {
+    pub(crate) fn new(centres: &[(f64, f64)]) -> CentreGrid {
         let cell = |&(x, y): &(f64, f64)| (x.floor() as i64, y.floor() as i64);
         let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
         for c in centres.iter().map(cell) {
@@ -565,7 +670,7 @@ impl CentreGrid {
     }
 
     /// The tiles whose centre lies in the cell `(cx, cy)`.
-    fn in_cell(&self, cx: i64, cy: i64) -> &[usize] {
+    pub(crate) fn in_cell(&self, cx: i64, cy: i64) -> &[usize] {
         let (i, j) = (cx - self.x0, cy - self.y0);
         if i < 0 || j < 0 || i >= self.nx || j >= self.ny {
             return &[];

@@ -169,6 +169,11 @@ impl Shape {
         self.mapped(|(x, y)| (k * x, k * y))
     }
 
+    /// The shape under the affine map `p -> L p + t` (`L` row-major).
+    pub(crate) fn affine(&self, l: [f64; 4], t: (f64, f64)) -> Shape {
+        self.mapped(|(x, y)| (l[0] * x + l[1] * y + t.0, l[2] * x + l[3] * y + t.1))
+    }
+
     fn mapped(&self, f: impl Fn((f64, f64)) -> (f64, f64)) -> Shape {
         Shape::from_paths(
             self.paths

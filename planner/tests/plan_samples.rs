@@ -106,12 +106,7 @@ fn dog_is_monotone_in_no_direction() {
     let data = std::fs::read(shape("dog.svg")).unwrap();
     let s = Shape::from_svg_data(&data, "dog.svg").unwrap();
     assert!(s.monotone_row_angles().is_empty());
-    let e = match plan_svg_file(&shape("dog.svg"), &PlanOptions::default()) {
-        Ok(p) => panic!("dog planned: {}", p.summary()),
-        Err(e) => e,
-    };
-    assert!(!e.is_bad_input());
-    assert!(e.to_string().contains("monotone in no direction"), "{e}");
+    // planned all the same (tests/plan_cells.rs covers it at several sizes)
 }
 
 #[test]
@@ -126,7 +121,7 @@ fn crescent_is_monotone_for_one_axis_only() {
 }
 
 /// A thin C shape is monotone only for rows within a few degrees of its arms; turned by 30
-/// degrees with a group transform, the planner finds the turned axis.
+/// degrees with a group transform, the planner finds the turned axis (or its frame, by cells).
 #[test]
 fn rotated_monotone_shape_is_found_along_its_rotated_axis() {
     let c = r#"<path d="M0 0H100V10H10V20H100V30H0Z"/>"#;
@@ -136,12 +131,20 @@ fn rotated_monotone_shape_is_found_along_its_rotated_axis() {
         );
         let p = plan_svg_str(&svg, "c.svg", &PlanOptions::default().with_tiles(60)).unwrap();
         assert_sound(&p);
+        // one serpentine stacks its rows across the arms; a plan by cells (which may fit
+        // better: the arms as cells) sweeps along either axis of the turned frame
         let want = (deg + 90.0).rem_euclid(180.0);
         let d = (p.axis_deg - want).rem_euclid(180.0);
+        let d = if p.cells > 1 {
+            d.min((d - 90.0).abs())
+        } else {
+            d
+        };
         assert!(
             d.min(180.0 - d) < 6.0,
-            "rotated {deg}: axis {} want {want}",
-            p.axis_deg
+            "rotated {deg}: axis {} want {want} ({})",
+            p.axis_deg,
+            p.summary()
         );
     }
 }
@@ -215,7 +218,10 @@ fn bad_files_exit_2_naming_the_file() {
     let o = fold_plan(&[dir.join("missing.svg").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("missing.svg"));
-    let o = fold_plan(&[shape("dog.svg").to_str().unwrap()]);
+    // two discs far apart: one chain cannot fill both (tests/plan_cells.rs says why)
+    let two = dir.join("two.svg");
+    std::fs::write(&two, r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100"><circle cx="30" cy="50" r="25"/><circle cx="270" cy="50" r="25"/></svg>"#).unwrap();
+    let o = fold_plan(&[two.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "unplannable shape exits 1");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,0 +1,305 @@
+//! Monotone cells: the sweep (boustrophedon) decomposition of a shape into cells that every
+//! horizontal line meets in one interval, the graph of which cells touch (petgraph), and the
+//! orders in which one chain can visit them all (Hamiltonian paths of that graph).
+//!
+//! The sweep runs up the y axis of the frame it is given. Between two consecutive vertex
+//! heights every horizontal line meets the shape in the same number of intervals (the
+//! outlines do not cross), so the shape splits into slab pieces; a piece continues the cell
+//! below it when the two touch one to one and neither end jumps by more than the given
+//! step (a jump is an edge along the sweep line, where the key's shaft meets its head).
+
+use petgraph::graph::{NodeIndex, UnGraph};
+
+use crate::{Ring, Shape};
+
+/// One monotone cell.
+#[derive(Clone, Debug)]
+pub(crate) struct Cell {
+    /// The cell as a shape (one ring: its left side upwards, its right side downwards).
+    pub shape: Shape,
+    /// Its area.
+    #[allow(dead_code)] // kept for messages and tests
+    pub area: f64,
+}
+
+/// The cells of a shape and the graph of which cells touch.
+pub(crate) struct Cells {
+    pub cells: Vec<Cell>,
+    pub graph: UnGraph<usize, ()>,
+}
+
+/// A piece of one slab: the interval at the bottom and at the top of the slab.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    lo: (f64, f64),
+    hi: (f64, f64),
+    y0: f64,
+    y1: f64,
+}
+
+/// Decomposes `shape` along y into monotone cells. Ends that jump by more than `jump` start a
+/// new cell; cells smaller than `min_area` are dropped (with their edges).
+pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
+    let (xmin, ymin, xmax, ymax) = shape.bbox();
+    let size = (xmax - xmin).max(ymax - ymin);
+    let mut ys: Vec<f64> = shape
+        .rings()
+        .flat_map(|r| r.points.iter().map(|p| p.1))
+        .collect();
+    ys.sort_by(f64::total_cmp);
+    ys.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * size);
+    // slabs[i]: the pieces between ys[i] and ys[i + 1]
+    let mut slabs: Vec<Vec<Piece>> = Vec::new();
+    for w in ys.windows(2) {
+        let (y0, y1) = (w[0], w[1]);
+        let h = y1 - y0;
+        if h <= 1e-9 * size {
+            continue;
+        }
+        let eps = 1e-6 * h;
+        let mid = shape.intervals_at(0.5 * (y0 + y1));
+        let lo = shape.intervals_at(y0 + eps);
+        let hi = shape.intervals_at(y1 - eps);
+        let pieces = if lo.len() == mid.len() && hi.len() == mid.len() {
+            lo.iter()
+                .zip(&hi)
+                .map(|(&l, &u)| Piece {
+                    lo: l,
+                    hi: u,
+                    y0,
+                    y1,
+                })
+                .collect()
+        } else {
+            mid.iter()
+                .map(|&m| Piece {
+                    lo: m,
+                    hi: m,
+                    y0,
+                    y1,
+                })
+                .collect()
+        };
+        slabs.push(pieces);
+    }
+    // cell of every piece, and touching pairs of pieces of consecutive slabs
+    let mut cell_of: Vec<Vec<usize>> = Vec::with_capacity(slabs.len());
+    let mut members: Vec<Vec<Piece>> = Vec::new();
+    let mut touches: Vec<(usize, usize)> = Vec::new();
+    for (i, slab) in slabs.iter().enumerate() {
+        let mut ids = Vec::with_capacity(slab.len());
+        for p in slab {
+            let touching = i > 0
+                && slabs[i - 1]
+                    .first()
+                    .is_some_and(|q| (q.y1 - p.y0).abs() <= 1e-9 * size);
+            let below: Vec<usize> = if touching {
+                slabs[i - 1]
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, q)| q.hi.0 < p.lo.1 && p.lo.0 < q.hi.1)
+                    .map(|(j, _)| j)
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            let continues = below.len() == 1 && {
+                let q = slabs[i - 1][below[0]];
+                let ups = slab
+                    .iter()
+                    .filter(|r| q.hi.0 < r.lo.1 && r.lo.0 < q.hi.1)
+                    .count();
+                ups == 1 && (q.hi.0 - p.lo.0).abs() <= jump && (q.hi.1 - p.lo.1).abs() <= jump
+            };
+            let id = if continues {
+                cell_of[i - 1][below[0]]
+            } else {
+                members.push(Vec::new());
+                members.len() - 1
+            };
+            for &j in &below {
+                let other = cell_of[i - 1][j];
+                if other != id {
+                    touches.push((other.min(id), other.max(id)));
+                }
+            }
+            members[id].push(*p);
+            ids.push(id);
+        }
+        cell_of.push(ids);
+    }
+    // rings, areas; drop tiny cells
+    let mut keep: Vec<Option<usize>> = vec![None; members.len()];
+    let mut cells = Vec::new();
+    for (id, ps) in members.iter().enumerate() {
+        let area: f64 = ps
+            .iter()
+            .map(|p| 0.5 * ((p.lo.1 - p.lo.0) + (p.hi.1 - p.hi.0)) * (p.y1 - p.y0))
+            .sum();
+        if area < min_area {
+            continue;
+        }
+        let mut pts: Vec<(f64, f64)> = Vec::with_capacity(4 * ps.len());
+        for p in ps {
+            pts.push((p.lo.0, p.y0));
+            pts.push((p.hi.0, p.y1));
+        }
+        for p in ps.iter().rev() {
+            pts.push((p.hi.1, p.y1));
+            pts.push((p.lo.1, p.y0));
+        }
+        pts.dedup();
+        keep[id] = Some(cells.len());
+        cells.push(Cell {
+            shape: Shape::from_rings(vec![Ring { points: pts }]),
+            area,
+        });
+    }
+    let mut graph: UnGraph<usize, ()> = UnGraph::with_capacity(cells.len(), touches.len());
+    for i in 0..cells.len() {
+        graph.add_node(i);
+    }
+    touches.sort_unstable();
+    touches.dedup();
+    for (a, b) in touches {
+        if let (Some(a), Some(b)) = (keep[a], keep[b]) {
+            graph.add_edge(NodeIndex::new(a), NodeIndex::new(b), ());
+        }
+    }
+    Cells { cells, graph }
+}
+
+impl Cells {
+    /// Hamiltonian paths of the cell graph (each cell once, consecutive cells touching), by
+    /// depth-first search from every cell; at most `max_paths`, and the search gives up after
+    /// `max_steps` extensions (the problem is NP-complete; cell graphs are small).
+    pub(crate) fn orders(&self, max_paths: usize, max_steps: usize) -> Vec<Vec<usize>> {
+        let n = self.cells.len();
+        let mut out = Vec::new();
+        let mut steps = 0usize;
+        let mut path = Vec::with_capacity(n);
+        let mut used = vec![false; n];
+        for s in 0..n {
+            path.push(s);
+            used[s] = true;
+            self.extend(
+                &mut path, &mut used, &mut out, max_paths, &mut steps, max_steps,
+            );
+            used[s] = false;
+            path.pop();
+        }
+        out
+    }
+
+    fn extend(
+        &self,
+        path: &mut Vec<usize>,
+        used: &mut [bool],
+        out: &mut Vec<Vec<usize>>,
+        max_paths: usize,
+        steps: &mut usize,
+        max_steps: usize,
+    ) {
+        if out.len() >= max_paths || *steps >= max_steps {
+            return;
+        }
+        *steps += 1;
+        if path.len() == used.len() {
+            out.push(path.clone());
+            return;
+        }
+        let last = NodeIndex::new(path[path.len() - 1]);
+        let mut next: Vec<usize> = self.graph.neighbors(last).map(|v| v.index()).collect();
+        next.sort_unstable();
+        for v in next {
+            if !used[v] {
+                used[v] = true;
+                path.push(v);
+                self.extend(path, used, out, max_paths, steps, max_steps);
+                path.pop();
+                used[v] = false;
+            }
+        }
+    }
+
+    /// The number of separate groups of touching cells.
+    pub(crate) fn components(&self) -> usize {
+        petgraph::algo::connected_components(&self.graph)
+    }
+
+    /// The largest number of cells one cell touches, and that cell.
+    pub(crate) fn max_degree(&self) -> (usize, usize) {
+        self.graph
+            .node_indices()
+            .map(|v| (self.graph.neighbors(v).count(), v.index()))
+            .max()
+            .unwrap_or((0, 0))
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn poly(points: &[(f64, f64)]) -> Ring {
+        Ring {
+            points: points.to_vec(),
+        }
+    }
+
+    #[test]
+    fn square_with_a_hole_is_four_cells_in_a_cycle() {
+        let outer = poly(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        // a hole wound the other way
+        let hole = poly(&[(4.0, 3.0), (4.0, 7.0), (6.0, 7.0), (6.0, 3.0)]);
+        let c = decompose(&Shape::from_rings(vec![outer, hole]), 0.5, 0.0);
+        assert_eq!(c.cells.len(), 4);
+        assert_eq!(c.graph.edge_count(), 4);
+        let total: f64 = c.cells.iter().map(|c| c.area).sum();
+        assert!((total - 92.0).abs() < 1e-6, "{total}");
+        // a 4-cycle has 8 Hamiltonian paths (4 starts x 2 ways)
+        assert_eq!(c.orders(100, 10_000).len(), 8);
+        assert_eq!(c.components(), 1);
+    }
+
+    #[test]
+    fn a_jump_splits_a_cell_and_tiny_cells_drop() {
+        // an L: a wide foot and a narrow post; the sweep meets one interval everywhere
+        let l = poly(&[
+            (0.0, 0.0),
+            (10.0, 0.0),
+            (10.0, 2.0),
+            (2.0, 2.0),
+            (2.0, 10.0),
+            (0.0, 10.0),
+        ]);
+        let s = Shape::from_rings(vec![l]);
+        assert_eq!(decompose(&s, 100.0, 0.0).cells.len(), 1);
+        let c = decompose(&s, 1.0, 0.0);
+        assert_eq!(c.cells.len(), 2);
+        assert_eq!(c.orders(10, 1000).len(), 2);
+        assert_eq!(decompose(&s, 1.0, 17.0).cells.len(), 1);
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod gap_tests {
+    use super::*;
+
+    /// Two squares one above the other with a gap: the slab between is empty.
+    #[test]
+    fn separate_parts_are_separate_components() {
+        let a = Ring {
+            points: vec![(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)],
+        };
+        let b = Ring {
+            points: vec![(0.0, 6.0), (4.0, 6.0), (4.0, 9.0), (0.0, 9.0)],
+        };
+        let c = decompose(&Shape::from_rings(vec![a, b]), 1.0, 0.0);
+        assert_eq!(c.cells.len(), 2);
+        assert_eq!(c.components(), 2);
+        assert!(c.orders(10, 100).is_empty());
+    }
+}

@@ -1,0 +1,134 @@
+//! Shapes that are monotone in no direction or have holes: planned by monotone cells joined
+//! by turns (or by one serpentine where that fits better), and every plan folds; a shape one
+//! chain cannot fill exits 1 with a reason.
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use foldchain::collision::{check_word, CheckOptions};
+use foldchain_planner::{plan_svg_file, plan_svg_str, Plan, PlanOptions, Turns};
+
+fn shape(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shapes")
+        .join(name)
+}
+
+/// Word, tiles and poses agree, the poses are the exact kinematics through `chain_to_svg`,
+/// no LR/RL tile is used and the chain folds without collision (sequential sweeps).
+fn assert_sound(p: &Plan) {
+    let word = p.fold_word().unwrap();
+    assert_eq!(word.tiles(), p.tiles);
+    assert_eq!(word.to_chain().to_tile_list(), p.tile_list);
+    assert_eq!(p.poses.len(), p.tiles);
+    assert!(word.first_opposite_pair().is_none(), "LR/RL tiles used");
+    check_word(&word, &CheckOptions::default()).unwrap();
+    let m = p.chain_to_svg;
+    let exact = foldchain::kinematics::final_poses(&word);
+    assert_eq!(exact.len(), p.poses.len());
+    for (e, q) in exact.iter().zip(&p.poses) {
+        let (x, y) = e.centre.to_f64(1.0);
+        let (sx, sy) = (m[0] * x + m[2] * y + m[4], m[1] * x + m[3] * y + m[5]);
+        assert!((sx - q.x).abs() < 1e-6 * p.tile_size && (sy - q.y).abs() < 1e-6 * p.tile_size);
+    }
+    assert!(p.cells >= 1);
+    assert!(
+        p.quarter_turns < p.cells.max(1),
+        "a quarter turn joins two cells"
+    );
+}
+
+fn plan_sizes(name: &str) -> Vec<Plan> {
+    [150, 300, 600]
+        .iter()
+        .map(|&n| {
+            let opts = PlanOptions::default()
+                .with_tiles(n)
+                .with_turns(Turns::Tight);
+            let p =
+                plan_svg_file(&shape(name), &opts).unwrap_or_else(|e| panic!("{name} {n}: {e}"));
+            assert_sound(&p);
+            assert!(
+                p.tiles.abs_diff(n) * 10 <= n,
+                "{name}: {} tiles for {n}",
+                p.tiles
+            );
+            assert!(p.metrics.covered_share > 0.4, "{name} {n}: {}", p.summary());
+            assert!(
+                p.metrics.outside_share < 0.15,
+                "{name} {n}: {}",
+                p.summary()
+            );
+            p
+        })
+        .collect()
+}
+
+#[test]
+fn dog_plans_at_three_sizes() {
+    let plans = plan_sizes("dog.svg");
+    // at least one size is routed through several cells
+    assert!(plans.iter().any(|p| p.cells > 1), "no cell plan");
+}
+
+/// The ring (a square with a 30 x 40 hole at x 45..75, y 40..80): planned around the hole.
+#[test]
+fn ring_plans_around_its_hole() {
+    for p in plan_sizes("ring.svg") {
+        let w = p.tile_size;
+        // centres more than a tile width inside the hole: a row along the hole's edge may
+        // lean into it by part of a tile, a chain crossing the hole lands here
+        let inside = p
+            .poses
+            .iter()
+            .filter(|q| q.x > 45.0 + w && q.x < 75.0 - w && q.y > 40.0 + w && q.y < 80.0 - w)
+            .count();
+        assert!(
+            inside * 50 <= p.tiles,
+            "{} of {} tile centres in the hole: {}",
+            inside,
+            p.tiles,
+            p.summary()
+        );
+    }
+}
+
+const TWO_DISCS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100"><circle cx="30" cy="50" r="25"/><circle cx="270" cy="50" r="25"/></svg>"#;
+
+#[test]
+fn separate_parts_are_unplannable_with_a_reason() {
+    let e = plan_svg_str(
+        TWO_DISCS,
+        "two.svg",
+        &PlanOptions::default().with_tiles(200),
+    )
+    .map(|p| p.summary())
+    .unwrap_err();
+    assert!(!e.is_bad_input());
+    assert_eq!(e.exit_code(), 1);
+    let m = e.to_string();
+    assert!(m.contains("two.svg") && m.contains("separate parts"), "{m}");
+}
+
+#[test]
+fn cli_exits_1_naming_why() {
+    let dir = std::env::temp_dir().join(format!("fold-plan-cells-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("two.svg");
+    std::fs::write(&f, TWO_DISCS).unwrap();
+    let out = dir.join("plan.json");
+    let o = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+        .args([f.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("separate parts") && err.contains("cannot plan"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
