@@ -137,8 +137,8 @@ impl Band {
         for k in (0..n).rev() {
             let jmax = (k + fill).min(n - 1);
             let mut s = b[k];
-            for j in k + 1..=jmax {
-                s -= self.get(k, j) * b[j];
+            for (j, bj) in b.iter().enumerate().take(jmax + 1).skip(k + 1) {
+                s -= self.get(k, j) * bj;
             }
             b[k] = s / self.get(k, k);
         }
@@ -150,6 +150,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[allow(clippy::needless_range_loop)] // matrix indices read clearer here
     fn solves_a_band_system_that_needs_pivoting() {
         // tridiagonal plus a wider lower band, with small diagonal entries
         let n = 40;

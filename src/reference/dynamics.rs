@@ -462,12 +462,11 @@ impl Model {
                 }
                 // torque on every folding joint between the two (b downstream)
                 let ta = if a < 0 { 0 } else { a as usize / 2 };
-                for j in ta..b / 2 {
+                for (j, &h) in hinges.iter().enumerate().take(b / 2).skip(ta) {
                     let v = self.joint_var[j];
                     if v == usize::MAX {
                         continue;
                     }
-                    let h = hinges[j];
                     let r = (
                         (out.positions[b].0 - h.0) * 1e-3,
                         (out.positions[b].1 - h.1) * 1e-3,

@@ -231,27 +231,27 @@ impl Driver {
                     self.moving = self.moving.saturating_sub(1);
                 }
                 (Unknown::Magnet(_), Mode::AtEnd, Mode::Free) => self.moving += 1,
-                (Unknown::Joint(j), Mode::AtStart, Mode::Free) => {
-                    if self.fold_index[j] == usize::MAX {
-                        let (a, b) = (
-                            self.model.magnet_var(2 * j + 1),
-                            self.model.magnet_var(2 * j + 2),
-                        );
-                        let fold = if self.model.joint_sign(j) > 0.0 {
-                            Fold::L
-                        } else {
-                            Fold::R
-                        };
-                        self.fold_index[j] = self.folds.len();
-                        self.folds.push(FoldRecord {
-                            joint: j,
-                            fold,
-                            start: t,
-                            end: f64::NAN,
-                            p0: 0.5 * (self.y[a] + self.y[b]),
-                        });
-                        batch.push(ev(EventKind::FoldStarts));
-                    }
+                (Unknown::Joint(j), Mode::AtStart, Mode::Free)
+                    if self.fold_index[j] == usize::MAX =>
+                {
+                    let (a, b) = (
+                        self.model.magnet_var(2 * j + 1),
+                        self.model.magnet_var(2 * j + 2),
+                    );
+                    let fold = if self.model.joint_sign(j) > 0.0 {
+                        Fold::L
+                    } else {
+                        Fold::R
+                    };
+                    self.fold_index[j] = self.folds.len();
+                    self.folds.push(FoldRecord {
+                        joint: j,
+                        fold,
+                        start: t,
+                        end: f64::NAN,
+                        p0: 0.5 * (self.y[a] + self.y[b]),
+                    });
+                    batch.push(ev(EventKind::FoldStarts));
                 }
                 (Unknown::Joint(j), Mode::Free, Mode::AtEnd) => {
                     if let Some(f) = self.folds.get_mut(self.fold_index[j]) {

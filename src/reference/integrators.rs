@@ -190,10 +190,10 @@ impl Stepper {
         let n = y0.len();
         self.k[0].copy_from_slice(f0);
         let mut y = vec![0.0; n];
-        for s in 0..6 {
+        for (s, row) in A.iter().enumerate() {
             for i in 0..n {
                 let mut acc = 0.0;
-                for (j, a) in A[s].iter().enumerate().take(s + 1) {
+                for (j, a) in row.iter().enumerate().take(s + 1) {
                     acc += a * self.k[j][i];
                 }
                 y[i] = y0[i] + h * acc;

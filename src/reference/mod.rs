@@ -16,11 +16,14 @@
 //! use foldchain::engine::{Outcome, TileDesigns};
 //! use foldchain::Chain;
 //!
-//! let chain = Chain::parse("SL").unwrap();
+//! // a straight tile, a tight U-turn (two left folds), a straight tile
+//! let chain = Chain::parse("SLLS").unwrap();
 //! let opts = ReferenceOptions::default().with_method(Method::Ros2).with_tolerance(1e-4);
 //! let run = run_reference(&chain, &TileDesigns::default(), &opts).unwrap();
 //! assert_eq!(run.outcome, Outcome::Completed);
-//! assert_eq!(run.folded_joints(), vec![1]);
+//! assert_eq!(run.folded_joints(), vec![1, 2]);
+//! // the same fields as the event engine's summary.json
+//! assert_eq!(run.to_summary().result, "completed");
 //! ```
 
 pub mod banded;

@@ -78,7 +78,7 @@ pub enum ValidateError {
         /// The scene.
         scene: String,
         /// Why.
-        source: EngineError,
+        source: Box<EngineError>,
     },
     /// The reference failed.
     #[error("scene '{scene}': {source}")]
@@ -86,7 +86,7 @@ pub enum ValidateError {
         /// The scene.
         scene: String,
         /// Why.
-        source: ReferenceError,
+        source: Box<ReferenceError>,
     },
     /// The plot could not be written.
     #[error(transparent)]
@@ -275,7 +275,7 @@ pub fn validate(
         let name = sc.name.to_string();
         let ref_err = |source| ValidateError::Reference {
             scene: name.clone(),
-            source,
+            source: Box::new(source),
         };
         progress(sc.name, "reference", Some(opts.reference_tolerance));
         let t0 = Instant::now();
@@ -301,7 +301,7 @@ pub fn validate(
         let tl = run(&sc.chain, &sc.designs, &EngineOptions::default()).map_err(|source| {
             ValidateError::Engine {
                 scene: name.clone(),
-                source,
+                source: Box::new(source),
             }
         })?;
         let wall = t0.elapsed().as_secs_f64();
