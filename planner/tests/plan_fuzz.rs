@@ -23,6 +23,12 @@ proptest! {
         let _ = Shape::from_svg_data(svg.as_bytes(), "fuzz.svg");
     }
 
+}
+
+proptest! {
+    // each case plans a shape (serpentine and cells): 16 cases keep the test to seconds
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
     /// Star-shaped polygons around the origin (never self-intersecting): planned or refused
     /// with a reason, never a panic, and a returned plan always folds.
     #[test]
