@@ -302,7 +302,7 @@ fn search(
     let mut st = Stack::new(n);
     top.valid[1] += 1;
     top.weight[1] += 1;
-    s.collect(&mut st, depth, &mut top, &mut prefixes);
+    s.dfs(&mut st, &mut top, depth, &mut prefixes);
     let (k, m) = opts.shard.unwrap_or((1, 1));
     if k != 1 {
         top = Tally::new(n);
@@ -326,7 +326,7 @@ fn search(
                     st.commit(f, active);
                 }
             }
-            s.dfs(&mut st, &mut t);
+            s.dfs(&mut st, &mut t, usize::MAX, &mut Vec::new());
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
             t
         })
@@ -525,8 +525,14 @@ impl Searcher {
         t.weight[tiles] += mult * 5u128.pow(st.straight);
     }
 
-    /// Depth-first search below the current (valid, recorded) word.
-    fn dfs(&self, st: &mut Stack, t: &mut Tally) {
+    /// Depth-first search below the current (valid, recorded) word, recording every valid
+    /// word down to `self.n` tiles; words of `split` joints are not searched further but
+    /// collected in `prefixes` (pass `usize::MAX` to search everything).
+    fn dfs(&self, st: &mut Stack, t: &mut Tally, split: usize, prefixes: &mut Vec<Vec<Fold>>) {
+        if st.letters.len() == split {
+            prefixes.push(st.letters.clone());
+            return;
+        }
         if st.poses.len() >= self.n {
             return;
         }
@@ -536,25 +542,7 @@ impl Searcher {
             };
             st.commit(f, active);
             self.record(st, t);
-            self.dfs(st, t);
-            st.pop();
-        }
-    }
-
-    /// Search down to `depth` joints, recording every valid word on the way and collecting
-    /// the valid words of exactly `depth` joints as prefixes for the deep search.
-    fn collect(&self, st: &mut Stack, depth: usize, t: &mut Tally, out: &mut Vec<Vec<Fold>>) {
-        if st.letters.len() == depth {
-            out.push(st.letters.clone());
-            return;
-        }
-        for f in self.letters_after(st) {
-            let Some(active) = self.extend(st, f, true) else {
-                continue;
-            };
-            st.commit(f, active);
-            self.record(st, t);
-            self.collect(st, depth, t, out);
+            self.dfs(st, t, split, prefixes);
             st.pop();
         }
     }

@@ -24,38 +24,45 @@ fn cross(a: V2, b: V2) -> f64 {
     a.0 * b.1 - a.1 * b.0
 }
 
-/// The smallest angle in `(0, |theta|]`, turning the way `theta`'s sign says (positive =
-/// counter-clockwise), at which `v`, turning about `pivot`, lies on the segment `a`-`b`.
+/// The points (relative to `pivot`) where the circle about `pivot` through `v` crosses the
+/// segment `a`-`b`: none, one or two, from the quadratic in the segment parameter.
 #[inline]
-pub fn arc_hits_segment(v: V2, pivot: V2, theta: f64, a: V2, b: V2) -> Option<f64> {
+fn circle_crossings(v: V2, pivot: V2, a: V2, b: V2) -> [Option<V2>; 2] {
     let pv = sub(v, pivot);
     let r2 = dot(pv, pv);
     let d = sub(b, a);
     let ac = sub(a, pivot);
     let qa = dot(d, d);
     if qa == 0.0 {
-        return None;
+        return [None, None];
     }
     let qb = 2.0 * dot(d, ac);
     let qc = dot(ac, ac) - r2;
     let disc = qb * qb - 4.0 * qa * qc;
     if disc < 0.0 {
-        return None;
+        return [None, None];
     }
-    let sq = disc.sqrt();
     // numerically stable roots
-    let q = -0.5 * (qb + qb.signum() * sq);
+    let q = -0.5 * (qb + qb.signum() * disc.sqrt());
     let (t1, t2) = if q != 0.0 {
         (q / qa, qc / q)
     } else {
         (-qb / (2.0 * qa), -qb / (2.0 * qa))
     };
+    [t1, t2].map(|t| {
+        (0.0..=1.0)
+            .contains(&t)
+            .then(|| (ac.0 + t * d.0, ac.1 + t * d.1))
+    })
+}
+
+/// The smallest angle in `(0, |theta|]`, turning the way `theta`'s sign says (positive =
+/// counter-clockwise), at which `v`, turning about `pivot`, lies on the segment `a`-`b`.
+#[inline]
+pub fn arc_hits_segment(v: V2, pivot: V2, theta: f64, a: V2, b: V2) -> Option<f64> {
+    let pv = sub(v, pivot);
     let mut best: Option<f64> = None;
-    for t in [t1, t2] {
-        if !(0.0..=1.0).contains(&t) {
-            continue;
-        }
-        let x = (a.0 + t * d.0 - pivot.0, a.1 + t * d.1 - pivot.1);
+    for x in circle_crossings(v, pivot, a, b).into_iter().flatten() {
         let mut phi = cross(pv, x).atan2(dot(pv, x));
         if theta >= 0.0 {
             if phi < 0.0 {
@@ -120,37 +127,50 @@ pub fn first_contact(moving: &[V2], fixed: &[V2], pivot: V2, theta: f64) -> Opti
 #[inline]
 pub fn quarter_arc_hits_segment(v: V2, pivot: V2, left: bool, a: V2, b: V2) -> bool {
     let pv = sub(v, pivot);
-    let r2 = dot(pv, pv);
-    let d = sub(b, a);
-    let ac = sub(a, pivot);
-    let qa = dot(d, d);
-    if qa == 0.0 {
-        return false;
-    }
-    let qb = 2.0 * dot(d, ac);
-    let qc = dot(ac, ac) - r2;
-    let disc = qb * qb - 4.0 * qa * qc;
-    if disc < 0.0 {
-        return false;
-    }
-    let sq = disc.sqrt();
-    let q = -0.5 * (qb + qb.signum() * sq);
-    let (t1, t2) = if q != 0.0 {
-        (q / qa, qc / q)
-    } else {
-        (-qb / (2.0 * qa), -qb / (2.0 * qa))
+    circle_crossings(v, pivot, a, b)
+        .into_iter()
+        .flatten()
+        .any(|x| {
+            let c = cross(pv, x);
+            dot(pv, x) >= 0.0 && if left { c >= 0.0 } else { c <= 0.0 }
+        })
+}
+
+/// Calls `hit(vertex, edge start, edge end, turns_forward)` for every (vertex, edge) pair of
+/// two polygons within `r` of their centres whose vertex arc can reach the other polygon's
+/// annulus about `pivot`; `turns_forward` is true for the moving polygon's vertices (the
+/// fixed polygon's turn the other way in the moving frame). Stops when `hit` returns true.
+fn for_each_reachable_pair(
+    moving: &[V2; 8],
+    moving_centre: V2,
+    fixed: &[V2; 8],
+    fixed_centre: V2,
+    r: f64,
+    pivot: V2,
+    mut hit: impl FnMut(V2, V2, V2, bool) -> bool,
+) {
+    let ring = |c: V2| {
+        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
+        let lo = (d - r).max(0.0);
+        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
     };
-    for t in [t1, t2] {
-        if !(0.0..=1.0).contains(&t) {
-            continue;
-        }
-        let x = (ac.0 + t * d.0, ac.1 + t * d.1);
-        let c = cross(pv, x);
-        if dot(pv, x) >= 0.0 && if left { c >= 0.0 } else { c <= 0.0 } {
-            return true;
+    let sides = [
+        (moving, fixed, ring(fixed_centre), true),
+        (fixed, moving, ring(moving_centre), false),
+    ];
+    for (verts, edges, (lo, hi), forward) in sides {
+        for &v in verts {
+            let rho = dot(sub(v, pivot), sub(v, pivot));
+            if rho < lo || rho > hi {
+                continue;
+            }
+            for e in 0..8 {
+                if hit(v, edges[e], edges[(e + 1) % 8], forward) {
+                    return;
+                }
+            }
         }
     }
-    false
 }
 
 /// Whether two octagons within `r` of their centres meet while `moving` turns a quarter turn
@@ -165,36 +185,20 @@ pub fn quarter_contact_within(
     pivot: V2,
     left: bool,
 ) -> bool {
-    let ring = |c: V2| {
-        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
-        let lo = (d - r).max(0.0);
-        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
-    };
-    let (m_lo, m_hi) = ring(moving_centre);
-    let (f_lo, f_hi) = ring(fixed_centre);
-    for &v in moving {
-        let rho = dot(sub(v, pivot), sub(v, pivot));
-        if rho < f_lo || rho > f_hi {
-            continue;
-        }
-        for e in 0..8 {
-            if quarter_arc_hits_segment(v, pivot, left, fixed[e], fixed[(e + 1) % 8]) {
-                return true;
-            }
-        }
-    }
-    for &v in fixed {
-        let rho = dot(sub(v, pivot), sub(v, pivot));
-        if rho < m_lo || rho > m_hi {
-            continue;
-        }
-        for e in 0..8 {
-            if quarter_arc_hits_segment(v, pivot, !left, moving[e], moving[(e + 1) % 8]) {
-                return true;
-            }
-        }
-    }
-    false
+    let mut found = false;
+    for_each_reachable_pair(
+        moving,
+        moving_centre,
+        fixed,
+        fixed_centre,
+        r,
+        pivot,
+        |v, p, q, fwd| {
+            found = quarter_arc_hits_segment(v, pivot, left == fwd, p, q);
+            found
+        },
+    );
+    found
 }
 
 /// [`first_contact`] for two polygons known to lie within distance `r` of the centres
@@ -211,51 +215,24 @@ pub fn first_contact_within(
     pivot: V2,
     theta: f64,
 ) -> Option<f64> {
-    let ring = |c: V2| {
-        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
-        let lo = (d - r).max(0.0);
-        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
-    };
-    let (m_lo, m_hi) = ring(moving_centre);
-    let (f_lo, f_hi) = ring(fixed_centre);
     let mut best: Option<f64> = None;
-    let mut consider = |phi: Option<f64>| {
-        if let Some(p) = phi {
-            if best.is_none_or(|b| p < b) {
-                best = Some(p);
+    for_each_reachable_pair(
+        moving,
+        moving_centre,
+        fixed,
+        fixed_centre,
+        r,
+        pivot,
+        |v, p, q, fwd| {
+            let turn = if fwd { theta } else { -theta };
+            if let Some(phi) = arc_hits_segment(v, pivot, turn, p, q) {
+                if best.is_none_or(|b| phi < b) {
+                    best = Some(phi);
+                }
             }
-        }
-    };
-    for &v in moving {
-        let rho = dot(sub(v, pivot), sub(v, pivot));
-        if rho < f_lo || rho > f_hi {
-            continue;
-        }
-        for e in 0..8 {
-            consider(arc_hits_segment(
-                v,
-                pivot,
-                theta,
-                fixed[e],
-                fixed[(e + 1) % 8],
-            ));
-        }
-    }
-    for &v in fixed {
-        let rho = dot(sub(v, pivot), sub(v, pivot));
-        if rho < m_lo || rho > m_hi {
-            continue;
-        }
-        for e in 0..8 {
-            consider(arc_hits_segment(
-                v,
-                pivot,
-                -theta,
-                moving[e],
-                moving[(e + 1) % 8],
-            ));
-        }
-    }
+            false
+        },
+    );
     best
 }
 
