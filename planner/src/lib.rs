@@ -29,6 +29,7 @@ mod shape;
 pub use error::PlanError;
 pub use options::{PlanOptions, Turns, DEFAULT_TILES};
 pub use plan::{Metrics, Plan, PlanPose};
+pub use planner::MAX_PLAN_TILES;
 pub use shape::{Ring, Shape, FLATTEN_TOLERANCE};
 
 /// Plans the shape in an SVG file.

@@ -196,6 +196,10 @@ struct Sized {
     all: Vec<Serpentine>,
 }
 
+/// The most tiles a plan may hold: two million, twice the largest plan benchmarked (a million
+/// tiles in about 15 s); larger requests are refused up front instead of running for minutes.
+pub const MAX_PLAN_TILES: usize = 2_000_000;
+
 /// Plans a shape (physical frame).
 pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Result<Plan, PlanError> {
     if let Some(w) = opts.tile_size {
@@ -211,6 +215,27 @@ pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Resul
             option: "--tiles",
             reason: "0: expected at least 1".into(),
         });
+    }
+    // Guard against sizes no run can finish (or allocate): the chain may hold at most
+    // MAX_PLAN_TILES tiles, asked for directly or implied by the tile size.
+    if let Some(n) = opts.tiles.filter(|&n| n > MAX_PLAN_TILES) {
+        return Err(PlanError::BadOption {
+            option: "--tiles",
+            reason: format!("{n}: expected at most {MAX_PLAN_TILES}"),
+        });
+    }
+    if let Some(w) = opts.tile_size {
+        // a tile covers w^2 (sqrt2 - 1) * 2 of area: about w^2 / 1.2; the estimate only has
+        // to be right to a small factor
+        let implied = shape.area() / (0.8 * w * w);
+        if implied > MAX_PLAN_TILES as f64 {
+            return Err(PlanError::BadOption {
+                option: "--tile-size",
+                reason: format!(
+                    "{w}: the shape would take about {implied:.3e} tiles of that size, more than the {MAX_PLAN_TILES} a plan may hold"
+                ),
+            });
+        }
     }
     let styles: Vec<Style> = match opts.turns {
         Turns::Tight => vec![TIGHT],

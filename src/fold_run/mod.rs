@@ -245,17 +245,25 @@ fn abbreviate(s: &str, max: usize) -> String {
     }
 }
 
+/// The most events written to `timeline.json` (about 70 MB): a longer run writes the first
+/// ones and says so (`"truncated": true`, `"events_total"`); `summary.json` always counts all.
+pub const MAX_TIMELINE_EVENTS: usize = 2_000_000;
+
 /// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
-/// (index: the magnet, or the joint for fold, inhibited and stalled events).
+/// (index: the magnet, or the joint for fold, inhibited and stalled events), at most
+/// [`MAX_TIMELINE_EVENTS`] of them.
 pub fn timeline_json(tl: &Timeline) -> String {
-    let mut s = String::with_capacity(40 * tl.events.len() + 200);
+    let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
+    let mut s = String::with_capacity(40 * shown + 200);
     let _ = writeln!(
         s,
-        "{{\"tiles\":{},\"speed_law\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[",
+        "{{\"tiles\":{},\"speed_law\":{},\"events_total\":{},\"truncated\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[",
         tl.tiles(),
-        serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into())
+        serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into()),
+        tl.events.len(),
+        shown < tl.events.len()
     );
-    for (i, e) in tl.events.iter().enumerate() {
+    for (i, e) in tl.events.iter().take(shown).enumerate() {
         if i > 0 {
             s.push_str(",\n");
         }
