@@ -47,6 +47,11 @@ struct Args {
     /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
     #[arg(long, value_name = "A..B")]
     transition: Option<String>,
+    /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
+    /// event engine: writes `summary.json` and `timeline.json` in the same format (no
+    /// pictures; the reference has no collision check). For chains up to 2,000 tiles.
+    #[arg(long)]
+    reference: bool,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long)]
     tiles: Option<usize>,
@@ -185,6 +190,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
             Some((a, b))
         }
     };
+    if args.reference {
+        return run_reference_scene(&chain, &designs, &name, args.out.clone(), args.json);
+    }
     let opts = FoldRunOptions {
         name: name.clone(),
         designs,
@@ -236,4 +244,53 @@ fn run(args: Args) -> anyhow::Result<u8> {
         }
     }
     Ok(if s.completed { 0 } else { 1 })
+}
+
+/// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
+/// validation scenes go up to 107 tiles.
+const MAX_REFERENCE_TILES: usize = 2_000;
+
+/// `--reference`: the force-integrated reference on the same chain and design, written as
+/// the engine's `summary.json` and `timeline.json`.
+fn run_reference_scene(
+    chain: &Chain,
+    designs: &TileDesigns,
+    name: &str,
+    out: Option<PathBuf>,
+    json: bool,
+) -> anyhow::Result<u8> {
+    if chain.len() > MAX_REFERENCE_TILES {
+        bail!(
+            "--reference: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
+            chain.len()
+        );
+    }
+    let run = foldchain::reference::run_reference(
+        chain,
+        designs,
+        &foldchain::reference::ReferenceOptions::default(),
+    )?;
+    let summary = run.to_summary();
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}-reference")));
+    foldchain::atomic::create_dir_all(&dir)?;
+    foldchain::atomic::write_atomic(&dir.join("timeline.json"), run.timeline_json().as_bytes())?;
+    foldchain::atomic::write_atomic(&dir.join("summary.json"), summary.to_json().as_bytes())?;
+    if json {
+        println!("{}", summary.to_json());
+    } else {
+        println!(
+            "{name} (reference): {} tiles, {} in {:.4} s, {} events, {} folds, at most {} magnets moving; wrote {}",
+            summary.tiles,
+            summary.result,
+            summary.duration_s,
+            summary.events,
+            summary.folds.len(),
+            summary.max_moving_magnets,
+            dir.display()
+        );
+        if let Some(r) = &summary.reason {
+            println!("  {r}");
+        }
+    }
+    Ok(if summary.completed { 0 } else { 1 })
 }
