@@ -52,7 +52,7 @@ fn circle_crossings(v: V2, pivot: V2, a: V2, b: V2) -> [Option<V2>; 2] {
     [t1, t2].map(|t| {
         (0.0..=1.0)
             .contains(&t)
-            .then(|| (ac.0 + t * d.0, ac.1 + t * d.1))
+            .then_some((ac.0 + t * d.0, ac.1 + t * d.1))
     })
 }
 
