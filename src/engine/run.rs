@@ -83,6 +83,28 @@ pub enum Outcome {
     },
 }
 
+impl Outcome {
+    /// The summary's fields for this outcome: `(inhibited_at, stalled_at, reason, result)`;
+    /// `source` names what decided it in the inhibition message (e.g. "thesis Table 7.1").
+    pub fn summary_fields(
+        &self,
+        source: &str,
+    ) -> (Option<usize>, Option<usize>, Option<String>, &'static str) {
+        match self {
+            Outcome::Completed => (None, None, None, "completed"),
+            Outcome::Inhibited { joint, end_distance_mm, rest_distance_mm, .. } => (
+                Some(*joint),
+                None,
+                Some(format!(
+                    "propagation inhibited at joint {joint}: its pair's path ends lie {end_distance_mm:.3} mm apart, farther than the {rest_distance_mm:.3} mm between them at rest ({source})"
+                )),
+                "inhibited",
+            ),
+            Outcome::Stalled { joint, reason, .. } => (None, Some(*joint), Some(reason.clone()), "stalled"),
+        }
+    }
+}
+
 /// One fold: a joint of an LL or RR pair turning from straight to 90 degrees.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct FoldRecord {

@@ -1,7 +1,7 @@
 //! The summary of a run: what `summary.json` holds and `fold-run --json` prints.
 
 use crate::collision::Collision;
-use crate::engine::run::{Outcome, Timeline};
+use crate::engine::run::Timeline;
 
 /// The first collision of a run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -56,22 +56,9 @@ pub struct Summary {
 impl Summary {
     /// The summary of `timeline` with the collision check's verdict.
     pub fn new(tl: &Timeline, collision: Option<&Collision>) -> Summary {
-        let (inhibited_at, stalled_at, mut reason) = match &tl.outcome {
-            Outcome::Completed => (None, None, None),
-            Outcome::Inhibited {
-                joint,
-                end_distance_mm,
-                rest_distance_mm,
-                ..
-            } => (
-                Some(*joint),
-                None,
-                Some(format!(
-                    "propagation inhibited at joint {joint}: its pair's path ends lie {end_distance_mm:.3} mm apart, farther than the {rest_distance_mm:.3} mm between them at rest (opposite curves, thesis Table 7.1)"
-                )),
-            ),
-            Outcome::Stalled { joint, reason, .. } => (None, Some(*joint), Some(reason.clone())),
-        };
+        let (inhibited_at, stalled_at, mut reason, outcome) = tl
+            .outcome
+            .summary_fields("opposite curves, thesis Table 7.1");
         let first_collision = collision.map(CollisionReport::from);
         if let Some(c) = collision {
             let msg = c.to_string();
@@ -83,11 +70,7 @@ impl Summary {
         let result = if first_collision.is_some() {
             "collided"
         } else {
-            match tl.outcome {
-                Outcome::Completed => "completed",
-                Outcome::Inhibited { .. } => "inhibited",
-                Outcome::Stalled { .. } => "stalled",
-            }
+            outcome
         };
         Summary {
             tiles: tl.tiles(),

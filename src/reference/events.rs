@@ -587,32 +587,17 @@ impl ReferenceRun {
     /// The summary, with the same fields as the event engine's `summary.json` (no collision
     /// check: `first_collision` is null; `speed_law` is the overdamped law with the drag).
     pub fn to_summary(&self) -> Summary {
-        let (inhibited_at, stalled_at, reason) = match &self.outcome {
-            Outcome::Completed => (None, None, None),
-            Outcome::Inhibited {
-                joint,
-                end_distance_mm,
-                rest_distance_mm,
-                ..
-            } => (
-                Some(*joint),
-                None,
-                Some(format!(
-                    "propagation inhibited at joint {joint}: its pair's path ends lie {end_distance_mm:.3} mm apart, farther than the {rest_distance_mm:.3} mm between them at rest (reference dynamics)"
-                )),
-            ),
-            Outcome::Stalled { joint, reason, .. } => (None, Some(*joint), Some(reason.clone())),
-        };
+        let (inhibited_at, stalled_at, reason, outcome) =
+            self.outcome.summary_fields("reference dynamics");
         let reason = match (&self.stopped, reason) {
             (Some(s), Some(r)) => Some(format!("{s}; {r}")),
             (Some(s), None) => Some(s.clone()),
             (None, r) => r,
         };
-        let result = match (&self.stopped, &self.outcome) {
-            (Some(_), _) => "stopped",
-            (None, Outcome::Completed) => "completed",
-            (None, Outcome::Inhibited { .. }) => "inhibited",
-            (None, Outcome::Stalled { .. }) => "stalled",
+        let result = if self.stopped.is_some() {
+            "stopped"
+        } else {
+            outcome
         };
         Summary {
             tiles: self.tiles(),
