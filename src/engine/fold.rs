@@ -35,7 +35,20 @@ pub fn fold_angle(timeline: &Timeline, fold: &FoldRecord, t: f64) -> f64 {
     }
     let (a, b) = (2 * fold.joint + 1, 2 * fold.joint + 2);
     let frac = |k: usize| timeline.travel_at(k, t) / timeline.motion(k).length;
-    let p = 0.5 * (frac(a) + frac(b));
+    fold_angle_from(fold, t, frac(a), frac(b))
+}
+
+/// The fold law at time `t` given the fractions of their paths its two magnets have
+/// travelled then (see the module documentation).
+pub(crate) fn fold_angle_from(fold: &FoldRecord, t: f64, frac_a: f64, frac_b: f64) -> f64 {
+    let target = fold.fold.quarter_turns() as f64 * FRAC_PI_2;
+    if t <= fold.start {
+        return 0.0;
+    }
+    if t >= fold.end {
+        return target;
+    }
+    let p = 0.5 * (frac_a + frac_b);
     let x = if fold.p0 < 1.0 {
         ((p - fold.p0) / (1.0 - fold.p0)).clamp(0.0, 1.0)
     } else {

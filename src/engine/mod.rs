@@ -22,6 +22,7 @@ mod fold;
 mod geometry;
 mod run;
 mod speed;
+mod start_rule;
 mod summary;
 
 pub use designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
@@ -31,4 +32,5 @@ pub use fold::{fold_angle, fold_schedule, joint_angles_at, ANGLE_TOLERANCE};
 pub use geometry::{Geometry, Trigger, LENGTH_TOLERANCE};
 pub use run::{joint_of_magnet, run, EngineError, EngineOptions, FoldRecord, Outcome, Timeline};
 pub use speed::{Motion, SpeedLaw, DEFAULT_DRAG};
+pub use start_rule::{StartRule, DRIVE_TOLERANCE};
 pub use summary::{CollisionReport, Summary};

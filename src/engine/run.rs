@@ -17,17 +17,27 @@ use crate::engine::designs::TileDesigns;
 use crate::engine::event::{Event, EventKind};
 use crate::engine::geometry::{FastMap, Geometry, Trigger};
 use crate::engine::speed::{Motion, SpeedLaw};
+use crate::engine::start_rule::{force_start, ForceStart, RunState, StartRule};
 use crate::magnet_path::PathError;
 use crate::{Chain, Fold, Path};
 
-/// Engine options. Default: the overdamped speed law with the default drag.
+/// Engine options. Default: the overdamped speed law with the default drag, and the
+/// distance rule for starting magnets (the thesis' inequalities).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct EngineOptions {
     /// The speed law.
     pub speed: SpeedLaw,
+    /// The rule that starts each magnet.
+    pub start: StartRule,
 }
 
 impl EngineOptions {
+    /// Another start rule.
+    pub fn with_start_rule(mut self, start: StartRule) -> EngineOptions {
+        self.start = start;
+        self
+    }
+
     /// Another speed law.
     pub fn with_speed(mut self, speed: SpeedLaw) -> EngineOptions {
         self.speed = speed;
@@ -48,6 +58,9 @@ pub enum EngineError {
     /// A drag coefficient that is not a finite positive number.
     #[error("drag coefficient {0} N s/m: expected a finite number > 0")]
     BadDrag(f64),
+    /// A force-rule cutoff of 0.
+    #[error("start rule cutoff 0: expected at least 1 (pairs this many apart in chain index)")]
+    BadCutoff,
     /// More magnets than the compact event index holds.
     #[error("chain of {0} tiles: the engine handles at most 2^31 - 1 magnets")]
     TooLong(usize),
@@ -198,6 +211,9 @@ pub fn run(
             return Err(EngineError::BadDrag(drag));
         }
     }
+    if opts.start == (StartRule::Force { cutoff: 0 }) {
+        return Err(EngineError::BadCutoff);
+    }
     if chain.len() >= (u32::MAX / 4) as usize {
         return Err(EngineError::TooLong(chain.len()));
     }
@@ -263,6 +279,7 @@ pub fn run(
     let mut start = vec![f64::NAN; n];
     let mut events: Vec<Event> = Vec::with_capacity(3 * n);
     let mut folds = Vec::new();
+    let mut fold_of_joint = vec![u32::MAX; chain.len().saturating_sub(1)];
     let mut outcome = Outcome::Completed;
     let mut moving = 0usize;
     let mut max_moving = (0usize, 0.0);
@@ -316,6 +333,7 @@ pub fn run(
                         let ma = motions[motion_of[a] as usize];
                         let end = (start[a] + ma.duration()).max(t + motion.duration());
                         let p0 = 0.5 * ma.distance_at(t - start[a]) / ma.length;
+                        fold_of_joint[j] = folds.len() as u32;
                         folds.push(FoldRecord {
                             joint: j,
                             fold,
@@ -329,6 +347,35 @@ pub fn run(
                 }
                 let m = i + 1;
                 if m + 1 < n {
+                    if let StartRule::Force { cutoff } = opts.start {
+                        let state = RunState {
+                            geometry: &geometry,
+                            start: &start,
+                            motions: &motions,
+                            motion_of: &motion_of,
+                            folds: &folds,
+                            fold_of_joint: &fold_of_joint,
+                        };
+                        match force_start(&state, m, cutoff, t) {
+                            ForceStart::At(when) => queue.push(when, EventKind::TriggerReached, i),
+                            ForceStart::Never { time, drive } => {
+                                let joint = joint_of_magnet(m);
+                                queue.push(time, EventKind::Stalled, joint);
+                                set_outcome(
+                                    &mut outcome,
+                                    Outcome::Stalled {
+                                        joint,
+                                        time,
+                                        magnet: m,
+                                        reason: format!(
+                                            "magnet {m} never started: the force along its path from the magnets within {cutoff} of it stays towards its rest point (at most {drive:.3e} N, at {time:.4} s) while magnet {i} and those behind it move (force rule)"
+                                        ),
+                                    },
+                                );
+                            }
+                        }
+                        continue;
+                    }
                     match geometry.trigger(m) {
                         Trigger::At(u) => {
                             queue.push(t + motion.time_to(u), EventKind::TriggerReached, i)
@@ -396,10 +443,6 @@ pub fn run(
     }
     // An outcome found after an earlier one keeps the earliest (set_outcome), but stalls are
     // pushed when found, not when they happen: keep the one that happens first.
-    let mut fold_of_joint = vec![u32::MAX; chain.len().saturating_sub(1)];
-    for (i, f) in folds.iter().enumerate() {
-        fold_of_joint[f.joint] = i as u32;
-    }
     Ok(Timeline {
         fold_of_joint,
         geometry,

@@ -7,13 +7,22 @@
 //! reference's, over the reference's duration. `error_pose` is the largest distance between
 //! the final positions of any tile centre or magnet, in tile widths. Events one run has and
 //! the other has not are counted (`missing`), and the order of the matched events is compared
-//! (`inversions`: pairs the two runs put in opposite order, ties excepted).
+//! pair by pair, ties excepted: `inversions` counts pairs of events of the same kind (two
+//! starts, two arrivals, two fold starts or two fold ends) that the two runs put in opposite
+//! order, the order in which the chain propagates; `interleavings` counts pairs of
+//! different kinds (a start against an arrival, say) in opposite order, which depends on
+//! how fast each magnet moves and so measures the speed law, not the propagation.
+//!
+//! **The event engine's rows.** `event` is the engine with the force rule for starting
+//! magnets ([`StartRule::Force`]) at the reference's cutoff, so both decide every start
+//! from the same pair forces; `event-dist` is the engine's default, the thesis' distance
+//! rule (nearest neighbours), shown for comparison.
 
 use std::path::{Path as FsPath, PathBuf};
 use std::time::Instant;
 
 use crate::atomic::{write_atomic, WriteError};
-use crate::engine::{run, EngineError, EngineOptions, EventKind, Outcome, Timeline};
+use crate::engine::{run, EngineError, EngineOptions, EventKind, Outcome, StartRule, Timeline};
 use crate::kinematics::poses_at_angles;
 use crate::reference::events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 use crate::reference::integrators::Method;
@@ -116,8 +125,10 @@ pub struct Row {
     pub rhs: u64,
     /// Events one run has and the other has not.
     pub missing: usize,
-    /// Matched event pairs in opposite order.
+    /// Matched pairs of events of the same kind in opposite order.
     pub inversions: usize,
+    /// Matched pairs of events of different kinds in opposite order.
+    pub interleavings: usize,
     /// The outcome (`completed`, `inhibited`, `stalled`, `stopped`).
     pub outcome: String,
 }
@@ -182,37 +193,59 @@ fn keyed(events: &[crate::engine::Event]) -> Keyed {
         .collect()
 }
 
-/// `(error_time, missing, inversions)` of `run` against `reference`.
+/// How one run's events compare with the reference's (see the module documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EventComparison {
+    /// Largest difference of a matched event's time, over the reference's duration.
+    pub error_time: f64,
+    /// Events one run has and the other has not.
+    pub missing: usize,
+    /// Matched pairs of the same kind in opposite order.
+    pub inversions: usize,
+    /// Matched pairs of different kinds in opposite order.
+    pub interleavings: usize,
+}
+
+/// Compares `run`'s events with `reference`'s, whose run lasted `duration` s.
 pub fn compare_events(
     reference: &[crate::engine::Event],
     run: &[crate::engine::Event],
     duration: f64,
-) -> (f64, usize, usize) {
+) -> EventComparison {
     let a = keyed(reference);
     let b = keyed(run);
     let map: std::collections::HashMap<(EventKind, u32), f64> = b.iter().copied().collect();
     let mut pairs = Vec::new();
     for (k, t) in &a {
         if let Some(u) = map.get(k) {
-            pairs.push((*t, *u));
+            pairs.push((k.0, *t, *u));
         }
     }
     let missing = a.len() + b.len() - 2 * pairs.len();
-    let err = pairs.iter().map(|(t, u)| (t - u).abs()).fold(0.0, f64::max)
+    let error_time = pairs.iter().map(|p| (p.1 - p.2).abs()).fold(0.0, f64::max)
         / duration.max(f64::MIN_POSITIVE);
-    // tied within 1e-9 of the duration in either run: not an inversion
+    // tied within 1e-9 of the duration in either run: not out of order
     let tie = 1e-9 * duration;
-    let mut inversions = 0;
+    let (mut inversions, mut interleavings) = (0, 0);
     for i in 0..pairs.len() {
         for j in i + 1..pairs.len() {
-            let da = pairs[j].0 - pairs[i].0;
-            let db = pairs[j].1 - pairs[i].1;
+            let da = pairs[j].1 - pairs[i].1;
+            let db = pairs[j].2 - pairs[i].2;
             if da.abs() > tie && db.abs() > tie && (da > 0.0) != (db > 0.0) {
-                inversions += 1;
+                if pairs[i].0 == pairs[j].0 {
+                    inversions += 1;
+                } else {
+                    interleavings += 1;
+                }
             }
         }
     }
-    (err, missing, inversions)
+    EventComparison {
+        error_time,
+        missing,
+        inversions,
+        interleavings,
+    }
 }
 
 /// Final tile centres and magnet positions (mm) of an engine run.
@@ -296,39 +329,53 @@ pub fn validate(
             .max(reference.model.cutoff_error(&reference.final_state));
         rest.clear();
 
-        progress(sc.name, "event", None);
-        let t0 = Instant::now();
-        let tl = run(&sc.chain, &sc.designs, &EngineOptions::default()).map_err(|source| {
-            ValidateError::Engine {
+        let force = StartRule::Force {
+            cutoff: reference.model.options().cutoff,
+        };
+        let mut engine_outcome = String::new();
+        let mut engine_duration = 0.0;
+        for (method, rule) in [("event", force), ("event-dist", StartRule::Distance)] {
+            progress(sc.name, method, None);
+            let t0 = Instant::now();
+            let tl = run(
+                &sc.chain,
+                &sc.designs,
+                &EngineOptions::default().with_start_rule(rule),
+            )
+            .map_err(|source| ValidateError::Engine {
                 scene: name.clone(),
                 source: Box::new(source),
+            })?;
+            let wall = t0.elapsed().as_secs_f64();
+            let c = compare_events(&reference.events, &tl.events, duration);
+            if rule == force {
+                engine_outcome = outcome_name(&tl.outcome).into();
+                engine_duration = tl.duration();
             }
-        })?;
-        let wall = t0.elapsed().as_secs_f64();
-        let (error_time, missing, inversions) =
-            compare_events(&reference.events, &tl.events, duration);
-        rows.push(Row {
-            scene: name.clone(),
-            method: "event".into(),
-            tolerance: None,
-            error_time,
-            error_pose: pose_error(&ref_final, &engine_final(&tl), w),
-            wall_s: wall,
-            steps: tl.events.len() as u64,
-            rejected: 0,
-            rhs: 0,
-            missing,
-            inversions,
-            outcome: outcome_name(&tl.outcome).into(),
-        });
+            rows.push(Row {
+                scene: name.clone(),
+                method: method.into(),
+                tolerance: None,
+                error_time: c.error_time,
+                error_pose: pose_error(&ref_final, &engine_final(&tl), w),
+                wall_s: wall,
+                steps: tl.events.len() as u64,
+                rejected: 0,
+                rhs: 0,
+                missing: c.missing,
+                inversions: c.inversions,
+                interleavings: c.interleavings,
+                outcome: outcome_name(&tl.outcome).into(),
+            });
+        }
         scenes.push(SceneReport {
             scene: name.clone(),
             tiles: sc.chain.len(),
             reference_outcome: result_name(&reference),
             reference_reason: reference.to_summary().reason,
-            engine_outcome: outcome_name(&tl.outcome).into(),
+            engine_outcome,
             reference_duration_s: duration,
-            engine_duration_s: tl.duration(),
+            engine_duration_s: engine_duration,
             reference_wall_s: reference_wall,
             cutoff_error,
         });
@@ -345,20 +392,20 @@ pub fn validate(
                 )
                 .map_err(ref_err)?;
                 let wall = t0.elapsed().as_secs_f64();
-                let (error_time, missing, inversions) =
-                    compare_events(&reference.events, &r.events, duration);
+                let c = compare_events(&reference.events, &r.events, duration);
                 rows.push(Row {
                     scene: name.clone(),
                     method: method.name().into(),
                     tolerance: Some(tol),
-                    error_time,
+                    error_time: c.error_time,
                     error_pose: pose_error(&ref_final, &reference_final(&r), w),
                     wall_s: wall,
                     steps: r.stats.accepted,
                     rejected: r.stats.rejected,
                     rhs: r.stats.rhs,
-                    missing,
-                    inversions,
+                    missing: c.missing,
+                    inversions: c.inversions,
+                    interleavings: c.interleavings,
                     outcome: result_name(&r),
                 });
             }
@@ -377,7 +424,7 @@ impl Validation {
     pub fn to_table(&self) -> String {
         let mut s = String::new();
         s.push_str(&format!(
-            "{:<16} {:<7} {:>8} {:>10} {:>10} {:>9} {:>8} {:>8} {:>4} {:>4}  {}\n",
+            "{:<16} {:<10} {:>6} {:>10} {:>10} {:>9} {:>8} {:>8} {:>4} {:>4} {:>5}  {}\n",
             "scene",
             "method",
             "tol",
@@ -388,12 +435,13 @@ impl Validation {
             "rejected",
             "miss",
             "inv",
+            "intl",
             "outcome"
         ));
         for r in &self.rows {
             let tol = r.tolerance.map_or("-".to_string(), |t| format!("{t:.0e}"));
             s.push_str(&format!(
-                "{:<16} {:<7} {:>8} {:>10.3e} {:>10.3e} {:>9.4} {:>8} {:>8} {:>4} {:>4}  {}\n",
+                "{:<16} {:<10} {:>6} {:>10.3e} {:>10.3e} {:>9.4} {:>8} {:>8} {:>4} {:>4} {:>5}  {}\n",
                 r.scene,
                 r.method,
                 tol,
@@ -404,6 +452,7 @@ impl Validation {
                 r.rejected,
                 r.missing,
                 r.inversions,
+                r.interleavings,
                 r.outcome
             ));
         }
@@ -441,7 +490,7 @@ impl Validation {
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
         );
         s.push_str(&format!(
-            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"12\">event-time error (over the duration) against wall time; blue: dopri5, red: ros2 (tolerance ladder), black diamond: event engine</text>\n",
+            "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"12\">event-time error (over the duration) against wall time; blue: dopri5, red: ros2 (tolerance ladder), diamonds: event engine (filled: force rule, open: distance rule)</text>\n",
             width / 2.0,
             height - 12.0
         ));
@@ -532,10 +581,19 @@ impl Validation {
                     ));
                 }
             }
-            for r in rs.iter().filter(|r| r.method == "event") {
+            // the event engine: filled diamond (force rule), open diamond (distance rule)
+            for r in rs
+                .iter()
+                .filter(|r| r.method == "event" || r.method == "event-dist")
+            {
                 let (x, y) = (px(r.wall_s), py(r.error_time));
+                let fill = if r.method == "event" {
+                    "fill=\"black\""
+                } else {
+                    "fill=\"none\" stroke=\"black\""
+                };
                 s.push_str(&format!(
-                    "<path d=\"M{x:.1},{:.1} L{:.1},{y:.1} L{x:.1},{:.1} L{:.1},{y:.1} Z\" fill=\"black\"/>\n",
+                    "<path d=\"M{x:.1},{:.1} L{:.1},{y:.1} L{x:.1},{:.1} L{:.1},{y:.1} Z\" {fill}/>\n",
                     y - 6.0,
                     x + 6.0,
                     y + 6.0,
