@@ -3,12 +3,17 @@
 //!
 //! Prints the work-precision table (or `--json`), writes `work-precision.svg` and
 //! `work-precision.json` into the output directory. Exit 0, or 2 for bad input.
+//!
+//! `--stiff` runs the stiff study instead ([`foldchain::reference::stiff`]): each stiff case
+//! and non-stiff control with both integrators, their step counts, printed as a table (or
+//! `--json`); nothing is written.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::Parser;
+use foldchain::reference::stiff::{run_stiff_study, select_cases};
 use foldchain::reference::validate::{validate, ValidateOptions};
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
@@ -32,6 +37,14 @@ struct Args {
     /// Quicker ladders (Dormand-Prince 1e-3 to 1e-6, ROS2 1e-2 to 1e-4; reference 1e-9).
     #[arg(long)]
     quick: bool,
+    /// Run the stiff study instead: step counts of both integrators on the stiff cases and
+    /// the non-stiff controls (about 10 s in release, most of it Dormand-Prince on the
+    /// stiffest case).
+    #[arg(long, conflicts_with_all = ["scenes", "quick", "reference_tolerance", "out"])]
+    stiff: bool,
+    /// With --stiff: run only this case (repeatable), e.g. "SLLS rot x1e7".
+    #[arg(long = "case", requires = "stiff")]
+    cases: Vec<String>,
 }
 
 fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
@@ -51,8 +64,36 @@ fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
     Ok(o)
 }
 
+/// `--stiff`: the study's table or JSON.
+fn stiff(args: &Args) -> anyhow::Result<String> {
+    let cases = select_cases(&args.cases)?;
+    let quiet = args.json;
+    let study = run_stiff_study(&cases, &mut |case, method| {
+        if !quiet {
+            eprintln!("fold-validate: stiff: {case}: {}", method.name());
+        }
+    })?;
+    Ok(if args.json {
+        format!("{}\n", study.to_json())
+    } else {
+        study.to_table()
+    })
+}
+
 fn main() -> ExitCode {
     let args = Args::parse();
+    if args.stiff {
+        return match stiff(&args) {
+            Ok(text) => {
+                print!("{text}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("fold-validate: {e:#}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let result = options(&args).and_then(|opts| {
         let quiet = args.json;
         let v = validate(&opts, &mut |scene, method, tol| {

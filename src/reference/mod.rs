@@ -31,8 +31,10 @@ pub mod dynamics;
 pub mod events;
 pub mod integrators;
 pub mod scenes;
+pub mod stiff;
 pub mod validate;
 
 pub use dynamics::{Model, ModelError, ModelOptions};
 pub use events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 pub use integrators::{Method, StepStats};
+pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};
