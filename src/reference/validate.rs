@@ -152,6 +152,11 @@ pub struct SceneReport {
     pub engine_duration_s: f64,
     /// Reference wall time, s.
     pub reference_wall_s: f64,
+    /// The factor that best maps the engine's (force rule) event times onto the
+    /// reference's, and the time error left after it (see [`EventComparison`]).
+    pub engine_time_factor: f64,
+    /// The engine's time error after that factor.
+    pub engine_error_time_scaled: f64,
     /// Largest drive change the cutoff makes at rest and at the end, over the bonded rest
     /// force.
     pub cutoff_error: f64,
@@ -204,6 +209,12 @@ pub struct EventComparison {
     pub inversions: usize,
     /// Matched pairs of different kinds in opposite order.
     pub interleavings: usize,
+    /// The single factor that best maps the run's event times onto the reference's (least
+    /// squares through the origin; 1 when nothing matched).
+    pub time_factor: f64,
+    /// `error_time` after scaling the run's times by `time_factor`: what is left once the
+    /// time scale is right.
+    pub error_time_scaled: f64,
 }
 
 /// Compares `run`'s events with `reference`'s, whose run lasted `duration` s.
@@ -222,8 +233,17 @@ pub fn compare_events(
         }
     }
     let missing = a.len() + b.len() - 2 * pairs.len();
-    let error_time = pairs.iter().map(|p| (p.1 - p.2).abs()).fold(0.0, f64::max)
-        / duration.max(f64::MIN_POSITIVE);
+    let span = duration.max(f64::MIN_POSITIVE);
+    let error_time = pairs.iter().map(|p| (p.1 - p.2).abs()).fold(0.0, f64::max) / span;
+    let (num, den) = pairs
+        .iter()
+        .fold((0.0, 0.0), |(n, d), p| (n + p.1 * p.2, d + p.2 * p.2));
+    let time_factor = if den > 0.0 { num / den } else { 1.0 };
+    let error_time_scaled = pairs
+        .iter()
+        .map(|p| (p.1 - time_factor * p.2).abs())
+        .fold(0.0, f64::max)
+        / span;
     // tied within 1e-9 of the duration in either run: not out of order
     let tie = 1e-9 * duration;
     let (mut inversions, mut interleavings) = (0, 0);
@@ -245,6 +265,8 @@ pub fn compare_events(
         missing,
         inversions,
         interleavings,
+        time_factor,
+        error_time_scaled,
     }
 }
 
@@ -334,6 +356,7 @@ pub fn validate(
         };
         let mut engine_outcome = String::new();
         let mut engine_duration = 0.0;
+        let mut engine_scaled = (1.0, 0.0);
         for (method, rule) in [("event", force), ("event-dist", StartRule::Distance)] {
             progress(sc.name, method, None);
             let t0 = Instant::now();
@@ -351,6 +374,7 @@ pub fn validate(
             if rule == force {
                 engine_outcome = outcome_name(&tl.outcome).into();
                 engine_duration = tl.duration();
+                engine_scaled = (c.time_factor, c.error_time_scaled);
             }
             rows.push(Row {
                 scene: name.clone(),
@@ -377,6 +401,8 @@ pub fn validate(
             reference_duration_s: duration,
             engine_duration_s: engine_duration,
             reference_wall_s: reference_wall,
+            engine_time_factor: engine_scaled.0,
+            engine_error_time_scaled: engine_scaled.1,
             cutoff_error,
         });
         for (method, ladder) in [(Method::Dopri5, &opts.dopri5), (Method::Ros2, &opts.ros2)] {
@@ -459,7 +485,7 @@ impl Validation {
         s.push('\n');
         for sc in &self.scenes {
             s.push_str(&format!(
-                "{}: {} tiles; reference {} in {:.4} s ({:.2} s wall), engine {} in {:.4} s; cutoff error {:.2e} of the bonded rest force\n",
+                "{}: {} tiles; reference {} in {:.4} s ({:.2} s wall), engine {} in {:.4} s; engine times x{:.3} best fit the reference's, leaving err_time {:.3e}; cutoff error {:.2e} of the bonded rest force\n",
                 sc.scene,
                 sc.tiles,
                 sc.reference_outcome,
@@ -467,6 +493,8 @@ impl Validation {
                 sc.reference_wall_s,
                 sc.engine_outcome,
                 sc.engine_duration_s,
+                sc.engine_time_factor,
+                sc.engine_error_time_scaled,
                 sc.cutoff_error
             ));
             if let Some(r) = &sc.reference_reason {
