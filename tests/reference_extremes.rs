@@ -4,7 +4,7 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{run, EngineOptions, EventKind, Outcome, TileDesigns};
+use foldchain::engine::{run, EngineOptions, EventKind, Outcome, StartRule, TileDesigns};
 use foldchain::kinematics::{final_poses, poses_at_angles};
 use foldchain::reference::{run_reference, Method, ModelOptions, ReferenceOptions, ReferenceRun};
 use foldchain::{Chain, Design, FoldWord};
@@ -87,6 +87,24 @@ fn sequential_edge_then_stall() {
         assert!(
             matches!(o, Outcome::Stalled { joint: 0, magnet, .. } if *magnet == m),
             "{o:?}"
+        );
+    }
+    // the engine's force rule weighs the same pairs as the reference and stalls where it
+    // does, at both values of s
+    let force = EngineOptions::default().with_start_rule(StartRule::Force {
+        cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+    });
+    for (s, joint, magnet) in [(t.e / 3.0, 4, 10), (t.e / 3.0 + 0.05, 0, 2)] {
+        let tl = run(
+            &Chain::parse("S*5").unwrap(),
+            &TileDesigns::global(t.with_s(s)),
+            &force,
+        )
+        .unwrap();
+        assert!(
+            matches!(tl.outcome, Outcome::Stalled { joint: j, magnet: m, .. } if (j, m) == (joint, magnet)),
+            "s {s}: {:?}",
+            tl.outcome
         );
     }
 }
