@@ -1,15 +1,67 @@
-//! `fold-run --reference`: the force-integrated reference writes the engine's summary format.
+//! `fold-run --reference`: the force-integrated reference writes the event engine's files
+//! (summary, timeline and the same pictures, drawn from its own states).
 
-use std::process::Command;
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("foldchain-run-ref-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn fold_run(args: &[&str], out: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fold-run"))
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Parses every SVG of `dir` as XML with an `<svg>` root; returns the `<polygon>` count of
+/// `final.svg` (one per tile in a detailed frame).
+fn check_svgs(dir: &Path) -> usize {
+    let mut final_polygons = None;
+    for name in names(dir).iter().filter(|n| n.ends_with(".svg")) {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        assert!(
+            text.starts_with("<svg") && text.trim_end().ends_with("</svg>"),
+            "{name}"
+        );
+        let doc = usvg::roxmltree::Document::parse(&text)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.join(name).display()));
+        assert_eq!(doc.root_element().tag_name().name(), "svg", "{name}");
+        if name == "final.svg" {
+            final_polygons = Some(
+                doc.descendants()
+                    .filter(|n| n.tag_name().name() == "polygon")
+                    .count(),
+            );
+        }
+    }
+    final_polygons.unwrap()
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
 
 #[test]
 fn reference_run_writes_the_engine_summary() {
-    let dir = std::env::temp_dir().join(format!("foldchain-run-ref-{}", std::process::id()));
-    let out = Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(["SLLS", "--reference", "--json", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let dir = tmp("summary");
+    let out = fold_run(&["SLLS", "--reference", "--json"], &dir);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -20,11 +72,79 @@ fn reference_run_writes_the_engine_summary() {
     assert_eq!(v["tiles"], 5);
     assert_eq!(v["completed"], true);
     assert_eq!(v["folds"], serde_json::json!([1, 2]));
-    let written: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(written, v);
+    assert_eq!(json(&dir.join("summary.json")), v);
     assert!(dir.join("timeline.json").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn reference_writes_the_engine_files_and_pictures() {
+    let (eng, refr) = (tmp("files-engine"), tmp("files-reference"));
+    for (dir, extra) in [(&eng, None), (&refr, Some("--reference"))] {
+        let mut args = vec!["SLLS", "--frames", "7", "--transition", "1..3"];
+        args.extend(extra);
+        let out = fold_run(&args, dir);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let files = names(&eng);
+    assert_eq!(names(&refr), files);
+    assert!(files.contains(&"step-0006.svg".to_string()), "{files:?}");
+    for f in ["final.svg", "transition.svg", "energy.svg", "timeline.json"] {
+        assert!(files.contains(&f.to_string()), "{f}: {files:?}");
+    }
+    // every tile drawn in both final frames, the same shape
+    assert_eq!(check_svgs(&eng), 5);
+    assert_eq!(check_svgs(&refr), 5);
+    let fin = std::fs::read_to_string(refr.join("final.svg")).unwrap();
+    assert!(fin.contains("SLLS (reference)") && fin.contains("completed"));
+    // the transition diagram covers the requested tiles
+    let tr = std::fs::read_to_string(refr.join("transition.svg")).unwrap();
+    assert!(tr.contains("tiles 1 to 3"));
+    assert_eq!(tr.matches("<polyline").count(), 6);
+    let en = std::fs::read_to_string(refr.join("energy.svg")).unwrap();
+    assert!(en.contains("total dipole energy") && en.contains("folds turning"));
+    // no temporary directory left beside the output
+    let parent = refr.parent().unwrap();
+    let stem = refr.file_name().unwrap().to_string_lossy().into_owned();
+    assert!(!names(parent)
+        .iter()
+        .any(|n| n.starts_with(&format!(".{stem}.tmp"))));
+    std::fs::remove_dir_all(&eng).unwrap();
+    std::fs::remove_dir_all(&refr).unwrap();
+}
+
+#[test]
+fn reference_pictures_show_where_a_stalled_chain_stopped() {
+    // the fold word LL (3 tiles, one tight U-turn): the engine folds it, the reference stalls
+    let (eng, refr) = (tmp("stall-engine"), tmp("stall-reference"));
+    let out = fold_run(&["LL"], &eng);
+    assert_eq!(out.status.code(), Some(0));
+    let out = fold_run(&["LL", "--reference"], &refr);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(json(&refr.join("summary.json"))["result"], "stalled");
+    assert_eq!(names(&refr), names(&eng));
+    assert_eq!(check_svgs(&refr), 3);
+    let fin = std::fs::read_to_string(refr.join("final.svg")).unwrap();
+    assert!(fin.contains("stalled"), "{fin}");
+    // only joint 0 folded: one hinge drawn (the engine folds both)
+    let hinges = |svg: &str| svg.matches(r##"fill="#333"/>"##).count();
+    assert_eq!(hinges(&fin), 1);
+    assert_eq!(
+        hinges(&std::fs::read_to_string(eng.join("final.svg")).unwrap()),
+        2
+    );
+    std::fs::remove_dir_all(&eng).unwrap();
+    std::fs::remove_dir_all(&refr).unwrap();
 }
 
 #[test]

@@ -1,11 +1,14 @@
 //! `fold-run` as a library call: run the event engine on a chain, check the fold schedule for
-//! self-intersection, and write the pictures and JSON into one output directory.
+//! self-intersection, and write the pictures and JSON into one output directory
+//! ([`fold_run`]); or run the force-integrated reference and write the same files from its
+//! states ([`fold_run_reference`]).
 //!
 //! Everything is written into a temporary directory beside the target, which is renamed into
 //! place only when every file is complete: a failed run leaves no half-written output (an
 //! older run's directory of the same name is replaced only then).
 
 mod plan_file;
+mod reference;
 
 use std::fmt::Write as _;
 use std::path::{Path as FsPath, PathBuf};
@@ -13,14 +16,20 @@ use std::path::{Path as FsPath, PathBuf};
 use crate::atomic::{write_atomic, WriteError};
 use crate::collision::{check_schedule, CheckOptions, Collision, ScheduleError};
 use crate::engine::{
-    energy_curve, fold_schedule, joint_angles_at, run, EngineError, EngineOptions, Summary,
-    TileDesigns, Timeline,
+    energy_curve, fold_schedule, run, EngineError, EngineOptions, Summary, TileDesigns, Timeline,
 };
-use crate::kinematics::poses_at_angles;
-use crate::render::{energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, DETAIL_TILES};
+use crate::reference::ReferenceError;
+use crate::render::{
+    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, TransitionData,
+    DETAIL_TILES,
+};
 use crate::{Chain, Fold, FoldWord};
 
 pub use plan_file::{read_plan_file, PlanFileError};
+pub use reference::{
+    fold_run_reference, reference_energy, reference_state, reference_transition, state_budget,
+    state_energy, ReferenceRunReport, STATE_BUDGET_BYTES,
+};
 
 /// Options of a run. Defaults: thesis design, overdamped speed law, `out/run`, frames chosen
 /// by chain length ([`default_frames`]), transition diagram of the first six tiles.
@@ -80,6 +89,9 @@ pub enum FoldRunError {
     /// The fold schedule was malformed (an engine bug, reported rather than hidden).
     #[error("fold schedule: {0}")]
     Schedule(ScheduleError),
+    /// The reference integrator refused the input.
+    #[error(transparent)]
+    Reference(#[from] ReferenceError),
 }
 
 /// What a run produced.
@@ -157,15 +169,7 @@ pub fn fold_run(
         .frames
         .unwrap_or_else(|| default_frames(tl.tiles()))
         .max(1);
-    let times: Vec<f64> = (0..frames)
-        .map(|i| {
-            if frames == 1 {
-                duration
-            } else {
-                duration * i as f64 / (frames - 1) as f64
-            }
-        })
-        .collect();
+    let times = frame_times(duration, frames);
     let w = tl.geometry.w;
     // Each step is framed on the chain as it stands at that moment: one view holding every
     // sweep would show a long straight tail and leave the folded part a speck.
@@ -179,49 +183,46 @@ pub fn fold_run(
             collision: if hit { collision_tiles } else { None },
             note: None,
         };
-        let view = FrameView::around(poses_at_angles(&joint_angles_at(&tl, t), w), w);
-        files.push((format!("step-{i:04}.svg"), frame_svg(&tl, t, &view, &fo)));
+        let state = ChainState::from_timeline(&tl, t);
+        let view = FrameView::around(state.poses.iter().copied(), w);
+        files.push((
+            format!("step-{i:04}.svg"),
+            frame_svg(&tl.geometry, &state, &view, &fo),
+        ));
     }
     progress("frames", frames, frames);
-    let final_note = format!(
-        "{}{}",
-        summary.result,
-        summary
-            .reason
-            .as_ref()
-            .map(|r| format!(": {r}"))
-            .unwrap_or_default()
-    );
     let fo = FrameOptions {
         title: opts.name.clone(),
         collision: collision_tiles,
-        note: Some(abbreviate(&final_note, 150)),
+        note: Some(final_note(&summary)),
     };
-    let final_view = FrameView::around(poses_at_angles(&joint_angles_at(&tl, duration), w), w);
-    files.push((
-        "final.svg".into(),
-        frame_svg(&tl, duration, &final_view, &fo),
-    ));
+    {
+        let final_state = ChainState::from_timeline(&tl, duration);
+        let final_view = FrameView::around(final_state.poses.iter().copied(), w);
+        files.push((
+            "final.svg".into(),
+            frame_svg(&tl.geometry, &final_state, &final_view, &fo),
+        ));
+    }
     let (a, b) = opts.transition_tiles.unwrap_or((0, 5.min(tl.tiles() - 1)));
+    let transition = TransitionData::from_timeline(&tl, a, b);
     files.push((
         "transition.svg".into(),
         transition_svg(
-            &tl,
-            a,
-            b,
-            &format!(
-                "{}: transition diagram, tiles {a} to {}",
-                opts.name,
-                b.min(tl.tiles() - 1)
-            ),
+            &tl.geometry,
+            &transition,
+            &transition_title(&opts.name, a, b, tl.tiles()),
         ),
     ));
     progress("energy", 0, 1);
-    let samples = if tl.tiles() <= 10_000 { 400 } else { 100 };
-    let curve = energy_curve(&tl, samples);
+    let curve = energy_curve(&tl, energy_samples(tl.tiles()));
     files.push((
         "energy.svg".into(),
-        energy_svg(&tl, &curve, &format!("{}: total dipole energy", opts.name)),
+        energy_svg(
+            &tl.folds,
+            &curve,
+            &format!("{}: total dipole energy", opts.name),
+        ),
     ));
     progress("energy", 1, 1);
     files.push(("timeline.json".into(), timeline_json(&tl)));
@@ -235,6 +236,49 @@ pub fn fold_run(
         files: files.into_iter().map(|(n, _)| n).collect(),
         timeline: tl,
     })
+}
+
+/// `frames` evenly spaced times from 0 to `duration` (just `duration` for one frame).
+fn frame_times(duration: f64, frames: usize) -> Vec<f64> {
+    (0..frames)
+        .map(|i| {
+            if frames == 1 {
+                duration
+            } else {
+                duration * i as f64 / (frames - 1) as f64
+            }
+        })
+        .collect()
+}
+
+/// Points of the energy curve: 400, or 100 beyond 10,000 tiles.
+fn energy_samples(tiles: usize) -> usize {
+    if tiles <= 10_000 {
+        400
+    } else {
+        100
+    }
+}
+
+/// The final frame's note: the result and its reason, at most 150 characters.
+fn final_note(summary: &Summary) -> String {
+    let note = format!(
+        "{}{}",
+        summary.result,
+        summary
+            .reason
+            .as_ref()
+            .map(|r| format!(": {r}"))
+            .unwrap_or_default()
+    );
+    abbreviate(&note, 150)
+}
+
+fn transition_title(name: &str, a: usize, b: usize, tiles: usize) -> String {
+    format!(
+        "{name}: transition diagram, tiles {a} to {}",
+        b.min(tiles - 1)
+    )
 }
 
 fn abbreviate(s: &str, max: usize) -> String {

@@ -17,6 +17,15 @@
 //! also stops, with the reason in [`ReferenceRun::stopped`], at [`ReferenceOptions::max_steps`]
 //! steps or when the step size falls below 1e-14 of the time: never a hang.
 //!
+//! **Recorded states.** With [`ReferenceOptions::record`] set to [`Recording::Grid`], the
+//! run keeps the state at evenly spaced times from 0 ([`ReferenceRun::states`]), for
+//! pictures and energy curves: each is the integrator's state interpolated inside the step
+//! that holds it (cubic Hermite on the step's end values and rates; for a step cut short at
+//! an event, quadratic on the start rate), clamped to `[0, 1]`. When the states would exceed
+//! the budget, the spacing doubles and every other state is dropped, so the grid stays even
+//! and the memory bounded (see [`Recording::Grid`]). Off by default: then only the final
+//! state is kept.
+//!
 //! **Outcome.** Completed when every magnet but the last arrived and every folding joint
 //! closed. Otherwise the first joint left open (or holding a magnet that never arrived) is
 //! named: inhibited when its pair's path ends lie farther apart than the pair at rest (the
@@ -31,8 +40,27 @@ use crate::reference::dynamics::{Forces, Mode, Model, ModelError, ModelOptions, 
 use crate::reference::integrators::{Method, StepStats, Stepper};
 use crate::{Chain, Fold};
 
+/// Which states a reference run keeps besides the final one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Recording {
+    /// None (the default): [`ReferenceRun::states`] is empty.
+    #[default]
+    Off,
+    /// States on an evenly spaced time grid from 0, then the final state at
+    /// [`ReferenceRun::end_time`]: at most `max_states` in all (taken as at least 3), so at
+    /// most `max_states * (8 * unknowns + 32)` bytes, with one unknown per magnet and one per
+    /// folding joint, at most three per tile (2,000 tiles and 1,000 states: under 50 MB). The
+    /// spacing starts at a thousandth of the model's time scale and doubles whenever the
+    /// budget is reached, so a run that needed a doubling ends with at least about
+    /// `max_states / 2` states.
+    Grid {
+        /// The most states kept, the final one included.
+        max_states: usize,
+    },
+}
+
 /// Options of a reference run. Defaults: Dormand-Prince, tolerance 1e-8, the model's
-/// defaults, at most 2,000,000 steps.
+/// defaults, at most 2,000,000 steps, no states recorded ([`Recording::Off`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceOptions {
     /// The integrator.
@@ -43,6 +71,8 @@ pub struct ReferenceOptions {
     pub model: ModelOptions,
     /// Most steps (accepted and rejected) before the run stops with a diagnosis.
     pub max_steps: u64,
+    /// States to keep for pictures (default [`Recording::Off`]).
+    pub record: Recording,
 }
 
 impl Default for ReferenceOptions {
@@ -52,6 +82,7 @@ impl Default for ReferenceOptions {
             tolerance: 1e-8,
             model: ModelOptions::default(),
             max_steps: 2_000_000,
+            record: Recording::Off,
         }
     }
 }
@@ -75,6 +106,11 @@ impl ReferenceOptions {
     /// Another step limit.
     pub fn with_max_steps(mut self, max_steps: u64) -> ReferenceOptions {
         self.max_steps = max_steps;
+        self
+    }
+    /// Another recording of states.
+    pub fn with_record(mut self, record: Recording) -> ReferenceOptions {
+        self.record = record;
         self
     }
 }
@@ -108,6 +144,9 @@ pub struct ReferenceRun {
     pub stopped: Option<String>,
     /// The state at the end.
     pub final_state: Vec<f64>,
+    /// Recorded `(time s, state)` pairs in time order, the last one the final state
+    /// ([`ReferenceOptions::record`]; empty when off).
+    pub states: Vec<(f64, Vec<f64>)>,
     /// When the chain came to rest (or integration stopped), s.
     pub end_time: f64,
     /// The most magnets moving at once, and when first.
@@ -142,6 +181,92 @@ pub fn run_reference(
     }
     let model = Model::new(chain, designs, &opts.model)?;
     Ok(Driver::new(model, opts).run())
+}
+
+/// The states of [`Recording::Grid`]: grid index `i` is time `i * dt`.
+struct Recorder {
+    /// Grid states kept at most (one place is left for the final state).
+    max: usize,
+    dt: f64,
+    /// Grid index of the next state to record.
+    next: u64,
+    index: Vec<u64>,
+    states: Vec<(f64, Vec<f64>)>,
+}
+
+impl Recorder {
+    fn new(max_states: usize, dt: f64, y0: &[f64]) -> Recorder {
+        Recorder {
+            max: max_states.max(3) - 1,
+            dt,
+            next: 1,
+            index: vec![0],
+            states: vec![(0.0, y0.to_vec())],
+        }
+    }
+
+    fn next_time(&self) -> f64 {
+        self.next as f64 * self.dt
+    }
+
+    /// Doubles the spacing, keeping the states on the coarser grid (index 0 always stays).
+    fn thin(&mut self) {
+        let mut keep = self.index.iter().map(|i| i % 2 == 0);
+        self.states.retain(|_| keep.next().unwrap_or(false));
+        self.index.retain(|i| i % 2 == 0);
+        for i in &mut self.index {
+            *i /= 2;
+        }
+        self.dt *= 2.0;
+        self.next = self.next.div_ceil(2);
+    }
+
+    /// Records the grid times in `(t0, t1]` of a step from `(t0, y0)`, rates `f0`, to
+    /// `(t1, y1)`, rates `f1` if known: cubic Hermite, or quadratic on `f0` without `f1`.
+    fn cover(&mut self, t0: f64, y0: &[f64], f0: &[f64], t1: f64, y1: &[f64], f1: Option<&[f64]>) {
+        let h = t1 - t0;
+        if h.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return;
+        }
+        loop {
+            let t = self.next_time();
+            if t > t1 {
+                break;
+            }
+            if self.states.len() >= self.max {
+                self.thin();
+                continue;
+            }
+            let s = ((t - t0) / h).clamp(0.0, 1.0);
+            let (s2, s3) = (s * s, s * s * s);
+            let y: Vec<f64> = (0..y0.len())
+                .map(|i| {
+                    let v = match f1 {
+                        Some(f1) => {
+                            y0[i] * (2.0 * s3 - 3.0 * s2 + 1.0)
+                                + h * f0[i] * (s3 - 2.0 * s2 + s)
+                                + y1[i] * (3.0 * s2 - 2.0 * s3)
+                                + h * f1[i] * (s3 - s2)
+                        }
+                        None => y0[i] + f0[i] * h * s + (y1[i] - y0[i] - f0[i] * h) * s2,
+                    };
+                    v.clamp(0.0, 1.0)
+                })
+                .collect();
+            self.states.push((t, y));
+            self.index.push(self.next);
+            self.next += 1;
+        }
+    }
+
+    /// The recorded states with the final one `(t, y)` last.
+    fn finish(mut self, t: f64, y: &[f64]) -> Vec<(f64, Vec<f64>)> {
+        if self.states.last().is_some_and(|(last, _)| *last >= t) {
+            self.states.pop();
+        }
+        self.states.push((t, y.to_vec()));
+        self.states
+    }
 }
 
 struct Driver {
@@ -293,6 +418,12 @@ impl Driver {
         let scale = self.model.time_scale;
         let mut h = scale * 1e-3 * tol.powf(1.0 / (q + 1.0));
         let mut stopped = None;
+        let mut rec = match self.opts.record {
+            Recording::Off => None,
+            Recording::Grid { max_states } => {
+                Some(Recorder::new(max_states, scale * 1e-3, &self.y))
+            }
+        };
         loop {
             let free: Vec<usize> = (0..n).filter(|&i| self.modes[i] == Mode::Free).collect();
             if free.is_empty() {
@@ -394,25 +525,38 @@ impl Driver {
                         lo = mid;
                     }
                 }
+                let t0 = self.t;
                 self.t += hi;
-                self.y = y_hi;
+                let y0 = std::mem::replace(&mut self.y, y_hi);
                 self.clamp_free();
                 self.switch();
+                if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
+                    r.cover(t0, &y0, &f, self.t, &self.y, None);
+                }
                 stepper.invalidate();
                 stepper.rhs(&self.model, &self.modes, &self.y, &mut f, &mut self.stats);
                 h = h.min(hi * 4.0).max(hi);
                 continue;
             }
+            let t0 = self.t;
             self.t += h;
-            self.y = att.y;
+            let y0 = std::mem::replace(&mut self.y, att.y);
+            let f0 = rec
+                .as_ref()
+                .filter(|r| r.next_time() <= self.t)
+                .map(|_| f.clone());
             stepper.invalidate();
             match stepper.last_derivative() {
                 Some(d) => f.copy_from_slice(d),
                 None => stepper.rhs(&self.model, &self.modes, &self.y, &mut f, &mut self.stats),
             }
+            if let (Some(r), Some(f0)) = (rec.as_mut(), f0) {
+                r.cover(t0, &y0, &f0, self.t, &self.y, Some(&f));
+            }
             h *= grow;
         }
-        self.finish(stopped)
+        let states = rec.map(|r| r.finish(self.t, &self.y)).unwrap_or_default();
+        self.finish(stopped, states)
     }
 
     /// Whether every free unknown is settling on a stable balance inside its range: its
@@ -453,7 +597,7 @@ impl Driver {
         }
     }
 
-    fn finish(mut self, stopped: Option<String>) -> ReferenceRun {
+    fn finish(mut self, stopped: Option<String>, states: Vec<(f64, Vec<f64>)>) -> ReferenceRun {
         let m = &self.model;
         let n = m.geometry.magnets();
         let t = self.last_event;
@@ -514,6 +658,7 @@ impl Driver {
         ReferenceRun {
             end_time: self.t,
             final_state: self.y,
+            states,
             model: self.model,
             options: self.opts,
             events,

@@ -1,5 +1,6 @@
 //! One frame of a run: tiles at their poses, paths, magnets, hinges and the RI, with moving
-//! parts and a collision highlighted and a time stamp.
+//! parts and a collision highlighted and a time stamp. It draws a [`ChainState`], so the
+//! event engine and the reference integrator share it.
 //!
 //! Chains longer than [`DETAIL_TILES`] are drawn lean: the chain as one thick polyline
 //! through the tile centres (straight runs merged into one segment), the tiles near moving
@@ -8,9 +9,8 @@
 
 use std::fmt::Write;
 
-use crate::engine::{joint_angles_at, Timeline};
-use crate::kinematics::poses_at_angles;
-use crate::render::{esc, n};
+use crate::engine::Geometry;
+use crate::render::{esc, n, ChainState};
 use crate::{Octagon, Pose};
 
 /// Chains up to this many tiles are drawn in detail (outlines, paths, magnets, hinges).
@@ -64,11 +64,15 @@ pub struct FrameOptions {
     pub note: Option<String>,
 }
 
-/// The SVG of the chain at time `t`.
-pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -> String {
-    let w = tl.geometry.w;
-    let angles = joint_angles_at(tl, t);
-    let poses = poses_at_angles(&angles, w);
+/// The SVG of the chain in `state`, with paths and magnet sizes from `geometry`.
+pub fn frame_svg(
+    geometry: &Geometry,
+    state: &ChainState,
+    view: &FrameView,
+    opts: &FrameOptions,
+) -> String {
+    let w = geometry.w;
+    let poses = &state.poses;
     let (x0, y0, x1, y1) = view.bounds;
     let (vw, vh) = (x1 - x0, y1 - y0);
     // pixel size: 900 px wide at most, at least 1 px per 0.05 mm for small chains
@@ -88,11 +92,11 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         n(px_w),
         n(px_h + 40.0)
     );
-    let moving_tile = |i: usize| tl.is_moving(2 * i, t) || tl.is_moving(2 * i + 1, t);
-    let folding_joint = |j: usize| tl.fold_at(j).is_some_and(|f| t >= f.start && t < f.end);
+    let moving_tile = |i: usize| state.tile_moving(i);
+    let folding_joint = |j: usize| state.joint_folding(j);
     let in_collision = |i: usize| opts.collision.is_some_and(|(a, b)| a == i || b == i);
     let oct = Octagon::new(w);
-    let tiles = tl.tiles();
+    let tiles = state.tiles();
     let polygon = |s: &mut String, p: &Pose, fill: &str, stroke: &str| {
         let pts: Vec<String> = oct
             .vertices_at(p)
@@ -119,10 +123,10 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
             };
             polygon(&mut s, p, fill, "#55524c");
         }
-        let r = 0.5 * tl.geometry.design(0).magnet_diameter;
+        let r = 0.5 * geometry.design(0).magnet_diameter;
         for (i, p) in poses.iter().enumerate() {
             for k in [2 * i, 2 * i + 1] {
-                let path = tl.geometry.path(k);
+                let path = geometry.path(k);
                 let pts: Vec<String> = path
                     .polyline(0.5)
                     .into_iter()
@@ -141,8 +145,8 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         }
         // hinges of fold joints
         for (j, pose) in poses.iter().enumerate().take(tiles.saturating_sub(1)) {
-            if let Some(f) = tl.fold_at(j) {
-                let (hx, hy) = oct.hinge(f.fold == crate::Fold::L);
+            if let Some(Some(fold)) = state.folds.get(j) {
+                let (hx, hy) = oct.hinge(*fold == crate::Fold::L);
                 let (x, y) = pose.transform_point((hx, hy));
                 let col = if folding_joint(j) { "#1a56b8" } else { "#333" };
                 let _ = writeln!(
@@ -154,30 +158,27 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
                 );
             }
         }
-        for (i, p) in poses.iter().enumerate() {
-            for k in [2 * i, 2 * i + 1] {
-                let (x, y) = p.transform_point(tl.local_position(k, t));
-                let fill = if k % 2 == 0 { "#d93025" } else { "#188038" };
-                let moving = tl.is_moving(k, t);
-                let _ = writeln!(
-                    s,
-                    r##"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="{}" stroke-width="{}"/>"##,
-                    n(tx(x)),
-                    n(ty(y)),
-                    n((r * scale).max(1.0)),
-                    if moving { "#ff9800" } else { "#222" },
-                    if moving {
-                        n((0.5 * r * scale).max(1.5))
-                    } else {
-                        "0.5".into()
-                    }
-                );
-            }
+        for (k, &(x, y)) in state.magnets.iter().enumerate() {
+            let fill = if k % 2 == 0 { "#d93025" } else { "#188038" };
+            let moving = state.moving.get(k).copied().unwrap_or(false);
+            let _ = writeln!(
+                s,
+                r##"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="{}" stroke-width="{}"/>"##,
+                n(tx(x)),
+                n(ty(y)),
+                n((r * scale).max(1.0)),
+                if moving { "#ff9800" } else { "#222" },
+                if moving {
+                    n((0.5 * r * scale).max(1.5))
+                } else {
+                    "0.5".into()
+                }
+            );
         }
     } else {
         // lean: one thick polyline through the centres, collinear runs merged
         let mut pts: Vec<(f64, f64)> = Vec::new();
-        for p in &poses {
+        for p in poses {
             let q = (p.x, p.y);
             if pts.len() >= 2 {
                 let a = pts[pts.len() - 2];
@@ -216,8 +217,8 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         }
     }
     // the RI, held at the outer edge of tile 0
-    let (rx, ry) = poses[0].transform_point(tl.geometry.ri_position());
-    let r = 0.5 * tl.geometry.design(0).magnet_diameter;
+    let (rx, ry) = poses[0].transform_point(geometry.ri_position());
+    let r = 0.5 * geometry.design(0).magnet_diameter;
     let _ = writeln!(
         s,
         r##"<circle cx="{}" cy="{}" r="{}" fill="#7b1fa2" stroke="#222" stroke-width="0.5"/><text x="{}" y="{}" font-size="11" text-anchor="end" fill="#7b1fa2">RI</text>"##,
@@ -227,15 +228,13 @@ pub fn frame_svg(tl: &Timeline, t: f64, view: &FrameView, opts: &FrameOptions) -
         n(tx(rx) - (r * scale).max(1.5) - 2.0),
         n(ty(ry) + 4.0)
     );
-    let moving = (0..tl.geometry.magnets())
-        .filter(|&k| tl.is_moving(k, t))
-        .count();
+    let moving = state.moving_count();
     let _ = writeln!(
         s,
         r##"<text x="8" y="{}" font-size="13" fill="#222">{}  t = {:.4} s  ({} moving)</text>"##,
         n(px_h + 18.0),
         esc(&opts.title),
-        t,
+        state.time,
         moving
     );
     if let Some(note) = &opts.note {

@@ -2,14 +2,20 @@
 //! diagram (magnet position against time, thesis figure 6.3, [`transition_svg`]) and the
 //! energy curve (thesis figure 7.5, [`energy_svg`]). Written as plain SVG text; world
 //! coordinates are millimetres seen from above, y up (so L folds turn left on the page).
+//!
+//! The pictures draw plain data ([`ChainState`], [`TransitionData`], energy samples and fold
+//! windows), so the event engine and the force-integrated reference draw the same pictures
+//! from their own results.
 
 mod frame;
 mod plot;
+mod state;
 mod transition;
 
 pub use frame::{frame_svg, FrameOptions, FrameView, DETAIL_TILES};
 pub use plot::energy_svg;
-pub use transition::transition_svg;
+pub use state::ChainState;
+pub use transition::{transition_svg, MagnetTrack, TransitionData};
 
 /// Escapes text for SVG.
 pub(crate) fn esc(s: &str) -> String {

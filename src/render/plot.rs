@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use crate::engine::{EnergySample, Timeline};
+use crate::engine::{EnergySample, FoldRecord};
 use crate::render::{esc, n};
 
 /// A plot area: data ranges mapped to pixels.
@@ -123,8 +123,9 @@ fn fmt_tick(v: f64) -> String {
     }
 }
 
-/// The total dipole energy against time, with the fold windows shaded.
-pub fn energy_svg(tl: &Timeline, curve: &[EnergySample], title: &str) -> String {
+/// The total dipole energy against time, with the windows of `folds` shaded (a fold that
+/// never closed, `end` NaN, to the end of the curve).
+pub fn energy_svg(folds: &[FoldRecord], curve: &[EnergySample], title: &str) -> String {
     let t1 = curve.last().map_or(1.0, |c| c.time).max(1e-9);
     // millijoules read better than joules
     let ys: Vec<f64> = curve.iter().map(|c| c.energy_j * 1e3).collect();
@@ -150,13 +151,14 @@ pub fn energy_svg(tl: &Timeline, curve: &[EnergySample], title: &str) -> String 
     };
     let mut s = ax.open(title, "time (s)", "total dipole energy (mJ)");
     // shade at most 200 fold windows
-    for f in tl.folds.iter().take(200) {
+    for f in folds.iter().take(200) {
+        let end = if f.end.is_nan() { t1 } else { f.end };
         let _ = writeln!(
             s,
             r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#1a56b8" fill-opacity="0.08"/>"##,
             n(ax.px(f.start)),
             n(ax.top),
-            n((ax.px(f.end) - ax.px(f.start)).max(0.5)),
+            n((ax.px(end) - ax.px(f.start)).max(0.5)),
             n(ax.height)
         );
     }
@@ -170,7 +172,7 @@ pub fn energy_svg(tl: &Timeline, curve: &[EnergySample], title: &str) -> String 
         r##"<polyline points="{}" fill="none" stroke="#c5221f" stroke-width="2"/>"##,
         pts.join(" ")
     );
-    if !tl.folds.is_empty() {
+    if !folds.is_empty() {
         let _ = writeln!(
             s,
             r##"<text x="{}" y="{}" fill="#1a56b8">shaded: folds turning</text>"##,

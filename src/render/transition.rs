@@ -5,22 +5,100 @@
 
 use std::fmt::Write;
 
-use crate::engine::{EventKind, Timeline};
+use crate::engine::{EventKind, Geometry, Timeline};
 use crate::render::n;
 use crate::render::plot::Axes;
 
-/// The diagram for tiles `first..=last` (clamped to the chain).
-pub fn transition_svg(tl: &Timeline, first: usize, last: usize, title: &str) -> String {
-    let tiles = tl.tiles();
-    let last = last.min(tiles - 1);
-    let first = first.min(last);
-    let w = tl.geometry.w;
-    let (k0, k1) = (2 * first, 2 * last + 1);
-    let end_time = (k0..=k1)
-        .filter_map(|k| tl.arrival_of(k))
-        .fold(0.0, f64::max)
-        .max(1e-9);
-    let t1 = end_time * 1.08;
+/// One magnet's line in the transition diagram.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct MagnetTrack {
+    /// When it first starts, if it does (a dot is drawn there).
+    pub start: Option<f64>,
+    /// `(time s, arc length travelled from the rest point mm)`, in time order.
+    pub travel: Vec<(f64, f64)>,
+}
+
+/// What the transition diagram shows: the same whichever simulation made it (the event
+/// engine's timeline, [`TransitionData::from_timeline`], or the reference integrator's
+/// recorded states, [`crate::fold_run`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TransitionData {
+    /// First tile shown.
+    pub first: usize,
+    /// Last tile shown (inclusive).
+    pub last: usize,
+    /// The time axis runs from 0 to this, s.
+    pub t1: f64,
+    /// One track per magnet `2 * first ..= 2 * last + 1`.
+    pub tracks: Vec<MagnetTrack>,
+    /// Where a moving magnet started the next one: `(magnet, time s, travel mm)`.
+    pub triggers: Vec<(usize, f64, f64)>,
+}
+
+impl TransitionData {
+    /// The time axis' end for a diagram whose last shown magnet arrives at `end_time`.
+    pub fn axis_end(end_time: f64) -> f64 {
+        end_time.max(1e-9) * 1.08
+    }
+
+    /// The tiles shown for a request of `first..=last` on a chain of `tiles` (clamped).
+    pub fn tile_range(tiles: usize, first: usize, last: usize) -> (usize, usize) {
+        let last = last.min(tiles.saturating_sub(1));
+        (first.min(last), last)
+    }
+
+    /// The event engine's diagram for tiles `first..=last` (clamped to the chain): each
+    /// track sampled 48 times while its magnet moves.
+    pub fn from_timeline(tl: &Timeline, first: usize, last: usize) -> TransitionData {
+        let (first, last) = TransitionData::tile_range(tl.tiles(), first, last);
+        let (k0, k1) = (2 * first, 2 * last + 1);
+        let end_time = (k0..=k1)
+            .filter_map(|k| tl.arrival_of(k))
+            .fold(0.0, f64::max);
+        let t1 = TransitionData::axis_end(end_time);
+        let tracks = (k0..=k1)
+            .map(|k| {
+                let mut travel = vec![(0.0, 0.0)];
+                if let (Some(s0), Some(a)) = (tl.start_of(k), tl.arrival_of(k)) {
+                    travel.push((s0, 0.0));
+                    for i in 1..=48 {
+                        let t = s0 + (a - s0) * i as f64 / 48.0;
+                        travel.push((t, tl.travel_at(k, t)));
+                    }
+                }
+                travel.push((t1, tl.travel_at(k, t1)));
+                MagnetTrack {
+                    start: tl.start_of(k),
+                    travel,
+                }
+            })
+            .collect();
+        let triggers = tl
+            .events
+            .iter()
+            .filter(|e| {
+                e.kind == EventKind::TriggerReached && (k0..=k1).contains(&(e.index as usize))
+            })
+            .map(|e| {
+                let k = e.index as usize;
+                (k, e.time, tl.travel_at(k, e.time))
+            })
+            .collect();
+        TransitionData {
+            first,
+            last,
+            t1,
+            tracks,
+            triggers,
+        }
+    }
+}
+
+/// The diagram of `data`, with paths and tile width from `geometry`.
+pub fn transition_svg(geometry: &Geometry, data: &TransitionData, title: &str) -> String {
+    let (first, last) = (data.first, data.last);
+    let w = geometry.w;
+    let t1 = data.t1;
     let ax = Axes {
         x0: 0.0,
         x1: t1,
@@ -42,31 +120,23 @@ pub fn transition_svg(tl: &Timeline, first: usize, last: usize, title: &str) -> 
             y = n(y)
         );
     }
-    for k in k0..=k1 {
+    for (i, track) in data.tracks.iter().enumerate() {
+        let k = 2 * first + i;
         let tile = k / 2;
         let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
-        let rest = tile as f64 * w + tl.geometry.path(k).rest().0;
-        let pos = |t: f64| rest + dir * tl.travel_at(k, t);
+        let rest = tile as f64 * w + geometry.path(k).rest().0;
         let colour = if k % 2 == 0 { "#d93025" } else { "#188038" };
-        let mut pts = vec![(0.0, rest)];
-        if let (Some(s0), Some(a)) = (tl.start_of(k), tl.arrival_of(k)) {
-            pts.push((s0, rest));
-            for i in 1..=48 {
-                let t = s0 + (a - s0) * i as f64 / 48.0;
-                pts.push((t, pos(t)));
-            }
-        }
-        pts.push((t1, pos(t1)));
-        let d: Vec<String> = pts
+        let d: Vec<String> = track
+            .travel
             .iter()
-            .map(|&(t, y)| format!("{},{}", n(ax.px(t)), n(ax.py(y))))
+            .map(|&(t, u)| format!("{},{}", n(ax.px(t)), n(ax.py(rest + dir * u))))
             .collect();
         let _ = writeln!(
             s,
             r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="2"/>"#,
             d.join(" ")
         );
-        if let Some(s0) = tl.start_of(k) {
+        if let Some(s0) = track.start {
             let _ = writeln!(
                 s,
                 r#"<circle cx="{}" cy="{}" r="3.5" fill="{colour}"/>"#,
@@ -75,20 +145,17 @@ pub fn transition_svg(tl: &Timeline, first: usize, last: usize, title: &str) -> 
             );
         }
     }
-    for e in &tl.events {
-        let k = e.index as usize;
-        if e.kind == EventKind::TriggerReached && (k0..=k1).contains(&k) {
-            let tile = k / 2;
-            let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
-            let y = tile as f64 * w + tl.geometry.path(k).rest().0 + dir * tl.travel_at(k, e.time);
-            let _ = writeln!(
-                s,
-                r##"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="#7b1fa2" stroke-width="2"/>"##,
-                n(ax.py(y) - 6.0),
-                n(ax.py(y) + 6.0),
-                x = n(ax.px(e.time))
-            );
-        }
+    for &(k, time, u) in &data.triggers {
+        let tile = k / 2;
+        let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
+        let y = tile as f64 * w + geometry.path(k).rest().0 + dir * u;
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="#7b1fa2" stroke-width="2"/>"##,
+            n(ax.py(y) - 6.0),
+            n(ax.py(y) + 6.0),
+            x = n(ax.px(time))
+        );
     }
     let _ = writeln!(
         s,

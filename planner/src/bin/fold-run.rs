@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Context};
 use clap::Parser;
 use foldchain::engine::{SValue, SpeedLaw, TileDesigns, DEFAULT_DRAG};
-use foldchain::fold_run::{fold_run, read_plan_file, FoldRunOptions};
+use foldchain::fold_run::{fold_run, fold_run_reference, read_plan_file, FoldRunOptions};
 use foldchain::Chain;
 use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
 
@@ -48,8 +48,10 @@ struct Args {
     #[arg(long, value_name = "A..B")]
     transition: Option<String>,
     /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
-    /// event engine: writes `summary.json` and `timeline.json` in the same format (no
-    /// pictures; the reference has no collision check). For chains up to 2,000 tiles.
+    /// event engine: writes the same files (step frames, final.svg, transition.svg,
+    /// energy.svg, timeline.json, summary.json) drawn from the reference's recorded states
+    /// (default out/<name>-reference/; the reference has no collision check). For chains up
+    /// to 2,000 tiles.
     #[arg(long)]
     reference: bool,
     /// SHAPE.svg only: about this many tiles.
@@ -191,7 +193,18 @@ fn run(args: Args) -> anyhow::Result<u8> {
         }
     };
     if args.reference {
-        return run_reference_scene(&chain, &designs, &name, args.out.clone(), args.json);
+        let opts = FoldRunOptions {
+            name: format!("{name} (reference)"),
+            designs,
+            out_dir: args
+                .out
+                .clone()
+                .unwrap_or_else(|| PathBuf::from("out").join(format!("{name}-reference"))),
+            frames: args.frames,
+            transition_tiles,
+            ..FoldRunOptions::default()
+        };
+        return run_reference_scene(&chain, &opts, &name, args.json);
     }
     let opts = FoldRunOptions {
         name: name.clone(),
@@ -251,12 +264,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
 const MAX_REFERENCE_TILES: usize = 2_000;
 
 /// `--reference`: the force-integrated reference on the same chain and design, written as
-/// the engine's `summary.json` and `timeline.json`.
+/// the engine's run is (the same file names and pictures).
 fn run_reference_scene(
     chain: &Chain,
-    designs: &TileDesigns,
+    opts: &FoldRunOptions,
     name: &str,
-    out: Option<PathBuf>,
     json: bool,
 ) -> anyhow::Result<u8> {
     if chain.len() > MAX_REFERENCE_TILES {
@@ -265,16 +277,14 @@ fn run_reference_scene(
             chain.len()
         );
     }
-    let run = foldchain::reference::run_reference(
+    let report = fold_run_reference(
         chain,
-        designs,
+        opts,
         &foldchain::reference::ReferenceOptions::default(),
+        &mut |_, _, _| {},
     )?;
-    let summary = run.to_summary();
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join(format!("{name}-reference")));
-    foldchain::atomic::create_dir_all(&dir)?;
-    foldchain::atomic::write_atomic(&dir.join("timeline.json"), run.timeline_json().as_bytes())?;
-    foldchain::atomic::write_atomic(&dir.join("summary.json"), summary.to_json().as_bytes())?;
+    let summary = &report.summary;
+    let dir = &report.out_dir;
     if json {
         println!("{}", summary.to_json());
     } else {

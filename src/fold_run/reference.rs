@@ -1,0 +1,413 @@
+//! `fold-run --reference` as a library call: the force-integrated reference on the same chain
+//! and design, written as the event engine's run is ([`super::fold_run`]): the same file
+//! names, the same pictures, drawn from the reference's own states.
+//!
+//! The reference records its state on an evenly spaced time grid
+//! ([`Recording::Grid`], at most [`STATE_BUDGET_BYTES`] of states). A step frame shows the
+//! recorded state nearest its time (stamped with that state's own time); the final frame
+//! shows the final state at [`ReferenceRun::end_time`], when the chain came to rest or the
+//! integration stopped. Tile poses come from the joint angles and magnets from their paths,
+//! as the integrator had them ([`crate::reference::Model::poses`],
+//! [`crate::reference::Model::positions`]).
+
+use std::path::PathBuf;
+
+use crate::dipole::pair_energy;
+use crate::engine::{EnergySample, EventKind, Summary};
+use crate::reference::events::Recording;
+use crate::reference::{run_reference, ReferenceOptions, ReferenceRun};
+use crate::render::{
+    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, MagnetTrack,
+    TransitionData, DETAIL_TILES,
+};
+use crate::Chain;
+
+use super::{
+    default_frames, energy_samples, final_note, frame_times, transition_title, write_dir,
+    FoldRunError, FoldRunOptions,
+};
+
+/// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
+/// states (one state is 8 bytes per unknown, at most three unknowns per tile).
+pub const STATE_BUDGET_BYTES: usize = 48 << 20;
+
+/// The states recorded for a chain of `tiles`: [`STATE_BUDGET_BYTES`] worth, from 64 to
+/// 4,096 (about 1,000 at 2,000 tiles).
+pub fn state_budget(tiles: usize) -> usize {
+    (STATE_BUDGET_BYTES / (24 * tiles.max(1) + 32)).clamp(64, 4096)
+}
+
+/// What a reference run produced.
+#[derive(Debug)]
+pub struct ReferenceRunReport {
+    /// The summary (also in `summary.json`).
+    pub summary: Summary,
+    /// The output directory.
+    pub out_dir: PathBuf,
+    /// The files written, relative to it.
+    pub files: Vec<String>,
+    /// The run, with its recorded states.
+    pub run: ReferenceRun,
+}
+
+/// The chain of state `y` at time `time` (magnet positions only for chains drawn in detail,
+/// as [`ChainState::magnets`] says). A magnet counts as moving from its start event until its
+/// arrival event, as in the event engine, and also whenever it lies strictly inside its path
+/// (free, in the integrator's terms: pulled off an end, or balanced mid-path until the run
+/// ends); a joint counts as turning likewise from its fold's start to its end, or while
+/// strictly between straight and closed. A joint's hinge is drawn when it starts folding at
+/// some time in the run.
+pub fn reference_state(run: &ReferenceRun, time: f64, y: &[f64]) -> ChainState {
+    let m = &run.model;
+    let inside = |v: f64| v > 0.0 && v < 1.0;
+    let joints = run.tiles().saturating_sub(1);
+    let mut folds = vec![None; joints];
+    for f in &run.folds {
+        if let Some(slot) = folds.get_mut(f.joint) {
+            *slot = Some(f.fold);
+        }
+    }
+    let mut moving: Vec<bool> = (0..m.geometry.magnets())
+        .map(|k| inside(y[m.magnet_var(k)]))
+        .collect();
+    let mut folding: Vec<bool> = (0..joints)
+        .map(|j| m.joint_var(j).is_some_and(|v| inside(y[v])))
+        .collect();
+    let mut started = vec![false; moving.len()];
+    let mut turning = vec![false; joints];
+    for e in run.events.iter().take_while(|e| e.time <= time) {
+        let i = e.index as usize;
+        let (flag, on) = match e.kind {
+            EventKind::MagnetStarts => (started.get_mut(i), true),
+            EventKind::MagnetArrives => (started.get_mut(i), false),
+            EventKind::FoldStarts => (turning.get_mut(i), true),
+            EventKind::FoldEnds => (turning.get_mut(i), false),
+            _ => (None, false),
+        };
+        if let Some(flag) = flag {
+            *flag = on;
+        }
+    }
+    moving.iter_mut().zip(&started).for_each(|(m, s)| *m |= s);
+    folding.iter_mut().zip(&turning).for_each(|(f, s)| *f |= s);
+    ChainState {
+        time,
+        poses: m.poses(y),
+        magnets: if run.tiles() <= DETAIL_TILES {
+            m.positions(y)
+        } else {
+            Vec::new()
+        },
+        moving,
+        folding,
+        folds,
+    }
+}
+
+/// The recorded states, or the final state alone when none were recorded.
+fn recorded(run: &ReferenceRun) -> Vec<(f64, &[f64])> {
+    if run.states.is_empty() {
+        vec![(run.end_time, run.final_state.as_slice())]
+    } else {
+        run.states.iter().map(|(t, y)| (*t, y.as_slice())).collect()
+    }
+}
+
+/// Index of the recorded state nearest `t` (`states` is not empty and in time order).
+fn nearest(states: &[(f64, &[f64])], t: f64) -> usize {
+    let i = states.partition_point(|s| s.0 < t);
+    if i == 0 {
+        0
+    } else if i == states.len() || t - states[i - 1].0 <= states[i].0 - t {
+        i - 1
+    } else {
+        i
+    }
+}
+
+/// The value at `t` of the polyline `points` (in time order), linear between its points and
+/// constant outside them.
+fn along(points: &[(f64, f64)], t: f64) -> f64 {
+    let i = points.partition_point(|p| p.0 < t);
+    match (i.checked_sub(1).and_then(|j| points.get(j)), points.get(i)) {
+        (Some(&(ta, ua)), Some(&(tb, ub))) if tb > ta => ua + (ub - ua) * (t - ta) / (tb - ta),
+        (_, Some(&(_, u))) | (Some(&(_, u)), None) => u,
+        (None, None) => 0.0,
+    }
+}
+
+/// The total dipole energy (J) of state `y`: the pairs the event engine's curve sums
+/// ([`crate::engine::energy_curve`]): the RI with tile 0's magnets, the two magnets of each
+/// tile and the four pairs across each joint, with [`pair_energy`] at the world positions.
+pub fn state_energy(run: &ReferenceRun, y: &[f64]) -> f64 {
+    let g = &run.model.geometry;
+    let moment = g.design(0).moment();
+    let p = run.model.positions(y);
+    let pair = |a: (f64, f64), b: (f64, f64), attract: bool| {
+        let r = ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt() * 1e-3;
+        if r > 0.0 {
+            pair_energy(moment, r, attract)
+        } else {
+            0.0
+        }
+    };
+    let ri = g.ri_position();
+    let mut e = pair(ri, p[0], true) + pair(ri, p[1], false);
+    for i in 0..g.tiles() {
+        e += pair(p[2 * i], p[2 * i + 1], true);
+    }
+    for j in 0..g.tiles().saturating_sub(1) {
+        for a in [2 * j, 2 * j + 1] {
+            for b in [2 * j + 2, 2 * j + 3] {
+                e += pair(p[a], p[b], (b - a) % 2 == 1);
+            }
+        }
+    }
+    e
+}
+
+/// The energy curve: for each of `samples` evenly spaced times from 0 to
+/// [`ReferenceRun::end_time`], the recorded state nearest it (each state once, at its own
+/// time), the last point the final state.
+pub fn reference_energy(run: &ReferenceRun, samples: usize) -> Vec<EnergySample> {
+    let states = recorded(run);
+    let samples = samples.max(2);
+    let mut picked: Vec<usize> = (0..samples)
+        .map(|i| nearest(&states, run.end_time * i as f64 / (samples - 1) as f64))
+        .collect();
+    picked.dedup();
+    picked
+        .into_iter()
+        .map(|i| EnergySample {
+            time: states[i].0,
+            energy_j: state_energy(run, states[i].1),
+        })
+        .collect()
+}
+
+/// The transition diagram's data for tiles `first..=last` (clamped to the chain), from the
+/// reference's events (first start and last arrival of each magnet, the trigger ticks) and
+/// its recorded states (the travel in between, linear between states: coarse when the
+/// shown tiles move for only a few grid steps, as on long chains).
+pub fn reference_transition(run: &ReferenceRun, first: usize, last: usize) -> TransitionData {
+    let states = recorded(run);
+    let (first, last) = TransitionData::tile_range(run.tiles(), first, last);
+    let (k0, k1) = (2 * first, 2 * last + 1);
+    let is_magnet = |k: usize| (k0..=k1).contains(&k);
+    let mut start = vec![None; k1 - k0 + 1];
+    let mut arrival = vec![None; k1 - k0 + 1];
+    for e in &run.events {
+        let k = e.index as usize;
+        if !is_magnet(k) {
+            continue;
+        }
+        match e.kind {
+            EventKind::MagnetStarts => {
+                start[k - k0].get_or_insert(e.time);
+            }
+            EventKind::MagnetArrives => arrival[k - k0] = Some(e.time),
+            _ => {}
+        }
+    }
+    // a magnet that started and never arrived moves (or rests mid-path) to the end
+    let window_end = |i: usize| start[i].map(|_| arrival[i].unwrap_or(run.end_time));
+    let end_time = (0..start.len()).filter_map(window_end).fold(0.0, f64::max);
+    let t1 = TransitionData::axis_end(end_time);
+    let tracks: Vec<MagnetTrack> = (k0..=k1)
+        .map(|k| {
+            let i = k - k0;
+            let v = run.model.magnet_var(k);
+            let len = run.model.path_length(k);
+            let mut travel = vec![(0.0, 0.0)];
+            if let (Some(s0), Some(end)) = (start[i], window_end(i)) {
+                travel.push((s0, 0.0));
+                travel.extend(
+                    states
+                        .iter()
+                        .filter(|(t, _)| *t > s0 && *t < end)
+                        .map(|(t, y)| (*t, y[v] * len)),
+                );
+                // an arrival puts the magnet exactly at its path's end; one that never
+                // arrived is where the final state holds it
+                let u = match arrival[i] {
+                    Some(_) => len,
+                    None => run.final_state[v] * len,
+                };
+                travel.push((end, u));
+            }
+            // still after its last arrival (or the end of the run), to the axis' end
+            let u = travel.last().map_or(0.0, |p| p.1);
+            travel.push((t1, u));
+            MagnetTrack {
+                start: start[i],
+                travel,
+            }
+        })
+        .collect();
+    let triggers = run
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::TriggerReached && is_magnet(e.index as usize))
+        .map(|e| {
+            let k = e.index as usize;
+            (k, e.time, along(&tracks[k - k0].travel, e.time))
+        })
+        .collect();
+    TransitionData {
+        first,
+        last,
+        t1,
+        tracks,
+        triggers,
+    }
+}
+
+/// Runs the reference on `chain` with `opts.designs` and `reference` (recording states on a
+/// grid of [`state_budget`] states unless `reference.record` asks for a grid already), and
+/// writes into `opts.out_dir` the files the event engine's [`super::fold_run`] writes: step
+/// frames, `final.svg`, `transition.svg`, `energy.svg`, `timeline.json` and `summary.json`,
+/// all at once (a failed run leaves no half-written output). `opts.engine` and
+/// `opts.check` are not used (the reference has no collision check).
+pub fn fold_run_reference(
+    chain: &Chain,
+    opts: &FoldRunOptions,
+    reference: &ReferenceOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<ReferenceRunReport, FoldRunError> {
+    let mut ro = *reference;
+    if ro.record == Recording::Off {
+        ro.record = Recording::Grid {
+            max_states: state_budget(chain.len()),
+        };
+    }
+    progress("reference", 0, 1);
+    let run = run_reference(chain, &opts.designs, &ro)?;
+    progress("reference", 1, 1);
+    let summary = run.to_summary();
+    let geometry = &run.model.geometry;
+    let w = geometry.w;
+    let states = recorded(&run);
+    let frames = opts
+        .frames
+        .unwrap_or_else(|| default_frames(run.tiles()))
+        .max(1);
+    let mut files: Vec<(String, String)> = Vec::new();
+    let fo = FrameOptions {
+        title: opts.name.clone(),
+        collision: None,
+        note: None,
+    };
+    for (i, t) in frame_times(run.end_time, frames).into_iter().enumerate() {
+        progress("frames", i, frames);
+        let (time, y) = states[nearest(&states, t)];
+        let state = reference_state(&run, time, y);
+        let view = FrameView::around(state.poses.iter().copied(), w);
+        files.push((
+            format!("step-{i:04}.svg"),
+            frame_svg(geometry, &state, &view, &fo),
+        ));
+    }
+    progress("frames", frames, frames);
+    let mut final_state = reference_state(&run, run.end_time, &run.final_state);
+    if run.stopped.is_none() {
+        // the run ended because the chain came to rest
+        final_state.moving.iter_mut().for_each(|m| *m = false);
+        final_state.folding.iter_mut().for_each(|f| *f = false);
+    }
+    let final_view = FrameView::around(final_state.poses.iter().copied(), w);
+    let fo = FrameOptions {
+        note: Some(final_note(&summary)),
+        ..fo
+    };
+    files.push((
+        "final.svg".into(),
+        frame_svg(geometry, &final_state, &final_view, &fo),
+    ));
+    let (a, b) = opts.transition_tiles.unwrap_or((0, 5.min(run.tiles() - 1)));
+    files.push((
+        "transition.svg".into(),
+        transition_svg(
+            geometry,
+            &reference_transition(&run, a, b),
+            &transition_title(&opts.name, a, b, run.tiles()),
+        ),
+    ));
+    progress("energy", 0, 1);
+    let curve = reference_energy(&run, energy_samples(run.tiles()));
+    files.push((
+        "energy.svg".into(),
+        energy_svg(
+            &run.folds,
+            &curve,
+            &format!("{}: total dipole energy", opts.name),
+        ),
+    ));
+    progress("energy", 1, 1);
+    files.push(("timeline.json".into(), run.timeline_json()));
+    let mut summary_json = summary.to_json();
+    summary_json.push('\n');
+    files.push(("summary.json".into(), summary_json));
+    write_dir(&opts.out_dir, &files, progress)?;
+    Ok(ReferenceRunReport {
+        summary,
+        out_dir: opts.out_dir.clone(),
+        files: files.into_iter().map(|(n, _)| n).collect(),
+        run,
+    })
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+    use crate::engine::{energy_curve, run, EngineOptions, Outcome, TileDesigns};
+
+    #[test]
+    fn recorded_states_are_bounded_evenly_spaced_and_end_with_the_final_state() {
+        let chain = Chain::parse("SLLS").unwrap();
+        let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 20 });
+        let r = run_reference(&chain, &TileDesigns::default(), &opts).unwrap();
+        assert_eq!(r.outcome, Outcome::Completed);
+        let n = r.states.len();
+        assert!((10..=20).contains(&n), "{n} states");
+        assert_eq!(r.states[0].0, 0.0);
+        let (t_end, y_end) = r.states.last().unwrap();
+        assert_eq!(*t_end, r.end_time);
+        assert_eq!(y_end, &r.final_state);
+        let dt = r.states[1].0;
+        for (i, (t, y)) in r.states[..n - 1].iter().enumerate() {
+            assert!((t - i as f64 * dt).abs() <= 1e-9 * t.max(dt), "{i}: {t}");
+            assert!(y.iter().all(|v| (0.0..=1.0).contains(v)));
+        }
+        // off by default: nothing but the final state
+        let off = run_reference(
+            &chain,
+            &TileDesigns::default(),
+            &ReferenceOptions::default(),
+        )
+        .unwrap();
+        assert!(off.states.is_empty());
+        assert_eq!(off.final_state, r.final_state);
+    }
+
+    #[test]
+    fn energy_matches_the_engine_at_rest_and_folded() {
+        let chain = Chain::parse("SSLLSS").unwrap();
+        let designs = TileDesigns::default();
+        let tl = run(&chain, &designs, &EngineOptions::default()).unwrap();
+        let engine = energy_curve(&tl, 10);
+        let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 50 });
+        let r = run_reference(&chain, &designs, &opts).unwrap();
+        assert_eq!(r.outcome, Outcome::Completed);
+        let curve = reference_energy(&r, 10);
+        let (e0, r0) = (engine[0].energy_j, curve[0].energy_j);
+        assert!((e0 - r0).abs() < 1e-9 * e0.abs(), "{e0} {r0}");
+        let (e1, r1) = (
+            engine.last().unwrap().energy_j,
+            curve.last().unwrap().energy_j,
+        );
+        // both end with every magnet arrived and both folds closed
+        assert!((e1 - r1).abs() < 1e-6 * e1.abs(), "{e1} {r1}");
+        assert!(r1 < r0);
+    }
+}
