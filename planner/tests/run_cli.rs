@@ -195,3 +195,31 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
     assert_eq!(o2.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o2.stderr).contains("a-file"));
 }
+
+#[test]
+fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds() {
+    let d = tmp("start-rule");
+    for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
+        let out = d.join(rule);
+        let o = bin()
+            .args(["SL", "--start-rule", rule, "--frames", "2", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(code), "{rule}");
+        let s = summary(&out);
+        assert_eq!(s["result"], result, "{rule}");
+        if rule == "force" {
+            assert_eq!(s["stalled_at"], 1);
+            assert!(s["reason"]
+                .as_str()
+                .unwrap()
+                .contains("magnet 4 never started"));
+        }
+    }
+    let o = bin()
+        .args(["SL", "--start-rule", "nearest"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+}

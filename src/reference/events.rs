@@ -416,6 +416,10 @@ impl Driver {
         let mut f = vec![0.0; n];
         stepper.rhs(&self.model, &self.modes, &self.y, &mut f, &mut self.stats);
         let scale = self.model.time_scale;
+        // the slowest of the model's time scales: a path at the bonded rest force's speed, or
+        // a fold under the bonded rest torque (heavy tiles fold far slower than magnets move)
+        let slowest =
+            scale.max(self.model.options().rotational_drag * FRAC_PI_2 / self.model.torque_scale);
         let mut h = scale * 1e-3 * tol.powf(1.0 / (q + 1.0));
         let mut stopped = None;
         let mut rec = match self.opts.record {
@@ -437,7 +441,7 @@ impl Driver {
             if fastest * since < 1e-2 && self.settled(&free, &f) {
                 break;
             }
-            if self.t - self.last_event > 1e4 * self.last_event.max(scale) {
+            if self.t - self.last_event > 1e4 * self.last_event.max(slowest) {
                 stopped = Some(format!(
                     "no event for {:.3e} s after the last at {:.6e} s with {} unknowns still creeping",
                     self.t - self.last_event,

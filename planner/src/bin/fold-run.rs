@@ -41,6 +41,11 @@ struct Args {
     /// Speed law: overdamped (seconds) or unit (1 mm/s, the transition diagram's timeline).
     #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
     speed: String,
+    /// When a magnet starts: distance (the thesis' inequalities, nearest neighbours) or
+    /// force (the pair forces of every magnet within 3 in chain index, as the reference
+    /// integrator weighs them; about 40 us per tile).
+    #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
+    start_rule: String,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG)]
     drag: f64,
@@ -209,7 +214,14 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let opts = FoldRunOptions {
         name: name.clone(),
         designs,
-        engine: foldchain::engine::EngineOptions::default().with_speed(speed),
+        engine: foldchain::engine::EngineOptions::default()
+            .with_speed(speed)
+            .with_start_rule(match args.start_rule.as_str() {
+                "force" => foldchain::engine::StartRule::Force {
+                    cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+                },
+                _ => foldchain::engine::StartRule::Distance,
+            }),
         out_dir: args
             .out
             .clone()
