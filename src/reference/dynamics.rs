@@ -10,7 +10,7 @@
 //! **Forces.** Moments stand upright and alternate along the chain (the RI is magnet `-1`),
 //! so the pair force is central: `F = 3 mu0 m_i m_j / (4 pi r^4)`, attracting for an odd
 //! index difference and repelling for an even one. Only pairs at most
-//! [`ReferenceOptions::cutoff`] apart in chain index interact (default 3: partner,
+//! [`ModelOptions::cutoff`] apart in chain index interact (default 3: partner,
 //! neighbour, the same-pole magnets one tile away and the next opposite pole). The first
 //! pair left out is 4 apart, two tiles (about `2w`) away in a straight run: `(b / 2w)^4`
 //! = 0.33% of the bonded rest force on the thesis design, and the left-out terms alternate
