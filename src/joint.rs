@@ -7,7 +7,7 @@
 
 use std::fmt;
 
-use crate::Path;
+use crate::PathKind;
 
 /// The outcome of a joint when propagation reaches it (thesis Table 7.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -26,11 +26,11 @@ pub enum JointOutcome {
 impl JointOutcome {
     /// The outcome of a joint between a tile whose second path is `second` and a tile whose
     /// first path is `first`.
-    pub fn from_paths(second: Path, first: Path) -> JointOutcome {
+    pub fn from_paths(second: PathKind, first: PathKind) -> JointOutcome {
         match (second, first) {
-            (Path::L, Path::L) => JointOutcome::FoldLeft,
-            (Path::R, Path::R) => JointOutcome::FoldRight,
-            (Path::L, Path::R) | (Path::R, Path::L) => JointOutcome::Inhibited,
+            (PathKind::L, PathKind::L) => JointOutcome::FoldLeft,
+            (PathKind::R, PathKind::R) => JointOutcome::FoldRight,
+            (PathKind::L, PathKind::R) | (PathKind::R, PathKind::L) => JointOutcome::Inhibited,
             _ => JointOutcome::Linear,
         }
     }
@@ -76,7 +76,7 @@ impl Fold {
 
     /// The letter for a character (`S`, `L`, `R`, either case), or `None`.
     pub fn from_char(c: char) -> Option<Fold> {
-        Path::from_char(c).map(Fold::from_path)
+        PathKind::from_char(c).map(Fold::from_path)
     }
 
     /// The fold's letter.
@@ -85,20 +85,20 @@ impl Fold {
     }
 
     /// The path that a tile carries on each side of a joint with this fold.
-    pub fn to_path(self) -> Path {
+    pub fn to_path(self) -> PathKind {
         match self {
-            Fold::S => Path::S,
-            Fold::L => Path::L,
-            Fold::R => Path::R,
+            Fold::S => PathKind::S,
+            Fold::L => PathKind::L,
+            Fold::R => PathKind::R,
         }
     }
 
     /// The fold a pair of `path` paths makes.
-    pub fn from_path(path: Path) -> Fold {
+    pub fn from_path(path: PathKind) -> Fold {
         match path {
-            Path::S => Fold::S,
-            Path::L => Fold::L,
-            Path::R => Fold::R,
+            PathKind::S => Fold::S,
+            PathKind::L => Fold::L,
+            PathKind::R => Fold::R,
         }
     }
 
@@ -150,8 +150,8 @@ mod tests {
         ];
         for (pair, outcome) in table {
             let mut c = pair.chars();
-            let second = Path::from_char(c.next().unwrap()).unwrap();
-            let first = Path::from_char(c.next().unwrap()).unwrap();
+            let second = PathKind::from_char(c.next().unwrap()).unwrap();
+            let first = PathKind::from_char(c.next().unwrap()).unwrap();
             assert_eq!(
                 JointOutcome::from_paths(second, first),
                 outcome,

@@ -4,7 +4,7 @@
 //! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
 //! initiator starts them (see `SPEC.md` and the thesis it follows).
 //!
-//! This crate is the core model: paths, tiles and joints ([`Path`], [`Tile`], [`JointOutcome`]),
+//! This crate is the core model: paths, tiles and joints ([`PathKind`], [`Tile`], [`JointOutcome`]),
 //! chains in their three forms ([`Chain`], [`FoldWord`], JSON), exact and floating-point
 //! kinematics of the octagon chain ([`kinematics`]), and the tile design with the path-length
 //! inequalities ([`Design`]).
@@ -41,7 +41,7 @@ mod joint;
 pub mod kinematics;
 pub mod magnet_path;
 mod octagon;
-mod path;
+mod path_kind;
 mod pose;
 pub mod reference;
 pub mod render;
@@ -55,7 +55,7 @@ pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
 pub use joint::{Fold, JointOutcome};
 pub use octagon::Octagon;
-pub use path::Path;
+pub use path_kind::PathKind;
 pub use pose::Pose;
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

@@ -19,7 +19,7 @@
 
 use std::f64::consts::SQRT_2;
 
-use crate::{Design, Path};
+use crate::{Design, PathKind};
 
 /// Which end of its tile a path lies at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -34,7 +34,7 @@ pub enum PathEnd {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MagnetPath {
     /// The path kind.
-    pub kind: Path,
+    pub kind: PathKind,
     /// Which end of the tile it lies at.
     pub end: PathEnd,
     /// Rest point x (mm, tile frame), always on the axis.
@@ -69,14 +69,14 @@ pub enum PathError {
 
 impl MagnetPath {
     /// The path of kind `kind` at end `end` of a tile built to `design`.
-    pub fn new(kind: Path, end: PathEnd, design: &Design) -> Result<MagnetPath, PathError> {
+    pub fn new(kind: PathKind, end: PathEnd, design: &Design) -> Result<MagnetPath, PathError> {
         let sign = match end {
             PathEnd::First => -1.0,
             PathEnd::Second => 1.0,
         };
         let rest_x = sign * 0.5 * design.b();
         let lateral = match kind {
-            Path::S => {
+            PathKind::S => {
                 return Ok(MagnetPath {
                     kind,
                     end,
@@ -85,8 +85,8 @@ impl MagnetPath {
                     arc: None,
                 })
             }
-            Path::L => 1.0,
-            Path::R => -1.0,
+            PathKind::L => 1.0,
+            PathKind::R => -1.0,
         };
         let w = design.tile_width;
         let r = 0.5 * design.magnet_diameter;
@@ -200,17 +200,17 @@ mod tests {
     #[test]
     fn straight_path_runs_a_to_c_from_the_edge() {
         let d = Design::thesis();
-        let p = MagnetPath::new(Path::S, PathEnd::Second, &d).unwrap();
+        let p = MagnetPath::new(PathKind::S, PathEnd::Second, &d).unwrap();
         assert!((p.length() - d.a()).abs() < 1e-12);
         assert!((p.end_point().0 - (d.d - d.c())).abs() < 1e-12);
-        let q = MagnetPath::new(Path::S, PathEnd::First, &d).unwrap();
+        let q = MagnetPath::new(PathKind::S, PathEnd::First, &d).unwrap();
         assert!((q.end_point().0 + (d.d - d.c())).abs() < 1e-12);
     }
 
     #[test]
     fn curved_path_is_continuous_and_ends_past_the_hinge() {
         let d = Design::thesis();
-        for kind in [Path::L, Path::R] {
+        for kind in [PathKind::L, PathKind::R] {
             for end in [PathEnd::First, PathEnd::Second] {
                 let p = MagnetPath::new(kind, end, &d).unwrap();
                 let n = 2000;
@@ -224,7 +224,7 @@ mod tests {
                     assert!(dist(a, b) >= step * 0.8, "{kind:?} {end:?} {i}");
                 }
                 let (x, y) = p.end_point();
-                let lateral = if kind == Path::L { 1.0 } else { -1.0 };
+                let lateral = if kind == PathKind::L { 1.0 } else { -1.0 };
                 let half_side = 15.0 * (SQRT_2 - 1.0);
                 assert!((y * lateral - (half_side + 1.5)).abs() < 1e-9, "{y}");
                 assert!((x.abs() - (15.0 - 1.5 - 2.8 * SQRT_2)).abs() < 1e-9, "{x}");
@@ -245,10 +245,10 @@ mod tests {
         // tile j's second path L and tile j+1's first path L, tile j+1 turned 90 degrees
         // about the hinge: the two final points are 2c apart, as on straight paths.
         let d = Design::thesis();
-        let a = MagnetPath::new(Path::L, PathEnd::Second, &d)
+        let a = MagnetPath::new(PathKind::L, PathEnd::Second, &d)
             .unwrap()
             .end_point();
-        let b = MagnetPath::new(Path::L, PathEnd::First, &d)
+        let b = MagnetPath::new(PathKind::L, PathEnd::First, &d)
             .unwrap()
             .end_point();
         let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);

@@ -7,15 +7,15 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::Path;
+use crate::PathKind;
 
 /// A tile: the path towards the reaction initiator, then the path away from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Tile {
     /// The path nearer the reaction-initiator end.
-    pub first: Path,
+    pub first: PathKind,
     /// The path nearer the far end of the chain.
-    pub second: Path,
+    pub second: PathKind,
 }
 
 /// A physical tile part: the tiles that are one part turned round.
@@ -59,25 +59,25 @@ impl fmt::Display for Part {
 
 impl Tile {
     /// A tile from its two paths.
-    pub const fn new(first: Path, second: Path) -> Tile {
+    pub const fn new(first: PathKind, second: PathKind) -> Tile {
         Tile { first, second }
     }
 
     /// All nine tiles: SS SL SR LS LL LR RS RL RR.
     pub const ALL: [Tile; 9] = [
-        Tile::new(Path::S, Path::S),
-        Tile::new(Path::S, Path::L),
-        Tile::new(Path::S, Path::R),
-        Tile::new(Path::L, Path::S),
-        Tile::new(Path::L, Path::L),
-        Tile::new(Path::L, Path::R),
-        Tile::new(Path::R, Path::S),
-        Tile::new(Path::R, Path::L),
-        Tile::new(Path::R, Path::R),
+        Tile::new(PathKind::S, PathKind::S),
+        Tile::new(PathKind::S, PathKind::L),
+        Tile::new(PathKind::S, PathKind::R),
+        Tile::new(PathKind::L, PathKind::S),
+        Tile::new(PathKind::L, PathKind::L),
+        Tile::new(PathKind::L, PathKind::R),
+        Tile::new(PathKind::R, PathKind::S),
+        Tile::new(PathKind::R, PathKind::L),
+        Tile::new(PathKind::R, PathKind::R),
     ];
 
     /// The straight tile SS.
-    pub const STRAIGHT: Tile = Tile::new(Path::S, Path::S);
+    pub const STRAIGHT: Tile = Tile::new(PathKind::S, PathKind::S);
 
     /// The same part turned round by 180 degrees: paths swapped and mirrored.
     pub fn turned(self) -> Tile {
@@ -86,7 +86,7 @@ impl Tile {
 
     /// The physical part this tile is.
     pub fn part(self) -> Part {
-        use Path::*;
+        use PathKind::*;
         match (self.first, self.second) {
             (S, S) => Part::SS,
             (S, L) | (R, S) => Part::RS,
@@ -109,7 +109,7 @@ impl FromStr for Tile {
     fn from_str(s: &str) -> Result<Tile, ParseTileError> {
         let mut chars = s.chars();
         match (chars.next(), chars.next(), chars.next()) {
-            (Some(a), Some(b), None) => match (Path::from_char(a), Path::from_char(b)) {
+            (Some(a), Some(b), None) => match (PathKind::from_char(a), PathKind::from_char(b)) {
                 (Some(first), Some(second)) => Ok(Tile::new(first, second)),
                 _ => Err(ParseTileError(s.to_string())),
             },

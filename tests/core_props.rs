@@ -189,8 +189,8 @@ proptest! {
         prop_assert_eq!(&c.to_word().unwrap(), &w);
         prop_assert_eq!(&c.reached_word(), &w);
         // the designed chain has straight paths at its two ends
-        prop_assert_eq!(c.tiles()[0].first, foldchain::Path::S);
-        prop_assert_eq!(c.tiles()[c.len() - 1].second, foldchain::Path::S);
+        prop_assert_eq!(c.tiles()[0].first, foldchain::PathKind::S);
+        prop_assert_eq!(c.tiles()[c.len() - 1].second, foldchain::PathKind::S);
         // and its tile list carries the same chain
         prop_assert_eq!(&Chain::parse_tile_list(&c.to_tile_list()).unwrap(), &c);
         // mirroring the word mirrors every path of every tile

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::magnet_path::{MagnetPath, PathEnd, PathError};
-use crate::{Chain, Design, Path};
+use crate::{Chain, Design, PathKind};
 
 /// Lengths closer than this many tile widths count as equal: 1e-9 w (30 pm on 30 mm tiles).
 /// Far above the rounding of the rest points and `s = e/3` given as a fraction (about 1e-15
@@ -89,7 +89,7 @@ pub struct Geometry {
     designs: Vec<Design>,
     tile_design: Vec<u32>,
     paths: Vec<MagnetPath>,
-    path_index: FastMap<(Path, bool, u32), u32>,
+    path_index: FastMap<(PathKind, bool, u32), u32>,
     path_of: Vec<u32>,
     trigger_cache: FastMap<(bool, u32, u32, u32), Trigger>,
     tiles: Vec<crate::Tile>,
@@ -229,8 +229,8 @@ impl Geometry {
         let pa = self.path(a).end_point();
         let pb = self.path(b).end_point();
         let angle = match (self.tiles[j].second, self.tiles[j + 1].first) {
-            (Path::L, Path::L) => std::f64::consts::FRAC_PI_2,
-            (Path::R, Path::R) => -std::f64::consts::FRAC_PI_2,
+            (PathKind::L, PathKind::L) => std::f64::consts::FRAC_PI_2,
+            (PathKind::R, PathKind::R) => -std::f64::consts::FRAC_PI_2,
             _ => 0.0,
         };
         let pb = crate::kinematics::joint_transform(angle, self.w).transform_point(pb);
@@ -370,11 +370,11 @@ mod tests {
 
     #[test]
     fn pair_divergence_is_table_7_1() {
-        for a in Path::ALL {
-            for b in Path::ALL {
+        for a in PathKind::ALL {
+            for b in PathKind::ALL {
                 let chain = Chain::from_tiles(vec![
-                    crate::Tile::new(Path::S, a),
-                    crate::Tile::new(b, Path::S),
+                    crate::Tile::new(PathKind::S, a),
+                    crate::Tile::new(b, PathKind::S),
                 ])
                 .unwrap();
                 let g = Geometry::new(&chain, vec![Design::thesis()], Vec::new()).unwrap();

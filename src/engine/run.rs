@@ -19,7 +19,7 @@ use crate::engine::geometry::{FastMap, Geometry, Trigger};
 use crate::engine::speed::{Motion, SpeedLaw};
 use crate::engine::start_rule::{force_start, ForceStart, RunState, StartRule};
 use crate::magnet_path::PathError;
-use crate::{Chain, Fold, Path};
+use crate::{Chain, Fold, PathKind};
 
 /// Engine options. Default: the overdamped speed law with the default drag, and the
 /// distance rule for starting magnets (the thesis' inequalities).
@@ -54,7 +54,7 @@ pub enum EngineError {
     Design(#[from] crate::engine::designs::DesignsError),
     /// A curved path that cannot be built.
     #[error("{0}")]
-    Path(#[from] PathError),
+    PathKind(#[from] PathError),
     /// A drag coefficient that is not a finite positive number.
     #[error("drag coefficient {0} N s/m: expected a finite number > 0")]
     BadDrag(f64),
@@ -249,8 +249,8 @@ pub fn run(
             0
         } else {
             match (tiles[j].second, tiles[j + 1].first) {
-                (Path::L, Path::L) => 1,
-                (Path::R, Path::R) => 2,
+                (PathKind::L, PathKind::L) => 1,
+                (PathKind::R, PathKind::R) => 2,
                 _ => 0,
             }
         };
@@ -270,8 +270,8 @@ pub fn run(
 
     let fold_of = |j: usize| -> Fold {
         match (tiles[j].second, tiles[j + 1].first) {
-            (Path::L, Path::L) => Fold::L,
-            (Path::R, Path::R) => Fold::R,
+            (PathKind::L, PathKind::L) => Fold::L,
+            (PathKind::R, PathKind::R) => Fold::R,
             _ => Fold::S,
         }
     };

@@ -31,7 +31,7 @@ use std::f64::consts::FRAC_PI_2;
 use crate::design::MU0;
 use crate::engine::{Geometry, TileDesigns, DEFAULT_DRAG};
 use crate::magnet_path::MagnetPath;
-use crate::{Chain, Octagon, Path, Pose};
+use crate::{Chain, Octagon, PathKind, Pose};
 
 /// Default chain-index cutoff of the pair forces (see the module documentation).
 pub const DEFAULT_CUTOFF: usize = 3;
@@ -173,10 +173,10 @@ pub enum ModelError {
     },
 }
 
-fn fold_sign(a: Path, b: Path) -> f64 {
+fn fold_sign(a: PathKind, b: PathKind) -> f64 {
     match (a, b) {
-        (Path::L, Path::L) => 1.0,
-        (Path::R, Path::R) => -1.0,
+        (PathKind::L, PathKind::L) => 1.0,
+        (PathKind::R, PathKind::R) => -1.0,
         _ => 0.0,
     }
 }

@@ -10,7 +10,7 @@ use std::fmt;
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
 )]
-pub enum Path {
+pub enum PathKind {
     /// Straight path: contributes no fold.
     S,
     /// Curved path contributing to a fold to the left.
@@ -19,16 +19,16 @@ pub enum Path {
     R,
 }
 
-impl Path {
+impl PathKind {
     /// All three paths, in the order S, L, R.
-    pub const ALL: [Path; 3] = [Path::S, Path::L, Path::R];
+    pub const ALL: [PathKind; 3] = [PathKind::S, PathKind::L, PathKind::R];
 
     /// The path for a letter (`S`, `L` or `R`, either case), or `None`.
-    pub fn from_char(c: char) -> Option<Path> {
+    pub fn from_char(c: char) -> Option<PathKind> {
         match c.to_ascii_uppercase() {
-            'S' => Some(Path::S),
-            'L' => Some(Path::L),
-            'R' => Some(Path::R),
+            'S' => Some(PathKind::S),
+            'L' => Some(PathKind::L),
+            'R' => Some(PathKind::R),
             _ => None,
         }
     }
@@ -36,23 +36,23 @@ impl Path {
     /// The path's letter.
     pub fn to_char(self) -> char {
         match self {
-            Path::S => 'S',
-            Path::L => 'L',
-            Path::R => 'R',
+            PathKind::S => 'S',
+            PathKind::L => 'L',
+            PathKind::R => 'R',
         }
     }
 
     /// The path seen in a mirror (L and R swap).
-    pub fn mirrored(self) -> Path {
+    pub fn mirrored(self) -> PathKind {
         match self {
-            Path::S => Path::S,
-            Path::L => Path::R,
-            Path::R => Path::L,
+            PathKind::S => PathKind::S,
+            PathKind::L => PathKind::R,
+            PathKind::R => PathKind::L,
         }
     }
 }
 
-impl fmt::Display for Path {
+impl fmt::Display for PathKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.to_char())
     }
@@ -64,11 +64,11 @@ mod tests {
 
     #[test]
     fn letters_round_trip() {
-        for p in Path::ALL {
-            assert_eq!(Path::from_char(p.to_char()), Some(p));
+        for p in PathKind::ALL {
+            assert_eq!(PathKind::from_char(p.to_char()), Some(p));
             assert_eq!(p.mirrored().mirrored(), p);
         }
-        assert_eq!(Path::from_char('x'), None);
-        assert_eq!(Path::from_char('l'), Some(Path::L));
+        assert_eq!(PathKind::from_char('x'), None);
+        assert_eq!(PathKind::from_char('l'), Some(PathKind::L));
     }
 }
