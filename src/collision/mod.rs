@@ -29,9 +29,7 @@ mod sequential;
 pub mod sweep;
 
 pub use lattice::final_overlap;
-pub(crate) use lattice::lattice_overlap as lattice_overlap_pub;
 pub use schedule::{check_schedule, FoldSchedule, JointTrack, ScheduleError};
-pub(crate) use sequential::unit as unit_pub;
 pub use sequential::{check_chain, check_word, Verdict};
 
 use std::fmt;

@@ -1,0 +1,109 @@
+//! Placed tiles as exact lattice points, seen from the tile whose joint folds.
+//!
+//! Final tile centres are integer combinations of `w` and `w/sqrt2` ([`crate::exact`]) and
+//! headings are quarter turns, so the offset of a placed tile from the folding tile, turned
+//! into that tile's frame (and mirrored for a right fold), is an exact lattice point: the key
+//! of the first-hit memo ([`super::first_hit`]). The final-shape overlap of two lattice tiles
+//! is decided exactly here too.
+
+use std::cmp::Ordering;
+
+use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+use crate::Fold;
+
+/// The offset of the tile centred at `fixed` from the tile at `at`, in the frame of `at`
+/// (centre at the origin, chain along +x), mirrored (y negated) when the fold is to the
+/// right, so that every fold is seen as a left fold.
+pub(super) fn canonical_offset(fixed: ExactPoint, at: ExactPose, fold: Fold) -> ExactPoint {
+    let back = QuarterTurns::new(-i64::from(at.heading.get()));
+    let rel = (fixed - at.centre).rotated(back);
+    match fold {
+        Fold::R => ExactPoint::new(rel.x, -rel.y),
+        _ => rel,
+    }
+}
+
+/// A lattice point packed into one integer (16 bits per coefficient). Exact for coefficients
+/// within `i16`: offsets in a chain of `n` tiles have coefficients of at most `4 n` half widths
+/// (the search stops at [`super::MAX_COUNT_TILES`] = 40 tiles).
+pub(super) fn pack(p: ExactPoint) -> u64 {
+    [p.x.a, p.x.b, p.y.a, p.y.b]
+        .iter()
+        .fold(0u64, |acc, &c| (acc << 16) | u64::from(c as i16 as u16))
+}
+
+fn abs(s: Surd) -> Surd {
+    if s.signum() == Ordering::Less {
+        -s
+    } else {
+        s
+    }
+}
+
+/// Whether two tiles in lattice poses centred at `a` and `b` overlap with positive area: the
+/// centre difference is strictly inside `w` along both axes and `sqrt2 w` along both
+/// diagonals (all tiles share the four face normals). Exact; touching is not overlap.
+pub(super) fn tiles_overlap(a: ExactPoint, b: ExactPoint) -> bool {
+    let d = b - a;
+    let width = Surd::new(2, 0);
+    let diagonal = Surd::new(0, 4);
+    abs(d.x) < width
+        && abs(d.y) < width
+        && abs(d.x + d.y) < diagonal
+        && abs(d.x - d.y) < diagonal
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::final_poses;
+    use crate::FoldWord;
+
+    fn poses(w: &str) -> Vec<ExactPose> {
+        final_poses(&FoldWord::parse(w).unwrap())
+    }
+
+    #[test]
+    fn offsets_are_seen_from_the_folding_tile() {
+        let behind = ExactPoint::new(Surd::new(-2, 0), Surd::ZERO);
+        // after a straight joint the previous tile is one width behind, whatever the heading
+        for w in ["S", "LS", "LLS", "RRRS"] {
+            let p = poses(w);
+            let n = p.len() - 1;
+            for f in [Fold::L, Fold::R] {
+                assert_eq!(canonical_offset(p[n - 1].centre, p[n], f), behind, "{w}");
+            }
+        }
+        // after a left fold it sits at (-1/sqrt2, +1/sqrt2); a right fold mirrors that
+        let p = poses("SL");
+        let l = canonical_offset(p[1].centre, p[2], Fold::L);
+        assert_eq!(l, ExactPoint::new(Surd::new(0, -2), Surd::new(0, 2)));
+        let r = canonical_offset(p[1].centre, p[2], Fold::R);
+        assert_eq!(r, ExactPoint::new(Surd::new(0, -2), Surd::new(0, -2)));
+    }
+
+    #[test]
+    fn packing_keeps_points_apart() {
+        let pts = [
+            ExactPoint::new(Surd::new(1, -1), Surd::new(0, 0)),
+            ExactPoint::new(Surd::new(-1, 1), Surd::new(0, 0)),
+            ExactPoint::new(Surd::new(0, 0), Surd::new(1, -1)),
+            ExactPoint::new(Surd::new(-80, 160), Surd::new(-160, 80)),
+        ];
+        for (i, a) in pts.iter().enumerate() {
+            for (j, b) in pts.iter().enumerate() {
+                assert_eq!(pack(*a) == pack(*b), i == j);
+            }
+        }
+    }
+
+    #[test]
+    fn overlap_is_exact_at_touching() {
+        let ring = poses("LLL");
+        assert!(!tiles_overlap(ring[0].centre, ring[3].centre));
+        let five = poses("LLLL");
+        assert!(tiles_overlap(five[0].centre, five[4].centre));
+        assert!(!tiles_overlap(five[0].centre, five[1].centre));
+        assert!(tiles_overlap(five[2].centre, five[2].centre));
+    }
+}

@@ -1,0 +1,302 @@
+//! The depth-first search over fold words, with one integer budget per word.
+//!
+//! A node of the search is a valid word: tiles `0..=d` placed at their final poses. Under
+//! sequential folding the tail behind a folding joint is straight whatever letters follow, so
+//! each fold `j` of a word caps the length of every extension at `j + k`, `k` being the first
+//! tail tile that would hit a tile already in place ([`FirstHits`]). A node keeps the smallest
+//! cap, its budget: a straight letter keeps it (O(1)); a fold looks up the placed tiles near
+//! its swept quarter annulus ([`TailWindow`]) and lowers it. A word is valid exactly when every
+//! tail tile it has is below every cap, so an invalid prefix is cut and every valid word is
+//! visited once; final-shape overlaps are the ends of sweeps and need no separate test. With
+//! `final_only` the sweeps are skipped and each new tile is tested against the placed ones
+//! exactly ([`tiles_overlap`]).
+//!
+//! Mirror images (L and R swapped) fold alike, so only words whose first turn is L are
+//! searched and those with a turn are counted twice. The tree is cut at [`PREFIX_JOINTS`]
+//! joints: the words there are shared out to shards (every `m`-th) and to threads (one worker
+//! per thread, each with its own memo, taking the next prefix when it is done).
+
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+
+use crate::exact::ExactPose;
+use crate::kinematics::next_exact_pose;
+use crate::Fold;
+
+use super::first_hit::{FirstHits, TailWindow};
+use super::lattice::{canonical_offset, tiles_overlap};
+
+/// The depth (joints) at which the search is shared out.
+const PREFIX_JOINTS: usize = 9;
+
+/// What one search looks for.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Scope {
+    /// The longest chain, in tiles (at least 1).
+    pub tiles: usize,
+    /// Words with adjacent opposite folds are searched too.
+    pub allow_opposite: bool,
+    /// Only final shapes are tested.
+    pub final_only: bool,
+    /// The random-chain weights are summed too.
+    pub weigh: bool,
+    /// Touching tolerance, tile widths.
+    pub tolerance: f64,
+    /// Part `k` (1-based) of `m`.
+    pub shard: (usize, usize),
+}
+
+/// Per-length tallies of one search.
+#[derive(Clone, Debug)]
+pub(super) struct Tally {
+    /// Valid words per number of tiles, mirror images included (at most `3^39 < 2^64`).
+    pub valid: Vec<u64>,
+    /// Per number of tiles, the sum over valid words of `5^(straight joints)` (with `weigh`).
+    pub weight: Vec<u128>,
+}
+
+impl Tally {
+    fn new(tiles: usize) -> Tally {
+        Tally {
+            valid: vec![0; tiles + 1],
+            weight: vec![0; tiles + 1],
+        }
+    }
+
+    fn add(&mut self, o: &Tally) {
+        for (a, b) in self.valid.iter_mut().zip(&o.valid) {
+            *a += b;
+        }
+        for (a, b) in self.weight.iter_mut().zip(&o.weight) {
+            *a += b;
+        }
+    }
+}
+
+/// A valid word, as the search sees it.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// Joints: tiles `0..=joints` are placed.
+    joints: usize,
+    /// The most tiles any extension may have (at most the scope's).
+    budget: usize,
+    last: Option<Fold>,
+    /// Whether the word has a turn (then its mirror image is counted with it).
+    turned: bool,
+    /// Straight joints.
+    straight: usize,
+}
+
+impl Node {
+    fn root(tiles: usize) -> Node {
+        Node {
+            joints: 0,
+            budget: tiles,
+            last: None,
+            turned: false,
+            straight: 0,
+        }
+    }
+
+    fn child(&self, f: Fold, budget: usize) -> Node {
+        Node {
+            joints: self.joints + 1,
+            budget,
+            last: Some(f),
+            turned: self.turned || f != Fold::S,
+            straight: self.straight + usize::from(f == Fold::S),
+        }
+    }
+
+    /// Whether another tile fits.
+    fn has_room(&self) -> bool {
+        self.joints + 2 <= self.budget
+    }
+}
+
+/// A word where the tree is cut, searched further by a worker.
+#[derive(Clone, Debug)]
+struct Prefix {
+    letters: Vec<Fold>,
+    node: Node,
+}
+
+/// One depth-first walker: the placed tiles of the current word, a memo and tallies.
+struct Walker {
+    scope: Scope,
+    hits: FirstHits,
+    window: TailWindow,
+    poses: Vec<ExactPose>,
+    /// Tile centres in `f64` (tile widths), for the window test.
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    letters: Vec<Fold>,
+    tally: Tally,
+    pow5: Vec<u128>,
+}
+
+/// The unit vector of a quarter-turn heading.
+const UNIT: [(f64, f64); 4] = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+
+impl Walker {
+    fn new(scope: &Scope, hits: FirstHits) -> Walker {
+        let n = scope.tiles;
+        let mut pow5 = vec![1u128; n];
+        for i in 1..n {
+            pow5[i] = pow5[i - 1] * 5;
+        }
+        Walker {
+            scope: *scope,
+            window: hits.window(),
+            hits,
+            poses: vec![ExactPose::default(); n],
+            xs: vec![0.0; n],
+            ys: vec![0.0; n],
+            letters: vec![Fold::S; n],
+            tally: Tally::new(n),
+            pow5,
+        }
+    }
+
+    /// Puts tile `j` after joint `j - 1` folded `f`.
+    fn place(&mut self, j: usize, f: Fold) {
+        let p = next_exact_pose(self.poses[j - 1], f);
+        let (x, y) = p.centre.to_f64(1.0);
+        self.poses[j] = p;
+        self.xs[j] = x;
+        self.ys[j] = y;
+        self.letters[j - 1] = f;
+    }
+
+    fn record(&mut self, node: &Node) {
+        let tiles = node.joints + 1;
+        let mult = if node.turned { 2 } else { 1 };
+        self.tally.valid[tiles] += mult;
+        if self.scope.weigh {
+            self.tally.weight[tiles] += u128::from(mult) * self.pow5[node.straight];
+        }
+    }
+
+    /// Searches below `node` (valid, recorded, with room for another tile), recording every
+    /// valid word; words of `split` joints are collected in `prefixes` instead of searched.
+    fn dfs(&mut self, node: Node, split: usize, prefixes: &mut Vec<Prefix>) {
+        if node.joints == split {
+            prefixes.push(Prefix {
+                letters: self.letters[..split].to_vec(),
+                node,
+            });
+            return;
+        }
+        for f in Fold::ALL {
+            let mirror = f == Fold::R && !node.turned;
+            let opposite =
+                !self.scope.allow_opposite && node.last.is_some_and(|l| l.is_opposite(f));
+            if mirror || opposite {
+                continue;
+            }
+            let Some(budget) = self.child_budget(&node, f) else {
+                continue;
+            };
+            let child = node.child(f, budget);
+            self.record(&child);
+            if child.has_room() {
+                self.place(child.joints, f);
+                self.dfs(child, split, prefixes);
+            }
+        }
+    }
+
+    /// The budget after appending `f` to `node`, or `None` if the new tile collides.
+    #[inline]
+    fn child_budget(&mut self, node: &Node, f: Fold) -> Option<usize> {
+        let d = node.joints;
+        if self.scope.final_only {
+            let c = next_exact_pose(self.poses[d], f).centre;
+            let (x, y) = c.to_f64(1.0);
+            // overlapping lattice tiles are less than w / cos(pi/8) < 1.1 w apart
+            let near = |i: &usize| (self.xs[*i] - x).powi(2) + (self.ys[*i] - y).powi(2) < 1.2;
+            let hit = (0..d)
+                .filter(near)
+                .any(|i| tiles_overlap(self.poses[i].centre, c));
+            return (!hit).then_some(node.budget);
+        }
+        match f {
+            Fold::S => Some(node.budget),
+            _ => self.fold_budget(d, node.budget, f),
+        }
+    }
+
+    /// The budget after folding joint `d` with `f` (budget `cap` before it), or `None` if
+    /// tile `d + 1` itself is hit.
+    #[inline]
+    fn fold_budget(&mut self, d: usize, cap: usize, f: Fold) -> Option<usize> {
+        let at = self.poses[d];
+        let (ux, uy) = UNIT[usize::from(at.heading.get())];
+        let side = if f == Fold::L { 1.0 } else { -1.0 };
+        let (x0, y0) = (self.xs[d], self.ys[d]);
+        let w = self.window;
+        let mut cap = cap;
+        let mut reach2 = w.reach2(cap - d - 1);
+        for i in 0..=d {
+            let (rx, ry) = (self.xs[i] - x0, self.ys[i] - y0);
+            // the placed centre in the canonical frame, relative to the hinge
+            let a = ux * rx + uy * ry - w.hinge.0;
+            let c = side * (ux * ry - uy * rx) - w.hinge.1;
+            if a < w.min_x || c < w.min_y || a * a + c * c > reach2 {
+                continue;
+            }
+            let k = usize::from(self.hits.get(canonical_offset(self.poses[i].centre, at, f)));
+            if d + k < cap {
+                if k == 1 {
+                    return None;
+                }
+                cap = d + k;
+                reach2 = w.reach2(k - 1);
+            }
+        }
+        Some(cap)
+    }
+
+    /// Places the tiles of a prefix.
+    fn replay(&mut self, p: &Prefix) {
+        for (j, &f) in p.letters.iter().enumerate() {
+            self.place(j + 1, f);
+        }
+    }
+}
+
+/// Runs the search of `scope`. `progress(done, total)` is called as prefixes finish.
+pub(super) fn search(scope: &Scope, progress: &(dyn Fn(u64, u64) + Sync)) -> Tally {
+    let n = scope.tiles;
+    let mut top = Walker::new(scope, FirstHits::new(scope.tolerance));
+    let root = Node::root(n);
+    top.record(&root);
+    let mut prefixes = Vec::new();
+    if root.has_room() {
+        top.dfs(root, PREFIX_JOINTS, &mut prefixes);
+    }
+    // lengths up to the cut are counted by the first shard alone
+    let (k, m) = scope.shard;
+    let mut tally = if k == 1 {
+        top.tally.clone()
+    } else {
+        Tally::new(n)
+    };
+    let mine: Vec<&Prefix> = prefixes.iter().skip(k - 1).step_by(m).collect();
+    let total = mine.len() as u64;
+    let next = AtomicUsize::new(0);
+    let done = AtomicU64::new(0);
+    let top = &top;
+    let parts = rayon::broadcast(|_| {
+        let mut w = Walker::new(scope, top.hits.clone());
+        while let Some(p) = mine.get(next.fetch_add(1, Ordering::Relaxed)) {
+            w.replay(p);
+            w.dfs(p.node, usize::MAX, &mut Vec::new());
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+        }
+        w.tally
+    });
+    for t in &parts {
+        tally.add(t);
+    }
+    tally
+}
