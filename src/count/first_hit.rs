@@ -44,16 +44,16 @@ pub(super) struct TailWindow {
     pub min_x: f64,
     /// Smallest `y - hinge.y` of a placed centre that a tail tile can meet.
     pub min_y: f64,
-    /// Per `k`: the squared distance from the hinge beyond which no tail tile up to `k` can
-    /// meet a placed tile (tail centre `k`'s distance plus two circumradii).
-    reach2: [f64; MAX_COUNT_TILES + 1],
+    /// Per `k`: the distance from the hinge beyond which no tail tile up to `k` can meet a
+    /// placed tile (tail centre `k`'s distance plus two circumradii), and its square.
+    reach: [(f64, f64); MAX_COUNT_TILES + 1],
 }
 
 impl TailWindow {
-    /// The squared reach of the first `k` tail tiles (`k >= 1`).
+    /// The reach of the first `k` tail tiles (`k >= 1`) and its square.
     #[inline]
-    pub fn reach2(&self, k: usize) -> f64 {
-        self.reach2[k.min(MAX_COUNT_TILES)]
+    pub fn reach(&self, k: usize) -> (f64, f64) {
+        self.reach[k.min(MAX_COUNT_TILES)]
     }
 }
 
@@ -79,11 +79,12 @@ impl FirstHits {
             .unwrap_or(ExactPoint::ORIGIN)
             .to_f64(1.0);
         let mut tail_distance = [0.0; MAX_COUNT_TILES + 1];
-        let mut reach2 = [0.0; MAX_COUNT_TILES + 1];
+        let mut reach = [(0.0, 0.0); MAX_COUNT_TILES + 1];
         for k in 0..=MAX_COUNT_TILES {
             let (x, y) = (k as f64 - hinge.0, -hinge.1);
             tail_distance[k] = (x * x + y * y).sqrt();
-            reach2[k] = (tail_distance[k] + 2.0 * radius + SLACK).powi(2);
+            let r = tail_distance[k] + 2.0 * radius + SLACK;
+            reach[k] = (r, r * r);
         }
         FirstHits {
             outline: o.inset_vertices(tolerance),
@@ -92,16 +93,16 @@ impl FirstHits {
                 hinge,
                 min_x: half_side - 2.0 * radius - SLACK,
                 min_y: -half_side - 2.0 * radius - SLACK,
-                reach2,
+                reach,
             },
             tail_distance,
             memo: FxHashMap::default(),
         }
     }
 
-    /// The window of the tail (a copy, for the search's inner loop).
-    pub fn window(&self) -> TailWindow {
-        self.window
+    /// The window of the tail.
+    pub fn window(&self) -> &TailWindow {
+        &self.window
     }
 
     /// The first tail index `k >= 1` whose tile meets a placed tile at canonical offset
@@ -177,7 +178,7 @@ mod tests {
     fn window_holds_every_hit() {
         // every offset met by some tail tile lies inside the window the search tests first
         let mut h = hits();
-        let w = h.window();
+        let w = *h.window();
         let mut met = 0;
         for xa in -6..=16i64 {
             for xb in -8..=8i64 {
@@ -192,7 +193,7 @@ mod tests {
                         let (x, y) = off.to_f64(1.0);
                         let (a, c) = (x - w.hinge.0, y - w.hinge.1);
                         assert!(a >= w.min_x && c >= w.min_y, "{off:?} {k}");
-                        assert!(a * a + c * c <= w.reach2(k as usize), "{off:?} {k}");
+                        assert!(a * a + c * c <= w.reach(k as usize).1, "{off:?} {k}");
                     }
                 }
             }

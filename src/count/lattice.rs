@@ -9,17 +9,56 @@
 use std::cmp::Ordering;
 
 use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+use crate::kinematics::next_exact_pose;
 use crate::Fold;
 
 /// The offset of the tile centred at `fixed` from the tile at `at`, in the frame of `at`
 /// (centre at the origin, chain along +x), mirrored (y negated) when the fold is to the
-/// right, so that every fold is seen as a left fold.
+/// right, so that every fold is seen as a left fold. (Turned with integer signs rather than a
+/// `match` on the heading: this runs in the search's inner loop.)
+#[inline]
 pub(super) fn canonical_offset(fixed: ExactPoint, at: ExactPose, fold: Fold) -> ExactPoint {
-    let back = QuarterTurns::new(-i64::from(at.heading.get()));
-    let rel = (fixed - at.centre).rotated(back);
-    match fold {
-        Fold::R => ExactPoint::new(rel.x, -rel.y),
-        _ => rel,
+    // cos and sin of the heading: turning back by it maps (x, y) to (c x + s y, c y - s x)
+    const COS_SIN: [(i64, i64); 4] = [(1, 0), (0, 1), (-1, 0), (0, -1)];
+    let (c, s) = COS_SIN[usize::from(at.heading.get() & 3)];
+    let m = if fold == Fold::R { -1 } else { 1 };
+    let d = fixed - at.centre;
+    let turn = |p: Surd, q: Surd, sp: i64, sq: i64| Surd::new(sp * p.a + sq * q.a, sp * p.b + sq * q.b);
+    ExactPoint::new(turn(d.x, d.y, c, s), turn(d.y, d.x, m * c, -m * s))
+}
+
+/// The pose after each letter from each heading, from [`next_exact_pose`]: a table, so that
+/// placing a tile in the search costs a lookup and four additions.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Steps {
+    /// Per heading and letter (S, L, R): the pose after it from a tile at the origin.
+    after: [[ExactPose; 3]; 4],
+}
+
+impl Steps {
+    /// The table.
+    pub fn new() -> Steps {
+        let mut after = [[ExactPose::default(); 3]; 4];
+        for (h, row) in after.iter_mut().enumerate() {
+            let from = ExactPose {
+                centre: ExactPoint::ORIGIN,
+                heading: QuarterTurns::new(h as i64),
+            };
+            for (f, pose) in Fold::ALL.into_iter().zip(row.iter_mut()) {
+                *pose = next_exact_pose(from, f);
+            }
+        }
+        Steps { after }
+    }
+
+    /// The pose of the tile after `pose` across a joint folded `f`.
+    #[inline]
+    pub fn next(&self, pose: ExactPose, f: Fold) -> ExactPose {
+        let step = self.after[usize::from(pose.heading.get() & 3)][f as usize];
+        ExactPose {
+            centre: pose.centre + step.centre,
+            heading: step.heading,
+        }
     }
 }
 
@@ -80,6 +119,34 @@ mod tests {
         assert_eq!(l, ExactPoint::new(Surd::new(0, -2), Surd::new(0, 2)));
         let r = canonical_offset(p[1].centre, p[2], Fold::R);
         assert_eq!(r, ExactPoint::new(Surd::new(0, -2), Surd::new(0, -2)));
+    }
+
+    #[test]
+    fn steps_follow_the_kinematics() {
+        let steps = Steps::new();
+        for w in ["SLLRSSRLLLS", "RRSLSRRRLSS"] {
+            let p = poses(w);
+            let word = FoldWord::parse(w).unwrap();
+            for (j, &f) in word.folds().iter().enumerate() {
+                assert_eq!(steps.next(p[j], f), p[j + 1]);
+            }
+        }
+    }
+
+    #[test]
+    fn canonical_offsets_turn_back_every_heading() {
+        // a tile ahead-left of the folding tile stays ahead-left whatever the heading
+        let ahead = ExactPoint::new(Surd::new(4, 1), Surd::new(2, -1));
+        for h in 0..4 {
+            let at = ExactPose {
+                centre: ExactPoint::new(Surd::new(3, -2), Surd::new(-5, 4)),
+                heading: QuarterTurns::new(h),
+            };
+            let fixed = at.transform(ahead);
+            assert_eq!(canonical_offset(fixed, at, Fold::L), ahead);
+            let mirrored = ExactPoint::new(ahead.x, -ahead.y);
+            assert_eq!(canonical_offset(fixed, at, Fold::R), mirrored);
+        }
     }
 
     #[test]

@@ -18,12 +18,11 @@
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
-use crate::exact::ExactPose;
-use crate::kinematics::next_exact_pose;
+use crate::exact::{ExactPoint, ExactPose};
 use crate::Fold;
 
 use super::first_hit::{FirstHits, TailWindow};
-use super::lattice::{canonical_offset, tiles_overlap};
+use super::lattice::{canonical_offset, tiles_overlap, Steps};
 
 /// The depth (joints) at which the search is shared out.
 const PREFIX_JOINTS: usize = 9;
@@ -79,7 +78,8 @@ struct Node {
     joints: usize,
     /// The most tiles any extension may have (at most the scope's).
     budget: usize,
-    last: Option<Fold>,
+    /// The last letter (S for the one-tile word: nothing is opposite to it).
+    last: Fold,
     /// Whether the word has a turn (then its mirror image is counted with it).
     turned: bool,
     /// Straight joints.
@@ -91,7 +91,7 @@ impl Node {
         Node {
             joints: 0,
             budget: tiles,
-            last: None,
+            last: Fold::S,
             turned: false,
             straight: 0,
         }
@@ -101,7 +101,7 @@ impl Node {
         Node {
             joints: self.joints + 1,
             budget,
-            last: Some(f),
+            last: f,
             turned: self.turned || f != Fold::S,
             straight: self.straight + usize::from(f == Fold::S),
         }
@@ -125,20 +125,28 @@ struct Walker {
     scope: Scope,
     hits: FirstHits,
     window: TailWindow,
+    steps: Steps,
+    /// The first tail tile that meets the folding tile itself (offset zero).
+    own_hit: u8,
     poses: Vec<ExactPose>,
-    /// Tile centres in `f64` (tile widths), for the window test.
-    xs: Vec<f64>,
-    ys: Vec<f64>,
+    /// Tile centres in `f64` (tile widths), for the window test; indexed modulo [`SLOTS`]
+    /// (tile indices stay below it), which spares the bounds checks in the inner loop.
+    xs: Box<[f64; SLOTS]>,
+    ys: Box<[f64; SLOTS]>,
     letters: Vec<Fold>,
     tally: Tally,
     pow5: Vec<u128>,
 }
 
+/// Room for the centres of the longest chain, a power of two.
+const SLOTS: usize = 64;
+const _: () = assert!(super::MAX_COUNT_TILES < SLOTS);
+
 /// The unit vector of a quarter-turn heading.
 const UNIT: [(f64, f64); 4] = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
 
 impl Walker {
-    fn new(scope: &Scope, hits: FirstHits) -> Walker {
+    fn new(scope: &Scope, mut hits: FirstHits) -> Walker {
         let n = scope.tiles;
         let mut pow5 = vec![1u128; n];
         for i in 1..n {
@@ -146,11 +154,13 @@ impl Walker {
         }
         Walker {
             scope: *scope,
-            window: hits.window(),
+            window: *hits.window(),
+            own_hit: hits.get(ExactPoint::ORIGIN),
             hits,
+            steps: Steps::new(),
             poses: vec![ExactPose::default(); n],
-            xs: vec![0.0; n],
-            ys: vec![0.0; n],
+            xs: Box::new([0.0; SLOTS]),
+            ys: Box::new([0.0; SLOTS]),
             letters: vec![Fold::S; n],
             tally: Tally::new(n),
             pow5,
@@ -159,11 +169,9 @@ impl Walker {
 
     /// Puts tile `j` after joint `j - 1` folded `f`.
     fn place(&mut self, j: usize, f: Fold) {
-        let p = next_exact_pose(self.poses[j - 1], f);
-        let (x, y) = p.centre.to_f64(1.0);
+        let p = self.steps.next(self.poses[j - 1], f);
         self.poses[j] = p;
-        self.xs[j] = x;
-        self.ys[j] = y;
+        (self.xs[j % SLOTS], self.ys[j % SLOTS]) = p.centre.to_f64(1.0);
         self.letters[j - 1] = f;
     }
 
@@ -188,8 +196,7 @@ impl Walker {
         }
         for f in Fold::ALL {
             let mirror = f == Fold::R && !node.turned;
-            let opposite =
-                !self.scope.allow_opposite && node.last.is_some_and(|l| l.is_opposite(f));
+            let opposite = !self.scope.allow_opposite && node.last.is_opposite(f);
             if mirror || opposite {
                 continue;
             }
@@ -210,10 +217,13 @@ impl Walker {
     fn child_budget(&mut self, node: &Node, f: Fold) -> Option<usize> {
         let d = node.joints;
         if self.scope.final_only {
-            let c = next_exact_pose(self.poses[d], f).centre;
+            let c = self.steps.next(self.poses[d], f).centre;
             let (x, y) = c.to_f64(1.0);
             // overlapping lattice tiles are less than w / cos(pi/8) < 1.1 w apart
-            let near = |i: &usize| (self.xs[*i] - x).powi(2) + (self.ys[*i] - y).powi(2) < 1.2;
+            let near = |i: &usize| {
+                let (xi, yi) = (self.xs[*i % SLOTS], self.ys[*i % SLOTS]);
+                (xi - x).powi(2) + (yi - y).powi(2) < 1.2
+            };
             let hit = (0..d)
                 .filter(near)
                 .any(|i| tiles_overlap(self.poses[i].centre, c));
@@ -232,16 +242,32 @@ impl Walker {
         let at = self.poses[d];
         let (ux, uy) = UNIT[usize::from(at.heading.get())];
         let side = if f == Fold::L { 1.0 } else { -1.0 };
-        let (x0, y0) = (self.xs[d], self.ys[d]);
-        let w = self.window;
-        let mut cap = cap;
-        let mut reach2 = w.reach2(cap - d - 1);
-        for i in 0..=d {
-            let (rx, ry) = (self.xs[i] - x0, self.ys[i] - y0);
+        let w = &self.window;
+        // the hinge in the world
+        let (xd, yd) = (self.xs[d % SLOTS], self.ys[d % SLOTS]);
+        let hx = xd + ux * w.hinge.0 - side * uy * w.hinge.1;
+        let hy = yd + uy * w.hinge.0 + side * ux * w.hinge.1;
+        // the folding tile itself, at offset zero
+        let mut cap = cap.min(d + usize::from(self.own_hit));
+        if cap < d + 2 {
+            return None;
+        }
+        // the other placed tiles within reach of the hinge, as a bit set (no branches: one
+        // pass over the centres)
+        let (_, reach2) = w.reach(cap - d - 1);
+        let mut mask = 0u64;
+        for i in 0..d {
+            let (rx, ry) = (self.xs[i % SLOTS] - hx, self.ys[i % SLOTS] - hy);
+            mask |= u64::from(rx * rx + ry * ry <= reach2) << i;
+        }
+        while mask != 0 {
+            let i = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
             // the placed centre in the canonical frame, relative to the hinge
-            let a = ux * rx + uy * ry - w.hinge.0;
-            let c = side * (ux * ry - uy * rx) - w.hinge.1;
-            if a < w.min_x || c < w.min_y || a * a + c * c > reach2 {
+            let (rx, ry) = (self.xs[i % SLOTS] - hx, self.ys[i % SLOTS] - hy);
+            let a = ux * rx + uy * ry;
+            let c = side * (ux * ry - uy * rx);
+            if a < w.min_x || c < w.min_y {
                 continue;
             }
             let k = usize::from(self.hits.get(canonical_offset(self.poses[i].centre, at, f)));
@@ -250,7 +276,6 @@ impl Walker {
                     return None;
                 }
                 cap = d + k;
-                reach2 = w.reach2(k - 1);
             }
         }
         Some(cap)
