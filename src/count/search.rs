@@ -18,10 +18,10 @@
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
-use crate::exact::{ExactPoint, ExactPose};
+use crate::exact::ExactPose;
 use crate::Fold;
 
-use super::first_hit::{FirstHits, TailWindow};
+use super::first_hit::{FirstHits, TailWindow, NEVER};
 use super::lattice::{canonical_offset, tiles_overlap, Steps};
 
 /// The depth (joints) at which the search is shared out.
@@ -120,14 +120,57 @@ struct Prefix {
     node: Node,
 }
 
+/// The first hits of the folding tile and of the one or two tiles before it: their offsets
+/// depend only on the last letters, so they are looked up once, by letters.
+#[derive(Clone, Copy, Debug)]
+struct RecentHits {
+    /// Per fold (index by `Fold as usize`): the folding tile alone (the one-tile word).
+    zero: [u8; 3],
+    /// Per last letter and fold: the folding tile and the one before.
+    one: [[u8; 3]; 3],
+    /// Per last two letters and fold: the folding tile and the two before.
+    two: [[[u8; 3]; 3]; 3],
+}
+
+impl RecentHits {
+    fn new(hits: &mut FirstHits, steps: &Steps) -> RecentHits {
+        // the smallest first hit over the tiles of `letters` seen from its last tile
+        let mut least = |letters: &[Fold], f: Fold| -> u8 {
+            let mut poses = vec![ExactPose::default()];
+            for &l in letters {
+                let last = poses[poses.len() - 1];
+                poses.push(steps.next(last, l));
+            }
+            let at = poses[poses.len() - 1];
+            let offsets = poses.iter().map(|p| canonical_offset(p.centre, at, f));
+            offsets.map(|o| hits.get(o)).min().unwrap_or(NEVER)
+        };
+        let mut t = RecentHits {
+            zero: [NEVER; 3],
+            one: [[NEVER; 3]; 3],
+            two: [[[NEVER; 3]; 3]; 3],
+        };
+        for f in [Fold::L, Fold::R] {
+            t.zero[f as usize] = least(&[], f);
+            for a in Fold::ALL {
+                t.one[a as usize][f as usize] = least(&[a], f);
+                for b in Fold::ALL {
+                    t.two[a as usize][b as usize][f as usize] = least(&[a, b], f);
+                }
+            }
+        }
+        t
+    }
+}
+
 /// One depth-first walker: the placed tiles of the current word, a memo and tallies.
 struct Walker {
     scope: Scope,
     hits: FirstHits,
     window: TailWindow,
     steps: Steps,
-    /// The first tail tile that meets the folding tile itself (offset zero).
-    own_hit: u8,
+    /// The first tail tile that meets the folding tile or one of the two before it.
+    recent: RecentHits,
     poses: Vec<ExactPose>,
     /// Tile centres in `f64` (tile widths), for the window test; indexed modulo [`SLOTS`]
     /// (tile indices stay below it), which spares the bounds checks in the inner loop.
@@ -152,12 +195,13 @@ impl Walker {
         for i in 1..n {
             pow5[i] = pow5[i - 1] * 5;
         }
+        let steps = Steps::new();
         Walker {
             scope: *scope,
             window: *hits.window(),
-            own_hit: hits.get(ExactPoint::ORIGIN),
+            recent: RecentHits::new(&mut hits, &steps),
             hits,
-            steps: Steps::new(),
+            steps,
             poses: vec![ExactPose::default(); n],
             xs: Box::new([0.0; SLOTS]),
             ys: Box::new([0.0; SLOTS]),
@@ -247,8 +291,16 @@ impl Walker {
         let (xd, yd) = (self.xs[d % SLOTS], self.ys[d % SLOTS]);
         let hx = xd + ux * w.hinge.0 - side * uy * w.hinge.1;
         let hy = yd + uy * w.hinge.0 + side * ux * w.hinge.1;
-        // the folding tile itself, at offset zero
-        let mut cap = cap.min(d + usize::from(self.own_hit));
+        // the folding tile and the two before it, whose offsets the last letters fix
+        let recent = match d {
+            0 => self.recent.zero[f as usize],
+            1 => self.recent.one[self.letters[0] as usize][f as usize],
+            _ => {
+                let (a, b) = (self.letters[d - 2], self.letters[d - 1]);
+                self.recent.two[a as usize][b as usize][f as usize]
+            }
+        };
+        let mut cap = cap.min(d + usize::from(recent));
         if cap < d + 2 {
             return None;
         }
@@ -256,7 +308,7 @@ impl Walker {
         // pass over the centres)
         let (_, reach2) = w.reach(cap - d - 1);
         let mut mask = 0u64;
-        for i in 0..d {
+        for i in 0..d.saturating_sub(2) {
             let (rx, ry) = (self.xs[i % SLOTS] - hx, self.ys[i % SLOTS] - hy);
             mask |= u64::from(rx * rx + ry * ry <= reach2) << i;
         }
