@@ -13,8 +13,9 @@ use foldchain::engine::{
 };
 use foldchain::reference::events::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
-use foldchain_cli::run_files::{write_run_files, RunFilesOptions, RunSource};
+use foldchain_cli::run_files::{write_run_files, RunFilesOptions};
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
