@@ -1,0 +1,285 @@
+//! `fold-enum --max-tiles N`: counts the fold words that fold without self-intersection
+//! (thesis Table 5.1).
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::bail;
+use clap::Parser;
+use foldchain::collision::CheckOptions;
+use foldchain::count::{count_valid, estimate_random, CountOptions, CountRow, MAX_COUNT_TILES};
+use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
+use foldchain_cli::report::print_error;
+
+/// Counts, for each chain length, the candidate fold words (3^(n-1)) and those that fold
+/// sequentially without any two tiles overlapping, from the geometry and the sweep check.
+#[derive(Parser, Debug)]
+#[command(
+    name = "fold-enum",
+    version,
+    about = "Counts the fold words whose chains fold without self-intersection, for every chain length (thesis Table 5.1), from the geometry and the exact sweep check; optionally the chance that a chain of random tiles folds.",
+    after_help = "Examples:
+  fold-enum --max-tiles 6                 thesis Table 5.1: 3 7 17 35 79
+  fold-enum --max-tiles 20 --json
+  fold-enum --max-tiles 12 --random       with the probability for random tiles
+  fold-enum --max-tiles 26 --shard 3/8    part 3 of 8 of the search (parts add up)
+
+The count grows about twice per tile: a run expected to take more than a few minutes says
+so before it starts. On a terminal a progress bar appears after a second; otherwise a
+progress line is printed every few seconds (--quiet silences both).
+
+Exit codes: 0 done, 2 bad input."
+)]
+struct Args {
+    /// Longest chain counted, in tiles (2 to 40).
+    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
+    max_tiles: usize,
+    /// Shortest chain counted, in tiles.
+    #[arg(long, default_value_t = 2, value_parser = tiles_arg, allow_hyphen_values = true)]
+    min_tiles: usize,
+    /// Count words with adjacent opposite folds (L then R), which need LR/RL tiles.
+    #[arg(long)]
+    allow_lr: bool,
+    /// Check only final shapes, not the fold sweeps.
+    #[arg(long)]
+    final_only: bool,
+    /// Add the probability that a chain of uniformly random tiles propagates to its end and
+    /// folds cleanly (exact up to --random-exact-max tiles, sampled beyond).
+    #[arg(long)]
+    random: bool,
+    /// Longest chain for which the random-chain probability is computed exactly.
+    #[arg(long, default_value_t = 16)]
+    random_exact_max: usize,
+    /// With --random: chains sampled per length beyond exact reach (default 200000; 1e6
+    /// is accepted).
+    #[arg(long, value_parser = samples_arg, allow_hyphen_values = true)]
+    samples: Option<u64>,
+    /// Seed of the sampling.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Count only part K of M disjoint parts of the search (K from 1 to M); the parts'
+    /// counts add up exactly.
+    #[arg(long, value_name = "K/M")]
+    shard: Option<String>,
+    /// Print JSON: {"rows":[{"tiles":n,"candidates":c,"valid":v,...}]}.
+    #[arg(long)]
+    json: bool,
+    /// No progress on stderr, no estimate.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// A chain length on the command line: a whole number of tiles.
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .map_err(|_| format!("expected a whole number of tiles from 2 to {MAX_COUNT_TILES}"))
+}
+
+/// A sample count: a whole number, also written as 1e6.
+fn samples_arg(s: &str) -> Result<u64, String> {
+    let bad = || "expected a whole number of samples >= 1 (e.g. 200000 or 1e6)".to_string();
+    let v: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(v >= 1.0 && v.fract() == 0.0 && v < 1.8e19) {
+        return Err(bad());
+    }
+    Ok(v as u64)
+}
+
+/// Chains sampled per length beyond exact reach, by default.
+const DEFAULT_SAMPLES: u64 = 200_000;
+
+/// A run expected to take longer than this says so before it starts.
+const WARN_SECONDS: f64 = 180.0;
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            print_error("fold-enum", &e);
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
+    let bad =
+        || anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8");
+    let (k, m) = s.split_once('/').ok_or_else(bad)?;
+    let (k, m): (usize, usize) = (
+        k.trim().parse().map_err(|_| bad())?,
+        m.trim().parse().map_err(|_| bad())?,
+    );
+    if k < 1 || k > m {
+        return Err(bad());
+    }
+    Ok((k, m))
+}
+
+/// The rough cost of counting up to `max` tiles, from a calibration run up to 15 tiles:
+/// search nodes grow by the ratio of its last two rows per tile. `None` when the run is short
+/// anyway.
+fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f64, f64)>> {
+    const CALIBRATE: usize = 15;
+    if max <= 22 {
+        return Ok(None);
+    }
+    let start = Instant::now();
+    let rows = count_valid(&opts.with_tiles(2, CALIBRATE), &|_, _| {})?;
+    let secs = start.elapsed().as_secs_f64();
+    let searched: Vec<f64> = rows.iter().map(|r| r.searched as f64).collect();
+    let nodes: f64 = searched.iter().sum();
+    let (last, before) = (searched[searched.len() - 1], searched[searched.len() - 2]);
+    let ratio = (last / before).max(1.0);
+    let more: f64 = (1..=max - CALIBRATE)
+        .map(|k| last * ratio.powi(k as i32))
+        .sum();
+    let share = opts.shard.map_or(1.0, |(_, m)| 1.0 / m as f64);
+    let total = nodes + more * share;
+    Ok(Some((total, secs * total / nodes.max(1.0))))
+}
+
+fn run(args: &Args) -> anyhow::Result<()> {
+    if args.max_tiles < 2 || args.max_tiles > MAX_COUNT_TILES {
+        bail!(
+            "--max-tiles {}: expected a chain length from 2 to {MAX_COUNT_TILES} tiles",
+            args.max_tiles
+        );
+    }
+    if args.min_tiles < 2 || args.min_tiles > args.max_tiles {
+        bail!(
+            "--min-tiles {}: expected 2 to --max-tiles ({})",
+            args.min_tiles,
+            args.max_tiles
+        );
+    }
+    if args.samples.is_some() && !args.random {
+        bail!("--samples applies only with --random (the random-chain probability)");
+    }
+    let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
+    let mut opts = CountOptions::default()
+        .with_tiles(args.min_tiles, args.max_tiles)
+        .with_allow_opposite(args.allow_lr)
+        .with_final_only(args.final_only);
+    if let Some(s) = &args.shard {
+        let (k, m) = parse_shard(s)?;
+        opts = opts.with_shard(k, m);
+    }
+    if args.random && opts.shard.is_some() {
+        anyhow::bail!(
+            "--random cannot be combined with --shard (the probability needs the whole search)"
+        );
+    }
+    let mode = ProgressMode::detect(args.quiet);
+    if mode != ProgressMode::Quiet {
+        if let Some((nodes, secs)) = estimate_seconds(&opts, args.max_tiles)? {
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: counting up to {} tiles visits about {nodes:.1e} search nodes: roughly {} on this machine (from a calibration run to 15 tiles); --shard K/M splits the work",
+                    args.max_tiles,
+                    duration_words(secs)
+                );
+            }
+        }
+    }
+    let progress = Progress::new("fold-enum", "parts", mode);
+    let start = Instant::now();
+    let mut rows = count_valid(&opts, &|d, t| progress.update("counting", d, t))?;
+    if args.random {
+        let exact_max = args.random_exact_max.min(args.max_tiles);
+        if exact_max >= args.min_tiles {
+            let exact = count_valid(
+                &opts.with_tiles(args.min_tiles, exact_max).with_random(true),
+                &|d, t| progress.update("random chains", d, t),
+            )?;
+            for (row, e) in rows.iter_mut().zip(exact) {
+                row.p_random = e.p_random;
+                row.p_random_exact = e.p_random_exact;
+                row.p_propagates = e.p_propagates;
+            }
+        }
+        let check = CheckOptions::default().with_final_only(args.final_only);
+        let sampled = rows.iter().filter(|r| r.p_random.is_none()).count() as u64;
+        if sampled > 0 && mode != ProgressMode::Quiet {
+            // time a small sample of the longest chains to say what the full one costs
+            let probe = 2_000.min(samples);
+            let t0 = Instant::now();
+            estimate_random(args.max_tiles, probe, args.seed, &check);
+            let secs =
+                t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: sampling {samples} chains at each of {sampled} lengths takes roughly {} on this machine",
+                    duration_words(secs)
+                );
+            }
+        }
+        for (i, row) in rows.iter_mut().filter(|r| r.p_random.is_none()).enumerate() {
+            progress.update("sampling random chains", i as u64, sampled);
+            let est = estimate_random(row.tiles, samples, args.seed, &check);
+            row.p_random = Some(est.p);
+            row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
+            row.p_random_exact = Some(format!(
+                "~{:.6} (95% {:.6}..{:.6}, {} samples)",
+                est.p, est.low, est.high, est.samples
+            ));
+        }
+    }
+    progress.finish();
+    let seconds = start.elapsed().as_secs_f64();
+    if args.json {
+        let out = serde_json::json!({ "rows": rows, "seconds": seconds, "shard": args.shard });
+        println!("{out}");
+    } else {
+        print_table(&rows, args);
+        eprintln!("{:.2} s", seconds);
+    }
+    Ok(())
+}
+
+fn print_table(rows: &[CountRow], args: &Args) {
+    let mode = match (args.allow_lr, args.final_only) {
+        (false, false) => "adjacent LR/RL not used, sequential folding",
+        (true, false) => "adjacent LR/RL allowed, sequential folding",
+        (false, true) => "adjacent LR/RL not used, final shape only",
+        (true, true) => "adjacent LR/RL allowed, final shape only",
+    };
+    println!(
+        "# valid fold words ({mode}){}",
+        args.shard
+            .as_deref()
+            .map(|s| format!(", shard {s}"))
+            .unwrap_or_default()
+    );
+    if args.random {
+        println!(
+            "{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact",
+            "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)"
+        );
+    } else {
+        println!(
+            "{:>5} {:>22} {:>16} {:>16}",
+            "tiles", "candidates", "searched", "valid"
+        );
+    }
+    for r in rows {
+        if args.random {
+            println!(
+                "{:>5} {:>22} {:>16} {:>16} {:>12.8} {:>12.8}  {}",
+                r.tiles,
+                r.candidates,
+                r.searched,
+                r.valid,
+                r.p_random.unwrap_or(f64::NAN),
+                r.p_propagates.unwrap_or(f64::NAN),
+                r.p_random_exact.as_deref().unwrap_or("")
+            );
+        } else {
+            println!(
+                "{:>5} {:>22} {:>16} {:>16}",
+                r.tiles, r.candidates, r.searched, r.valid
+            );
+        }
+    }
+}

@@ -1,0 +1,414 @@
+//! `fold-run`: derive when every magnet moves and every joint folds, check the folding for
+//! self-intersection, and draw it. Exit 0 when the chain folds completely and cleanly, 1 when
+//! it collides, is inhibited or stalls, 2 for bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{anyhow, bail, Context};
+use clap::Parser;
+use foldchain::collision::CheckOptions;
+use foldchain::engine::{
+    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
+};
+use foldchain::reference::events::Recording;
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::render::RunSource;
+use foldchain::{simulate, Chain};
+use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
+use foldchain_cli::report::print_error;
+use foldchain_cli::run_files::{is_run_file, write_run_files, RunFilesOptions, MAX_FRAMES};
+use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
+
+/// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
+#[derive(Parser, Debug)]
+#[command(
+    name = "fold-run",
+    version,
+    about = "Folds a chain of tiles: when every magnet moves and every joint folds (the event engine, or the force-integrated reference with --reference), whether two tiles collide on the way, and the pictures and JSON of the run.",
+    after_help = "Examples:
+  fold-run SLLS                         a straight tile, a tight U-turn, a straight tile
+  fold-run \"S*4 L L S*4 R R S*4\" --json
+  fold-run shapes/key.svg --tiles 171   plan the shape, then fold it
+  fold-run --plan key-plan.json --design my-design.json
+  fold-run LSLLSR --s e/3 --frames 60 --out out/lsllsr
+  fold-run SLLS --reference             the force-integrated reference (up to 2,000 tiles)
+
+Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
+energy.svg, timeline.json and summary.json (written last). Nothing else in DIR is touched.
+Times are simulated seconds. The design JSON is described in README.md (see also
+docs/design-example.json).
+
+Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
+2 bad input."
+)]
+struct Args {
+    /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
+    /// target shape `SHAPE.svg` to plan and fold in one go.
+    chain: Option<String>,
+    /// Read the chain from fold-plan's JSON.
+    #[arg(long, value_name = "PLAN.json")]
+    plan: Option<PathBuf>,
+    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
+    /// thesis design.
+    #[arg(long, value_name = "DESIGN.json")]
+    design: Option<PathBuf>,
+    /// s for every tile: millimetres (0.3, 0.3mm) or a fraction of e (e/3, 0.25e).
+    #[arg(long, value_name = "MM")]
+    s: Option<String>,
+    /// Output directory (default out/<name>/).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Number of step frames (default: 40, fewer for long chains; at most 100000).
+    #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
+    frames: Option<usize>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Speed law: overdamped (seconds) or unit (1 mm/s, the transition diagram's timeline).
+    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
+    speed: String,
+    /// When a magnet starts: distance (the thesis' inequalities, nearest neighbours) or
+    /// force (the pair forces of every magnet within 3 in chain index, as the reference
+    /// integrator weighs them; about 40 us per tile).
+    #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
+    start_rule: String,
+    /// Drag coefficient of the overdamped law, N s/m.
+    #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
+    drag: f64,
+    /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
+    #[arg(long, value_name = "A..B")]
+    transition: Option<String>,
+    /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
+    /// event engine: writes the same files (step frames, final.svg, transition.svg,
+    /// energy.svg, timeline.json, summary.json) drawn from the reference's recorded states
+    /// (default out/<name>-reference/; the reference has no collision check). For chains up
+    /// to 2,000 tiles.
+    #[arg(long)]
+    reference: bool,
+    /// SHAPE.svg only: about this many tiles.
+    #[arg(long, value_parser = count_arg, allow_hyphen_values = true)]
+    tiles: Option<usize>,
+    /// SHAPE.svg only: tile width in SVG user units.
+    #[arg(long, allow_hyphen_values = true)]
+    tile_size: Option<f64>,
+    /// SHAPE.svg only: tight, loose or auto.
+    #[arg(long)]
+    turns: Option<Turns>,
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(args) {
+        Ok(code) => ExitCode::from(code),
+        Err(e) => {
+            print_error("fold-run", &e);
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// A count on the command line: a whole number >= 1.
+fn count_arg(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("expected a whole number >= 1".into()),
+    }
+}
+
+/// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
+/// [`SValue::parse`] reads (`0.3mm`, `e/3`, `0.25e`).
+fn s_value(text: &str) -> anyhow::Result<SValue> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
+        Ok(v) => bail!("--s {text}: expected a length >= 0 in mm, got {v}"),
+        Err(_) => Ok(SValue::parse(text)?),
+    }
+}
+
+/// The name of a run given inline: the text itself when it is short and plain, else a name
+/// made from its fold word or its length.
+fn inline_name(arg: &str, chain: &Chain) -> String {
+    let t = arg.trim();
+    let plain = t
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || matches!(c, ' ' | '*' | '-' | '_'));
+    if plain && t.len() <= 40 {
+        return sanitize(t);
+    }
+    match chain.to_word() {
+        Ok(w) if w.to_string().len() <= 40 => sanitize(&w.to_string()),
+        _ => format!("chain-{}-tiles", chain.len()),
+    }
+}
+
+fn sanitize(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(40)
+        .collect();
+    if s.is_empty() {
+        "run".into()
+    } else {
+        s
+    }
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into())
+}
+
+/// Bad input is an `Err` (exit 2); outcomes are exit codes.
+fn run(args: Args) -> anyhow::Result<u8> {
+    let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
+    let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
+        (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
+        (None, None) => bail!(
+            "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
+        ),
+        (None, Some(plan)) => (read_plan_file(plan)?, stem(plan)),
+        (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
+            let path = Path::new(arg);
+            let mut po = PlanOptions::default();
+            if let Some(n) = args.tiles {
+                po = po.with_tiles(n);
+            }
+            if let Some(w) = args.tile_size {
+                if !w.is_finite() || w <= 0.0 {
+                    bail!("--tile-size {w}: expected a finite number > 0");
+                }
+                po = po.with_tile_size(w);
+            }
+            if let Some(t) = args.turns {
+                po = po.with_turns(t);
+            }
+            let plan = match plan_svg_file(path, &po) {
+                Ok(p) => p,
+                Err(e) if e.is_bad_input() => return Err(anyhow!(e)),
+                Err(e) => {
+                    eprintln!("fold-run: cannot plan {}: {e:#}", path.display());
+                    return Ok(1);
+                }
+            };
+            let word = plan
+                .fold_word()
+                .with_context(|| format!("plan of {}", path.display()))?;
+            (word.to_chain(), stem(path))
+        }
+        (Some(arg), None) => {
+            if shape_opts_given {
+                bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg");
+            }
+            let chain = read_chain(arg)?;
+            let name = if Path::new(arg).is_file() {
+                stem(Path::new(arg))
+            } else {
+                inline_name(arg, &chain)
+            };
+            (chain, name)
+        }
+    };
+    let mut designs = match &args.design {
+        Some(p) => TileDesigns::from_file(p)?,
+        None => TileDesigns::default(),
+    };
+    if let Some(s) = &args.s {
+        designs = designs.with_s(s_value(s)?);
+        designs.validate("--s")?;
+    }
+    let speed = match args.speed.as_str() {
+        "unit" => SpeedLaw::Unit,
+        _ => {
+            if !args.drag.is_finite() || args.drag <= 0.0 {
+                bail!("--drag {}: expected a finite number > 0 (N s/m)", args.drag);
+            }
+            SpeedLaw::Overdamped { drag: args.drag }
+        }
+    };
+    if let Some(n) = args.frames.filter(|&n| n > MAX_FRAMES) {
+        bail!("--frames {n}: at most {MAX_FRAMES} step frames (each is a full SVG of the chain)");
+    }
+    let transition_tiles = match &args.transition {
+        None => None,
+        Some(t) => {
+            let (a, b) = t
+                .split_once("..")
+                .and_then(|(a, b)| {
+                    Some((
+                        a.trim().parse::<usize>().ok()?,
+                        b.trim().parse::<usize>().ok()?,
+                    ))
+                })
+                .filter(|(a, b)| a <= b)
+                .ok_or_else(|| {
+                    anyhow!("--transition '{t}': expected A..B with whole numbers A <= B")
+                })?;
+            Some((a, b))
+        }
+    };
+    let files = RunFilesOptions {
+        name: if args.reference {
+            format!("{name} (reference)")
+        } else {
+            name.clone()
+        },
+        frames: args.frames,
+        transition_tiles,
+    };
+    let out_dir = args.out.clone().unwrap_or_else(|| {
+        let leaf = if args.reference {
+            format!("{name}-reference")
+        } else {
+            name.clone()
+        };
+        PathBuf::from("out").join(leaf)
+    });
+    let mut inputs: Vec<&Path> = Vec::new();
+    if let Some(arg) = &args.chain {
+        if Path::new(arg).is_file() {
+            inputs.push(Path::new(arg));
+        }
+    }
+    inputs.extend(args.plan.as_deref());
+    inputs.extend(args.design.as_deref());
+    refuse_overwrite_in(&inputs, &out_dir, &is_run_file, "--out")?;
+    if args.reference {
+        if chain.len() > MAX_REFERENCE_TILES {
+            bail!(
+                "--reference: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
+                chain.len()
+            );
+        }
+        let ro = ReferenceOptions::default().with_record(Recording::Grid {
+            max_states: state_budget(chain.len()),
+        });
+        let run = run_reference(&chain, &designs, &ro)?;
+        let summary = run.to_summary();
+        return report(
+            &run,
+            &summary,
+            &out_dir,
+            &files,
+            &files.name,
+            args.json,
+            None,
+        );
+    }
+    let engine = EngineOptions::default().with_speed(speed).with_start_rule(
+        match args.start_rule.as_str() {
+            "force" => StartRule::Force {
+                cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+            },
+            _ => StartRule::Distance,
+        },
+    );
+    let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+    let bar = (chain.len() > 2000).then(|| {
+        let b = indicatif::ProgressBar::new(1);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{msg:>16} [{bar:40}] {pos}/{len}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let code = report(
+        &tl,
+        &summary,
+        &out_dir,
+        &files,
+        &name,
+        args.json,
+        bar.as_ref(),
+    );
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    code
+}
+
+/// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
+/// validation scenes go up to 107 tiles.
+const MAX_REFERENCE_TILES: usize = 2_000;
+
+/// Writes the run's files and prints its summary; the exit code (0 completed, 1 not).
+fn report(
+    source: &dyn RunSource,
+    s: &Summary,
+    out_dir: &Path,
+    files: &RunFilesOptions,
+    name: &str,
+    json: bool,
+    bar: Option<&indicatif::ProgressBar>,
+) -> anyhow::Result<u8> {
+    let mut progress = |stage: &str, done: usize, total: usize| {
+        if let Some(b) = bar {
+            b.set_message(stage.to_string());
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    };
+    write_run_files(source, s, out_dir, files, &mut progress)?;
+    let d = s.duration_s;
+    if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
+        eprintln!(
+            "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
+        );
+    }
+    if json {
+        let mut v = serde_json::to_value(s)?;
+        if let Some(m) = v.as_object_mut() {
+            m.insert("out_dir".into(), out_dir.display().to_string().into());
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
+            name,
+            s.tiles,
+            s.result,
+            s.duration_s,
+            s.events,
+            s.folds.len(),
+            s.max_moving_magnets,
+            out_dir.display()
+        );
+        if let Some(r) = &s.reason {
+            println!("  {r}");
+        }
+    }
+    Ok(if s.completed { 0 } else { 1 })
+}
+
+/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`).
+fn read_plan_file(path: &Path) -> anyhow::Result<Chain> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read plan file {}", path.display()))?;
+    let plan = Plan::from_json(&text).map_err(|e| {
+        anyhow!(
+            "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
+            path.display()
+        )
+    })?;
+    let word = plan
+        .fold_word()
+        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
+    let chain = word.to_chain();
+    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
+        bail!(
+            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
+            path.display(),
+            chain.len(),
+            plan.tiles
+        );
+    }
+    Ok(chain)
+}
