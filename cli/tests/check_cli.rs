@@ -171,6 +171,38 @@ fn shards_add_up_from_the_command_line() {
 }
 
 #[test]
+fn merge_adds_up_shard_files_and_refuses_a_missing_or_doubled_one() {
+    let dir = std::env::temp_dir().join(format!("foldchain-merge-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut files = Vec::new();
+    for k in 1..=3 {
+        let o = fold_enum(&["--max-tiles", "14", "--json", "--shard", &format!("{k}/3")]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let f = dir.join(format!("part-{k}.json"));
+        std::fs::write(&f, &o.stdout).unwrap();
+        files.push(f.display().to_string());
+    }
+    let whole: serde_json::Value =
+        serde_json::from_str(&stdout(&fold_enum(&["--max-tiles", "14", "--json"]))).unwrap();
+    let mut args = vec!["--merge"];
+    args.extend(files.iter().map(String::as_str));
+    args.push("--json");
+    let o = fold_enum(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let merged: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(merged["rows"], whole["rows"]);
+    // part 2 missing
+    let o = fold_enum(&["--merge", &files[0], &files[2]]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("shards missing: 2 (of 3 parts)"), "{}", stderr(&o));
+    // part 3 twice
+    let o = fold_enum(&["--merge", &files[0], &files[1], &files[2], &files[2]]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("shard 3/3 given twice"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn random_chains_column() {
     let o = fold_enum(&[
         "--max-tiles",

@@ -1,13 +1,17 @@
 //! `fold-enum --max-tiles N`: counts the fold words that fold without self-intersection
 //! (thesis Table 5.1).
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::bail;
+use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::count::{count_valid, estimate_random, CountOptions, CountRow, MAX_COUNT_TILES};
+use foldchain::count::{
+    count_valid, estimate_random, merge_reports, CountOptions, CountReport, CountRow, Shard,
+    MAX_COUNT_TILES,
+};
 use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
 use foldchain_cli::report::print_error;
 
@@ -22,7 +26,9 @@ use foldchain_cli::report::print_error;
   fold-enum --max-tiles 6                 thesis Table 5.1: 3 7 17 35 79
   fold-enum --max-tiles 20 --json
   fold-enum --max-tiles 12 --random       with the probability for random tiles
-  fold-enum --max-tiles 26 --shard 3/8    part 3 of 8 of the search (parts add up)
+  fold-enum --max-tiles 26 --shard 3/8 --json > part-3.json
+                                          part 3 of 8 of the search (parts add up)
+  fold-enum --merge part-*.json           the whole count from all 8 parts
 
 The count grows about twice per tile: a run expected to take more than a few minutes says
 so before it starts. On a terminal a progress bar appears after a second; otherwise a
@@ -32,8 +38,8 @@ Exit codes: 0 done, 2 bad input."
 )]
 struct Args {
     /// Longest chain counted, in tiles (2 to 40).
-    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
-    max_tiles: usize,
+    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true, required_unless_present = "merge")]
+    max_tiles: Option<usize>,
     /// Shortest chain counted, in tiles.
     #[arg(long, default_value_t = 2, value_parser = tiles_arg, allow_hyphen_values = true)]
     min_tiles: usize,
@@ -61,6 +67,10 @@ struct Args {
     /// counts add up exactly.
     #[arg(long, value_name = "K/M")]
     shard: Option<String>,
+    /// Add up the JSON reports of all the parts of one --shard run and print the whole
+    /// count; refuses a missing or doubled part, or parts of different searches.
+    #[arg(long, num_args = 1.., value_name = "FILE", conflicts_with_all = ["max_tiles", "shard", "random", "allow_lr", "final_only"])]
+    merge: Vec<PathBuf>,
     /// Print JSON: {"rows":[{"tiles":n,"candidates":c,"valid":v,...}]}.
     #[arg(long)]
     json: bool,
@@ -103,18 +113,10 @@ fn main() -> ExitCode {
     }
 }
 
-fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
-    let bad =
-        || anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8");
-    let (k, m) = s.split_once('/').ok_or_else(bad)?;
-    let (k, m): (usize, usize) = (
-        k.trim().parse().map_err(|_| bad())?,
-        m.trim().parse().map_err(|_| bad())?,
-    );
-    if k < 1 || k > m {
-        return Err(bad());
-    }
-    Ok((k, m))
+fn parse_shard(s: &str) -> anyhow::Result<Shard> {
+    s.parse().map_err(|_| {
+        anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8")
+    })
 }
 
 /// The rough cost of counting up to `max` tiles, from a calibration run up to 15 tiles:
@@ -140,18 +142,42 @@ fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f
     Ok(Some((total, secs * total / nodes.max(1.0))))
 }
 
-fn run(args: &Args) -> anyhow::Result<()> {
-    if args.max_tiles < 2 || args.max_tiles > MAX_COUNT_TILES {
-        bail!(
-            "--max-tiles {}: expected a chain length from 2 to {MAX_COUNT_TILES} tiles",
-            args.max_tiles
-        );
+/// `--merge`: the whole count from the parts' reports.
+fn merge(args: &Args) -> anyhow::Result<()> {
+    let mut files = Vec::with_capacity(args.merge.len());
+    for path in &args.merge {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read the shard report", path.display()))?;
+        files.push((path.display().to_string(), text));
     }
-    if args.min_tiles < 2 || args.min_tiles > args.max_tiles {
+    let merged = merge_reports(&files)?;
+    if args.json {
+        println!("{}", serde_json::to_string(&merged)?);
+    } else {
+        let (allow_lr, final_only) = merged
+            .options
+            .map_or((false, false), |o| (o.allow_opposite, o.final_only));
+        let label = format!(", merged from {} parts", files.len());
+        print_table(&merged.rows, allow_lr, final_only, &label, false);
+        eprintln!("{:.2} s in all parts", merged.seconds);
+    }
+    Ok(())
+}
+
+fn run(args: &Args) -> anyhow::Result<()> {
+    if !args.merge.is_empty() {
+        return merge(args);
+    }
+    let Some(max_tiles) = args.max_tiles else {
+        bail!("--max-tiles N is needed (or --merge FILES to add up shard reports)");
+    };
+    if !(2..=MAX_COUNT_TILES).contains(&max_tiles) {
+        bail!("--max-tiles {max_tiles}: expected a chain length from 2 to {MAX_COUNT_TILES} tiles");
+    }
+    if args.min_tiles < 2 || args.min_tiles > max_tiles {
         bail!(
-            "--min-tiles {}: expected 2 to --max-tiles ({})",
-            args.min_tiles,
-            args.max_tiles
+            "--min-tiles {}: expected 2 to --max-tiles ({max_tiles})",
+            args.min_tiles
         );
     }
     if args.samples.is_some() && !args.random {
@@ -159,12 +185,12 @@ fn run(args: &Args) -> anyhow::Result<()> {
     }
     let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
     let mut opts = CountOptions::default()
-        .with_tiles(args.min_tiles, args.max_tiles)
+        .with_tiles(args.min_tiles, max_tiles)
         .with_allow_opposite(args.allow_lr)
         .with_final_only(args.final_only);
-    if let Some(s) = &args.shard {
-        let (k, m) = parse_shard(s)?;
-        opts = opts.with_shard(k, m);
+    let shard = args.shard.as_deref().map(parse_shard).transpose()?;
+    if let Some(s) = shard {
+        opts = opts.with_shard(s.k, s.m);
     }
     if args.random && opts.shard.is_some() {
         anyhow::bail!(
@@ -173,11 +199,11 @@ fn run(args: &Args) -> anyhow::Result<()> {
     }
     let mode = ProgressMode::detect(args.quiet);
     if mode != ProgressMode::Quiet {
-        if let Some((nodes, secs)) = estimate_seconds(&opts, args.max_tiles)? {
+        if let Some((nodes, secs)) = estimate_seconds(&opts, max_tiles)? {
             if secs > WARN_SECONDS {
                 eprintln!(
                     "fold-enum: counting up to {} tiles visits about {nodes:.1e} search nodes: roughly {} on this machine (from a calibration run to 15 tiles); --shard K/M splits the work",
-                    args.max_tiles,
+                    max_tiles,
                     duration_words(secs)
                 );
             }
@@ -187,7 +213,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
     let start = Instant::now();
     let mut rows = count_valid(&opts, &|d, t| progress.update("counting", d, t))?;
     if args.random {
-        let exact_max = args.random_exact_max.min(args.max_tiles);
+        let exact_max = args.random_exact_max.min(max_tiles);
         if exact_max >= args.min_tiles {
             let exact = count_valid(
                 &opts.with_tiles(args.min_tiles, exact_max).with_random(true),
@@ -205,7 +231,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             // time a small sample of the longest chains to say what the full one costs
             let probe = 2_000.min(samples);
             let t0 = Instant::now();
-            estimate_random(args.max_tiles, probe, args.seed, &check);
+            estimate_random(max_tiles, probe, args.seed, &check);
             let secs =
                 t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
             if secs > WARN_SECONDS {
@@ -229,30 +255,31 @@ fn run(args: &Args) -> anyhow::Result<()> {
     progress.finish();
     let seconds = start.elapsed().as_secs_f64();
     if args.json {
-        let out = serde_json::json!({ "rows": rows, "seconds": seconds, "shard": args.shard });
-        println!("{out}");
+        // a shard carries its options, so that --merge can refuse parts of other searches
+        let report = CountReport {
+            rows,
+            seconds,
+            shard,
+            options: shard.map(|_| opts),
+        };
+        println!("{}", serde_json::to_string(&report)?);
     } else {
-        print_table(&rows, args);
+        let label = shard.map(|s| format!(", shard {s}")).unwrap_or_default();
+        print_table(&rows, args.allow_lr, args.final_only, &label, args.random);
         eprintln!("{:.2} s", seconds);
     }
     Ok(())
 }
 
-fn print_table(rows: &[CountRow], args: &Args) {
-    let mode = match (args.allow_lr, args.final_only) {
+fn print_table(rows: &[CountRow], allow_lr: bool, final_only: bool, label: &str, random: bool) {
+    let mode = match (allow_lr, final_only) {
         (false, false) => "adjacent LR/RL not used, sequential folding",
         (true, false) => "adjacent LR/RL allowed, sequential folding",
         (false, true) => "adjacent LR/RL not used, final shape only",
         (true, true) => "adjacent LR/RL allowed, final shape only",
     };
-    println!(
-        "# valid fold words ({mode}){}",
-        args.shard
-            .as_deref()
-            .map(|s| format!(", shard {s}"))
-            .unwrap_or_default()
-    );
-    if args.random {
+    println!("# valid fold words ({mode}){label}");
+    if random {
         println!(
             "{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact",
             "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)"
@@ -264,7 +291,7 @@ fn print_table(rows: &[CountRow], args: &Args) {
         );
     }
     for r in rows {
-        if args.random {
+        if random {
             println!(
                 "{:>5} {:>22} {:>16} {:>16} {:>12.8} {:>12.8}  {}",
                 r.tiles,
