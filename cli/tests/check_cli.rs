@@ -194,11 +194,19 @@ fn merge_adds_up_shard_files_and_refuses_a_missing_or_doubled_one() {
     // part 2 missing
     let o = fold_enum(&["--merge", &files[0], &files[2]]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("shards missing: 2 (of 3 parts)"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("shards missing: 2 (of 3 parts)"),
+        "{}",
+        stderr(&o)
+    );
     // part 3 twice
     let o = fold_enum(&["--merge", &files[0], &files[1], &files[2], &files[2]]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("shard 3/3 given twice"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("shard 3/3 given twice"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

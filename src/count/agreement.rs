@@ -79,6 +79,12 @@ fn sweeps_cut_words_with_clean_final_shapes() {
     let shapes = count_valid(&opts.with_final_only(true), &|_, _| {}).unwrap();
     assert_eq!(swept[0].valid, shapes[0].valid);
     for (a, b) in swept.iter().zip(&shapes).skip(1) {
-        assert!(a.valid < b.valid, "{} tiles: {} {}", a.tiles, a.valid, b.valid);
+        assert!(
+            a.valid < b.valid,
+            "{} tiles: {} {}",
+            a.tiles,
+            a.valid,
+            b.valid
+        );
     }
 }

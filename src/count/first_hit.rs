@@ -28,32 +28,39 @@ use super::MAX_COUNT_TILES;
 pub(super) const NEVER: u8 = u8::MAX;
 
 /// Slack, in tile widths, on the distance tests that skip pairs before the exact test: far
-/// above the rounding of the `f64` centres (1e-15 w at 40 tiles), so a skipped pair is one the
+/// above the rounding of the `f64` centres (1e-14 w at 40 tiles), so a skipped pair is one the
 /// exact test would have rejected too.
 const SLACK: f64 = 1e-9;
 
-/// Where a tail's tiles can reach, in the canonical frame relative to the hinge.
+/// Where a tail's tiles can reach, in the canonical frame relative to the hinge, for screening
+/// placed tiles before their offsets are looked up. In `f32` with a slack of [`SCREEN_SLACK`]:
+/// the search's `f32` centres are sums of at most 40 steps, each within 3e-8 w of exact, and
+/// every coordinate is below 64 w (a rounding of at most 4e-6 w), so a tile screened out is one
+/// that no tail tile can meet.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct TailWindow {
     /// The hinge in tile `d`'s frame (left fold).
-    pub hinge: V2,
+    pub hinge: (f32, f32),
     /// Smallest `x - hinge.x` of a placed centre that a tail tile can meet. A tail centre
     /// starts at `(k - 1/2, -side/2)` from the hinge and turns a quarter turn counter-clockwise,
     /// so its `x` stays at least `side/2` and its `y` at least `-side/2`; two tiles meet only
     /// with centres closer than two circumradii.
-    pub min_x: f64,
+    pub min_x: f32,
     /// Smallest `y - hinge.y` of a placed centre that a tail tile can meet.
-    pub min_y: f64,
-    /// Per `k`: the distance from the hinge beyond which no tail tile up to `k` can meet a
-    /// placed tile (tail centre `k`'s distance plus two circumradii), and its square.
-    reach: [(f64, f64); MAX_COUNT_TILES + 1],
+    pub min_y: f32,
+    /// Per `k`: the squared distance from the hinge beyond which no tail tile up to `k` can
+    /// meet a placed tile (tail centre `k`'s distance plus two circumradii).
+    reach2: [f32; MAX_COUNT_TILES + 1],
 }
 
+/// The screening slack, tile widths.
+const SCREEN_SLACK: f64 = 1e-3;
+
 impl TailWindow {
-    /// The reach of the first `k` tail tiles (`k >= 1`) and its square.
+    /// The squared reach of the first `k` tail tiles (`k >= 1`).
     #[inline]
-    pub fn reach(&self, k: usize) -> (f64, f64) {
-        self.reach[k.min(MAX_COUNT_TILES)]
+    pub fn reach2(&self, k: usize) -> f32 {
+        self.reach2[k.min(MAX_COUNT_TILES)]
     }
 }
 
@@ -62,6 +69,8 @@ impl TailWindow {
 pub(super) struct FirstHits {
     outline: [V2; 8],
     radius: f64,
+    /// The hinge in tile `d`'s frame (left fold).
+    hinge: V2,
     window: TailWindow,
     /// Distance of tail centre `k` from the hinge.
     tail_distance: [f64; MAX_COUNT_TILES + 1],
@@ -79,22 +88,22 @@ impl FirstHits {
             .unwrap_or(ExactPoint::ORIGIN)
             .to_f64(1.0);
         let mut tail_distance = [0.0; MAX_COUNT_TILES + 1];
-        let mut reach = [(0.0, 0.0); MAX_COUNT_TILES + 1];
+        let mut reach2 = [0.0; MAX_COUNT_TILES + 1];
         for k in 0..=MAX_COUNT_TILES {
             let (x, y) = (k as f64 - hinge.0, -hinge.1);
             tail_distance[k] = (x * x + y * y).sqrt();
-            let r = tail_distance[k] + 2.0 * radius + SLACK;
-            reach[k] = (r, r * r);
+            reach2[k] = (tail_distance[k] + 2.0 * radius + SCREEN_SLACK).powi(2) as f32;
         }
         FirstHits {
             outline: o.inset_vertices(tolerance),
             radius,
             window: TailWindow {
-                hinge,
-                min_x: half_side - 2.0 * radius - SLACK,
-                min_y: -half_side - 2.0 * radius - SLACK,
-                reach,
+                hinge: (hinge.0 as f32, hinge.1 as f32),
+                min_x: (half_side - 2.0 * radius - SCREEN_SLACK) as f32,
+                min_y: (-half_side - 2.0 * radius - SCREEN_SLACK) as f32,
+                reach2,
             },
+            hinge,
             tail_distance,
             memo: FxHashMap::default(),
         }
@@ -126,7 +135,7 @@ impl FirstHits {
     /// The exact sweep test along the tail, nearest tile first.
     fn compute(&self, offset: ExactPoint) -> u8 {
         let p = offset.to_f64(1.0);
-        let h = self.window.hinge;
+        let h = self.hinge;
         let dp = ((p.0 - h.0).powi(2) + (p.1 - h.1).powi(2)).sqrt();
         let fixed = self.at(p);
         let apart = 2.0 * self.radius + SLACK;
@@ -191,9 +200,9 @@ mod tests {
                         }
                         met += 1;
                         let (x, y) = off.to_f64(1.0);
-                        let (a, c) = (x - w.hinge.0, y - w.hinge.1);
+                        let (a, c) = (x as f32 - w.hinge.0, y as f32 - w.hinge.1);
                         assert!(a >= w.min_x && c >= w.min_y, "{off:?} {k}");
-                        assert!(a * a + c * c <= w.reach(k as usize).1, "{off:?} {k}");
+                        assert!(a * a + c * c <= w.reach2(k as usize), "{off:?} {k}");
                     }
                 }
             }

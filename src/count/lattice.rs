@@ -23,7 +23,8 @@ pub(super) fn canonical_offset(fixed: ExactPoint, at: ExactPose, fold: Fold) -> 
     let (c, s) = COS_SIN[usize::from(at.heading.get() & 3)];
     let m = if fold == Fold::R { -1 } else { 1 };
     let d = fixed - at.centre;
-    let turn = |p: Surd, q: Surd, sp: i64, sq: i64| Surd::new(sp * p.a + sq * q.a, sp * p.b + sq * q.b);
+    let turn =
+        |p: Surd, q: Surd, sp: i64, sq: i64| Surd::new(sp * p.a + sq * q.a, sp * p.b + sq * q.b);
     ExactPoint::new(turn(d.x, d.y, c, s), turn(d.y, d.x, m * c, -m * s))
 }
 
@@ -33,22 +34,28 @@ pub(super) fn canonical_offset(fixed: ExactPoint, at: ExactPose, fold: Fold) -> 
 pub(super) struct Steps {
     /// Per heading and letter (S, L, R): the pose after it from a tile at the origin.
     after: [[ExactPose; 3]; 4],
+    /// The same centre offsets in `f32` (tile widths), for screening.
+    delta: [[(f32, f32); 3]; 4],
 }
 
 impl Steps {
     /// The table.
     pub fn new() -> Steps {
         let mut after = [[ExactPose::default(); 3]; 4];
-        for (h, row) in after.iter_mut().enumerate() {
+        let mut delta = [[(0.0, 0.0); 3]; 4];
+        for h in 0..4 {
             let from = ExactPose {
                 centre: ExactPoint::ORIGIN,
                 heading: QuarterTurns::new(h as i64),
             };
-            for (f, pose) in Fold::ALL.into_iter().zip(row.iter_mut()) {
-                *pose = next_exact_pose(from, f);
+            for f in Fold::ALL {
+                let to = next_exact_pose(from, f);
+                let (x, y) = to.centre.to_f64(1.0);
+                after[h][f as usize] = to;
+                delta[h][f as usize] = (x as f32, y as f32);
             }
         }
-        Steps { after }
+        Steps { after, delta }
     }
 
     /// The pose of the tile after `pose` across a joint folded `f`.
@@ -59,6 +66,13 @@ impl Steps {
             centre: pose.centre + step.centre,
             heading: step.heading,
         }
+    }
+
+    /// The centre offset of that step in `f32`, from a tile heading `pose.heading` (each
+    /// within 3e-8 w of the exact one).
+    #[inline]
+    pub fn delta(&self, pose: ExactPose, f: Fold) -> (f32, f32) {
+        self.delta[usize::from(pose.heading.get() & 3)][f as usize]
     }
 }
 
@@ -86,10 +100,7 @@ pub(super) fn tiles_overlap(a: ExactPoint, b: ExactPoint) -> bool {
     let d = b - a;
     let width = Surd::new(2, 0);
     let diagonal = Surd::new(0, 4);
-    abs(d.x) < width
-        && abs(d.y) < width
-        && abs(d.x + d.y) < diagonal
-        && abs(d.x - d.y) < diagonal
+    abs(d.x) < width && abs(d.y) < width && abs(d.x + d.y) < diagonal && abs(d.x - d.y) < diagonal
 }
 
 #[cfg(test)]
@@ -129,6 +140,11 @@ mod tests {
             let word = FoldWord::parse(w).unwrap();
             for (j, &f) in word.folds().iter().enumerate() {
                 assert_eq!(steps.next(p[j], f), p[j + 1]);
+                let (dx, dy) = steps.delta(p[j], f);
+                let (x0, y0) = p[j].centre.to_f64(1.0);
+                let (x1, y1) = p[j + 1].centre.to_f64(1.0);
+                assert!((f64::from(dx) - (x1 - x0)).abs() < 1e-7);
+                assert!((f64::from(dy) - (y1 - y0)).abs() < 1e-7);
             }
         }
     }

@@ -103,7 +103,9 @@ pub enum MergeError {
         message: String,
     },
     /// A report is a whole search, not a part.
-    #[error("{file}: not a shard (its \"shard\" is null); only the parts of one --shard run add up")]
+    #[error(
+        "{file}: not a shard (its \"shard\" is null); only the parts of one --shard run add up"
+    )]
     NotAShard {
         /// The file.
         file: String,
@@ -312,7 +314,10 @@ mod tests {
         let mut mixed = parts(opts, &[1], 2);
         mixed.extend(parts(opts.with_allow_opposite(true), &[2], 2));
         let e = merge_reports(&mixed).unwrap_err();
-        assert!(matches!(&e, MergeError::Mismatch { what, .. } if what == "options"), "{e}");
+        assert!(
+            matches!(&e, MergeError::Mismatch { what, .. } if what == "options"),
+            "{e}"
+        );
         let mut longer = parts(opts, &[1], 2);
         longer.extend(parts(opts.with_tiles(2, 12), &[2], 2));
         assert!(matches!(

@@ -172,10 +172,11 @@ struct Walker {
     /// The first tail tile that meets the folding tile or one of the two before it.
     recent: RecentHits,
     poses: Vec<ExactPose>,
-    /// Tile centres in `f64` (tile widths), for the window test; indexed modulo [`SLOTS`]
-    /// (tile indices stay below it), which spares the bounds checks in the inner loop.
-    xs: Box<[f64; SLOTS]>,
-    ys: Box<[f64; SLOTS]>,
+    /// Tile centres in `f32` (tile widths) for screening (see [`TailWindow`]), summed step by
+    /// step; indexed modulo [`SLOTS`] (tile indices stay below it), which spares the bounds
+    /// checks in the inner loop.
+    xs: Box<[f32; SLOTS]>,
+    ys: Box<[f32; SLOTS]>,
     letters: Vec<Fold>,
     tally: Tally,
     pow5: Vec<u128>,
@@ -185,8 +186,11 @@ struct Walker {
 const SLOTS: usize = 64;
 const _: () = assert!(super::MAX_COUNT_TILES < SLOTS);
 
+/// Centres screened together.
+const LANES: usize = 16;
+
 /// The unit vector of a quarter-turn heading.
-const UNIT: [(f64, f64); 4] = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+const UNIT: [(f32, f32); 4] = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
 
 impl Walker {
     fn new(scope: &Scope, mut hits: FirstHits) -> Walker {
@@ -213,9 +217,11 @@ impl Walker {
 
     /// Puts tile `j` after joint `j - 1` folded `f`.
     fn place(&mut self, j: usize, f: Fold) {
-        let p = self.steps.next(self.poses[j - 1], f);
-        self.poses[j] = p;
-        (self.xs[j % SLOTS], self.ys[j % SLOTS]) = p.centre.to_f64(1.0);
+        let before = self.poses[j - 1];
+        let (dx, dy) = self.steps.delta(before, f);
+        self.poses[j] = self.steps.next(before, f);
+        self.xs[j % SLOTS] = self.xs[(j - 1) % SLOTS] + dx;
+        self.ys[j % SLOTS] = self.ys[(j - 1) % SLOTS] + dy;
         self.letters[j - 1] = f;
     }
 
@@ -266,7 +272,7 @@ impl Walker {
             // overlapping lattice tiles are less than w / cos(pi/8) < 1.1 w apart
             let near = |i: &usize| {
                 let (xi, yi) = (self.xs[*i % SLOTS], self.ys[*i % SLOTS]);
-                (xi - x).powi(2) + (yi - y).powi(2) < 1.2
+                (f64::from(xi) - x).powi(2) + (f64::from(yi) - y).powi(2) < 1.2
             };
             let hit = (0..d)
                 .filter(near)
@@ -285,7 +291,7 @@ impl Walker {
     fn fold_budget(&mut self, d: usize, cap: usize, f: Fold) -> Option<usize> {
         let at = self.poses[d];
         let (ux, uy) = UNIT[usize::from(at.heading.get())];
-        let side = if f == Fold::L { 1.0 } else { -1.0 };
+        let side: f32 = if f == Fold::L { 1.0 } else { -1.0 };
         let w = &self.window;
         // the hinge in the world
         let (xd, yd) = (self.xs[d % SLOTS], self.ys[d % SLOTS]);
@@ -306,12 +312,21 @@ impl Walker {
         }
         // the other placed tiles within reach of the hinge, as a bit set (no branches: one
         // pass over the centres)
-        let (_, reach2) = w.reach(cap - d - 1);
+        let reach2 = w.reach2(cap - d - 1);
+        let end = d.saturating_sub(2);
         let mut mask = 0u64;
-        for i in 0..d.saturating_sub(2) {
-            let (rx, ry) = (self.xs[i % SLOTS] - hx, self.ys[i % SLOTS] - hy);
-            mask |= u64::from(rx * rx + ry * ry <= reach2) << i;
+        for base in (0..end).step_by(LANES) {
+            // a fixed number of lanes, so that the compiler vectorises; the slots past `end`
+            // hold stale centres and are masked off below
+            let mut bits = 0u64;
+            for lane in 0..LANES {
+                let i = (base + lane) % SLOTS;
+                let (rx, ry) = (self.xs[i] - hx, self.ys[i] - hy);
+                bits |= u64::from(rx * rx + ry * ry <= reach2) << lane;
+            }
+            mask |= bits << base;
         }
+        mask &= (1u64 << end) - 1;
         while mask != 0 {
             let i = mask.trailing_zeros() as usize;
             mask &= mask - 1;
