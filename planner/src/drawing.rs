@@ -5,8 +5,8 @@
 use kurbo::{CubicBez, Line, ParamCurve, PathSeg, Point, QuadBez, Vec2};
 use usvg::tiny_skia_path::PathSegment;
 
-use crate::shape::{FilledPath, Ring};
-use crate::{PlanError, Shape};
+use crate::error::PlanError;
+use crate::shape::{FilledPath, Ring, Shape};
 
 /// Curve flattening tolerance, as a share of the larger side of the drawing's bounding box:
 /// every flattened curve lies within this distance of the true curve. 1e-3 of the drawing is
