@@ -25,7 +25,6 @@
 //! assert!(Design::thesis().check().is_ok());
 //! ```
 
-pub mod atomic;
 mod bom;
 mod chain;
 pub mod collision;
@@ -35,7 +34,6 @@ pub mod dipole;
 pub mod engine;
 mod error;
 pub mod exact;
-pub mod fold_run;
 pub mod input;
 mod joint;
 pub mod kinematics;
@@ -45,6 +43,7 @@ mod path_kind;
 mod pose;
 pub mod reference;
 pub mod render;
+mod simulation;
 mod tile;
 mod word;
 
@@ -57,5 +56,6 @@ pub use joint::{Fold, JointOutcome};
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
+pub use simulation::{folded_word, simulate, timeline_json, SimulateError, MAX_TIMELINE_EVENTS};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

@@ -7,7 +7,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     joint_of_magnet, run, EngineOptions, EventKind, Outcome, SpeedLaw, TileDesigns, Timeline,
 };
-use foldchain::fold_run::simulate;
+use foldchain::simulate;
 use foldchain::{Chain, Design};
 
 fn run_with(chain: &str, designs: TileDesigns, speed: SpeedLaw) -> Timeline {

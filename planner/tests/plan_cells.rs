@@ -5,7 +5,6 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::{plan_svg_file, plan_svg_str, Plan, PlanOptions, Turns};
@@ -110,25 +109,4 @@ fn separate_parts_are_unplannable_with_a_reason() {
     assert_eq!(e.exit_code(), 1);
     let m = e.to_string();
     assert!(m.contains("two.svg") && m.contains("separate parts"), "{m}");
-}
-
-#[test]
-fn cli_exits_1_naming_why() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-cells-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let f = dir.join("two.svg");
-    std::fs::write(&f, TWO_DISCS).unwrap();
-    let out = dir.join("plan.json");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
-        .args([f.to_str().unwrap(), "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("separate parts") && err.contains("cannot plan"),
-        "{err}"
-    );
-    assert!(!out.exists());
-    std::fs::remove_dir_all(&dir).unwrap();
 }

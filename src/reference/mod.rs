@@ -9,6 +9,8 @@
 //! - [`events`]: the hybrid driver and [`run_reference`], with the engine's event kinds and
 //!   summary fields.
 //! - [`scenes`]: the scenes `fold-validate` runs.
+//! - `pictures`: the reference's recorded states as the pictures' chain states, energy curve
+//!   and transition data.
 //! - [`validate`]: errors against run time (the work-precision table and plot).
 //!
 //! ```
@@ -30,6 +32,7 @@ pub mod banded;
 pub mod dynamics;
 pub mod events;
 pub mod integrators;
+mod pictures;
 pub mod scenes;
 pub mod stiff;
 pub mod validate;
@@ -37,4 +40,8 @@ pub mod validate;
 pub use dynamics::{Model, ModelError, ModelOptions};
 pub use events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 pub use integrators::{Method, StepStats};
+pub use pictures::{
+    reference_energy, reference_final_state, reference_state, reference_state_near,
+    reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
+};
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

@@ -98,7 +98,7 @@ mod tests {
         assert_eq!(w.len(), 106);
         let chain = Chain::parse(&w).unwrap();
         assert_eq!(chain.len(), 107);
-        let (_, summary) = crate::fold_run::simulate(
+        let (_, summary) = crate::simulate(
             &chain,
             &TileDesigns::default(),
             &crate::engine::EngineOptions::default(),

@@ -18,10 +18,8 @@
 //! from the same pair forces; `event-dist` is the engine's default, the thesis' distance
 //! rule (nearest neighbours), shown for comparison.
 
-use std::path::{Path as FsPath, PathBuf};
 use std::time::Instant;
 
-use crate::atomic::{write_atomic, WriteError};
 use crate::engine::{run, EngineError, EngineOptions, EventKind, Outcome, StartRule, Timeline};
 use crate::kinematics::poses_at_angles;
 use crate::reference::events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
@@ -29,7 +27,7 @@ use crate::reference::integrators::Method;
 use crate::reference::scenes::{all_scenes, Scene};
 
 /// Options of a validation. Defaults: every scene, reference tolerance 1e-10 (Dormand-Prince),
-/// Dormand-Prince at 1e-3 to 1e-8, ROS2 at 1e-2 to 1e-5, output in `out/validate`.
+/// Dormand-Prince at 1e-3 to 1e-8, ROS2 at 1e-2 to 1e-5.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValidateOptions {
     /// Scenes to run (names, exact), or all when empty.
@@ -40,8 +38,6 @@ pub struct ValidateOptions {
     pub dopri5: Vec<f64>,
     /// Tolerances for ROS2.
     pub ros2: Vec<f64>,
-    /// Output directory for the plot.
-    pub out_dir: PathBuf,
 }
 
 impl Default for ValidateOptions {
@@ -51,7 +47,6 @@ impl Default for ValidateOptions {
             reference_tolerance: 1e-10,
             dopri5: vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
             ros2: vec![1e-2, 1e-3, 1e-4, 1e-5],
-            out_dir: PathBuf::from("out/validate"),
         }
     }
 }
@@ -60,11 +55,6 @@ impl ValidateOptions {
     /// Only these scenes.
     pub fn with_scenes(mut self, scenes: Vec<String>) -> ValidateOptions {
         self.scenes = scenes;
-        self
-    }
-    /// Another output directory.
-    pub fn with_out_dir(mut self, dir: PathBuf) -> ValidateOptions {
-        self.out_dir = dir;
         self
     }
 }
@@ -97,9 +87,6 @@ pub enum ValidateError {
         /// Why.
         source: Box<ReferenceError>,
     },
-    /// The plot could not be written.
-    #[error(transparent)]
-    Write(#[from] WriteError),
 }
 
 /// One row of the work-precision table.
@@ -631,15 +618,5 @@ impl Validation {
         }
         s.push_str("</svg>\n");
         s
-    }
-
-    /// Writes `work-precision.svg` and `work-precision.json` into `dir`.
-    pub fn write(&self, dir: &FsPath) -> Result<Vec<PathBuf>, WriteError> {
-        crate::atomic::create_dir_all(dir)?;
-        let svg = dir.join("work-precision.svg");
-        write_atomic(&svg, self.to_svg().as_bytes())?;
-        let json = dir.join("work-precision.json");
-        write_atomic(&json, self.to_json().as_bytes())?;
-        Ok(vec![svg, json])
     }
 }

@@ -9,11 +9,13 @@
 
 mod frame;
 mod plot;
+mod source;
 mod state;
 mod transition;
 
 pub use frame::{frame_svg, FrameOptions, FrameView, DETAIL_TILES};
 pub use plot::energy_svg;
+pub use source::RunSource;
 pub use state::ChainState;
 pub use transition::{transition_svg, MagnetTrack, TransitionData};
 

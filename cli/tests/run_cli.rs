@@ -117,11 +117,18 @@ fn stops_exit_1_and_say_where() {
 #[test]
 fn reads_a_plan_and_a_design() {
     let d = tmp("plan");
-    std::fs::write(
-        d.join("p.json"),
-        r#"{"source": "x", "word": "S*3 L L S*3", "tiles": 9}"#,
-    )
-    .unwrap();
+    let plan = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/square.svg"))
+        .args(["--tiles", "30", "--out", d.join("p.json").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        plan.status.success(),
+        "{}",
+        String::from_utf8_lossy(&plan.stderr)
+    );
+    let planned: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("p.json")).unwrap()).unwrap();
     std::fs::write(
         d.join("d.json"),
         r#"{"global": {"s": 0.2}, "tiles": [{"from": 0, "to": 2, "s": 0}]}"#,
@@ -143,7 +150,7 @@ fn reads_a_plan_and_a_design() {
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    assert_eq!(summary(&d.join("o"))["tiles"], 9);
+    assert_eq!(summary(&d.join("o"))["tiles"], planned["tiles"]);
 }
 
 #[test]
@@ -222,4 +229,124 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(2));
+}
+
+/// Every file under `dir` (relative path, bytes), sorted.
+fn tree(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
+                files.push((rel, std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// Puts a user's own files into `dir`: a plain file, a hidden one, one in a subfolder, and
+/// files whose names look like the tool's but are not (`step-7.svg`).
+fn foreign_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    std::fs::write(dir.join("keep.txt"), "a user's notes").unwrap();
+    std::fs::write(dir.join(".hidden"), "hidden").unwrap();
+    std::fs::write(dir.join("sub/deep.txt"), "deep").unwrap();
+    std::fs::write(dir.join("step-7.svg"), "not one of ours").unwrap();
+    std::fs::write(dir.join("summary.json.bak"), "a backup").unwrap();
+    tree(dir)
+}
+
+fn without_run_files(files: Vec<(String, Vec<u8>)>) -> Vec<(String, Vec<u8>)> {
+    files
+        .into_iter()
+        .filter(|(n, _)| !foldchain_cli::run_files::is_run_file(n))
+        .collect()
+}
+
+#[test]
+fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
+    let d = tmp("foreign");
+    let out = d.join("o");
+    let before = foreign_files(&out);
+    for (chain, frames) in [("SLLS", "12"), ("SSLLSS", "3"), ("LSLLSR", "5")] {
+        let o = bin()
+            .args([chain, "--out", out.to_str().unwrap(), "--frames", frames])
+            .output()
+            .unwrap();
+        assert!(o.status.code().is_some_and(|c| c <= 1), "{chain}");
+        assert_eq!(without_run_files(tree(&out)), before, "after {chain}");
+        // the frames of this run, and no stale frame of the earlier, longer one
+        let n: usize = frames.parse().unwrap();
+        let steps = tree(&out)
+            .iter()
+            .filter(|(f, _)| f.starts_with("step-") && f.len() == 13)
+            .count();
+        assert_eq!(steps, n, "after {chain}");
+        assert_eq!(summary(&out)["tiles"], chain.len() + 1);
+    }
+    // the reference run too
+    let o = bin()
+        .args([
+            "SS",
+            "--reference",
+            "--frames",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(without_run_files(tree(&out)), before);
+}
+
+#[test]
+fn a_run_killed_while_writing_leaves_no_torn_file_and_every_foreign_file() {
+    let d = tmp("killed");
+    let out = d.join("o");
+    let before = foreign_files(&out);
+    // a long chain with many frames: writing takes long enough to be interrupted
+    for delay_ms in [150u64, 400, 900] {
+        let mut child = bin()
+            .args([
+                "S*600 L L S*600",
+                "--frames",
+                "3000",
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        let _ = child.kill();
+        let _ = child.wait();
+        assert_eq!(
+            without_run_files(tree(&out))
+                .iter()
+                .filter(|(n, _)| !n.contains(".tmp"))
+                .cloned()
+                .collect::<Vec<_>>(),
+            before
+        );
+        for (name, bytes) in tree(&out) {
+            if name.ends_with(".svg") && foldchain_cli::run_files::is_run_file(&name) {
+                let text = String::from_utf8(bytes).unwrap();
+                assert!(text.trim_end().ends_with("</svg>"), "{name} is torn");
+            }
+        }
+    }
+    // the next run completes and clears the temporary files a killed run left
+    let o = bin()
+        .args(["SLLS", "--frames", "3", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(without_run_files(tree(&out)), before);
 }

@@ -11,10 +11,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{bail, Context};
+use anyhow::bail;
 use clap::Parser;
 use foldchain::reference::stiff::{run_stiff_study, select_cases};
 use foldchain::reference::validate::{validate, ValidateOptions};
+use foldchain_cli::output::OutputDir;
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
 /// integrator (Dormand-Prince 5(4), ROS2) along a ladder of tolerances, and reports each
@@ -52,9 +53,7 @@ fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
     if !(t > 0.0 && t <= 1e-6) {
         bail!("--reference-tolerance {t}: expected a number in (0, 1e-6]");
     }
-    let mut o = ValidateOptions::default()
-        .with_scenes(args.scenes.clone())
-        .with_out_dir(args.out.clone());
+    let mut o = ValidateOptions::default().with_scenes(args.scenes.clone());
     o.reference_tolerance = t;
     if args.quick {
         o.dopri5 = vec![1e-3, 1e-4, 1e-5, 1e-6];
@@ -104,9 +103,10 @@ fn main() -> ExitCode {
                 );
             }
         })?;
-        let files = v
-            .write(&opts.out_dir)
-            .with_context(|| format!("writing into {}", opts.out_dir.display()))?;
+        let mut out = OutputDir::create(&args.out)?;
+        out.write("work-precision.svg", v.to_svg().as_bytes())?;
+        out.write("work-precision.json", v.to_json().as_bytes())?;
+        let files: Vec<_> = out.written().iter().map(|f| args.out.join(f)).collect();
         Ok((v, files))
     });
     match result {

@@ -1,6 +1,7 @@
-//! `fold-run --reference` as a library call: the force-integrated reference on the same chain
-//! and design, written as the event engine's run is ([`super::fold_run`]): the same file
-//! names, the same pictures, drawn from the reference's own states.
+//! The reference run as pictures: the chain's state (tile poses, magnet positions, what is
+//! moving) at a recorded time, the energy curve and the transition diagram's data, drawn from
+//! the reference's own recorded states, in the shapes the event engine's pictures take
+//! ([`crate::render`]).
 //!
 //! The reference records its state on an evenly spaced time grid
 //! ([`Recording::Grid`], at most [`STATE_BUDGET_BYTES`] of states). A step frame shows the
@@ -10,22 +11,12 @@
 //! as the integrator had them ([`crate::reference::Model::poses`],
 //! [`crate::reference::Model::positions`]).
 
-use std::path::PathBuf;
-
 use crate::dipole::pair_energy;
-use crate::engine::{EnergySample, EventKind, Summary};
+use crate::engine::{EnergySample, EventKind};
+#[cfg(doc)]
 use crate::reference::events::Recording;
-use crate::reference::{run_reference, ReferenceOptions, ReferenceRun};
-use crate::render::{
-    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, MagnetTrack,
-    TransitionData, DETAIL_TILES,
-};
-use crate::Chain;
-
-use super::{
-    default_frames, energy_samples, final_note, frame_times, transition_title, write_dir,
-    FoldRunError, FoldRunOptions,
-};
+use crate::reference::events::ReferenceRun;
+use crate::render::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
 /// states (one state is 8 bytes per unknown, at most three unknowns per tile).
@@ -35,19 +26,6 @@ pub const STATE_BUDGET_BYTES: usize = 48 << 20;
 /// 4,096 (about 1,000 at 2,000 tiles).
 pub fn state_budget(tiles: usize) -> usize {
     (STATE_BUDGET_BYTES / (24 * tiles.max(1) + 32)).clamp(64, 4096)
-}
-
-/// What a reference run produced.
-#[derive(Debug)]
-pub struct ReferenceRunReport {
-    /// The summary (also in `summary.json`).
-    pub summary: Summary,
-    /// The output directory.
-    pub out_dir: PathBuf,
-    /// The files written, relative to it.
-    pub files: Vec<String>,
-    /// The run, with its recorded states.
-    pub run: ReferenceRun,
 }
 
 /// The chain of state `y` at time `time` (magnet positions only for chains drawn in detail,
@@ -262,98 +240,23 @@ pub fn reference_transition(run: &ReferenceRun, first: usize, last: usize) -> Tr
     }
 }
 
-/// Runs the reference on `chain` with `opts.designs` and `reference` (recording states on a
-/// grid of [`state_budget`] states unless `reference.record` asks for a grid already), and
-/// writes into `opts.out_dir` the files the event engine's [`super::fold_run`] writes: step
-/// frames, `final.svg`, `transition.svg`, `energy.svg`, `timeline.json` and `summary.json`,
-/// all at once (a failed run leaves no half-written output). `opts.engine` and
-/// `opts.check` are not used (the reference has no collision check).
-pub fn fold_run_reference(
-    chain: &Chain,
-    opts: &FoldRunOptions,
-    reference: &ReferenceOptions,
-    progress: &mut dyn FnMut(&str, usize, usize),
-) -> Result<ReferenceRunReport, FoldRunError> {
-    let mut ro = *reference;
-    if ro.record == Recording::Off {
-        ro.record = Recording::Grid {
-            max_states: state_budget(chain.len()),
-        };
-    }
-    progress("reference", 0, 1);
-    let run = run_reference(chain, &opts.designs, &ro)?;
-    progress("reference", 1, 1);
-    let summary = run.to_summary();
-    let geometry = &run.model.geometry;
-    let w = geometry.w;
-    let states = recorded(&run);
-    let frames = opts
-        .frames
-        .unwrap_or_else(|| default_frames(run.tiles()))
-        .max(1);
-    let mut files: Vec<(String, String)> = Vec::new();
-    let fo = FrameOptions {
-        title: opts.name.clone(),
-        collision: None,
-        note: None,
-    };
-    for (i, t) in frame_times(run.end_time, frames).into_iter().enumerate() {
-        progress("frames", i, frames);
-        let (time, y) = states[nearest(&states, t)];
-        let state = reference_state(&run, time, y);
-        let view = FrameView::around(state.poses.iter().copied(), w);
-        files.push((
-            format!("step-{i:04}.svg"),
-            frame_svg(geometry, &state, &view, &fo),
-        ));
-    }
-    progress("frames", frames, frames);
-    let mut final_state = reference_state(&run, run.end_time, &run.final_state);
+/// The recorded state nearest `time`, stamped with that state's own time (the final state
+/// when none were recorded).
+pub fn reference_state_near(run: &ReferenceRun, time: f64) -> ChainState {
+    let states = recorded(run);
+    let (t, y) = states[nearest(&states, time)];
+    reference_state(run, t, y)
+}
+
+/// The final state at [`ReferenceRun::end_time`]; when the run ended because the chain came
+/// to rest, nothing is drawn as moving.
+pub fn reference_final_state(run: &ReferenceRun) -> ChainState {
+    let mut state = reference_state(run, run.end_time, &run.final_state);
     if run.stopped.is_none() {
-        // the run ended because the chain came to rest
-        final_state.moving.iter_mut().for_each(|m| *m = false);
-        final_state.folding.iter_mut().for_each(|f| *f = false);
+        state.moving.iter_mut().for_each(|m| *m = false);
+        state.folding.iter_mut().for_each(|f| *f = false);
     }
-    let final_view = FrameView::around(final_state.poses.iter().copied(), w);
-    let fo = FrameOptions {
-        note: Some(final_note(&summary)),
-        ..fo
-    };
-    files.push((
-        "final.svg".into(),
-        frame_svg(geometry, &final_state, &final_view, &fo),
-    ));
-    let (a, b) = opts.transition_tiles.unwrap_or((0, 5.min(run.tiles() - 1)));
-    files.push((
-        "transition.svg".into(),
-        transition_svg(
-            geometry,
-            &reference_transition(&run, a, b),
-            &transition_title(&opts.name, a, b, run.tiles()),
-        ),
-    ));
-    progress("energy", 0, 1);
-    let curve = reference_energy(&run, energy_samples(run.tiles()));
-    files.push((
-        "energy.svg".into(),
-        energy_svg(
-            &run.folds,
-            &curve,
-            &format!("{}: total dipole energy", opts.name),
-        ),
-    ));
-    progress("energy", 1, 1);
-    files.push(("timeline.json".into(), run.timeline_json()));
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    files.push(("summary.json".into(), summary_json));
-    write_dir(&opts.out_dir, &files, progress)?;
-    Ok(ReferenceRunReport {
-        summary,
-        out_dir: opts.out_dir.clone(),
-        files: files.into_iter().map(|(n, _)| n).collect(),
-        run,
-    })
+    state
 }
 
 #[cfg(test)]
@@ -361,6 +264,9 @@ pub fn fold_run_reference(
 mod tests {
     use super::*;
     use crate::engine::{energy_curve, run, EngineOptions, Outcome, TileDesigns};
+    use crate::reference::events::Recording;
+    use crate::reference::{run_reference, ReferenceOptions};
+    use crate::Chain;
 
     #[test]
     fn recorded_states_are_bounded_evenly_spaced_and_end_with_the_final_state() {

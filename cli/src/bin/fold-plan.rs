@@ -64,12 +64,12 @@ fn run(args: &Args) -> anyhow::Result<()> {
     };
     let plan = plan_svg_file(&args.shape, &opts)?;
     if let Some(out) = &args.out {
-        foldchain::atomic::write_atomic(out, plan.to_json().as_bytes())
+        foldchain_cli::output::write_atomic(out, plan.to_json().as_bytes())
             .context("writing the plan")?;
     }
     if let Some(p) = &args.preview {
         let svg = preview_svg_file(&args.shape, &plan).context("drawing the preview")?;
-        foldchain::atomic::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
+        foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
     if args.json {
         println!("{}", plan.to_json());

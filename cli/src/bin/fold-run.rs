@@ -7,10 +7,16 @@ use std::process::ExitCode;
 
 use anyhow::{anyhow, bail, Context};
 use clap::Parser;
-use foldchain::engine::{SValue, SpeedLaw, TileDesigns, DEFAULT_DRAG};
-use foldchain::fold_run::{fold_run, fold_run_reference, read_plan_file, FoldRunOptions};
-use foldchain::Chain;
-use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
+use foldchain::collision::CheckOptions;
+use foldchain::engine::{
+    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
+};
+use foldchain::reference::events::Recording;
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::render::RunSource;
+use foldchain::{simulate, Chain};
+use foldchain_cli::run_files::{write_run_files, RunFilesOptions};
+use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
@@ -197,39 +203,54 @@ fn run(args: Args) -> anyhow::Result<u8> {
             Some((a, b))
         }
     };
-    if args.reference {
-        let opts = FoldRunOptions {
-            name: format!("{name} (reference)"),
-            designs,
-            out_dir: args
-                .out
-                .clone()
-                .unwrap_or_else(|| PathBuf::from("out").join(format!("{name}-reference"))),
-            frames: args.frames,
-            transition_tiles,
-            ..FoldRunOptions::default()
-        };
-        return run_reference_scene(&chain, &opts, &name, args.json);
-    }
-    let opts = FoldRunOptions {
-        name: name.clone(),
-        designs,
-        engine: foldchain::engine::EngineOptions::default()
-            .with_speed(speed)
-            .with_start_rule(match args.start_rule.as_str() {
-                "force" => foldchain::engine::StartRule::Force {
-                    cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
-                },
-                _ => foldchain::engine::StartRule::Distance,
-            }),
-        out_dir: args
-            .out
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("out").join(&name)),
+    let files = RunFilesOptions {
+        name: if args.reference {
+            format!("{name} (reference)")
+        } else {
+            name.clone()
+        },
         frames: args.frames,
         transition_tiles,
-        ..FoldRunOptions::default()
     };
+    let out_dir = args.out.clone().unwrap_or_else(|| {
+        let leaf = if args.reference {
+            format!("{name}-reference")
+        } else {
+            name.clone()
+        };
+        PathBuf::from("out").join(leaf)
+    });
+    if args.reference {
+        if chain.len() > MAX_REFERENCE_TILES {
+            bail!(
+                "--reference: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
+                chain.len()
+            );
+        }
+        let ro = ReferenceOptions::default().with_record(Recording::Grid {
+            max_states: state_budget(chain.len()),
+        });
+        let run = run_reference(&chain, &designs, &ro)?;
+        let summary = run.to_summary();
+        return report(
+            &run,
+            &summary,
+            &out_dir,
+            &files,
+            &files.name,
+            args.json,
+            None,
+        );
+    }
+    let engine = EngineOptions::default().with_speed(speed).with_start_rule(
+        match args.start_rule.as_str() {
+            "force" => StartRule::Force {
+                cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+            },
+            _ => StartRule::Distance,
+        },
+    );
+    let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
     let bar = (chain.len() > 2000).then(|| {
         let b = indicatif::ProgressBar::new(1);
         b.set_style(
@@ -238,19 +259,44 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
+    let code = report(
+        &tl,
+        &summary,
+        &out_dir,
+        &files,
+        &name,
+        args.json,
+        bar.as_ref(),
+    );
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    code
+}
+
+/// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
+/// validation scenes go up to 107 tiles.
+const MAX_REFERENCE_TILES: usize = 2_000;
+
+/// Writes the run's files and prints its summary; the exit code (0 completed, 1 not).
+fn report(
+    source: &dyn RunSource,
+    s: &Summary,
+    out_dir: &Path,
+    files: &RunFilesOptions,
+    name: &str,
+    json: bool,
+    bar: Option<&indicatif::ProgressBar>,
+) -> anyhow::Result<u8> {
     let mut progress = |stage: &str, done: usize, total: usize| {
-        if let Some(b) = &bar {
+        if let Some(b) = bar {
             b.set_message(stage.to_string());
             b.set_length(total as u64);
             b.set_position(done as u64);
         }
     };
-    let report = fold_run(&chain, &opts, &mut progress)?;
-    if let Some(b) = &bar {
-        b.finish_and_clear();
-    }
-    let s = &report.summary;
-    if args.json {
+    write_run_files(source, s, out_dir, files, &mut progress)?;
+    if json {
         println!("{}", s.to_json());
     } else {
         println!(
@@ -262,7 +308,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             s.events,
             s.folds.len(),
             s.max_moving_magnets,
-            report.out_dir.display()
+            out_dir.display()
         );
         if let Some(r) = &s.reason {
             println!("  {r}");
@@ -271,48 +317,18 @@ fn run(args: Args) -> anyhow::Result<u8> {
     Ok(if s.completed { 0 } else { 1 })
 }
 
-/// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
-/// validation scenes go up to 107 tiles.
-const MAX_REFERENCE_TILES: usize = 2_000;
-
-/// `--reference`: the force-integrated reference on the same chain and design, written as
-/// the engine's run is (the same file names and pictures).
-fn run_reference_scene(
-    chain: &Chain,
-    opts: &FoldRunOptions,
-    name: &str,
-    json: bool,
-) -> anyhow::Result<u8> {
-    if chain.len() > MAX_REFERENCE_TILES {
-        bail!(
-            "--reference: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
-            chain.len()
-        );
-    }
-    let report = fold_run_reference(
-        chain,
-        opts,
-        &foldchain::reference::ReferenceOptions::default(),
-        &mut |_, _, _| {},
-    )?;
-    let summary = &report.summary;
-    let dir = &report.out_dir;
-    if json {
-        println!("{}", summary.to_json());
-    } else {
-        println!(
-            "{name} (reference): {} tiles, {} in {:.4} s, {} events, {} folds, at most {} magnets moving; wrote {}",
-            summary.tiles,
-            summary.result,
-            summary.duration_s,
-            summary.events,
-            summary.folds.len(),
-            summary.max_moving_magnets,
-            dir.display()
-        );
-        if let Some(r) = &summary.reason {
-            println!("  {r}");
-        }
-    }
-    Ok(if summary.completed { 0 } else { 1 })
+/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`).
+fn read_plan_file(path: &Path) -> anyhow::Result<Chain> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read plan file {}", path.display()))?;
+    let plan = Plan::from_json(&text).map_err(|e| {
+        anyhow!(
+            "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
+            path.display()
+        )
+    })?;
+    let word = plan
+        .fold_word()
+        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
+    Ok(word.to_chain())
 }

@@ -1,0 +1,12 @@
+//! # foldchain-cli
+//!
+//! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`
+//! and `fold-validate` (in `src/bin/`), and the pieces they share: writing outputs without
+//! touching anything the tools did not write ([`output`]) and writing a run's pictures and
+//! JSON into its output directory ([`run_files`]). The libraries `foldchain` and
+//! `foldchain-planner` compute; this crate parses, prints, writes and exits.
+//!
+//! Install all five tools with `cargo install --path cli` from the repository root.
+
+pub mod output;
+pub mod run_files;

@@ -1,0 +1,209 @@
+//! Writing output files safely.
+//!
+//! Every file goes to a temporary name beside its target and is renamed into place, so an
+//! interrupted run never leaves a half-written file under a real name. An output directory
+//! ([`OutputDir`]) is never removed, renamed or emptied: a run replaces only the files it
+//! writes itself, and removes nothing but files carrying its own names (stale step frames of
+//! an earlier, longer run, and its own temporary files), so whatever else a user keeps there
+//! stays as it was.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A file or directory that could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write {}", path.display())]
+pub struct WriteError {
+    /// The file or directory.
+    pub path: PathBuf,
+    /// What went wrong.
+    #[source]
+    pub source: std::io::Error,
+}
+
+impl WriteError {
+    fn new(path: &Path, source: std::io::Error) -> WriteError {
+        WriteError {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}
+
+/// The temporary name [`write_atomic`] writes `name` under, in the same directory.
+fn temp_name(name: &str) -> String {
+    format!(".{name}.tmp{}", std::process::id())
+}
+
+/// Is `file` one of [`write_atomic`]'s temporary names for one of `names`, from any process?
+fn is_temp_of(file: &str, is_ours: &dyn Fn(&str) -> bool) -> bool {
+    let Some(rest) = file.strip_prefix('.') else {
+        return false;
+    };
+    let Some((name, pid)) = rest.rsplit_once(".tmp") else {
+        return false;
+    };
+    !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()) && is_ours(name)
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(temp_name(&name));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(|e| WriteError::new(path, e))
+}
+
+/// Creates a directory and its parents, as an error naming it when that fails.
+pub fn create_dir_all(dir: &Path) -> Result<(), WriteError> {
+    std::fs::create_dir_all(dir).map_err(|e| WriteError::new(dir, e))
+}
+
+/// An output directory shared with whatever else is in it: files are added or replaced one
+/// at a time, atomically, and only under names the tool owns.
+#[derive(Debug)]
+pub struct OutputDir {
+    dir: PathBuf,
+    written: Vec<String>,
+}
+
+impl OutputDir {
+    /// Opens `dir` for writing, creating it (and its parents) if needed. An existing
+    /// directory is used as it is; a file of that name is an error.
+    pub fn create(dir: &Path) -> Result<OutputDir, WriteError> {
+        if dir.exists() && !dir.is_dir() {
+            return Err(WriteError::new(
+                dir,
+                std::io::Error::new(
+                    std::io::ErrorKind::AlreadyExists,
+                    "exists and is not a directory",
+                ),
+            ));
+        }
+        create_dir_all(dir)?;
+        Ok(OutputDir {
+            dir: dir.to_path_buf(),
+            written: Vec::new(),
+        })
+    }
+
+    /// The directory.
+    pub fn path(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The files written so far, in order, relative to the directory.
+    pub fn written(&self) -> &[String] {
+        &self.written
+    }
+
+    /// Writes (or replaces) the file `name` in the directory, atomically.
+    pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<(), WriteError> {
+        write_atomic(&self.dir.join(name), bytes)?;
+        self.written.push(name.to_string());
+        Ok(())
+    }
+
+    /// Removes the files that `stale` claims (names the tool owns, such as step frames) but
+    /// this run did not write, and the temporary files of names `ours` claims, left by an
+    /// interrupted run. Nothing else is touched. Returns the names removed, sorted.
+    pub fn remove_stale(
+        &self,
+        stale: &dyn Fn(&str) -> bool,
+        ours: &dyn Fn(&str) -> bool,
+    ) -> Result<Vec<String>, WriteError> {
+        let entries = std::fs::read_dir(&self.dir).map_err(|e| WriteError::new(&self.dir, e))?;
+        let mut removed = Vec::new();
+        for entry in entries {
+            let entry = entry.map_err(|e| WriteError::new(&self.dir, e))?;
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let remove = (stale(&name) && !self.written.contains(&name)) || is_temp_of(&name, ours);
+            if remove && entry.file_type().is_ok_and(|t| t.is_file()) {
+                let path = entry.path();
+                std::fs::remove_file(&path).map_err(|e| WriteError::new(&path, e))?;
+                removed.push(name);
+            }
+        }
+        removed.sort();
+        Ok(removed)
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+
+    fn scratch(tag: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("foldchain-output-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn writes_and_replaces() {
+        let dir = scratch("atomic");
+        let p = dir.join("a.txt");
+        write_atomic(&p, b"one").unwrap();
+        write_atomic(&p, b"two").unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "two");
+        let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(leftovers.len(), 1);
+        let bad = dir.join("no/such/dir/x.txt");
+        let e = write_atomic(&bad, b"x").unwrap_err();
+        assert!(e.to_string().contains("no/such/dir/x.txt"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_output_dir_keeps_what_it_did_not_write() {
+        let dir = scratch("keep");
+        std::fs::write(dir.join("keep.txt"), "mine").unwrap();
+        std::fs::write(dir.join("step-0007.svg"), "old frame").unwrap();
+        std::fs::write(dir.join("step-7.svg"), "not our name").unwrap();
+        std::fs::write(dir.join(".step-0001.svg.tmp42"), "torn").unwrap();
+        std::fs::write(dir.join(".keep.txt.tmp42"), "a user's").unwrap();
+        let mut out = OutputDir::create(&dir).unwrap();
+        out.write("step-0000.svg", b"new").unwrap();
+        let ours = |n: &str| n.starts_with("step-") && n.len() == 13 && n.ends_with(".svg");
+        let removed = out.remove_stale(&ours, &ours).unwrap();
+        assert_eq!(removed, vec![".step-0001.svg.tmp42", "step-0007.svg"]);
+        for (f, body) in [
+            ("keep.txt", "mine"),
+            ("step-7.svg", "not our name"),
+            (".keep.txt.tmp42", "a user's"),
+        ] {
+            assert_eq!(std::fs::read_to_string(dir.join(f)).unwrap(), body, "{f}");
+        }
+        assert_eq!(out.written(), ["step-0000.svg"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_in_the_way_is_an_error_and_is_left_alone() {
+        let dir = scratch("file");
+        let f = dir.join("out");
+        std::fs::write(&f, "a file").unwrap();
+        let e = OutputDir::create(&f).unwrap_err();
+        assert!(e.source.to_string().contains("not a directory"), "{e}");
+        assert_eq!(std::fs::read_to_string(&f).unwrap(), "a file");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,171 @@
+//! A run's files: step frames, `final.svg`, `transition.svg`, `energy.svg`, `timeline.json`
+//! and `summary.json`, written into an output directory from either the event engine's
+//! timeline or the reference integrator's recorded states ([`RunSource`]).
+//!
+//! Frames are drawn and written one at a time, so memory does not grow with their number.
+//! Every file is written atomically into the directory, which is shared with whatever else a
+//! user keeps there ([`OutputDir`]): only the files named here are replaced, and step frames
+//! of an earlier run with more frames are removed (they carry this tool's names).
+//! `summary.json` is written last: when it is present and new, so is everything else.
+
+use std::path::Path;
+
+use foldchain::engine::Summary;
+use foldchain::render::{
+    energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, RunSource, DETAIL_TILES,
+};
+
+use crate::output::{OutputDir, WriteError};
+
+/// The most step frames a run writes: each is a full SVG of the chain (a few kB to a few MB),
+/// so more than this is almost certainly a mistake.
+pub const MAX_FRAMES: usize = 10_000;
+
+/// How a run's files are drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunFilesOptions {
+    /// The run's name (titles).
+    pub name: String,
+    /// Number of step frames; `None` for [`default_frames`].
+    pub frames: Option<usize>,
+    /// Tiles shown in the transition diagram (inclusive); `None` for the first six.
+    pub transition_tiles: Option<(usize, usize)>,
+}
+
+/// The default number of step frames: 40 for short chains, fewer for long ones (a frame of
+/// a long chain is drawn lean, but each still holds every tile).
+pub fn default_frames(tiles: usize) -> usize {
+    match tiles {
+        0..=50 => 40,
+        51..=DETAIL_TILES => 24,
+        401..=20_000 => 12,
+        _ => 6,
+    }
+}
+
+/// Is `name` one of the files [`write_run_files`] writes (a step frame by its own pattern)?
+pub fn is_run_file(name: &str) -> bool {
+    const FIXED: [&str; 6] = [
+        "final.svg",
+        "transition.svg",
+        "energy.svg",
+        "timeline.json",
+        "summary.json",
+        "index.html",
+    ];
+    FIXED.contains(&name) || is_step_frame(name)
+}
+
+/// `step-NNNN.svg` (four or more digits), as [`write_run_files`] names its frames.
+fn is_step_frame(name: &str) -> bool {
+    name.strip_prefix("step-")
+        .and_then(|r| r.strip_suffix(".svg"))
+        .is_some_and(|d| d.len() >= 4 && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Writes the run's files into `dir` (created if needed; nothing there but this tool's own
+/// files is touched). `collision` marks the two tiles from its time on (`None` time: the
+/// final frame only). `progress(stage, done, total)` is called as the work goes on.
+/// Returns the names written, in order.
+pub fn write_run_files(
+    source: &dyn RunSource,
+    summary: &Summary,
+    dir: &Path,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<Vec<String>, WriteError> {
+    let mut out = OutputDir::create(dir)?;
+    let collision = summary.first_collision.map(|c| (c.time, c.tiles));
+    let w = source.geometry().w;
+    let frames = opts
+        .frames
+        .unwrap_or_else(|| default_frames(source.tiles()))
+        .clamp(1, MAX_FRAMES);
+    let duration = source.end_time();
+    // Each step is framed on the chain as it stands at that moment: one view holding every
+    // sweep would show a long straight tail and leave the folded part a speck.
+    for i in 0..frames {
+        progress("frames", i, frames);
+        let t = if frames == 1 {
+            duration
+        } else {
+            duration * i as f64 / (frames - 1) as f64
+        };
+        let hit = collision.and_then(|(ct, tiles)| ct.is_some_and(|ct| t >= ct).then_some(tiles));
+        let fo = FrameOptions {
+            title: opts.name.clone(),
+            collision: hit,
+            note: None,
+        };
+        let state = source.state_at(t);
+        let view = FrameView::around(state.poses.iter().copied(), w);
+        let svg = frame_svg(source.geometry(), &state, &view, &fo);
+        out.write(&format!("step-{i:04}.svg"), svg.as_bytes())?;
+    }
+    progress("frames", frames, frames);
+    let fo = FrameOptions {
+        title: opts.name.clone(),
+        collision: collision.map(|(_, tiles)| tiles),
+        note: Some(final_note(summary)),
+    };
+    let final_state = source.final_state();
+    let final_view = FrameView::around(final_state.poses.iter().copied(), w);
+    let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
+    out.write("final.svg", svg.as_bytes())?;
+    let tiles = source.tiles();
+    let (a, b) = opts
+        .transition_tiles
+        .unwrap_or((0, 5.min(tiles.saturating_sub(1))));
+    let title = format!(
+        "{}: transition diagram, tiles {a} to {}",
+        opts.name,
+        b.min(tiles.saturating_sub(1))
+    );
+    let svg = transition_svg(source.geometry(), &source.transition(a, b), &title);
+    out.write("transition.svg", svg.as_bytes())?;
+    progress("energy", 0, 1);
+    let samples = if tiles <= 10_000 { 400 } else { 100 };
+    let title = format!("{}: total dipole energy", opts.name);
+    let svg = energy_svg(source.folds(), &source.energy(samples), &title);
+    out.write("energy.svg", svg.as_bytes())?;
+    progress("energy", 1, 1);
+    out.write("timeline.json", source.timeline_json().as_bytes())?;
+    out.remove_stale(&is_step_frame, &is_run_file)?;
+    let mut summary_json = summary.to_json();
+    summary_json.push('\n');
+    out.write("summary.json", summary_json.as_bytes())?;
+    Ok(out.written().to_vec())
+}
+
+/// The final frame's note: the result and its reason, at most 150 characters.
+fn final_note(summary: &Summary) -> String {
+    let note = match &summary.reason {
+        Some(r) => format!("{}: {r}", summary.result),
+        None => summary.result.to_string(),
+    };
+    if note.chars().count() > 150 {
+        format!("{}...", note.chars().take(147).collect::<String>())
+    } else {
+        note
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+
+    #[test]
+    fn step_frames_are_recognised_by_their_pattern_only() {
+        assert!(is_step_frame("step-0000.svg") && is_step_frame("step-12345.svg"));
+        for n in [
+            "step-7.svg",
+            "step-00a0.svg",
+            "step-0000.svg.bak",
+            "xstep-0000.svg",
+        ] {
+            assert!(!is_step_frame(n), "{n}");
+        }
+        assert!(is_run_file("summary.json") && !is_run_file("notes.txt"));
+    }
+}

@@ -1,0 +1,98 @@
+//! A simulation as one call: the event engine's timeline of a chain, its fold schedule
+//! checked for self-intersection, and the summary of both ([`simulate`]); the timeline as
+//! JSON ([`timeline_json`]).
+
+use std::fmt::Write as _;
+
+use crate::collision::{check_schedule, CheckOptions, Collision, ScheduleError};
+use crate::engine::{
+    fold_schedule, run, EngineError, EngineOptions, Summary, TileDesigns, Timeline,
+};
+use crate::{Chain, Fold, FoldWord};
+
+/// Why a simulation could not be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimulateError {
+    /// The engine refused the input.
+    #[error(transparent)]
+    Engine(#[from] EngineError),
+    /// The fold schedule was malformed (an engine bug, reported rather than hidden).
+    #[error("fold schedule: {0}")]
+    Schedule(ScheduleError),
+}
+
+/// The fold word of what actually folds: each joint's fold if it turned, else S.
+pub fn folded_word(tl: &Timeline) -> FoldWord {
+    let mut folds = vec![Fold::S; tl.tiles().saturating_sub(1)];
+    for f in &tl.folds {
+        folds[f.joint] = f.fold;
+    }
+    FoldWord::from_folds(folds)
+}
+
+/// Runs the engine and checks its fold schedule for collisions: the timeline and its summary
+/// (`result` is `undecided` when the check could not decide within its work budget).
+pub fn simulate(
+    chain: &Chain,
+    designs: &TileDesigns,
+    engine: &EngineOptions,
+    check: &CheckOptions,
+) -> Result<(Timeline, Summary), SimulateError> {
+    let tl = run(chain, designs, engine)?;
+    let (collision, undecided) = check_timeline(&tl, check)?;
+    let mut summary = Summary::new(&tl, collision.as_ref());
+    if let Some(msg) = undecided {
+        summary.completed = false;
+        summary.result = "undecided";
+        summary.reason = Some(msg);
+    }
+    Ok((tl, summary))
+}
+
+fn check_timeline(
+    tl: &Timeline,
+    check: &CheckOptions,
+) -> Result<(Option<Collision>, Option<String>), SimulateError> {
+    if tl.tiles() < 2 {
+        return Ok((None, None));
+    }
+    let word = folded_word(tl);
+    let schedule = fold_schedule(tl);
+    match check_schedule(&word, &schedule, check) {
+        Ok(()) => Ok((None, None)),
+        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
+        Err(e @ ScheduleError::Undecided { .. }) => {
+            Ok((None, Some(format!("collision check undecided: {e}"))))
+        }
+        Err(e) => Err(SimulateError::Schedule(e)),
+    }
+}
+
+/// The most events written by [`timeline_json`] (about 70 MB): a longer run writes the first
+/// ones and says so (`"truncated": true`, `"events_total"`); the summary always counts all.
+pub const MAX_TIMELINE_EVENTS: usize = 2_000_000;
+
+/// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
+/// (index: the magnet, or the joint for fold, inhibited and stalled events), at most
+/// [`MAX_TIMELINE_EVENTS`] of them.
+pub fn timeline_json(tl: &Timeline) -> String {
+    let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
+    let mut s = String::with_capacity(40 * shown + 200);
+    let _ = writeln!(
+        s,
+        "{{\"tiles\":{},\"speed_law\":{},\"events_total\":{},\"truncated\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[",
+        tl.tiles(),
+        serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into()),
+        tl.events.len(),
+        shown < tl.events.len()
+    );
+    for (i, e) in tl.events.iter().take(shown).enumerate() {
+        if i > 0 {
+            s.push_str(",\n");
+        }
+        s.push_str(&e.to_json());
+    }
+    s.push_str("\n]}\n");
+    s
+}
