@@ -127,7 +127,11 @@ pub(crate) fn plan_by_cells(
     // reasons, each with the axes (SVG degrees) it holds for, at the last width tried
     let mut why: Vec<(String, Vec<String>)> = Vec::new();
     let search = SizeSearch {
-        secant_steps: if opts.tile_size.is_some() { 1 } else { SIZE_STEPS },
+        secant_steps: if opts.tile_size.is_some() {
+            1
+        } else {
+            SIZE_STEPS
+        },
         nudges: &[],
         tolerance: ((CELL_COUNT_TOLERANCE * target as f64) as usize).max(1),
         shrink_when_empty: None,
@@ -220,7 +224,10 @@ fn route_axes(
 /// units.
 fn describe_cell(cell: &Shape, a: f64, w: f64) -> String {
     let b = cell.scaled(w).rotated(a).bbox();
-    format!("x {:.0} to {:.0}, y {:.0} to {:.0}", b.x0, b.x1, -b.y1, -b.y0)
+    format!(
+        "x {:.0} to {:.0}, y {:.0} to {:.0}",
+        b.x0, b.x1, -b.y1, -b.y0
+    )
 }
 
 #[cfg(test)]

@@ -84,7 +84,11 @@ mod tests {
             .map(|i| Point::new(0.37 * i as f64, (i % 7) as f64 * 0.9 - 2.0))
             .collect();
         let grid = CentreGrid::new(&centres);
-        for probe in [Point::new(3.1, 0.2), Point::new(-5.0, 9.0), Point::new(10.0, -1.6)] {
+        for probe in [
+            Point::new(3.1, 0.2),
+            Point::new(-5.0, 9.0),
+            Point::new(10.0, -1.6),
+        ] {
             let mut near = Vec::new();
             grid.any_near(probe, |t| {
                 near.push(t);

@@ -36,13 +36,20 @@ impl Shape {
             }
         })?;
         let mut elements: Vec<Element> = Vec::new();
-        collect_elements(tree.root(), &mut elements, user_units_transform(data, &tree));
+        collect_elements(
+            tree.root(),
+            &mut elements,
+            user_units_transform(data, &tree),
+        );
         if elements.is_empty() {
             return Err(no_area(
                 "no visible element with a fill (fill=\"none\" and strokes do not count)",
             ));
         }
-        let (mut lo, mut hi) = (Point::new(f64::INFINITY, f64::INFINITY), Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
         for s in elements.iter().flat_map(|e| e.subpaths.iter().flatten()) {
             for p in control_points(s) {
                 lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
@@ -380,10 +387,15 @@ mod tests {
         for seg in [PathSeg::Cubic(c), PathSeg::Quad(q)] {
             let ring = flatten(&[seg], tol);
             assert!(ring.points.len() > 10, "{}", ring.points.len());
-            let fine: Vec<Point> = (0..=20_000).map(|i| seg.eval(i as f64 / 20_000.0)).collect();
+            let fine: Vec<Point> = (0..=20_000)
+                .map(|i| seg.eval(i as f64 / 20_000.0))
+                .collect();
             for w in ring.points.windows(2) {
                 let mid = w[0].midpoint(w[1]);
-                let d = fine.iter().map(|p| p.distance(mid)).fold(f64::INFINITY, f64::min);
+                let d = fine
+                    .iter()
+                    .map(|p| p.distance(mid))
+                    .fold(f64::INFINITY, f64::min);
                 assert!(d <= tol, "chord midpoint {mid:?} is {d} from the curve");
             }
         }

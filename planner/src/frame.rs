@@ -99,7 +99,10 @@ mod tests {
         let ring = crate::shape::Ring { points: vec![p] };
         let work = o.work_shape(&Shape::from_rings(vec![ring]), w);
         let q = o.work_to_svg(w) * work.rings().next().map(|r| r.points[0]).unwrap_or(p);
-        assert!((q.x - p.x).abs() < 1e-12 && (q.y + p.y).abs() < 1e-12, "{q:?}");
+        assert!(
+            (q.x - p.x).abs() < 1e-12 && (q.y + p.y).abs() < 1e-12,
+            "{q:?}"
+        );
         assert!(!o.keeps_handedness());
         // rows along physical x are stacked along SVG y (90 degrees), and the reverse
         assert!((stacking_axis_deg(0.0) - 90.0).abs() < 1e-12);

@@ -86,8 +86,13 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
     }
     let title = format!("{}: {}", plan.source, plan.summary());
     doc = doc.add(
-        label(&title, view.x0 + 0.5 * m, view.y0 + 0.7 * m, 0.6 * view.width() / 110.0)
-            .set("fill", "#333"),
+        label(
+            &title,
+            view.x0 + 0.5 * m,
+            view.y0 + 0.7 * m,
+            0.6 * view.width() / 110.0,
+        )
+        .set("fill", "#333"),
     );
     format!("{doc}\n")
 }

@@ -171,7 +171,12 @@ fn overlaps(old: &[Arc<Vec<Point>>], new: &[Point]) -> bool {
 fn first_legs(shape: &Shape, style: Style) -> Vec<(f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
-    for d in [Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(0.0, -1.0)] {
+    for d in [
+        Vec2::new(1.0, 0.0),
+        Vec2::new(-1.0, 0.0),
+        Vec2::new(0.0, 1.0),
+        Vec2::new(0.0, -1.0),
+    ] {
         for n in [d.turn_90(), -d.turn_90()] {
             let frame = Frame {
                 o: Point::ZERO,

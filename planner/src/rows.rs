@@ -403,10 +403,17 @@ impl Serpentine {
     /// physical frame.
     pub(crate) fn folds(&self, style: Style, ccw: bool, out: &mut Vec<Fold>) {
         for (i, &(k, s, e)) in self.rows.iter().enumerate() {
-            out.extend(std::iter::repeat_n(Fold::S, (e - s).unsigned_abs() as usize));
+            out.extend(std::iter::repeat_n(
+                Fold::S,
+                (e - s).unsigned_abs() as usize,
+            ));
             if i + 1 < self.rows.len() {
                 // from a +x row the U-turn turns towards +y, from a -x row away from it
-                let f = if (k % 2 == 0) == ccw { Fold::L } else { Fold::R };
+                let f = if (k % 2 == 0) == ccw {
+                    Fold::L
+                } else {
+                    Fold::R
+                };
                 out.push(f);
                 if style.turns == Turns::Loose {
                     out.push(Fold::S);

@@ -85,7 +85,14 @@ impl Sized {
     /// The best serpentine as a plan, unchecked (for ranking the turn styles).
     pub(crate) fn best_unchecked(&self, shape: &Shape, name: &str) -> Option<Plan> {
         let first = self.all.first()?;
-        Some(to_plan(shape, first, self.style, self.w, &first.word(self.style), name))
+        Some(to_plan(
+            shape,
+            first,
+            self.style,
+            self.w,
+            &first.word(self.style),
+            name,
+        ))
     }
 
     /// The best serpentine that folds without collision, as a plan; `ranked` is

@@ -27,7 +27,10 @@ impl Ring {
 
     /// Signed area (counter-clockwise positive).
     pub(crate) fn signed_area(&self) -> f64 {
-        self.edges().map(|(a, b)| a.x * b.y - b.x * a.y).sum::<f64>() * 0.5
+        self.edges()
+            .map(|(a, b)| a.x * b.y - b.x * a.y)
+            .sum::<f64>()
+            * 0.5
     }
 }
 
@@ -62,7 +65,10 @@ impl Shape {
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         );
-        for p in paths.iter().flat_map(|p| p.rings.iter().flat_map(|r| &r.points)) {
+        for p in paths
+            .iter()
+            .flat_map(|p| p.rings.iter().flat_map(|r| &r.points))
+        {
             b = Rect::new(b.x0.min(p.x), b.y0.min(p.y), b.x1.max(p.x), b.y1.max(p.y));
         }
         Shape { paths, bbox: b }
@@ -191,7 +197,10 @@ impl Shape {
 
     /// The heights of all vertices, sorted, without repeats.
     pub(crate) fn vertex_heights(&self) -> Vec<f64> {
-        let mut ys: Vec<f64> = self.rings().flat_map(|r| r.points.iter().map(|p| p.y)).collect();
+        let mut ys: Vec<f64> = self
+            .rings()
+            .flat_map(|r| r.points.iter().map(|p| p.y))
+            .collect();
         ys.sort_by(f64::total_cmp);
         ys.dedup();
         ys
@@ -315,7 +324,10 @@ mod tests {
 
     #[test]
     fn a_hole_wound_the_other_way_is_left_out() {
-        let s = Shape::from_rings(vec![square(0.0, 0.0, 9.0, true), square(3.0, 3.0, 3.0, false)]);
+        let s = Shape::from_rings(vec![
+            square(0.0, 0.0, 9.0, true),
+            square(3.0, 3.0, 3.0, false),
+        ]);
         assert!((s.area() - 72.0).abs() < 1e-9, "{}", s.area());
         assert_eq!(s.intervals_at(4.5), vec![(0.0, 3.0), (6.0, 9.0)]);
         assert!(!s.contains(Point::new(4.5, 4.5)) && s.contains(Point::new(1.0, 4.5)));
@@ -327,7 +339,10 @@ mod tests {
     fn transforms_move_the_box() {
         let s = Shape::from_rings(vec![square(1.0, 2.0, 1.0, true)]);
         let r = s.rotated(PI / 2.0).bbox();
-        assert!((r.x0 + 3.0).abs() < 1e-12 && (r.y1 - 2.0).abs() < 1e-12, "{r:?}");
+        assert!(
+            (r.x0 + 3.0).abs() < 1e-12 && (r.y1 - 2.0).abs() < 1e-12,
+            "{r:?}"
+        );
         let m = s.mirrored(-1.0, 1.0).scaled(2.0).bbox();
         assert_eq!((m.x0, m.x1, m.y0, m.y1), (-4.0, -2.0, 4.0, 6.0));
     }

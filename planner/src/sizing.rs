@@ -103,7 +103,9 @@ mod tests {
             tolerance: 2,
             shrink_when_empty: Some(0.97),
         };
-        let f = s.run(500, 5.0, |w| Some((count(w), 0.0, count(w)))).unwrap();
+        let f = s
+            .run(500, 5.0, |w| Some((count(w), 0.0, count(w))))
+            .unwrap();
         assert!(f.plans.abs_diff(500) <= 2, "{} tiles at {}", f.plans, f.w);
         assert_eq!(count(f.w), f.plans);
     }

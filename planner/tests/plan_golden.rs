@@ -102,7 +102,12 @@ fn every_sample_plans_as_recorded() {
         let d = check(shape, opts, golden);
         all.extend(d.into_iter().take(10));
     }
-    assert!(all.is_empty(), "{} differences:\n{}", all.len(), all.join("\n"));
+    assert!(
+        all.is_empty(),
+        "{} differences:\n{}",
+        all.len(),
+        all.join("\n")
+    );
 }
 
 /// The comparison itself finds a change in the last digits that matter.

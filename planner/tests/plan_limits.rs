@@ -30,11 +30,17 @@ fn too_many_tiles_is_bad_input() {
 #[test]
 fn tiny_tile_size_is_bad_input() {
     for w in [1e-9, 1e-300, 0.01] {
-        let m = refused(&PlanOptions::default().with_tile_size(w), PlanOption::TileSize);
+        let m = refused(
+            &PlanOptions::default().with_tile_size(w),
+            PlanOption::TileSize,
+        );
         assert!(m.contains(&w.to_string()) && m.contains("more than"), "{m}");
     }
     for w in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        let m = refused(&PlanOptions::default().with_tile_size(w), PlanOption::TileSize);
+        let m = refused(
+            &PlanOptions::default().with_tile_size(w),
+            PlanOption::TileSize,
+        );
         assert!(m.contains("positive"), "{w}: {m}");
     }
 }
