@@ -50,6 +50,10 @@ mod serpentine;
 mod shape;
 mod sizing;
 
+/// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
+/// takes and returns (re-exported so that callers use the same version).
+pub use kurbo;
+
 pub use drawing::FLATTEN_TOLERANCE;
 pub use error::{PlanError, PlanOption};
 pub use options::{ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
