@@ -134,6 +134,24 @@ fn add_measures(iv: &[(f64, f64)], b0: f64, sign: f64, out: &mut [f64]) {
     }
 }
 
+/// Keeps `(v, at)` in `min` if `v` is less than its value.
+#[inline]
+fn lower(min: &mut (f64, usize), v: f64, at: usize) {
+    if v < min.0 {
+        *min = (v, at);
+    }
+}
+
+/// Lowers the best cost `cur` of a row end to `cost` if that is less, recording the start
+/// column and whether the row is the chain's first.
+#[inline]
+fn relax(cur: &mut f64, back: &mut (u32, bool), cost: f64, (start, first): (usize, bool)) {
+    if cost < *cur {
+        *cur = cost;
+        *back = (start as u32, first);
+    }
+}
+
 /// Solves the programme on `work` (unit tiles). With `fixed_start = Some(c)` the chain must
 /// begin in row 0 at column `c` running +x, and that row holds at least two tiles (a fold
 /// before it may be opposite to the U-turn after it); otherwise the first row is free.
@@ -202,63 +220,50 @@ pub(crate) fn solve_rows(
             None => true,
             Some(c) => k == 0 && s == c,
         };
-        let first_len = if fixed_start.is_some() { 1 } else { 0 };
+        let rightward = k % 2 == 0;
+        // a fixed first row (rightward) needs s <= e - 1: its own column joins the minimum
+        // only after it is used
+        let first_after = rightward && fixed_start.is_some();
         let mut first_min = (inf, 0usize);
         let mut cont_min = (inf, 0usize);
-        if k % 2 == 0 {
-            // rightward: cost(s, e) = (e + 1) + len - 2 hi[e] + (2 lo[s] - s)
-            for e in 0..cols {
-                let term_s = 2.0 * lo(e) - e as f64;
-                let base = (e as f64 + 1.0) + r_len - 2.0 * hi(e);
-                // a fixed first row needs s <= e - 1: add s = e after using the minimum
-                if first_len == 0 && first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1 as u32, true);
-                }
-                if first_len == 1 && first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                if let Some((pd, pt)) = prev {
-                    // continuation needs s < e: cont_min holds s <= e - 1
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1 as u32, false);
-                    }
-                    let v = pd[e] + pt[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
+        // e runs the way the row does, so the minima hold every start column behind it
+        for i in 0..cols {
+            let e = if rightward { i } else { cols - 1 - i };
+            // the cost of a row from s to e is base(e) + term_s(s):
+            // rightward: (e + 1) + len - 2 hi[e] + (2 lo[s] - s);
+            // leftward: (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
+            let (term_s, base) = if rightward {
+                (
+                    2.0 * lo(e) - e as f64,
+                    (e as f64 + 1.0) + r_len - 2.0 * hi(e),
+                )
+            } else {
+                (
+                    (e as f64 + 1.0) - 2.0 * hi(e),
+                    r_len + 2.0 * lo(e) - e as f64,
+                )
+            };
+            if !first_after && first_ok(e) {
+                lower(&mut first_min, before + term_s, e);
             }
-        } else {
-            // leftward from s down to e: cost = (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
-            for e in (0..cols).rev() {
-                let term_s = (e as f64 + 1.0) - 2.0 * hi(e);
-                if first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let base = r_len + 2.0 * lo(e) - e as f64;
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1 as u32, true);
-                }
-                if let Some((pd, pt)) = prev {
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1 as u32, false);
-                    }
-                    let v = pd[e] + pt[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
+            relax(
+                &mut cur[e],
+                &mut bk[e],
+                base + first_min.0,
+                (first_min.1, true),
+            );
+            if first_after && first_ok(e) {
+                lower(&mut first_min, before + term_s, e);
+            }
+            if let Some((pd, pt)) = prev {
+                // continuation needs s before e: cont_min holds the columns behind e
+                relax(
+                    &mut cur[e],
+                    &mut bk[e],
+                    base + cont_min.0,
+                    (cont_min.1, false),
+                );
+                lower(&mut cont_min, pd[e] + pt[e] + term_s, e);
             }
         }
         if fixed_start.is_none() {

@@ -22,22 +22,14 @@ pub fn sample(name: &str) -> PathBuf {
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
 
 /// The octagon of a tile of width `w` (across flats) centred at `(x, y)` with its faces
-/// square to `heading_deg`, as its eight corners in order.
+/// square to `heading_deg`, as its eight corners in order: they lie at 22.5 + 45 k degrees
+/// from the heading, `w / (2 cos 22.5 deg)` from the centre.
 pub fn octagon(x: f64, y: f64, heading_deg: f64, w: f64) -> [(f64, f64); 8] {
-    let h = 0.5 * w;
-    let k = (2f64.sqrt() - 1.0) * 0.5 * w;
-    let (s, c) = heading_deg.to_radians().sin_cos();
-    let local = [
-        (h, k),
-        (k, h),
-        (-k, h),
-        (-h, k),
-        (-h, -k),
-        (-k, -h),
-        (k, -h),
-        (h, -k),
-    ];
-    local.map(|(u, v)| (x + c * u - s * v, y + s * u + c * v))
+    let r = 0.5 * w / 22.5f64.to_radians().cos();
+    std::array::from_fn(|k| {
+        let a = (heading_deg + 22.5 + 45.0 * k as f64).to_radians();
+        (x + r * a.cos(), y + r * a.sin())
+    })
 }
 
 /// How deep two convex polygons overlap: the least overlap of their projections over every
