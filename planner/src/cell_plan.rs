@@ -38,6 +38,9 @@ const ROUTES_KEPT: usize = 4;
 /// Why an axis gave no route.
 type Why = String;
 
+/// Reasons why axes gave no route, each with the axes it holds for (SVG degrees).
+type Reasons = Vec<(Why, Vec<String>)>;
+
 /// The best routes over the cells of `axis_shape` (axis frame, unit tiles), cheapest first,
 /// or why there is none. `describe` names a cell for messages.
 fn plan_cells(
@@ -124,8 +127,8 @@ pub(crate) fn plan_by_cells(
         .tile_size
         .unwrap_or_else(|| width_for(shape.area(), target, style.pitch));
     let axes = axes(shape);
-    // reasons, each with the axes (SVG degrees) it holds for, at the last width tried
-    let mut why: Vec<(String, Vec<String>)> = Vec::new();
+    // why axes gave no route, at the last width tried
+    let mut why: Reasons = Vec::new();
     let search = SizeSearch {
         secant_steps: if opts.tile_size.is_some() {
             1
@@ -187,13 +190,7 @@ pub(crate) fn plan_by_cells(
 
 /// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest
 /// first, and why the other axes gave none (each reason with the axes, SVG degrees).
-#[allow(clippy::type_complexity)]
-fn route_axes(
-    shape: &Shape,
-    axes: &[f64],
-    style: Style,
-    w: f64,
-) -> (Vec<(f64, Routed)>, Vec<(String, Vec<String>)>) {
+fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, Routed)>, Reasons) {
     let per_axis: Vec<(f64, Result<Vec<Routed>, Why>)> = axes
         .par_iter()
         .map(|&a| {
@@ -203,7 +200,7 @@ fn route_axes(
         })
         .collect();
     let mut routes: Vec<(f64, Routed)> = Vec::new();
-    let mut why: Vec<(String, Vec<String>)> = Vec::new();
+    let mut why: Reasons = Vec::new();
     for (a, r) in per_axis {
         match r {
             Ok(v) => routes.extend(v.into_iter().map(|x| (a, x))),

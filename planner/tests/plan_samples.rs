@@ -39,22 +39,18 @@ fn the_overlap_test_sees_overlaps() {
 #[test]
 fn square_at_the_thesis_sizes() {
     // thesis figure 7.2: 107 tiles with tight turns; figure 7.3: 82 with loose turns
-    let t = plan(
-        "square.svg",
-        &PlanOptions::default()
-            .with_tiles(107)
-            .with_turns(Turns::Tight),
-    );
-    assert_sound(&t);
+    let square = |n: usize, turns: Turns| {
+        let p = plan(
+            "square.svg",
+            &PlanOptions::default().with_tiles(n).with_turns(turns),
+        );
+        assert_sound(&p);
+        p
+    };
+    let t = square(107, Turns::Tight);
     assert!(t.tiles.abs_diff(107) <= 5, "tight: {} tiles", t.tiles);
     assert!(t.bom.get("RR").copied().unwrap_or(0) > 0);
-    let l = plan(
-        "square.svg",
-        &PlanOptions::default()
-            .with_tiles(82)
-            .with_turns(Turns::Loose),
-    );
-    assert_sound(&l);
+    let l = square(82, Turns::Loose);
     // loose rows are (1 + sqrt2) w apart, so the count moves in steps of a whole row of
     // about 13 tiles: the thesis' 82 (6 rows of 12) is not the best fit of a square, 88
     // (6 rows of 13) is, and is the nearest count the fit allows
