@@ -116,6 +116,16 @@ impl QuarterTurns {
     pub fn to_degrees(self) -> f64 {
         self.0 as f64 * 90.0
     }
+
+    /// The unit vector of the heading, exactly: `(1, 0)`, `(0, 1)`, `(-1, 0)` or `(0, -1)`.
+    pub fn unit_vector(self) -> kurbo::Vec2 {
+        match self.0 {
+            0 => kurbo::Vec2::new(1.0, 0.0),
+            1 => kurbo::Vec2::new(0.0, 1.0),
+            2 => kurbo::Vec2::new(-1.0, 0.0),
+            _ => kurbo::Vec2::new(0.0, -1.0),
+        }
+    }
 }
 
 /// A point with exact coordinates.
@@ -221,5 +231,16 @@ mod tests {
                 .rotated(QuarterTurns::new(3)),
             p
         );
+    }
+
+    #[test]
+    fn unit_vector_turns_with_the_heading() {
+        // the unit vector of heading q is (1, 0) turned by q quarter turns, as rotated() says
+        let one = ExactPoint::new(Surd::new(2, 0), Surd::ZERO);
+        for q in 0..4 {
+            let h = QuarterTurns::new(q);
+            let (x, y) = one.rotated(h).to_f64(1.0);
+            assert_eq!(h.unit_vector(), kurbo::Vec2::new(x, y), "heading {q}");
+        }
     }
 }
