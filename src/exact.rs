@@ -32,6 +32,15 @@ impl Surd {
         (self.a as f64 + self.b as f64 * std::f64::consts::FRAC_1_SQRT_2) * 0.5 * w
     }
 
+    /// The absolute value, decided exactly.
+    pub fn abs(self) -> Surd {
+        if self.signum() == Ordering::Less {
+            -self
+        } else {
+            self
+        }
+    }
+
     /// The sign of the value, decided exactly.
     pub fn signum(self) -> Ordering {
         // sign(a + b/sqrt2) = sign(a*sqrt2 + b); compare 2a^2 with b^2 when the signs differ.
@@ -218,6 +227,8 @@ mod tests {
         assert_eq!(Surd::new(-3, 5).signum(), Ordering::Greater); // -3 + 3.54
         assert_eq!(Surd::new(0, 0).signum(), Ordering::Equal);
         assert!(Surd::new(0, 2) > Surd::new(1, 0));
+        assert_eq!(Surd::new(1, -2).abs(), Surd::new(-1, 2));
+        assert_eq!(Surd::new(1, -1).abs(), Surd::new(1, -1));
     }
 
     #[test]

@@ -131,7 +131,7 @@ fn table_5_1_from_fold_enum() {
 fn valid_count(args: &[&str]) -> u64 {
     let o = fold_enum(args);
     assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("fold-enum prints JSON");
     v["rows"][0]["valid"]
         .as_u64()
         .unwrap_or_else(|| panic!("{args:?}: no valid count in {v}"))

@@ -252,15 +252,15 @@ impl<'a> Advancer<'a> {
             PairSet::AllMoving => block[j] > block[i],
         };
         // prefix sums for the pair speed bound: sum_{k in [i, j)} w_k ((j - k) + r)
-        let mut sw = vec![0.0; n];
-        let mut skw = vec![0.0; n];
+        let mut rate_sum = vec![0.0; n];
+        let mut index_rate_sum = vec![0.0; n];
         for k in 0..self.joints {
-            sw[k + 1] = sw[k] + rates[k];
-            skw[k + 1] = skw[k] + rates[k] * k as f64;
+            rate_sum[k + 1] = rate_sum[k] + rates[k];
+            index_rate_sum[k + 1] = index_rate_sum[k] + rates[k] * k as f64;
         }
         let bound = |i: usize, j: usize| -> f64 {
-            let w = sw[j] - sw[i];
-            let kw = skw[j] - skw[i];
+            let w = rate_sum[j] - rate_sum[i];
+            let kw = index_rate_sum[j] - index_rate_sum[i];
             j as f64 * w - kw + self.radius * w
         };
         let fastest = (1..n).map(|j| bound(0, j)).fold(0.0, f64::max);

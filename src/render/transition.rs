@@ -20,7 +20,7 @@ pub struct MagnetTrack {
 
 /// What the transition diagram shows: the same whichever simulation made it (the event
 /// engine's timeline, [`TransitionData::from_timeline`], or the reference integrator's
-/// recorded states, [`crate::fold_run`]).
+/// recorded states, [`crate::reference`]; see [`crate::render::RunSource`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TransitionData {
     /// First tile shown.
