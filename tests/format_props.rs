@@ -234,49 +234,52 @@ fn check_parse(text: &str) -> Result<(), TestCaseError> {
 /// Regression and edge cases of the parsers, kept as named tests.
 #[test]
 fn parser_edge_cases() {
-    assert!(matches!(
-        Chain::parse_tile_list(&format!("SS*{}", MAX_TILES + 1)),
-        Err(ChainError::TooLong { .. })
-    ));
-    assert!(matches!(
-        Chain::parse_tile_list("SS*99999999999999999999999999"),
-        Err(ChainError::TooLong { .. })
-    ));
-    // non-ASCII digits and look-alike letters are errors, not panics
-    assert!(matches!(
-        Chain::parse("SS*\u{0663} SL"),
-        Err(ChainError::BadCount { .. })
-    ));
-    assert!(matches!(
-        FoldWord::parse("\u{17F}L"), // long s: not S
-        Err(ChainError::BadLetter {
-            ch: '\u{17F}',
-            position: 0
-        })
-    ));
-    assert!(matches!(
-        Chain::parse("\u{17F}\u{17F} SL"),
-        Err(ChainError::BadTile { index: 0, .. })
-    ));
-    assert!(matches!(
-        Chain::parse("*"),
-        Err(ChainError::BadLetter { .. })
-    ));
-    assert!(matches!(
-        Chain::parse("**3"),
-        Err(ChainError::BadLetter { .. })
-    ));
-    assert!(matches!(
-        Chain::parse("SS**3 SL"),
-        Err(ChainError::BadCount { .. })
-    ));
-    assert!(matches!(Chain::parse("tiles:"), Err(ChainError::Empty)));
-    assert!(matches!(Chain::parse("word:"), Err(ChainError::Empty)));
-    assert!(matches!(Chain::parse("{}"), Err(ChainError::Json(_))));
-    assert!(matches!(
-        Chain::parse(r#"{"tiles":["SS"],"x":1}"#),
-        Err(ChainError::Json(_))
-    ));
+    type Parse = fn(&str) -> Result<(), ChainError>;
+    let chain: Parse = |t| Chain::parse(t).map(drop);
+    let tiles: Parse = |t| Chain::parse_tile_list(t).map(drop);
+    let word: Parse = |t| FoldWord::parse(t).map(drop);
+    let too_long = format!("SS*{}", MAX_TILES + 1);
+    let cases: [(Parse, &str, fn(&ChainError) -> bool); 13] = [
+        (tiles, &too_long, |e| {
+            matches!(e, ChainError::TooLong { .. })
+        }),
+        (tiles, "SS*99999999999999999999999999", |e| {
+            matches!(e, ChainError::TooLong { .. })
+        }),
+        // non-ASCII digits and look-alike letters are errors, not panics
+        (chain, "SS*\u{0663} SL", |e| {
+            matches!(e, ChainError::BadCount { .. })
+        }),
+        (word, "\u{17F}L", |e| {
+            // long s: not S
+            matches!(
+                e,
+                ChainError::BadLetter {
+                    ch: '\u{17F}',
+                    position: 0
+                }
+            )
+        }),
+        (chain, "\u{17F}\u{17F} SL", |e| {
+            matches!(e, ChainError::BadTile { index: 0, .. })
+        }),
+        (chain, "*", |e| matches!(e, ChainError::BadLetter { .. })),
+        (chain, "**3", |e| matches!(e, ChainError::BadLetter { .. })),
+        (chain, "SS**3 SL", |e| {
+            matches!(e, ChainError::BadCount { .. })
+        }),
+        (chain, "tiles:", |e| matches!(e, ChainError::Empty)),
+        (chain, "word:", |e| matches!(e, ChainError::Empty)),
+        (chain, "{}", |e| matches!(e, ChainError::Json(_))),
+        (chain, r#"{"tiles":["SS"],"x":1}"#, |e| {
+            matches!(e, ChainError::Json(_))
+        }),
+        (word, "S*", |e| matches!(e, ChainError::BadCount { .. })),
+    ];
+    for (parse, text, expected) in cases {
+        let e = parse(text).unwrap_err();
+        assert!(expected(&e), "{text:?}: {e:?}");
+    }
 }
 
 /// Regression: a run of exactly [`MAX_TILES`] tiles (`SS*100000000`) was rejected as "more
