@@ -235,11 +235,12 @@ fn check_parse(text: &str) -> Result<(), TestCaseError> {
 #[test]
 fn parser_edge_cases() {
     type Parse = fn(&str) -> Result<(), ChainError>;
+    type Expected = fn(&ChainError) -> bool;
     let chain: Parse = |t| Chain::parse(t).map(drop);
     let tiles: Parse = |t| Chain::parse_tile_list(t).map(drop);
     let word: Parse = |t| FoldWord::parse(t).map(drop);
     let too_long = format!("SS*{}", MAX_TILES + 1);
-    let cases: [(Parse, &str, fn(&ChainError) -> bool); 13] = [
+    let cases: [(Parse, &str, Expected); 13] = [
         (tiles, &too_long, |e| {
             matches!(e, ChainError::TooLong { .. })
         }),
