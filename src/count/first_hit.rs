@@ -8,16 +8,18 @@
 //! fold moves its tail the same way. Whether tail tile `k` meets a placed tile is therefore a
 //! function of that tile's offset alone ([`super::lattice::canonical_offset`], an exact
 //! lattice point), and so is the first `k` that meets it. [`FirstHits`] computes it with the
-//! project's closed-form sweep test ([`quarter_contact_within`]: the first contact is a vertex's
-//! circular arc crossing an edge, solved exactly, no sampling) and remembers it; a few thousand
-//! offsets serve a whole search.
+//! collision module's closed-form sweep test (`quarter_contact_within`, the one
+//! [`crate::collision::check_word`] uses: the first contact is a vertex's circular arc crossing
+//! an edge, solved exactly, no sampling) and remembers it; a few thousand offsets serve a
+//! whole search.
 //!
 //! [`TailWindow`] is the cheap test the search runs before looking an offset up: a placed tile
 //! whose centre lies outside it cannot be met by the first `k` tail tiles.
 
+use kurbo::Point;
 use rustc_hash::FxHashMap;
 
-use crate::collision::sweep::{quarter_contact_within, V2};
+use crate::collision::quarter_contact_within;
 use crate::exact::ExactPoint;
 use crate::{Fold, Octagon};
 
@@ -67,10 +69,10 @@ impl TailWindow {
 /// First hits by canonical offset, for one touching tolerance.
 #[derive(Clone, Debug)]
 pub(super) struct FirstHits {
-    outline: [V2; 8],
+    outline: [Point; 8],
     radius: f64,
     /// The hinge in tile `d`'s frame (left fold).
-    hinge: V2,
+    hinge: Point,
     window: TailWindow,
     /// Distance of tail centre `k` from the hinge.
     tail_distance: [f64; MAX_COUNT_TILES + 1],
@@ -84,21 +86,23 @@ impl FirstHits {
         let o = Octagon::new(1.0);
         let radius = o.circumradius();
         let half_side = 0.5 * o.side();
-        let hinge = Octagon::exact_hinge(Fold::L)
-            .unwrap_or(ExactPoint::ORIGIN)
-            .to_f64(1.0);
+        let hinge = Point::from(
+            Octagon::exact_hinge(Fold::L)
+                .unwrap_or(ExactPoint::ORIGIN)
+                .to_f64(1.0),
+        );
         let mut tail_distance = [0.0; MAX_COUNT_TILES + 1];
         let mut reach2 = [0.0; MAX_COUNT_TILES + 1];
         for k in 0..=MAX_COUNT_TILES {
-            let (x, y) = (k as f64 - hinge.0, -hinge.1);
+            let (x, y) = (k as f64 - hinge.x, -hinge.y);
             tail_distance[k] = (x * x + y * y).sqrt();
             reach2[k] = (tail_distance[k] + 2.0 * radius + SCREEN_SLACK).powi(2) as f32;
         }
         FirstHits {
-            outline: o.inset_vertices(tolerance),
+            outline: o.inset_vertices(tolerance).map(Point::from),
             radius,
             window: TailWindow {
-                hinge: (hinge.0 as f32, hinge.1 as f32),
+                hinge: (hinge.x as f32, hinge.y as f32),
                 min_x: (half_side - 2.0 * radius - SCREEN_SLACK) as f32,
                 min_y: (-half_side - 2.0 * radius - SCREEN_SLACK) as f32,
                 reach2,
@@ -128,15 +132,15 @@ impl FirstHits {
         k
     }
 
-    fn at(&self, c: V2) -> [V2; 8] {
-        self.outline.map(|(x, y)| (x + c.0, y + c.1))
+    fn at(&self, c: Point) -> [Point; 8] {
+        self.outline.map(|v| v + c.to_vec2())
     }
 
     /// The exact sweep test along the tail, nearest tile first.
     fn compute(&self, offset: ExactPoint) -> u8 {
-        let p = offset.to_f64(1.0);
+        let p = Point::from(offset.to_f64(1.0));
         let h = self.hinge;
-        let dp = ((p.0 - h.0).powi(2) + (p.1 - h.1).powi(2)).sqrt();
+        let dp = p.distance(h);
         let fixed = self.at(p);
         let apart = 2.0 * self.radius + SLACK;
         for k in 1..=MAX_COUNT_TILES {
@@ -147,7 +151,7 @@ impl FirstHits {
             if dp - dk > apart || (k == 1 && offset == ExactPoint::ORIGIN) {
                 continue;
             }
-            let c = (k as f64, 0.0);
+            let c = Point::new(k as f64, 0.0);
             if quarter_contact_within(&self.at(c), c, &fixed, p, self.radius, h, true) {
                 return k as u8;
             }

@@ -3,10 +3,7 @@
 //! Final tile centres are integer combinations of `w` and `w/sqrt2` ([`crate::exact`]) and
 //! headings are quarter turns, so the offset of a placed tile from the folding tile, turned
 //! into that tile's frame (and mirrored for a right fold), is an exact lattice point: the key
-//! of the first-hit memo ([`super::first_hit`]). The final-shape overlap of two lattice tiles
-//! is decided exactly here too.
-
-use std::cmp::Ordering;
+//! of the first-hit memo ([`super::first_hit`]).
 
 use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
 use crate::kinematics::next_exact_pose;
@@ -85,24 +82,6 @@ pub(super) fn pack(p: ExactPoint) -> u64 {
         .fold(0u64, |acc, &c| (acc << 16) | u64::from(c as i16 as u16))
 }
 
-fn abs(s: Surd) -> Surd {
-    if s.signum() == Ordering::Less {
-        -s
-    } else {
-        s
-    }
-}
-
-/// Whether two tiles in lattice poses centred at `a` and `b` overlap with positive area: the
-/// centre difference is strictly inside `w` along both axes and `sqrt2 w` along both
-/// diagonals (all tiles share the four face normals). Exact; touching is not overlap.
-pub(super) fn tiles_overlap(a: ExactPoint, b: ExactPoint) -> bool {
-    let d = b - a;
-    let width = Surd::new(2, 0);
-    let diagonal = Surd::new(0, 4);
-    abs(d.x) < width && abs(d.y) < width && abs(d.x + d.y) < diagonal && abs(d.x - d.y) < diagonal
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,15 +157,5 @@ mod tests {
                 assert_eq!(pack(*a) == pack(*b), i == j);
             }
         }
-    }
-
-    #[test]
-    fn overlap_is_exact_at_touching() {
-        let ring = poses("LLL");
-        assert!(!tiles_overlap(ring[0].centre, ring[3].centre));
-        let five = poses("LLLL");
-        assert!(tiles_overlap(five[0].centre, five[4].centre));
-        assert!(!tiles_overlap(five[0].centre, five[1].centre));
-        assert!(tiles_overlap(five[2].centre, five[2].centre));
     }
 }

@@ -9,7 +9,7 @@
 //! tail tile it has is below every cap, so an invalid prefix is cut and every valid word is
 //! visited once; final-shape overlaps are the ends of sweeps and need no separate test. With
 //! `final_only` the sweeps are skipped and each new tile is tested against the placed ones
-//! exactly ([`tiles_overlap`]).
+//! exactly (the collision module's lattice test).
 //!
 //! Mirror images (L and R swapped) fold alike, so only words whose first turn is L are
 //! searched and those with a turn are counted twice. The tree is cut at [`PREFIX_JOINTS`]
@@ -18,11 +18,12 @@
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
+use crate::collision::lattice_overlap;
 use crate::exact::ExactPose;
 use crate::Fold;
 
 use super::first_hit::{FirstHits, TailWindow, NEVER};
-use super::lattice::{canonical_offset, tiles_overlap, Steps};
+use super::lattice::{canonical_offset, Steps};
 
 /// The depth (joints) at which the search is shared out.
 const PREFIX_JOINTS: usize = 9;
@@ -276,7 +277,7 @@ impl Walker {
             };
             let hit = (0..d)
                 .filter(near)
-                .any(|i| tiles_overlap(self.poses[i].centre, c));
+                .any(|i| lattice_overlap(self.poses[i].centre, c));
             return (!hit).then_some(node.budget);
         }
         match f {

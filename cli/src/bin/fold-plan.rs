@@ -10,7 +10,7 @@ use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::inputs::refuse_overwrite;
 use foldchain_cli::report::message;
-use foldchain_planner::{plan_svg_file, preview, PlanError, PlanOptions, Turns};
+use foldchain_planner::{plan_svg_file, preview_svg_file, PlanError, PlanOptions, Turns};
 
 /// Plan a self-folding tile chain that fills the shape drawn in an SVG file.
 #[derive(Parser, Debug)]
@@ -99,7 +99,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             .context("writing the plan")?;
     }
     if let Some(p) = &args.preview {
-        let svg = preview::to_svg(&args.shape, &plan).context("drawing the preview")?;
+        let svg = preview_svg_file(&args.shape, &plan).context("drawing the preview")?;
         foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
     if args.json {

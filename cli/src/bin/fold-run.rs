@@ -121,7 +121,7 @@ fn count_arg(s: &str) -> Result<usize, String> {
 fn s_value(text: &str) -> anyhow::Result<SValue> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
-        Ok(v) => bail!("--s {text}: expected a length >= 0 in mm, got {v}"),
+        Ok(_) => bail!("--s '{text}': expected a finite length >= 0 in mm"),
         Err(_) => Ok(SValue::parse(text)?),
     }
 }
