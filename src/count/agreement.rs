@@ -88,3 +88,19 @@ fn sweeps_cut_words_with_clean_final_shapes() {
         );
     }
 }
+
+/// The search shares itself out over the thread pool; called from inside the pool (here from
+/// two parallel tasks at once) it still finishes with the same counts.
+#[test]
+fn counting_from_inside_the_thread_pool() {
+    use rayon::prelude::*;
+    let opts = CountOptions::default().with_tiles(2, 14);
+    let alone = count_valid(&opts, &|_, _| {}).unwrap();
+    let inside: Vec<_> = (0..2)
+        .into_par_iter()
+        .map(|_| count_valid(&opts, &|_, _| {}).unwrap())
+        .collect();
+    for rows in inside {
+        assert_eq!(rows, alone);
+    }
+}

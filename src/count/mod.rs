@@ -7,7 +7,7 @@
 //! to check: for every fold `j` of the word, the new tile rides on `j`'s straight tail as it
 //! turns against tiles `0..=j`. Since that tail is straight whatever follows, the first tail
 //! tile that hits anything is known when the fold is made: it is decided once per exact
-//! lattice offset with the closed-form sweep test of [`crate::collision::sweep`] and kept in a
+//! lattice offset with the closed-form sweep test of [`crate::collision`] and kept in a
 //! memo, and each word carries the resulting cap on its length (one integer), so a straight
 //! extension costs O(1) and a fold one memo lookup per placed tile near its swept area.
 //! Final-shape overlaps are the ends of these sweeps, so nothing else is needed. No rule about
