@@ -2,7 +2,7 @@
 //! refusing a set that misses a part, holds one twice or mixes different searches.
 //!
 //! The parts of a search are disjoint and together cover it (`--shard K/M` takes every
-//! `M`-th word at the cut depth, starting at the `K`-th; lengths above the cut are counted by
+//! `M`-th word at the cut depth, starting at the `K`-th; lengths up to the cut are counted by
 //! part 1 alone), so the merged valid counts are the sums of the parts', exactly.
 
 use std::fmt;

@@ -13,8 +13,9 @@
 //!
 //! Mirror images (L and R swapped) fold alike, so only words whose first turn is L are
 //! searched and those with a turn are counted twice. The tree is cut at [`PREFIX_JOINTS`]
-//! joints: the words there are shared out to shards (every `m`-th) and to threads (one worker
-//! per thread, each with its own memo, taking the next prefix when it is done).
+//! joints (deeper for many shards): the words there are shared out to shards (every `m`-th)
+//! and to threads (one worker per thread, each with its own memo, taking the next prefix when
+//! it is done).
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
@@ -25,8 +26,12 @@ use crate::Fold;
 use super::first_hit::{FirstHits, TailWindow, NEVER};
 use super::lattice::{canonical_offset, Steps};
 
-/// The depth (joints) at which the search is shared out.
+/// The depth (joints) at which the search is shared out, at least.
 const PREFIX_JOINTS: usize = 9;
+
+/// Words at the cut per shard, at least (when the words are that many): the parts' sizes
+/// differ by the sizes of their words' subtrees, and more words even them out.
+const PARTS_PER_SHARD: usize = 16;
 
 /// What one search looks for.
 #[derive(Clone, Copy, Debug)]
@@ -360,15 +365,26 @@ impl Walker {
 /// Runs the search of `scope`. `progress(done, total)` is called as prefixes finish.
 pub(super) fn search(scope: &Scope, progress: &(dyn Fn(u64, u64) + Sync)) -> Tally {
     let n = scope.tiles;
-    let mut top = Walker::new(scope, FirstHits::new(scope.tolerance));
-    let root = Node::root(n);
-    top.record(&root);
-    let mut prefixes = Vec::new();
-    if root.has_room() {
-        top.dfs(root, PREFIX_JOINTS, &mut prefixes);
-    }
-    // lengths up to the cut are counted by the first shard alone
     let (k, m) = scope.shard;
+    let root = Node::root(n);
+    // cut at PREFIX_JOINTS, or deeper until every part has some PARTS_PER_SHARD words to
+    // share out (the cut depends on the number of parts only, so all parts agree on it)
+    let mut hits = FirstHits::new(scope.tolerance);
+    let mut cut = PREFIX_JOINTS;
+    let (top, prefixes) = loop {
+        let mut top = Walker::new(scope, hits);
+        top.record(&root);
+        let mut prefixes = Vec::new();
+        if root.has_room() {
+            top.dfs(root, cut, &mut prefixes);
+        }
+        if prefixes.len() >= PARTS_PER_SHARD * m || cut + 1 >= n {
+            break (top, prefixes);
+        }
+        hits = top.hits;
+        cut += 1;
+    };
+    // lengths up to the cut are counted by the first shard alone
     let mut tally = if k == 1 {
         top.tally.clone()
     } else {
