@@ -8,7 +8,7 @@
 /// A square band matrix with `lower` sub- and `upper` super-diagonals (storage keeps room
 /// for `lower` more above, the pivoting fill-in).
 #[derive(Clone, Debug)]
-pub struct Band {
+pub(crate) struct Band {
     n: usize,
     lower: usize,
     upper: usize,
@@ -20,14 +20,14 @@ pub struct Band {
 /// A zero pivot: the matrix is singular (the caller shrinks the step).
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error("singular band matrix: zero pivot in column {column}")]
-pub struct Singular {
+pub(crate) struct Singular {
     /// The column.
-    pub column: usize,
+    pub(crate) column: usize,
 }
 
 impl Band {
     /// A zero `n x n` band matrix.
-    pub fn zeros(n: usize, lower: usize, upper: usize) -> Band {
+    pub(crate) fn zeros(n: usize, lower: usize, upper: usize) -> Band {
         let width = 2 * lower + upper + 1;
         Band {
             n,
@@ -39,11 +39,6 @@ impl Band {
         }
     }
 
-    /// Size.
-    pub fn n(&self) -> usize {
-        self.n
-    }
-
     /// Whether `(i, j)` lies in the stored band (including fill-in room).
     fn slot(&self, i: usize, j: usize) -> Option<usize> {
         if j + self.lower < i || j > i + self.upper + self.lower || i >= self.n || j >= self.n {
@@ -53,12 +48,12 @@ impl Band {
     }
 
     /// Entry `(i, j)` (zero outside the band).
-    pub fn get(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
         self.slot(i, j).map_or(0.0, |s| self.data[s])
     }
 
     /// Sets entry `(i, j)` inside the original band (`j - upper <= i <= j + lower`).
-    pub fn set(&mut self, i: usize, j: usize, v: f64) {
+    pub(crate) fn set(&mut self, i: usize, j: usize, v: f64) {
         if j > i + self.upper {
             return;
         }
@@ -68,12 +63,12 @@ impl Band {
     }
 
     /// Sets every entry to zero.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.data.iter_mut().for_each(|x| *x = 0.0);
     }
 
     /// Factorises in place (partial pivoting).
-    pub fn factor(&mut self) -> Result<(), Singular> {
+    pub(crate) fn factor(&mut self) -> Result<(), Singular> {
         let n = self.n;
         let fill = self.upper + self.lower;
         for k in 0..n {
@@ -121,7 +116,7 @@ impl Band {
     }
 
     /// Solves `A x = b` in place after [`Band::factor`].
-    pub fn solve(&self, b: &mut [f64]) {
+    pub(crate) fn solve(&self, b: &mut [f64]) {
         let n = self.n;
         let fill = self.upper + self.lower;
         for k in 0..n {

@@ -1,5 +1,5 @@
 //! The two integrators of the reference model, each a single step with an error estimate;
-//! step-size control and events are the driver's ([`crate::reference::events`]).
+//! step-size control and events are the driver's ([`crate::reference::run_reference`]).
 //!
 //! - **Dormand-Prince 5(4)** (explicit, adaptive): seven stages, first same as last, the
 //!   fourth-order embedded solution for the error. Its stability region bounds the step by
@@ -7,15 +7,16 @@
 //! - **ROS2** (Verwer, Spee, Blom and Hundsdorfer 1999): a two-stage Rosenbrock method,
 //!   second order, L-stable, `gamma = 1 + 1/sqrt2`, the first-order `y + h k1` as the
 //!   embedded solution. It is second order for any approximation of the Jacobian (a
-//!   W-method), so the finite-difference banded Jacobian ([`crate::reference::banded`]) costs
+//!   W-method), so the finite-difference banded Jacobian (the `banded` module) costs
 //!   no accuracy. Each step solves two band systems with one factorisation.
 //!
 //! Both are written here rather than taken from a crate: the model is small and banded, the
 //! events are the model's own (modes that clamp unknowns), and a general ODE crate (diffsol)
 //! would add minutes of build time on a two-core machine for no gain at these sizes.
 
+use std::fmt::Debug;
+
 use crate::reference::banded::{Band, Singular};
-use crate::reference::dynamics::{Forces, Mode, Model};
 
 /// An integrator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
@@ -102,14 +103,27 @@ const E: [f64; 7] = [
 ];
 const GAMMA: f64 = 1.0 + std::f64::consts::FRAC_1_SQRT_2;
 
-/// One integrator's working storage.
+/// A system `dy/dt = f(y)` the integrators step: the reference model with its unknowns'
+/// modes, or a test problem.
+pub(crate) trait System {
+    /// Scratch space of one evaluation of `f`.
+    type Work: Default + Debug;
+    /// Half-bandwidth of the Jacobian: unknowns farther apart never interact.
+    fn bandwidth(&self) -> usize;
+    /// Whether unknown `i` counts in the error estimate (it moves freely).
+    fn counts(&self, i: usize) -> bool;
+    /// `f(y)` into `out`.
+    fn rhs(&self, y: &[f64], work: &mut Self::Work, out: &mut [f64]);
+}
+
+/// One integrator's working storage for a system of `n` unknowns with scratch `W`.
 #[derive(Debug)]
-pub struct Stepper {
+pub(crate) struct Stepper<W> {
     /// The method.
-    pub method: Method,
+    pub(crate) method: Method,
     k: Vec<Vec<f64>>,
     tmp: Vec<f64>,
-    work: Forces,
+    work: W,
     jac: Band,
     lu: Band,
     jac_fresh: bool,
@@ -117,53 +131,48 @@ pub struct Stepper {
 
 /// The result of one step attempt.
 #[derive(Clone, Debug)]
-pub struct Attempt {
+pub(crate) struct Attempt {
     /// The new state.
-    pub y: Vec<f64>,
+    pub(crate) y: Vec<f64>,
     /// Weighted RMS error over the free unknowns (accept when <= 1).
-    pub error: f64,
+    pub(crate) error: f64,
 }
 
-impl Stepper {
-    /// Storage for `model`.
-    pub fn new(method: Method, model: &Model) -> Stepper {
-        let n = model.len();
-        let bw = model.bandwidth();
+impl<W: Default + Debug> Stepper<W> {
+    /// Storage for `n` unknowns whose Jacobian has half-bandwidth `bandwidth`.
+    pub(crate) fn new(method: Method, n: usize, bandwidth: usize) -> Stepper<W> {
         Stepper {
             method,
             k: vec![vec![0.0; n]; 7],
             tmp: vec![0.0; n],
-            work: Forces::default(),
-            jac: Band::zeros(n, bw, bw),
-            lu: Band::zeros(n, bw, bw),
+            work: W::default(),
+            jac: Band::zeros(n, bandwidth, bandwidth),
+            lu: Band::zeros(n, bandwidth, bandwidth),
             jac_fresh: false,
         }
     }
 
     /// Forgets the Jacobian (the state or the modes changed).
-    pub fn invalidate(&mut self) {
+    pub(crate) fn invalidate(&mut self) {
         self.jac_fresh = false;
     }
 
     /// `dy/dt` at `y`.
-    pub fn rhs(
+    pub(crate) fn rhs<S: System<Work = W>>(
         &mut self,
-        model: &Model,
-        modes: &[Mode],
+        sys: &S,
         y: &[f64],
         out: &mut [f64],
         stats: &mut StepStats,
     ) {
         stats.rhs += 1;
-        model.rhs(y, modes, &mut self.work, out);
+        sys.rhs(y, &mut self.work, out);
     }
 
     /// One step of size `h` from `y0` (with `f0 = dy/dt(y0)`), tolerance `tol`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn attempt(
+    pub(crate) fn attempt<S: System<Work = W>>(
         &mut self,
-        model: &Model,
-        modes: &[Mode],
+        sys: &S,
         y0: &[f64],
         f0: &[f64],
         h: f64,
@@ -171,16 +180,14 @@ impl Stepper {
         stats: &mut StepStats,
     ) -> Result<Attempt, Singular> {
         match self.method {
-            Method::Dopri5 => Ok(self.dopri5(model, modes, y0, f0, h, tol, stats)),
-            Method::Ros2 => self.ros2(model, modes, y0, f0, h, tol, stats),
+            Method::Dopri5 => Ok(self.dopri5(sys, y0, f0, h, tol, stats)),
+            Method::Ros2 => self.ros2(sys, y0, f0, h, tol, stats),
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn dopri5(
+    fn dopri5<S: System<Work = W>>(
         &mut self,
-        model: &Model,
-        modes: &[Mode],
+        sys: &S,
         y0: &[f64],
         f0: &[f64],
         h: f64,
@@ -199,14 +206,14 @@ impl Stepper {
                 y[i] = y0[i] + h * acc;
             }
             let mut out = std::mem::take(&mut self.k[s + 1]);
-            self.rhs(model, modes, &y, &mut out, stats);
+            self.rhs(sys, &y, &mut out, stats);
             self.k[s + 1] = out;
         }
         // y is now the fifth-order solution (row 6 of A is b)
         let mut sum = 0.0;
         let mut count = 0usize;
         for i in 0..n {
-            if modes[i] != Mode::Free {
+            if !sys.counts(i) {
                 continue;
             }
             let mut e = 0.0;
@@ -226,20 +233,19 @@ impl Stepper {
     }
 
     /// The last stage's derivative, `dy/dt` at the new state (Dormand-Prince only).
-    pub fn last_derivative(&self) -> Option<&[f64]> {
+    pub(crate) fn last_derivative(&self) -> Option<&[f64]> {
         (self.method == Method::Dopri5).then(|| self.k[6].as_slice())
     }
 
-    fn jacobian(
+    fn jacobian<S: System<Work = W>>(
         &mut self,
-        model: &Model,
-        modes: &[Mode],
+        sys: &S,
         y0: &[f64],
         f0: &[f64],
         stats: &mut StepStats,
     ) {
         let n = y0.len();
-        let bw = model.bandwidth();
+        let bw = sys.bandwidth();
         let groups = (2 * bw + 1).min(n);
         self.jac.clear();
         stats.jacobians += 1;
@@ -253,7 +259,7 @@ impl Stepper {
                 y[c] += delta(y0[c]);
                 c += groups;
             }
-            self.rhs(model, modes, &y, &mut f, stats);
+            self.rhs(sys, &y, &mut f, stats);
             let mut c = g;
             while c < n {
                 let d = delta(y0[c]);
@@ -268,11 +274,9 @@ impl Stepper {
         self.jac_fresh = true;
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn ros2(
+    fn ros2<S: System<Work = W>>(
         &mut self,
-        model: &Model,
-        modes: &[Mode],
+        sys: &S,
         y0: &[f64],
         f0: &[f64],
         h: f64,
@@ -281,9 +285,9 @@ impl Stepper {
     ) -> Result<Attempt, Singular> {
         let n = y0.len();
         if !self.jac_fresh {
-            self.jacobian(model, modes, y0, f0, stats);
+            self.jacobian(sys, y0, f0, stats);
         }
-        let bw = model.bandwidth();
+        let bw = sys.bandwidth();
         self.lu.clear();
         for i in 0..n {
             for j in i.saturating_sub(bw)..=(i + bw).min(n - 1) {
@@ -300,7 +304,7 @@ impl Stepper {
         }
         let mut k2 = vec![0.0; n];
         let tmp = std::mem::take(&mut self.tmp);
-        self.rhs(model, modes, &tmp, &mut k2, stats);
+        self.rhs(sys, &tmp, &mut k2, stats);
         self.tmp = tmp;
         for i in 0..n {
             k2[i] -= 2.0 * k1[i];
@@ -311,7 +315,7 @@ impl Stepper {
         let mut count = 0usize;
         for i in 0..n {
             y[i] = y0[i] + h * (1.5 * k1[i] + 0.5 * k2[i]);
-            if modes[i] == Mode::Free {
+            if sys.counts(i) {
                 let e = 0.5 * h * (k1[i] + k2[i]);
                 let sc = tol * (1.0 + y0[i].abs().max(y[i].abs()));
                 sum += (e / sc).powi(2);
