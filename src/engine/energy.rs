@@ -103,23 +103,15 @@ pub fn energy_curve(tl: &Timeline, samples: usize) -> Vec<EnergySample> {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::{run, EngineOptions};
-    use crate::timeline::TileDesigns;
-    use crate::{Chain, Design};
+    use crate::engine::thesis_timeline;
 
     #[test]
     fn energy_falls_and_matches_a_direct_sum() {
-        let chain = Chain::parse("SSLS").unwrap();
-        let tl = run(
-            &chain,
-            &TileDesigns::global(Design::thesis()),
-            &EngineOptions::default(),
-        )
-        .unwrap();
+        let tl = thesis_timeline("SSLS");
         let curve = energy_curve(&tl, 50);
         assert!(curve.last().unwrap().energy_j < curve[0].energy_j);
         // the sweep agrees with summing every unit directly
-        let moment = Design::thesis().moment();
+        let moment = crate::Design::thesis().moment();
         for s in &curve {
             let direct: f64 = EnergyUnit::all(tl.tiles())
                 .map(|u| unit_energy(&tl, u, s.time, moment))

@@ -46,3 +46,15 @@ pub use crate::timeline::{
     joint_of_magnet, CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry,
     Outcome, SValue, SpeedLaw, Summary, TileDesigns, LENGTH_TOLERANCE,
 };
+
+/// The engine's timeline of `word` with the thesis design and the default options, for tests.
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+pub(crate) fn thesis_timeline(word: &str) -> Timeline {
+    run(
+        &crate::Chain::parse(word).unwrap(),
+        &TileDesigns::default(),
+        &EngineOptions::default(),
+    )
+    .unwrap()
+}

@@ -65,19 +65,11 @@ mod tests {
     use std::f64::consts::FRAC_PI_2;
 
     use super::*;
-    use crate::engine::{run, EngineOptions};
-    use crate::timeline::TileDesigns;
-    use crate::{Chain, Design};
+    use crate::engine::thesis_timeline;
 
     #[test]
     fn tracks_follow_the_law_within_tolerance() {
-        let chain = Chain::parse("SLLS").unwrap();
-        let tl = run(
-            &chain,
-            &TileDesigns::global(Design::thesis()),
-            &EngineOptions::default(),
-        )
-        .unwrap();
+        let tl = thesis_timeline("SLLS");
         let sched = fold_schedule(&tl);
         assert_eq!(sched.tracks.len(), 2);
         for (tr, f) in sched.tracks.iter().zip(&tl.folds) {

@@ -86,6 +86,15 @@ impl Driver {
         self.log.close(self.t)
     }
 
+    /// The rates `dy/dt` at the current state into `f`.
+    fn rates(&mut self, stepper: &mut Stepper<Forces>, f: &mut [f64]) {
+        let moving = Moving {
+            model: &self.model,
+            modes: &self.modes,
+        };
+        stepper.rhs(&moving, &self.y, f, &mut self.stats);
+    }
+
     /// Why the run must stop before a step of `h` with the unknowns `free` moving, if it
     /// must; `slowest` is the model's slowest time scale.
     fn stop_reason(&self, free: usize, h: f64, slowest: f64) -> Option<String> {
@@ -120,15 +129,7 @@ impl Driver {
         let q = self.opts.method.error_order() as f64;
         self.switch();
         let mut f = vec![0.0; n];
-        stepper.rhs(
-            &Moving {
-                model: &self.model,
-                modes: &self.modes,
-            },
-            &self.y,
-            &mut f,
-            &mut self.stats,
-        );
+        self.rates(&mut stepper, &mut f);
         let scale = self.model.time_scale;
         // the slowest of the model's time scales: a path at the bonded rest force's speed, or
         // a fold under the bonded rest torque (heavy tiles fold far slower than magnets move)
@@ -159,17 +160,11 @@ impl Driver {
                 stopped = Some(why);
                 break;
             }
-            let att = match stepper.attempt(
-                &Moving {
-                    model: &self.model,
-                    modes: &self.modes,
-                },
-                &self.y,
-                &f,
-                h,
-                tol,
-                &mut self.stats,
-            ) {
+            let moving = Moving {
+                model: &self.model,
+                modes: &self.modes,
+            };
+            let att = match stepper.attempt(&moving, &self.y, &f, h, tol, &mut self.stats) {
                 Ok(a) => a,
                 Err(_) => {
                     self.stats.rejected += 1;
@@ -216,15 +211,7 @@ impl Driver {
                     r.cover(t0, &y0, &f, self.t, &self.y, None);
                 }
                 stepper.invalidate();
-                stepper.rhs(
-                    &Moving {
-                        model: &self.model,
-                        modes: &self.modes,
-                    },
-                    &self.y,
-                    &mut f,
-                    &mut self.stats,
-                );
+                self.rates(&mut stepper, &mut f);
                 h = h.min(hi * 4.0).max(hi);
                 continue;
             }
@@ -238,15 +225,7 @@ impl Driver {
             stepper.invalidate();
             match stepper.last_derivative() {
                 Some(d) => f.copy_from_slice(d),
-                None => stepper.rhs(
-                    &Moving {
-                        model: &self.model,
-                        modes: &self.modes,
-                    },
-                    &self.y,
-                    &mut f,
-                    &mut self.stats,
-                ),
+                None => self.rates(&mut stepper, &mut f),
             }
             if let (Some(r), Some(f0)) = (rec.as_mut(), f0) {
                 r.cover(t0, &y0, &f0, self.t, &self.y, Some(&f));

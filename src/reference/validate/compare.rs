@@ -105,29 +105,33 @@ pub fn compare_events(reference: &[Event], run: &[Event], duration: f64) -> Even
 mod tests {
     use super::*;
 
-    fn ev(time: f64, kind: EventKind, index: u32) -> Event {
-        Event { time, index, kind }
+    /// Events written `S1@0.5` (magnet 1 starts at 0.5 s): S starts, A arrivals, F fold
+    /// starts, T triggers.
+    fn events(text: &str) -> Vec<Event> {
+        text.split_whitespace()
+            .map(|e| {
+                let (what, time) = e.split_once('@').unwrap();
+                let kind = match &what[..1] {
+                    "S" => EventKind::MagnetStarts,
+                    "A" => EventKind::MagnetArrives,
+                    "F" => EventKind::FoldStarts,
+                    _ => EventKind::TriggerReached,
+                };
+                Event {
+                    time: time.parse().unwrap(),
+                    index: what[1..].parse().unwrap(),
+                    kind,
+                }
+            })
+            .collect()
     }
 
     #[test]
     fn counts_what_differs() {
-        use EventKind::{FoldStarts, MagnetArrives, MagnetStarts, TriggerReached};
-        let reference = [
-            ev(0.0, MagnetStarts, 0),
-            ev(1.0, MagnetStarts, 1),
-            ev(2.0, MagnetArrives, 0),
-            ev(3.0, MagnetStarts, 2),
-            ev(4.0, FoldStarts, 0),
-            ev(4.5, TriggerReached, 2), // not compared
-        ];
+        // triggers are not compared
+        let reference = events("S0@0 S1@1 A0@2 S2@3 F0@4 T2@4.5");
         // twice as slow, magnets 1 and 2 swapped, the fold missing, one extra arrival
-        let run = [
-            ev(0.0, MagnetStarts, 0),
-            ev(6.0, MagnetStarts, 1),
-            ev(4.0, MagnetArrives, 0),
-            ev(2.0, MagnetStarts, 2),
-            ev(9.0, MagnetArrives, 1),
-        ];
+        let run = events("S0@0 S1@6 A0@4 S2@2 A1@9");
         let c = compare_events(&reference, &run, 4.0);
         assert_eq!(c.missing, 2);
         // starts 1 and 2 in opposite order: one inversion; start 1 against arrival 0 and
@@ -148,7 +152,10 @@ mod tests {
         // a pure rescale is all in the factor
         let slow: Vec<Event> = reference
             .iter()
-            .map(|e| ev(2.0 * e.time, e.kind, e.index))
+            .map(|e| Event {
+                time: 2.0 * e.time,
+                ..*e
+            })
             .collect();
         let c = compare_events(&reference, &slow, 4.0);
         assert_eq!(c.time_factor, 0.5);

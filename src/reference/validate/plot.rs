@@ -3,7 +3,7 @@
 //! the event engine as diamonds. Written with the `svg` crate.
 
 use svg::node::element::{Circle, Group, Line, Path, Polyline, Rectangle, Text};
-use svg::Document;
+use svg::{Document, Node};
 
 use crate::reference::validate::results::{Row, SceneReport, Validation};
 
@@ -23,11 +23,16 @@ fn px(v: f64) -> f64 {
     (v * 10.0).round() / 10.0
 }
 
+/// `element` with the numeric attributes `attrs`, in px rounded to 0.1.
+fn at<E: Node>(mut element: E, attrs: &[(&str, f64)]) -> E {
+    for &(name, value) in attrs {
+        element.assign(name, px(value));
+    }
+    element
+}
+
 fn text(x: f64, y: f64, anchor: &str, content: &str) -> Text {
-    Text::new(content)
-        .set("x", px(x))
-        .set("y", px(y))
-        .set("text-anchor", anchor)
+    at(Text::new(content), &[("x", x), ("y", y)]).set("text-anchor", anchor)
 }
 
 /// One panel's axes: decades of wall time and error mapped onto the plot area.
@@ -75,22 +80,18 @@ impl Axes {
     fn draw(&self, panel: Group) -> Group {
         let (x, y) = self.origin;
         let (w, h) = self.size;
+        let frame = [("x", x), ("y", y), ("width", w), ("height", h)];
         let mut g = panel.add(
-            Rectangle::new()
-                .set("x", px(x))
-                .set("y", px(y))
-                .set("width", px(w))
-                .set("height", px(h))
+            at(Rectangle::new(), &frame)
                 .set("fill", "none")
                 .set("stroke", "#444"),
         );
         let grid = |x1: f64, y1: f64, x2: f64, y2: f64| {
-            Line::new()
-                .set("x1", px(x1))
-                .set("y1", px(y1))
-                .set("x2", px(x2))
-                .set("y2", px(y2))
-                .set("stroke", "#ddd")
+            at(
+                Line::new(),
+                &[("x1", x1), ("y1", y1), ("x2", x2), ("y2", y2)],
+            )
+            .set("stroke", "#ddd")
         };
         let mut d = self.x.0;
         while d <= self.x.1 + 1e-9 {
@@ -172,13 +173,7 @@ fn panel(sc: &SceneReport, rows: &[&Row], origin: (f64, f64)) -> Group {
                 .set("stroke-width", 1.5),
         );
         for (x, y) in pts {
-            g = g.add(
-                Circle::new()
-                    .set("cx", px(x))
-                    .set("cy", px(y))
-                    .set("r", 3)
-                    .set("fill", colour),
-            );
+            g = g.add(at(Circle::new(), &[("cx", x), ("cy", y), ("r", 3.0)]).set("fill", colour));
         }
     }
     // the event engine: filled diamond (force rule), open diamond (distance rule)
