@@ -147,13 +147,13 @@ impl Geometry {
     }
 
     /// Magnet `k`'s rest point in the frame of tile `frame_tile` (straight chain).
-    pub fn rest_in(&self, k: usize, frame_tile: usize) -> Point {
+    pub(crate) fn rest_in(&self, k: usize, frame_tile: usize) -> Point {
         let (x, y) = self.path(k).rest();
         Point::new(x + (k / 2) as f64 * self.w - frame_tile as f64 * self.w, y)
     }
 
     /// Magnet `k`'s path end in the frame of tile `frame_tile` (straight chain).
-    pub fn end_in(&self, k: usize, frame_tile: usize) -> Point {
+    pub(crate) fn end_in(&self, k: usize, frame_tile: usize) -> Point {
         let (x, y) = self.path(k).end_point();
         Point::new(x + (k / 2) as f64 * self.w - frame_tile as f64 * self.w, y)
     }
