@@ -4,7 +4,7 @@
 //! A depth-first search grows words one joint at a time. Under sequential folding a prefix
 //! that collides makes every extension collide (the first tiles move the same way whatever
 //! follows), so invalid prefixes are cut. Appending tile `m + 1` adds exactly these motions to
-//! check, all with the closed-form sweep test of [`crate::collision::sweep`]:
+//! check, all with the closed-form sweep test of [`crate::collision`]:
 //! - for every earlier fold `k`, tile `m + 1` rides at the end of the straight tail that
 //!   turns about hinge `k`, against the fixed tiles `0..=k`;
 //! - if joint `m` folds, tile `m + 1` turns about hinge `m` against tiles `0..m`.
@@ -18,11 +18,15 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
-use crate::collision::sweep::{quarter_contact_within, V2};
-use crate::collision::{check_word, lattice_overlap_pub as lattice_overlap, CheckOptions};
+use kurbo::Point;
+
+use crate::collision::{check_word, lattice_overlap, quarter_contact_within, CheckOptions};
 use crate::exact::ExactPose;
 use crate::kinematics::{exact_hinge, next_exact_pose};
 use crate::{Fold, FoldWord, Octagon};
+
+/// A point or vector in the plane.
+type V2 = (f64, f64);
 
 /// What to count.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -434,7 +438,9 @@ impl Searcher {
             }
             let mv = moving.get_or_insert_with(|| self.at(c));
             let ci = st.centres[i];
-            if quarter_contact_within(mv, c, &self.at(ci), ci, r, fr.pivot, fr.theta > 0.0) {
+            let (mv, fixed) = (mv.map(Point::from), self.at(ci).map(Point::from));
+            let (c, ci, pivot) = (Point::from(c), Point::from(ci), Point::from(fr.pivot));
+            if quarter_contact_within(&mv, c, &fixed, ci, r, pivot, fr.theta > 0.0) {
                 return true;
             }
         }
@@ -550,7 +556,7 @@ impl Searcher {
 
 /// The direction from a tile's centre to the next one's while straight.
 fn step_dir(p: ExactPose) -> V2 {
-    crate::collision::unit_pub(p.heading)
+    p.heading.unit_vector().into()
 }
 
 /// Estimate of the random-chain probability by sampling, with its 95% (Wilson) interval.

@@ -2,24 +2,40 @@
 //! (thesis Table 5.1).
 
 use std::process::ExitCode;
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use anyhow::bail;
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::count::{count_valid, estimate_random, CountOptions, CountRow};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use foldchain::count::{count_valid, estimate_random, CountOptions, CountRow, MAX_COUNT_TILES};
+use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
+use foldchain_cli::report::print_error;
 
 /// Counts, for each chain length, the candidate fold words (3^(n-1)) and those that fold
 /// sequentially without any two tiles overlapping, from the geometry and the sweep check.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    name = "fold-enum",
+    version,
+    about = "Counts the fold words whose chains fold without self-intersection, for every chain length (thesis Table 5.1), from the geometry and the exact sweep check; optionally the chance that a chain of random tiles folds.",
+    after_help = "Examples:
+  fold-enum --max-tiles 6                 thesis Table 5.1: 3 7 17 35 79
+  fold-enum --max-tiles 20 --json
+  fold-enum --max-tiles 12 --random       with the probability for random tiles
+  fold-enum --max-tiles 26 --shard 3/8    part 3 of 8 of the search (parts add up)
+
+The count grows about twice per tile: a run expected to take more than a few minutes says
+so before it starts. On a terminal a progress bar appears after a second; otherwise a
+progress line is printed every few seconds (--quiet silences both).
+
+Exit codes: 0 done, 2 bad input."
+)]
 struct Args {
-    /// Longest chain counted, in tiles.
-    #[arg(long)]
+    /// Longest chain counted, in tiles (2 to 40).
+    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
     max_tiles: usize,
     /// Shortest chain counted, in tiles.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = tiles_arg, allow_hyphen_values = true)]
     min_tiles: usize,
     /// Count words with adjacent opposite folds (L then R), which need LR/RL tiles.
     #[arg(long)]
@@ -34,9 +50,10 @@ struct Args {
     /// Longest chain for which the random-chain probability is computed exactly.
     #[arg(long, default_value_t = 16)]
     random_exact_max: usize,
-    /// Chains sampled per length beyond exact reach.
-    #[arg(long, default_value_t = 200_000)]
-    samples: u64,
+    /// With --random: chains sampled per length beyond exact reach (default 200000; 1e6
+    /// is accepted).
+    #[arg(long, value_parser = samples_arg, allow_hyphen_values = true)]
+    samples: Option<u64>,
     /// Seed of the sampling.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -47,14 +64,40 @@ struct Args {
     /// Print JSON: {"rows":[{"tiles":n,"candidates":c,"valid":v,...}]}.
     #[arg(long)]
     json: bool,
+    /// No progress on stderr, no estimate.
+    #[arg(long)]
+    quiet: bool,
 }
+
+/// A chain length on the command line: a whole number of tiles.
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .map_err(|_| format!("expected a whole number of tiles from 2 to {MAX_COUNT_TILES}"))
+}
+
+/// A sample count: a whole number, also written as 1e6.
+fn samples_arg(s: &str) -> Result<u64, String> {
+    let bad = || "expected a whole number of samples >= 1 (e.g. 200000 or 1e6)".to_string();
+    let v: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(v >= 1.0 && v.fract() == 0.0 && v < 1.8e19) {
+        return Err(bad());
+    }
+    Ok(v as u64)
+}
+
+/// Chains sampled per length beyond exact reach, by default.
+const DEFAULT_SAMPLES: u64 = 200_000;
+
+/// A run expected to take longer than this says so before it starts.
+const WARN_SECONDS: f64 = 180.0;
 
 fn main() -> ExitCode {
     let args = Args::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("fold-enum: {e:#}");
+            print_error("fold-enum", &e);
             ExitCode::from(2)
         }
     }
@@ -74,43 +117,47 @@ fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
     Ok((k, m))
 }
 
-/// A progress bar on stderr that appears only once a run has taken more than a second and
-/// only on a terminal.
-struct Progress {
-    bar: ProgressBar,
-    start: Instant,
-    shown: Mutex<bool>,
-}
-
-impl Progress {
-    fn new() -> Progress {
-        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-        if let Ok(style) = ProgressStyle::with_template(
-            "{msg} [{bar:40}] {pos}/{len} parts, {elapsed} (eta {eta})",
-        ) {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        Progress {
-            bar,
-            start: Instant::now(),
-            shown: Mutex::new(false),
-        }
+/// The rough cost of counting up to `max` tiles, from a calibration run up to 15 tiles:
+/// search nodes grow by the ratio of its last two rows per tile. `None` when the run is short
+/// anyway.
+fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f64, f64)>> {
+    const CALIBRATE: usize = 15;
+    if max <= 22 {
+        return Ok(None);
     }
-
-    fn update(&self, msg: &str, done: u64, total: u64) {
-        if let Ok(mut shown) = self.shown.lock() {
-            if !*shown && self.start.elapsed() > Duration::from_secs(1) {
-                *shown = true;
-                self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            }
-        }
-        self.bar.set_message(msg.to_string());
-        self.bar.set_length(total);
-        self.bar.set_position(done);
-    }
+    let start = Instant::now();
+    let rows = count_valid(&opts.with_tiles(2, CALIBRATE), &|_, _| {})?;
+    let secs = start.elapsed().as_secs_f64();
+    let searched: Vec<f64> = rows.iter().map(|r| r.searched as f64).collect();
+    let nodes: f64 = searched.iter().sum();
+    let (last, before) = (searched[searched.len() - 1], searched[searched.len() - 2]);
+    let ratio = (last / before).max(1.0);
+    let more: f64 = (1..=max - CALIBRATE)
+        .map(|k| last * ratio.powi(k as i32))
+        .sum();
+    let share = opts.shard.map_or(1.0, |(_, m)| 1.0 / m as f64);
+    let total = nodes + more * share;
+    Ok(Some((total, secs * total / nodes.max(1.0))))
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
+    if args.max_tiles < 2 || args.max_tiles > MAX_COUNT_TILES {
+        bail!(
+            "--max-tiles {}: expected a chain length from 2 to {MAX_COUNT_TILES} tiles",
+            args.max_tiles
+        );
+    }
+    if args.min_tiles < 2 || args.min_tiles > args.max_tiles {
+        bail!(
+            "--min-tiles {}: expected 2 to --max-tiles ({})",
+            args.min_tiles,
+            args.max_tiles
+        );
+    }
+    if args.samples.is_some() && !args.random {
+        bail!("--samples applies only with --random (the random-chain probability)");
+    }
+    let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
     let mut opts = CountOptions::default()
         .with_tiles(args.min_tiles, args.max_tiles)
         .with_allow_opposite(args.allow_lr)
@@ -124,10 +171,19 @@ fn run(args: &Args) -> anyhow::Result<()> {
             "--random cannot be combined with --shard (the probability needs the whole search)"
         );
     }
-    if args.random && args.samples == 0 {
-        anyhow::bail!("--samples 0: expected at least one sample");
+    let mode = ProgressMode::detect(args.quiet);
+    if mode != ProgressMode::Quiet {
+        if let Some((nodes, secs)) = estimate_seconds(&opts, args.max_tiles)? {
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: counting up to {} tiles visits about {nodes:.1e} search nodes: roughly {} on this machine (from a calibration run to 15 tiles); --shard K/M splits the work",
+                    args.max_tiles,
+                    duration_words(secs)
+                );
+            }
+        }
     }
-    let progress = Progress::new();
+    let progress = Progress::new("fold-enum", "parts", mode);
     let start = Instant::now();
     let mut rows = count_valid(&opts, &|d, t| progress.update("counting", d, t))?;
     if args.random {
@@ -144,8 +200,24 @@ fn run(args: &Args) -> anyhow::Result<()> {
             }
         }
         let check = CheckOptions::default().with_final_only(args.final_only);
-        for row in rows.iter_mut().filter(|r| r.p_random.is_none()) {
-            let est = estimate_random(row.tiles, args.samples, args.seed, &check);
+        let sampled = rows.iter().filter(|r| r.p_random.is_none()).count() as u64;
+        if sampled > 0 && mode != ProgressMode::Quiet {
+            // time a small sample of the longest chains to say what the full one costs
+            let probe = 2_000.min(samples);
+            let t0 = Instant::now();
+            estimate_random(args.max_tiles, probe, args.seed, &check);
+            let secs =
+                t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: sampling {samples} chains at each of {sampled} lengths takes roughly {} on this machine",
+                    duration_words(secs)
+                );
+            }
+        }
+        for (i, row) in rows.iter_mut().filter(|r| r.p_random.is_none()).enumerate() {
+            progress.update("sampling random chains", i as u64, sampled);
+            let est = estimate_random(row.tiles, samples, args.seed, &check);
             row.p_random = Some(est.p);
             row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
             row.p_random_exact = Some(format!(
@@ -154,7 +226,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             ));
         }
     }
-    progress.bar.finish_and_clear();
+    progress.finish();
     let seconds = start.elapsed().as_secs_f64();
     if args.json {
         let out = serde_json::json!({ "rows": rows, "seconds": seconds, "shard": args.shard });

@@ -15,12 +15,33 @@ use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
-use foldchain_cli::run_files::{write_run_files, RunFilesOptions};
+use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
+use foldchain_cli::report::print_error;
+use foldchain_cli::run_files::{is_run_file, write_run_files, RunFilesOptions, MAX_FRAMES};
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
-#[command(name = "fold-run", version, about)]
+#[command(
+    name = "fold-run",
+    version,
+    about = "Folds a chain of tiles: when every magnet moves and every joint folds (the event engine, or the force-integrated reference with --reference), whether two tiles collide on the way, and the pictures and JSON of the run.",
+    after_help = "Examples:
+  fold-run SLLS                         a straight tile, a tight U-turn, a straight tile
+  fold-run \"S*4 L L S*4 R R S*4\" --json
+  fold-run shapes/key.svg --tiles 171   plan the shape, then fold it
+  fold-run --plan key-plan.json --design my-design.json
+  fold-run LSLLSR --s e/3 --frames 60 --out out/lsllsr
+  fold-run SLLS --reference             the force-integrated reference (up to 2,000 tiles)
+
+Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
+energy.svg, timeline.json and summary.json (written last). Nothing else in DIR is touched.
+Times are simulated seconds. The design JSON is described in README.md (see also
+docs/design-example.json).
+
+Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
+2 bad input."
+)]
 struct Args {
     /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
     /// target shape `SHAPE.svg` to plan and fold in one go.
@@ -38,8 +59,8 @@ struct Args {
     /// Output directory (default out/<name>/).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// Number of step frames (default: 40, fewer for long chains).
-    #[arg(long, value_name = "N")]
+    /// Number of step frames (default: 40, fewer for long chains; at most 100000).
+    #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
     frames: Option<usize>,
     /// Print the summary as JSON.
     #[arg(long)]
@@ -53,7 +74,7 @@ struct Args {
     #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
     start_rule: String,
     /// Drag coefficient of the overdamped law, N s/m.
-    #[arg(long, default_value_t = DEFAULT_DRAG)]
+    #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
     /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
     #[arg(long, value_name = "A..B")]
@@ -66,10 +87,10 @@ struct Args {
     #[arg(long)]
     reference: bool,
     /// SHAPE.svg only: about this many tiles.
-    #[arg(long)]
+    #[arg(long, value_parser = count_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
     /// SHAPE.svg only: tile width in SVG user units.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     tile_size: Option<f64>,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
@@ -81,9 +102,43 @@ fn main() -> ExitCode {
     match run(args) {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
-            eprintln!("fold-run: {e:#}");
+            print_error("fold-run", &e);
             ExitCode::from(2)
         }
+    }
+}
+
+/// A count on the command line: a whole number >= 1.
+fn count_arg(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("expected a whole number >= 1".into()),
+    }
+}
+
+/// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
+/// [`SValue::parse`] reads (`0.3mm`, `e/3`, `0.25e`).
+fn s_value(text: &str) -> anyhow::Result<SValue> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
+        Ok(_) => bail!("--s '{text}': expected a finite length >= 0 in mm"),
+        Err(_) => Ok(SValue::parse(text)?),
+    }
+}
+
+/// The name of a run given inline: the text itself when it is short and plain, else a name
+/// made from its fold word or its length.
+fn inline_name(arg: &str, chain: &Chain) -> String {
+    let t = arg.trim();
+    let plain = t
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || matches!(c, ' ' | '*' | '-' | '_'));
+    if plain && t.len() <= 40 {
+        return sanitize(t);
+    }
+    match chain.to_word() {
+        Ok(w) if w.to_string().len() <= 40 => sanitize(&w.to_string()),
+        _ => format!("chain-{}-tiles", chain.len()),
     }
 }
 
@@ -125,9 +180,6 @@ fn run(args: Args) -> anyhow::Result<u8> {
             let path = Path::new(arg);
             let mut po = PlanOptions::default();
             if let Some(n) = args.tiles {
-                if n == 0 {
-                    bail!("--tiles 0: expected at least 1");
-                }
                 po = po.with_tiles(n);
             }
             if let Some(w) = args.tile_size {
@@ -156,11 +208,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
             if shape_opts_given {
                 bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg");
             }
-            let chain = foldchain::input::read_chain_arg(arg)?;
+            let chain = read_chain(arg)?;
             let name = if Path::new(arg).is_file() {
                 stem(Path::new(arg))
             } else {
-                sanitize(arg.trim())
+                inline_name(arg, &chain)
             };
             (chain, name)
         }
@@ -170,7 +222,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
         None => TileDesigns::default(),
     };
     if let Some(s) = &args.s {
-        designs = designs.with_s(SValue::parse(s)?);
+        designs = designs.with_s(s_value(s)?);
         designs.validate("--s")?;
     }
     let speed = match args.speed.as_str() {
@@ -182,8 +234,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
             SpeedLaw::Overdamped { drag: args.drag }
         }
     };
-    if args.frames == Some(0) {
-        bail!("--frames 0: expected at least 1");
+    if let Some(n) = args.frames.filter(|&n| n > MAX_FRAMES) {
+        bail!("--frames {n}: at most {MAX_FRAMES} step frames (each is a full SVG of the chain)");
     }
     let transition_tiles = match &args.transition {
         None => None,
@@ -220,6 +272,15 @@ fn run(args: Args) -> anyhow::Result<u8> {
         };
         PathBuf::from("out").join(leaf)
     });
+    let mut inputs: Vec<&Path> = Vec::new();
+    if let Some(arg) = &args.chain {
+        if Path::new(arg).is_file() {
+            inputs.push(Path::new(arg));
+        }
+    }
+    inputs.extend(args.plan.as_deref());
+    inputs.extend(args.design.as_deref());
+    refuse_overwrite_in(&inputs, &out_dir, &is_run_file, "--out")?;
     if args.reference {
         if chain.len() > MAX_REFERENCE_TILES {
             bail!(
@@ -296,11 +357,21 @@ fn report(
         }
     };
     write_run_files(source, s, out_dir, files, &mut progress)?;
+    let d = s.duration_s;
+    if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
+        eprintln!(
+            "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
+        );
+    }
     if json {
-        println!("{}", s.to_json());
+        let mut v = serde_json::to_value(s)?;
+        if let Some(m) = v.as_object_mut() {
+            m.insert("out_dir".into(), out_dir.display().to_string().into());
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!(
-            "{}: {} tiles, {} in {:.4} s, {} events, {} folds, at most {} magnets moving; wrote {}",
+            "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
             name,
             s.tiles,
             s.result,
@@ -330,5 +401,14 @@ fn read_plan_file(path: &Path) -> anyhow::Result<Chain> {
     let word = plan
         .fold_word()
         .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
-    Ok(word.to_chain())
+    let chain = word.to_chain();
+    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
+        bail!(
+            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
+            path.display(),
+            chain.len(),
+            plan.tiles
+        );
+    }
+    Ok(chain)
 }
