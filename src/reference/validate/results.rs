@@ -52,7 +52,7 @@ pub struct SceneReport {
     /// Reference wall time, s.
     pub reference_wall_s: f64,
     /// The factor that best maps the engine's (force rule) event times onto the
-    /// reference's, and the time error left after it (see [`EventComparison`]).
+    /// reference's, and the time error left after it (see [`super::EventComparison`]).
     pub engine_time_factor: f64,
     /// The engine's time error after that factor.
     pub engine_error_time_scaled: f64,
