@@ -11,7 +11,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
-use foldchain::reference::events::Recording;
+use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
@@ -306,7 +306,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let engine = EngineOptions::default().with_speed(speed).with_start_rule(
         match args.start_rule.as_str() {
             "force" => StartRule::Force {
-                cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+                cutoff: foldchain::physics::DEFAULT_CUTOFF,
             },
             _ => StartRule::Distance,
         },
