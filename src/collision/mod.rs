@@ -5,9 +5,10 @@
 //!   while joint `k` folds, everything after it is still straight and turns 90 degrees about
 //!   joint `k`'s hinge. Each sweep is checked in closed form: the first contact
 //!   of a turning octagon with a fixed one is the smallest angle at which a vertex's circular
-//!   arc crosses an edge, so nothing between samples can be missed. A parry2d BVH over the
-//!   tiles already in place keeps long chains fast: only tiles near the swept sector are
-//!   tested, and tiles that do not move relative to each other are never re-checked.
+//!   arc crosses an edge, so nothing between samples can be missed. Whether a fold's tail
+//!   meets a placed tile depends only on that tile's exact lattice offset from the folding
+//!   tile, so a memo of first hits by offset decides each fold with a few lookups; only a fold
+//!   that collides is swept pair by pair for the contact angle.
 //! - [`check_schedule`] takes joint angles as functions of time (several joints moving at
 //!   once, as the event engine produces for small `s`) and checks every moving part against
 //!   every other by conservative advancement on parry2d distances, reporting the first
@@ -24,6 +25,8 @@
 //! physical.
 
 mod advancement;
+mod first_hit;
+mod index_boxes;
 mod lattice;
 mod schedule;
 mod sequential;

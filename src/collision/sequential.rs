@@ -1,21 +1,25 @@
 //! The thesis' folding order: joints fold one after another from the reaction-initiator end.
 //!
 //! While joint `k` folds, tiles `0..=k` already sit at their final poses and tiles after `k`
-//! form a straight tail that turns 90 degrees about joint `k`'s hinge. A fixed tile can only
-//! meet a tail tile whose centre passes at a similar distance from the hinge, so for each
-//! fixed tile near the swept sector (found with a parry2d BVH) only a handful of tail tiles
-//! are tested, each in closed form ([`super::sweep`]).
+//! form a straight tail that turns 90 degrees about joint `k`'s hinge. Whether the tail meets
+//! a placed tile depends only on that tile's exact lattice offset from tile `k`
+//! ([`super::first_hit`]): the placed tiles inside the window the tail can reach (found with
+//! boxes over runs of consecutive tiles, [`super::index_boxes`]) are looked up in a memo of
+//! first hits, so a fold costs a few lookups. Only a fold that the memo says collides is swept
+//! pair by pair in world coordinates, in closed form ([`super::sweep`]), for the first contact
+//! angle and the two tiles.
 
 use std::f64::consts::FRAC_PI_2;
 
 use kurbo::{Point, Rect, Vec2};
-use parry2d_f64::partitioning::Bvh;
 
 use crate::exact::ExactPose;
-use crate::{kinematics, Chain, FoldWord, Octagon};
+use crate::{kinematics, Chain, Fold, FoldWord, Octagon};
 
+use super::first_hit::{canonical_offset, TailHits};
+use super::index_boxes::RangeBoxes;
 use super::sweep::{first_contact_within, quarter_contact_within, sector_box};
-use super::{bounding_box, final_overlap, CheckOptions, Collision};
+use super::{final_overlap, CheckOptions, Collision};
 
 /// The outcome of checking a chain of tiles.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -130,54 +134,87 @@ impl UnitTile {
     }
 }
 
-/// The sequential sweeps of one word: tiles enter a BVH as they come to rest.
+/// The sequential sweeps of one word.
 struct Sweeper<'a> {
     poses: &'a [ExactPose],
     centres: Vec<Point>,
     tile: UnitTile,
-    bvh: Bvh,
-    inserted: usize,
+    boxes: RangeBoxes,
+    hits: TailHits,
 }
 
 impl<'a> Sweeper<'a> {
     fn new(poses: &'a [ExactPose], tolerance: f64) -> Sweeper<'a> {
+        let centres: Vec<Point> = poses
+            .iter()
+            .map(|p| Point::from(p.centre.to_f64(1.0)))
+            .collect();
         Sweeper {
             poses,
-            centres: poses
-                .iter()
-                .map(|p| Point::from(p.centre.to_f64(1.0)))
-                .collect(),
+            boxes: RangeBoxes::new(&centres),
+            centres,
             tile: UnitTile::new(tolerance),
-            bvh: Bvh::new(),
-            inserted: 0,
+            hits: TailHits::new(tolerance),
         }
     }
 
     fn run(mut self, word: &FoldWord) -> Result<(), Collision> {
         for (k, &fold) in word.folds().iter().enumerate() {
-            // tiles 0..=k are in place for this sweep and every later one
-            while self.inserted <= k {
-                let c = self.centres[self.inserted];
-                let r = self.tile.radius;
-                let aabb = bounding_box(Rect::from_points(c, c).inflate(r, r));
-                self.bvh.insert(aabb, self.inserted as u32);
-                self.inserted += 1;
-            }
+            // tiles 0..=k are in place for this sweep
             let Some(hinge) = kinematics::exact_hinge(self.poses[k], fold) else {
                 continue;
             };
-            if let Some(c) = self.sweep(
-                k,
-                Point::from(hinge.to_f64(1.0)),
-                fold.quarter_turns() as f64 * FRAC_PI_2,
-            ) {
+            let pivot = Point::from(hinge.to_f64(1.0));
+            if !self.tail_meets_placed(k, fold, pivot) {
+                continue;
+            }
+            let theta = fold.quarter_turns() as f64 * FRAC_PI_2;
+            if let Some(c) = self.sweep(k, pivot, theta) {
                 return Err(c);
             }
         }
         Ok(())
     }
 
-    /// Checks the sweep of joint `k` about `pivot` by `theta`; the first contact, if any.
+    /// Whether the tail of joint `k` meets a placed tile, by the first-hit memo: every placed
+    /// tile in the window the tail can reach is looked up by its exact offset from tile `k`.
+    fn tail_meets_placed(&mut self, k: usize, fold: Fold, pivot: Point) -> bool {
+        let tail_len = self.centres.len() - 1 - k;
+        let window = self.hits.window();
+        let reach = self.hits.reach(tail_len);
+        // the canonical frame's axes in the world: along the chain, and to the fold's side
+        let u = self.poses[k].heading.unit_vector();
+        let v = if fold == Fold::R {
+            -u.turn_90()
+        } else {
+            u.turn_90()
+        };
+        let ck = self.centres[k];
+        let h = window.hinge;
+        let (x0, x1) = (h.x + window.min_x, h.x + reach);
+        let (y0, y1) = (h.y + window.min_y, h.y + reach);
+        let corner = |x: f64, y: f64| ck + x * u + y * v;
+        let query = Rect::from_points(corner(x0, y0), corner(x1, y1));
+        let Sweeper {
+            poses,
+            centres,
+            boxes,
+            hits,
+            ..
+        } = self;
+        let at = poses[k];
+        boxes.for_each_in(centres, k, &query, |i| {
+            if (centres[i] - pivot).hypot() > reach {
+                return false;
+            }
+            let offset = canonical_offset(poses[i].centre, at, fold);
+            hits.get(offset) as usize <= tail_len
+        })
+    }
+
+    /// Sweeps joint `k` about `pivot` by `theta` pair by pair in world coordinates; the first
+    /// contact, if any (the placed tiles near the swept sector against the tail tiles at a
+    /// similar distance from the hinge).
     fn sweep(&self, k: usize, pivot: Point, theta: f64) -> Option<Collision> {
         let n = self.centres.len();
         let tail_len = n - k - 1;
@@ -204,15 +241,15 @@ impl<'a> Sweeper<'a> {
         }
         let far = (last - pivot).hypot2().sqrt();
         let r = self.tile.radius;
-        let query = bounding_box(sector_box(pivot, far, a0, a1).inflate(r, r));
+        // placed centres within two circumradii of the swept sector's box
+        let query = sector_box(pivot, far, a0, a1).inflate(2.0 * r, 2.0 * r);
 
         let mut best: Option<(f64, usize, usize)> = None;
-        for i in self.bvh.intersect_aabb(&query) {
-            let i = i as usize;
+        self.boxes.for_each_in(&self.centres, k, &query, |i| {
             let ci = self.centres[i];
             let d = (ci - pivot).hypot2().sqrt();
             let Some((t0, t1)) = self.tile.tail_range(d, tail_len) else {
-                continue;
+                return false;
             };
             let fixed = self.tile.at(ci);
             for t in t0..=t1 {
@@ -234,7 +271,8 @@ impl<'a> Sweeper<'a> {
                     }
                 }
             }
-        }
+            false
+        });
         best.map(|(phi, i, j)| Collision {
             joint: Some(k),
             angle_deg: phi.to_degrees(),
@@ -356,6 +394,60 @@ mod tests {
             collided += fast.is_some() as usize;
         }
         assert!(collided > 50 && collided < 350, "{collided}");
+    }
+
+    #[test]
+    fn memo_and_world_sweep_agree_on_every_fold() {
+        // not only the first collision: at every fold of random words (short ones, and
+        // serpentines of up to 600 tiles with random letters mixed in), the first-hit memo says
+        // "collides" exactly when the pair-by-pair sweep finds a contact
+        let mut seed = 0x1234_5678_9ABC_DEF1u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let (mut folds_met, mut folds_clean) = (0, 0);
+        for round in 0..120 {
+            let w: Vec<Fold> = if round % 2 == 0 {
+                (0..5 + next() % 60)
+                    .map(|_| [Fold::L, Fold::R, Fold::S, Fold::S, Fold::S][(next() % 5) as usize])
+                    .collect()
+            } else {
+                let row = 3 + (next() % 20) as usize;
+                let mut w = Vec::new();
+                for r in 0..(600 / row) {
+                    w.extend(std::iter::repeat_n(Fold::S, row));
+                    let f = if r % 2 == 0 { Fold::L } else { Fold::R };
+                    w.extend([f, f]);
+                }
+                for _ in 0..3 {
+                    let at = (next() % w.len() as u64) as usize;
+                    w[at] = [Fold::L, Fold::R, Fold::S][(next() % 3) as usize];
+                }
+                w
+            };
+            let word = FoldWord::from_folds(w);
+            let poses = kinematics::final_poses(&word);
+            let mut sweeper = Sweeper::new(&poses, CheckOptions::default().tolerance);
+            for (k, &fold) in word.folds().iter().enumerate() {
+                let Some(h) = kinematics::exact_hinge(poses[k], fold) else {
+                    continue;
+                };
+                let pivot = Point::from(h.to_f64(1.0));
+                let theta = fold.quarter_turns() as f64 * FRAC_PI_2;
+                let memo = sweeper.tail_meets_placed(k, fold, pivot);
+                let world = sweeper.sweep(k, pivot, theta).is_some();
+                assert_eq!(memo, world, "round {round}, joint {k} of {word}");
+                if world {
+                    folds_met += 1;
+                } else {
+                    folds_clean += 1;
+                }
+            }
+        }
+        assert!(folds_met > 1000 && folds_clean > 1000, "{folds_met} {folds_clean}");
     }
 
     #[test]

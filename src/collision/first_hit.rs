@@ -1,0 +1,223 @@
+//! The first tile of a fold's straight tail that meets a placed tile, decided once per lattice
+//! offset (the same idea as the counting search's memo, `crate::count`, for tails of any
+//! length).
+//!
+//! While joint `k` folds in the sequential check, tiles `0..=k` sit at their final poses and
+//! tiles `k + 1, k + 2, ...` form a straight tail turning a quarter turn about the hinge. In
+//! tile `k`'s frame (centre at the origin, chain along +x; a right fold mirrored into a left
+//! one) tail tile `m` (tile `k + m`) starts at `(m w, 0)` and the hinge is at `(w/2, side/2)`,
+//! whatever the fold and the heading. Whether tail tile `m` meets a placed tile is therefore a
+//! function of that tile's offset in this frame ([`canonical_offset`], an exact lattice point),
+//! and so is the first such `m`. [`TailHits`] computes it with the closed-form sweep test
+//! ([`super::sweep::quarter_contact_within`]: the first contact is a vertex's circular arc
+//! crossing an edge, no sampling) and remembers it, so that repeated shapes (every U-turn of a
+//! serpentine) cost one lookup.
+
+use kurbo::Point;
+use rustc_hash::FxHashMap;
+
+use crate::exact::{ExactPoint, ExactPose, QuarterTurns};
+use crate::{Fold, Octagon};
+
+use super::sweep::quarter_contact_within;
+
+/// No tail tile meets the offset.
+pub(super) const NEVER: u32 = u32::MAX;
+
+/// Slack, in tile widths, on the distance tests that choose which tail tiles get the exact
+/// test: far above the rounding of `f64` coordinates up to `2e7 w` (the longest chain, about
+/// `4e-9 w`), so a tail tile left out is one the exact test would reject.
+const SLACK: f64 = 1e-6;
+
+/// The offset of the tile centred at `fixed` from the tile at `at`, in the frame of `at`
+/// (centre at the origin, chain along +x), mirrored (y negated) for a right fold, so that
+/// every fold is seen as a left fold.
+pub(super) fn canonical_offset(fixed: ExactPoint, at: ExactPose, fold: Fold) -> ExactPoint {
+    let back = QuarterTurns::new(-i64::from(at.heading.get()));
+    let d = (fixed - at.centre).rotated(back);
+    if fold == Fold::R {
+        ExactPoint::new(d.x, -d.y)
+    } else {
+        d
+    }
+}
+
+/// Where the tail of a left fold can reach, in the canonical frame: a placed centre can be met
+/// only inside this window (relative to the hinge), for the first `m` tail tiles only within
+/// [`TailHits::reach`]`(m)` of the hinge.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct TailWindow {
+    /// The hinge in tile `k`'s frame.
+    pub hinge: Point,
+    /// Smallest `x - hinge.x` of a placed centre that a tail tile can meet. A tail centre
+    /// starts at `(m - 1/2, -side/2)` from the hinge and turns a quarter turn counter-clockwise
+    /// to `(side/2, m - 1/2)`, so its `x` stays at least `side/2` and its `y` at least
+    /// `-side/2`; two tiles meet only with centres closer than two circumradii.
+    pub min_x: f64,
+    /// Smallest `y - hinge.y` of a placed centre that a tail tile can meet.
+    pub min_y: f64,
+}
+
+/// First hits by canonical offset, for one touching tolerance.
+#[derive(Clone, Debug)]
+pub(super) struct TailHits {
+    outline: [Point; 8],
+    radius: f64,
+    window: TailWindow,
+    memo: FxHashMap<ExactPoint, u32>,
+}
+
+impl TailHits {
+    /// An empty memo for outlines inset by `tolerance` (see [`super::CheckOptions::tolerance`]).
+    pub fn new(tolerance: f64) -> TailHits {
+        let o = Octagon::new(1.0);
+        let radius = o.circumradius();
+        let half_side = 0.5 * o.side();
+        let hinge = Point::from(
+            Octagon::exact_hinge(Fold::L)
+                .unwrap_or(ExactPoint::ORIGIN)
+                .to_f64(1.0),
+        );
+        TailHits {
+            outline: o.inset_vertices(tolerance).map(Point::from),
+            radius,
+            window: TailWindow {
+                hinge,
+                min_x: half_side - 2.0 * radius - SLACK,
+                min_y: -half_side - 2.0 * radius - SLACK,
+            },
+            memo: FxHashMap::default(),
+        }
+    }
+
+    /// The window of the tail.
+    pub fn window(&self) -> TailWindow {
+        self.window
+    }
+
+    /// Distance from the hinge of tail centre `m`.
+    fn tail_distance(&self, m: f64) -> f64 {
+        let h = self.window.hinge;
+        (m - h.x).hypot(h.y)
+    }
+
+    /// How far from the hinge a placed centre met by one of the first `m` tail tiles can lie.
+    pub fn reach(&self, m: usize) -> f64 {
+        self.tail_distance(m as f64) + 2.0 * self.radius + SLACK
+    }
+
+    /// The first tail index `m >= 1` whose tile meets a placed tile at canonical offset
+    /// `offset` while the fold turns, or [`NEVER`]. The folding tile itself (offset zero) is
+    /// never tested against tile `k + 1`, its hinged neighbour.
+    pub fn get(&mut self, offset: ExactPoint) -> u32 {
+        if let Some(&m) = self.memo.get(&offset) {
+            return m;
+        }
+        let m = self.compute(offset);
+        self.memo.insert(offset, m);
+        m
+    }
+
+    fn at(&self, c: Point) -> [Point; 8] {
+        self.outline.map(|v| v + c.to_vec2())
+    }
+
+    /// The exact sweep test along the tail, nearest tile first, over the tail tiles whose
+    /// centres pass within two circumradii (and the slack) of the placed centre.
+    fn compute(&self, offset: ExactPoint) -> u32 {
+        let p = Point::from(offset.to_f64(1.0));
+        let h = self.window.hinge;
+        let dp = p.distance(h);
+        let apart = 2.0 * self.radius + SLACK;
+        // the first tail centre not nearer the hinge than dp - apart
+        let inner = (dp - apart).max(0.0);
+        let along = (inner * inner - h.y * h.y).max(0.0).sqrt();
+        let first = ((h.x + along).floor() as u32).saturating_sub(1).max(1);
+        let fixed = self.at(p);
+        for m in first.. {
+            let dm = self.tail_distance(f64::from(m));
+            if dm - dp > apart {
+                break; // this tail centre and every later one pass beyond the tile
+            }
+            if dp - dm > apart || (m == 1 && offset == ExactPoint::ORIGIN) {
+                continue;
+            }
+            let c = Point::new(f64::from(m), 0.0);
+            if quarter_contact_within(&self.at(c), c, &fixed, p, self.radius, h, true) {
+                return m;
+            }
+        }
+        NEVER
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collision::CheckOptions;
+    use crate::exact::Surd;
+    use crate::kinematics::final_poses;
+    use crate::FoldWord;
+
+    fn hits() -> TailHits {
+        TailHits::new(CheckOptions::default().tolerance)
+    }
+
+    #[test]
+    fn ring_closes_and_a_fifth_tile_hits() {
+        // while joint 2 of LL.. folds, tail tile 1 (tile 3: the ring LLL) closes against
+        // tile 0 without overlap, and tail tile 2 (tile 4: LLLL) swings into it
+        let p = final_poses(&FoldWord::parse("LL").unwrap());
+        let off = canonical_offset(p[0].centre, p[2], Fold::L);
+        assert_eq!(hits().get(off), 2);
+        // mirrored: the same offset for RR
+        let q = final_poses(&FoldWord::parse("RR").unwrap());
+        assert_eq!(canonical_offset(q[0].centre, q[2], Fold::R), off);
+    }
+
+    #[test]
+    fn folding_tile_is_not_its_neighbours_obstacle() {
+        assert!(hits().get(ExactPoint::ORIGIN) >= 2);
+        let behind = ExactPoint::new(Surd::new(-2, 0), Surd::ZERO);
+        assert_eq!(hits().get(behind), NEVER);
+    }
+
+    #[test]
+    fn far_offsets_are_met_by_far_tail_tiles() {
+        // a tile straight ahead-left of the hinge, 1000 widths out, 45 degrees round the
+        // sweep: met by a tail tile near index 1000, by no earlier one
+        let mut h = hits();
+        let off = ExactPoint::new(Surd::new(0, 1414), Surd::new(0, 1414));
+        let m = h.get(off);
+        let d = Point::from(off.to_f64(1.0)).distance(h.window().hinge);
+        assert!(m != NEVER && (f64::from(m) - d).abs() < 2.0, "{m} {d}");
+        assert!(d <= h.reach(m as usize) && d > h.reach(m as usize - 3));
+    }
+
+    #[test]
+    fn window_holds_every_hit() {
+        // every offset met by some tail tile lies inside the window and within the reach
+        let mut h = hits();
+        let w = h.window();
+        let mut met = 0;
+        for xa in -6..=16i64 {
+            for xb in -8..=8i64 {
+                for ya in -6..=6i64 {
+                    for yb in -8..=8i64 {
+                        let off = ExactPoint::new(Surd::new(xa, xb), Surd::new(ya, yb));
+                        let m = h.get(off);
+                        if m == NEVER {
+                            continue;
+                        }
+                        met += 1;
+                        let p = Point::from(off.to_f64(1.0));
+                        let (a, c) = (p.x - w.hinge.x, p.y - w.hinge.y);
+                        assert!(a >= w.min_x && c >= w.min_y, "{off:?} {m}");
+                        assert!(p.distance(w.hinge) <= h.reach(m as usize), "{off:?} {m}");
+                    }
+                }
+            }
+        }
+        assert!(met > 1000, "{met}");
+    }
+}
