@@ -20,6 +20,16 @@ pub(crate) fn lattice_overlap(a: ExactPoint, b: ExactPoint) -> bool {
     d.x.abs() < w && d.y.abs() < w && (d.x + d.y).abs() < diag && (d.x - d.y).abs() < diag
 }
 
+/// Whether two centres are so far apart on an axis or a diagonal that the tiles cannot
+/// overlap, in `f64`: the margin (`1e-6 w`) lies far above the rounding of centres up to
+/// `2e7 w` from the origin (`4e-9 w`), so a pair let through is decided exactly.
+fn clearly_apart(a: (f64, f64), b: (f64, f64)) -> bool {
+    const AXIS: f64 = 1.0 + 1e-6;
+    const DIAGONAL: f64 = std::f64::consts::SQRT_2 + 1e-6;
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    dx.abs() > AXIS || dy.abs() > AXIS || (dx + dy).abs() > DIAGONAL || (dx - dy).abs() > DIAGONAL
+}
+
 /// No tile.
 const NONE: u32 = u32::MAX;
 
@@ -90,12 +100,10 @@ impl Cells {
 /// centres are less than one width apart on both axes, so they sit in the same or neighbouring
 /// cells); the test itself is exact ([`lattice_overlap`]).
 pub fn final_overlap(poses: &[ExactPose]) -> Option<Collision> {
-    let cell: Vec<(i64, i64)> = poses
+    let centres: Vec<(f64, f64)> = poses.iter().map(|p| p.centre.to_f64(1.0)).collect();
+    let cell: Vec<(i64, i64)> = centres
         .iter()
-        .map(|p| {
-            let (x, y) = p.centre.to_f64(1.0);
-            (x.floor() as i64, y.floor() as i64)
-        })
+        .map(|&(x, y)| (x.floor() as i64, y.floor() as i64))
         .collect();
     let mut cells = Cells::new(&cell);
     for (j, p) in poses.iter().enumerate() {
@@ -105,7 +113,9 @@ pub fn final_overlap(poses: &[ExactPose]) -> Option<Collision> {
             for gx in cx - 1..=cx + 1 {
                 let mut i = cells.head(gx, gy);
                 while i != NONE {
-                    if lattice_overlap(poses[i as usize].centre, p.centre) {
+                    if !clearly_apart(centres[i as usize], centres[j])
+                        && lattice_overlap(poses[i as usize].centre, p.centre)
+                    {
                         hit = Some(hit.map_or(i as usize, |h| h.min(i as usize)));
                     }
                     i = cells.next[i as usize];

@@ -25,6 +25,8 @@
 //! physical.
 
 mod advancement;
+mod blocks;
+mod chain_tree;
 mod first_hit;
 mod index_boxes;
 mod lattice;
@@ -43,8 +45,6 @@ pub(crate) use sweep::quarter_contact_within;
 
 use std::fmt;
 
-use parry2d_f64::bounding_volume::Aabb;
-use parry2d_f64::math::Vector;
 
 /// How a chain is checked.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -113,8 +113,3 @@ impl fmt::Display for Collision {
 }
 
 impl std::error::Error for Collision {}
-
-/// parry2d's box of a rectangle, for the broad phases.
-fn bounding_box(r: kurbo::Rect) -> Aabb {
-    Aabb::new(Vector::new(r.x0, r.y0), Vector::new(r.x1, r.y1))
-}

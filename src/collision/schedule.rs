@@ -151,6 +151,7 @@ impl FoldSchedule {
     }
 
     /// Every joint's angle at time `t` (joints without a track stay straight).
+    #[cfg(test)]
     pub(super) fn angles_at(&self, joints: usize, t: f64) -> Vec<f64> {
         let mut a = vec![0.0; joints];
         for tr in &self.tracks {

@@ -1,0 +1,418 @@
+//! One segment of a timed schedule (every moving joint turning at a constant rate): the
+//! moving joints cut the chain into rigid blocks, and every pair of blocks is checked on its
+//! own.
+//!
+//! - Neighbouring blocks turn about one hinge relative to each other: their first contact is
+//!   found exactly, as in sequential folding ([`super::sweep::first_contact_within`]), for the
+//!   pairs of tiles that the descent through the two blocks' discs ([`ChainTree`]) cannot rule
+//!   out: a disc turning about the hinge stays in its annulus and sweeps a known range of
+//!   angles.
+//! - Blocks two or more apart move by a composition of rotations: conservative advancement,
+//!   each pair of parts on its own clock. A part of block `b` seen from block `a` moves no
+//!   faster than the sum over the joints between of `|rate| * (distance from that hinge)`, and
+//!   the distance from each hinge is bounded by the (fixed) distances between consecutive
+//!   moving hinges plus the (fixed) distance from the last one. Two parts far apart for their
+//!   size step by their disc distance over that speed; close ones are split into their
+//!   children, down to pairs of tiles, which step by their exact distance. Parts that no
+//!   contact can reach (the far end of a long tail) take one step for the whole segment.
+
+use std::f64::consts::{PI, TAU};
+
+use kurbo::Point;
+use parry2d_f64::query;
+use parry2d_f64::shape::ConvexPolygon;
+
+use crate::Octagon;
+
+use super::chain_tree::{ChainTree, Rigid};
+use super::sweep::first_contact_within;
+
+/// Distance (tile widths, between inset outlines) at which two tiles count as in contact.
+const CONTACT: f64 = 1e-12;
+/// Slack on the pruning tests, tile widths or radians: far above the rounding of world
+/// coordinates (1e-10 w at a million tiles), so a pair pruned is one that cannot meet.
+const SLACK: f64 = 1e-7;
+
+/// The first contact found in a segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Contact {
+    /// When.
+    pub time: f64,
+    /// The two tiles, lower first.
+    pub tiles: (usize, usize),
+    /// The moving joint reported: the one the tiles turn about, or the fastest between them.
+    pub joint: usize,
+    /// That joint's angle at contact, degrees, unsigned.
+    pub angle_deg: f64,
+}
+
+impl Contact {
+    fn earlier_than(&self, other: &Option<Contact>) -> bool {
+        other.is_none_or(|o| (self.time, self.tiles) < (o.time, o.tiles))
+    }
+}
+
+/// The conservative advancement ran past its work budget.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct OverBudget {
+    /// The time the stalled pair had reached.
+    pub time: f64,
+}
+
+/// A rigid part of a block: a node of the tree, or the whole block (`node == 0`).
+#[derive(Clone, Copy, Debug)]
+struct Part {
+    node: usize,
+    block: usize,
+    /// World pose at the segment's start of the node's first tile.
+    pose: Rigid,
+    /// World centre and radius of the disc holding the part, at the segment's start.
+    centre: Point,
+    radius: f64,
+}
+
+/// A segment's blocks, moving joints and hinges.
+pub(super) struct Segment<'a> {
+    tree: &'a ChainTree,
+    ta: f64,
+    tb: f64,
+    /// Moving joints, increasing; block `b` starts after `joints[b - 1]`.
+    joints: Vec<usize>,
+    start: Vec<f64>,
+    rate: Vec<f64>,
+    /// World hinge of each moving joint at the segment's start.
+    hinges: Vec<Point>,
+    /// The tree nodes making up each block.
+    covers: Vec<Vec<Part>>,
+    roots: Vec<Part>,
+    /// The tile's inset outline about its centre, and the full outline's circumradius.
+    outline: [Point; 8],
+    radius: f64,
+}
+
+impl<'a> Segment<'a> {
+    /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` to
+    /// `moving[l].2` (joints increasing, every angle change nonzero and not crossing zero),
+    /// with the tree at the angles of `ta`; outlines inset by `tolerance`.
+    pub fn new(
+        tree: &'a ChainTree,
+        ta: f64,
+        tb: f64,
+        moving: &[(usize, f64, f64)],
+        tolerance: f64,
+    ) -> Segment<'a> {
+        let o = Octagon::new(1.0);
+        let span = (tb - ta).max(f64::MIN_POSITIVE);
+        let hinges = moving
+            .iter()
+            .map(|&(k, a0, a1)| {
+                let (x, y) = o.hinge(a0 + a1 > 0.0);
+                tree.pose_of(k).apply(Point::new(x, y))
+            })
+            .collect();
+        let mut covers = Vec::with_capacity(moving.len() + 1);
+        let mut roots = Vec::with_capacity(moving.len() + 1);
+        let mut lo = 0;
+        for b in 0..=moving.len() {
+            let hi = moving.get(b).map_or(tree.tiles() - 1, |m| m.0);
+            let mut nodes = Vec::new();
+            tree.cover(lo, hi, &mut nodes);
+            let parts: Vec<Part> = nodes
+                .into_iter()
+                .map(|(node, pose)| {
+                    let (c, radius) = tree.disc(node);
+                    Part {
+                        node,
+                        block: b,
+                        pose,
+                        centre: pose.apply(c),
+                        radius,
+                    }
+                })
+                .collect();
+            let (centre, radius) = enclosing(&parts);
+            roots.push(Part {
+                node: 0,
+                block: b,
+                pose: Rigid::IDENTITY,
+                centre,
+                radius,
+            });
+            covers.push(parts);
+            lo = hi + 1;
+        }
+        Segment {
+            tree,
+            ta,
+            tb,
+            joints: moving.iter().map(|m| m.0).collect(),
+            start: moving.iter().map(|m| m.1).collect(),
+            rate: moving.iter().map(|m| (m.2 - m.1) / span).collect(),
+            hinges,
+            covers,
+            roots,
+            outline: o.inset_vertices(tolerance).map(Point::from),
+            radius: o.circumradius(),
+        }
+    }
+
+    /// The number of blocks.
+    pub fn blocks(&self) -> usize {
+        self.roots.len()
+    }
+
+    /// The parts of `part`, appended to `out` (none for a tile).
+    fn split(&self, part: &Part, out: &mut Vec<Part>) {
+        if part.node == 0 {
+            out.extend_from_slice(&self.covers[part.block]);
+            return;
+        }
+        if self.tree.tile(part.node).is_some() {
+            return;
+        }
+        for (node, pose) in self.tree.children(part.node, &part.pose) {
+            let (c, radius) = self.tree.disc(node);
+            out.push(Part {
+                node,
+                block: part.block,
+                pose,
+                centre: pose.apply(c),
+                radius,
+            });
+        }
+    }
+
+    fn tile(&self, part: &Part) -> Option<usize> {
+        if part.node == 0 {
+            return None;
+        }
+        self.tree.tile(part.node)
+    }
+
+    fn outline_at(&self, pose: &Rigid) -> [Point; 8] {
+        self.outline.map(|v| pose.apply(v))
+    }
+
+    /// The pairs of parts to look into when `p` and `q` are too close to settle: the larger
+    /// one split (never a tile).
+    fn split_larger(&self, p: &Part, q: &Part) -> Vec<(Part, Part)> {
+        let mut kids = Vec::new();
+        let split_p = self.tile(q).is_some() || (self.tile(p).is_none() && p.radius >= q.radius);
+        if split_p {
+            self.split(p, &mut kids);
+            kids.into_iter().map(|k| (k, *q)).collect()
+        } else {
+            self.split(q, &mut kids);
+            kids.into_iter().map(|k| (*p, k)).collect()
+        }
+    }
+
+    /// The first contact between blocks `b - 1` and `b`, which turn about the hinge of
+    /// `joints[b - 1]` relative to each other, if earlier than `best`.
+    pub fn rotation_contact(&self, b: usize, best: &mut Option<Contact>) {
+        let l = b - 1;
+        let (k, pivot) = (self.joints[l], self.hinges[l]);
+        let turn = self.rate[l] * (self.tb - self.ta);
+        let mut stack = vec![(self.roots[b - 1], self.roots[b])];
+        while let Some((p, q)) = stack.pop() {
+            if !rotation_may_meet(pivot, &p, &q, turn) {
+                continue;
+            }
+            let (Some(i), Some(j)) = (self.tile(&p), self.tile(&q)) else {
+                stack.extend(self.split_larger(&p, &q));
+                continue;
+            };
+            if i == k && j == k + 1 {
+                continue; // hinged neighbours
+            }
+            let (fixed, moving) = (self.outline_at(&p.pose), self.outline_at(&q.pose));
+            let (cp, cq) = (p.pose.apply(Point::ORIGIN), q.pose.apply(Point::ORIGIN));
+            let r = self.radius;
+            if let Some(phi) = first_contact_within(&moving, cq, &fixed, cp, r, pivot, turn) {
+                let c = Contact {
+                    time: self.ta + (self.tb - self.ta) * phi / turn.abs(),
+                    tiles: (i, j),
+                    joint: k,
+                    angle_deg: (self.start[l] + turn.signum() * phi).abs().to_degrees(),
+                };
+                if c.earlier_than(best) {
+                    *best = Some(c);
+                }
+            }
+        }
+    }
+
+    /// The motion, from the segment's start to `t`, of block `b` seen from block `a`: the
+    /// rotations about the hinges between, in world coordinates at the start.
+    fn motion(&self, a: usize, b: usize, t: f64) -> Rigid {
+        (a..b).fold(Rigid::IDENTITY, |g, l| {
+            g.then(&Rigid::rotation_about(
+                self.hinges[l],
+                self.rate[l] * (t - self.ta),
+            ))
+        })
+    }
+
+    /// Conservative advancement of blocks `a` and `b` (`b >= a + 2`) from the segment's start
+    /// until contact, the end, or `best`'s time; a contact found earlier than `best` replaces
+    /// it. `work` counts pair evaluations against `budget`.
+    pub fn advance(
+        &self,
+        a: usize,
+        b: usize,
+        shape: &ConvexPolygon,
+        best: &mut Option<Contact>,
+        work: &mut usize,
+        budget: usize,
+    ) -> Result<(), OverBudget> {
+        // speed of a point at distance rho from hinge b-1 (block b's first hinge):
+        // w * rho + kk, from the fixed distances between consecutive moving hinges
+        let (mut w, mut kk, mut chain) = (0.0, 0.0, 0.0);
+        for l in (a..b).rev() {
+            if l + 1 < b {
+                chain += (self.hinges[l + 1] - self.hinges[l]).hypot();
+            }
+            w += self.rate[l].abs();
+            kk += self.rate[l].abs() * chain;
+        }
+        let hinge = self.hinges[b - 1];
+        let mut stack = vec![(self.roots[a], self.roots[b], self.ta)];
+        while let Some((p, q, mut t)) = stack.pop() {
+            let speed = w * ((q.centre - hinge).hypot() + q.radius) + kk;
+            loop {
+                let limit = best.map_or(self.tb, |c| c.time.min(self.tb));
+                if t >= limit || speed <= 0.0 {
+                    break;
+                }
+                *work += 1;
+                if *work > budget {
+                    return Err(OverBudget { time: t });
+                }
+                let g = self.motion(a, b, t);
+                if let (Some(i), Some(j)) = (self.tile(&p), self.tile(&q)) {
+                    let (pp, pq) = (p.pose.to_pose(), g.then(&q.pose).to_pose());
+                    let d = query::distance(&pp.to_parry(), shape, &pq.to_parry(), shape)
+                        .unwrap_or(0.0);
+                    if d <= CONTACT {
+                        let c = self.contact_at(t, i, j);
+                        if c.earlier_than(best) {
+                            *best = Some(c);
+                        }
+                        break;
+                    }
+                    t += (d / speed).max(1e-15 * (1.0 + t.abs()));
+                    continue;
+                }
+                let d = (p.centre - g.apply(q.centre)).hypot() - p.radius - q.radius;
+                if d > p.radius.max(q.radius) {
+                    t += d / speed;
+                    continue;
+                }
+                stack.extend(self.split_larger(&p, &q).into_iter().map(|(x, y)| (x, y, t)));
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// A contact found by advancement at `t` between tiles `i < j`: reported with the fastest
+    /// moving joint between them.
+    fn contact_at(&self, t: f64, i: usize, j: usize) -> Contact {
+        let l = (0..self.joints.len())
+            .filter(|&l| (i..j).contains(&self.joints[l]))
+            .max_by(|&x, &y| self.rate[x].abs().total_cmp(&self.rate[y].abs()))
+            .unwrap_or(0);
+        Contact {
+            time: t,
+            tiles: (i, j),
+            joint: self.joints[l],
+            angle_deg: (self.start[l] + self.rate[l] * (t - self.ta))
+                .abs()
+                .to_degrees(),
+        }
+    }
+}
+
+/// The disc holding every part's disc (a simple bound: centred on the parts' box).
+fn enclosing(parts: &[Part]) -> (Point, f64) {
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for p in parts {
+        x0 = x0.min(p.centre.x - p.radius);
+        y0 = y0.min(p.centre.y - p.radius);
+        x1 = x1.max(p.centre.x + p.radius);
+        y1 = y1.max(p.centre.y + p.radius);
+    }
+    let c = Point::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let r = parts
+        .iter()
+        .map(|p| (p.centre - c).hypot() + p.radius)
+        .fold(0.0, f64::max);
+    (c, r * (1.0 + 1e-12))
+}
+
+/// Distance from the pivot, polar angle, and half the angle the disc spans seen from the
+/// pivot (`PI` when the pivot is inside it).
+fn polar(pivot: Point, p: &Part) -> (f64, f64, f64) {
+    let v = p.centre - pivot;
+    let d = v.hypot();
+    let half = if d <= p.radius + SLACK {
+        PI
+    } else {
+        ((p.radius + SLACK) / d).min(1.0).asin() + SLACK
+    };
+    (d, v.atan2(), half)
+}
+
+/// Whether part `q`, turning by `turn` about `pivot`, can meet part `p`: its disc stays in its
+/// annulus about the pivot and within the range of angles it sweeps.
+fn rotation_may_meet(pivot: Point, p: &Part, q: &Part, turn: f64) -> bool {
+    let (dp, ap, hp) = polar(pivot, p);
+    let (dq, aq, hq) = polar(pivot, q);
+    if (dp - dq).abs() > p.radius + q.radius + SLACK {
+        return false;
+    }
+    if hp >= PI || hq >= PI {
+        return true;
+    }
+    let (p0, p1) = (ap - hp, ap + hp);
+    let (q0, q1) = (aq - hq + turn.min(0.0), aq + hq + turn.max(0.0));
+    if q1 - q0 >= TAU {
+        return true;
+    }
+    // q's range shifted to start within one turn after p0
+    let s = p0 + (q0 - p0).rem_euclid(TAU);
+    s <= p1 || s + (q1 - q0) >= p0 + TAU
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(x: f64, y: f64, radius: f64) -> Part {
+        Part {
+            node: 1,
+            block: 0,
+            pose: Rigid::IDENTITY,
+            centre: Point::new(x, y),
+            radius,
+        }
+    }
+
+    #[test]
+    fn rotation_pruning_keeps_what_the_sweep_reaches() {
+        let o = Point::ORIGIN;
+        // a disc at (5, 0) turning a quarter turn left reaches (0, 5), not (0, -5) or (9, 9)
+        let q = part(5.0, 0.0, 0.6);
+        assert!(rotation_may_meet(o, &part(0.0, 5.0, 0.6), &q, PI / 2.0));
+        assert!(rotation_may_meet(o, &part(3.6, 3.6, 0.6), &q, PI / 2.0));
+        assert!(!rotation_may_meet(o, &part(0.0, -5.0, 0.6), &q, PI / 2.0));
+        assert!(rotation_may_meet(o, &part(0.0, -5.0, 0.6), &q, -PI / 2.0));
+        assert!(!rotation_may_meet(o, &part(9.0, 9.0, 0.6), &q, PI / 2.0));
+        // across the branch cut at +-pi
+        let behind = part(-5.0, 0.1, 0.6);
+        assert!(rotation_may_meet(o, &part(-5.0, -0.5, 0.6), &behind, 0.2));
+        assert!(rotation_may_meet(o, &part(0.0, -5.0, 0.6), &behind, PI / 2.0));
+        // a disc over the pivot meets everything in its annulus
+        assert!(rotation_may_meet(o, &part(0.0, -1.0, 0.6), &part(0.2, 0.0, 1.0), 0.1));
+    }
+}

@@ -1,0 +1,319 @@
+//! A hierarchy of bounding discs over runs of consecutive tiles at arbitrary joint angles, for
+//! the timed schedule check (after Lotan et al.'s ChainTree for protein chains).
+//!
+//! Node `p` of a complete binary tree over the tile indices holds, in the frame of the first
+//! tile of its run: the pose of its last tile, the pose of its right child's first tile, and a
+//! disc holding every outline of the run. A joint's new angle changes only the nodes whose run
+//! holds both of its tiles, one path to the root: O(log n) per joint, so a schedule that turns
+//! a few joints at a time never recomputes the whole chain. A run with no turning joint inside
+//! is rigid, and its disc moves with its first tile.
+
+use kurbo::{Point, Vec2};
+
+use crate::{kinematics, Octagon, Pose};
+
+/// A rigid motion: rotation with cosine `c` and sine `s`, then translation `(x, y)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Rigid {
+    c: f64,
+    s: f64,
+    x: f64,
+    y: f64,
+}
+
+impl Rigid {
+    /// No motion.
+    pub const IDENTITY: Rigid = Rigid {
+        c: 1.0,
+        s: 0.0,
+        x: 0.0,
+        y: 0.0,
+    };
+
+    /// The motion of a pose (its frame placed in the world).
+    pub fn from_pose(p: &Pose) -> Rigid {
+        let (s, c) = p.angle.sin_cos();
+        Rigid { c, s, x: p.x, y: p.y }
+    }
+
+    /// Rotation by `angle` (radians, counter-clockwise) about `centre`.
+    pub fn rotation_about(centre: Point, angle: f64) -> Rigid {
+        let (s, c) = angle.sin_cos();
+        Rigid {
+            c,
+            s,
+            x: centre.x - (c * centre.x - s * centre.y),
+            y: centre.y - (s * centre.x + c * centre.y),
+        }
+    }
+
+    /// `self` after `o`: the motion that applies `o`, then `self`.
+    pub fn then(&self, o: &Rigid) -> Rigid {
+        Rigid {
+            c: self.c * o.c - self.s * o.s,
+            s: self.s * o.c + self.c * o.s,
+            x: self.c * o.x - self.s * o.y + self.x,
+            y: self.s * o.x + self.c * o.y + self.y,
+        }
+    }
+
+    /// The image of `p`.
+    pub fn apply(&self, p: Point) -> Point {
+        Point::new(
+            self.c * p.x - self.s * p.y + self.x,
+            self.s * p.x + self.c * p.y + self.y,
+        )
+    }
+
+    /// The same motion as a pose.
+    pub fn to_pose(self) -> Pose {
+        Pose::new(self.x, self.y, self.s.atan2(self.c))
+    }
+}
+
+/// The smallest disc holding two discs.
+fn enclose(a: (Point, f64), b: (Point, f64)) -> (Point, f64) {
+    let d = (b.0 - a.0).hypot();
+    if d + b.1 <= a.1 {
+        return a;
+    }
+    if d + a.1 <= b.1 {
+        return b;
+    }
+    let r = 0.5 * (d + a.1 + b.1);
+    let along: Vec2 = (b.0 - a.0) * ((r - a.1) / d);
+    // grown by a hair so that rounding never leaves an outline poking out
+    (a.0 + along, r * (1.0 + 1e-12))
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// Pose of the right child's first tile in this node's first tile's frame.
+    to_right: Rigid,
+    /// Pose of the last tile in this node's first tile's frame.
+    to_last: Rigid,
+    /// Disc holding the run's outlines, in the first tile's frame; radius `-1` for no tiles.
+    centre: Point,
+    radius: f64,
+}
+
+const EMPTY: Node = Node {
+    to_right: Rigid::IDENTITY,
+    to_last: Rigid::IDENTITY,
+    centre: Point::ORIGIN,
+    radius: -1.0,
+};
+
+/// Poses and bounding discs of every aligned run of tiles (tile width 1).
+#[derive(Clone, Debug)]
+pub(super) struct ChainTree {
+    tiles: usize,
+    /// Leaves (a power of two); tile `i` is node `leaves + i`.
+    leaves: usize,
+    nodes: Vec<Node>,
+    angles: Vec<f64>,
+}
+
+impl ChainTree {
+    /// The tree of a chain whose joints stand at `angles` (radians, positive = left).
+    pub fn new(angles: Vec<f64>) -> ChainTree {
+        let tiles = angles.len() + 1;
+        let leaves = tiles.next_power_of_two();
+        let mut nodes = vec![EMPTY; 2 * leaves];
+        let radius = Octagon::new(1.0).circumradius();
+        for node in &mut nodes[leaves..leaves + tiles] {
+            node.radius = radius;
+        }
+        let mut tree = ChainTree {
+            tiles,
+            leaves,
+            nodes,
+            angles,
+        };
+        for p in (1..leaves).rev() {
+            tree.merge(p);
+        }
+        tree
+    }
+
+    /// The number of tiles.
+    pub fn tiles(&self) -> usize {
+        self.tiles
+    }
+
+    /// Recomputes node `p` from its children.
+    fn merge(&mut self, p: usize) {
+        let (l, r) = (self.nodes[2 * p], self.nodes[2 * p + 1]);
+        if r.radius < 0.0 {
+            self.nodes[p] = l;
+            return;
+        }
+        let joint = self.first(2 * p + 1) - 1;
+        let turn = Rigid::from_pose(&kinematics::joint_transform(self.angles[joint], 1.0));
+        let to_right = l.to_last.then(&turn);
+        let (centre, radius) = enclose(
+            (l.centre, l.radius),
+            (to_right.apply(r.centre), r.radius),
+        );
+        self.nodes[p] = Node {
+            to_right,
+            to_last: to_right.then(&r.to_last),
+            centre,
+            radius,
+        };
+    }
+
+    /// Turns joint `k` to `angle`, updating the nodes above it.
+    pub fn set_angle(&mut self, k: usize, angle: f64) {
+        if self.angles[k] == angle {
+            return;
+        }
+        self.angles[k] = angle;
+        let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
+        while a != b {
+            a /= 2;
+            b /= 2;
+        }
+        while a >= 1 {
+            self.merge(a);
+            a /= 2;
+        }
+    }
+
+    /// The first tile of node `p`'s run.
+    pub fn first(&self, p: usize) -> usize {
+        let depth = usize::BITS - 1 - p.leading_zeros();
+        (p - (1 << depth)) * (self.leaves >> depth)
+    }
+
+    /// The last tile of node `p`'s run (runs past the chain's end are cut).
+    pub fn last(&self, p: usize) -> usize {
+        let depth = usize::BITS - 1 - p.leading_zeros();
+        (self.first(p) + (self.leaves >> depth) - 1).min(self.tiles - 1)
+    }
+
+    /// The tile of leaf `p`, or `None` for an inner node.
+    pub fn tile(&self, p: usize) -> Option<usize> {
+        (p >= self.leaves).then(|| p - self.leaves)
+    }
+
+    /// Node `p`'s disc, in the frame of its first tile.
+    pub fn disc(&self, p: usize) -> (Point, f64) {
+        (self.nodes[p].centre, self.nodes[p].radius)
+    }
+
+    /// The children of inner node `p` that hold tiles, each with the pose of its first tile
+    /// given the pose `at` of `p`'s first tile.
+    pub fn children(&self, p: usize, at: &Rigid) -> impl Iterator<Item = (usize, Rigid)> {
+        let right = (self.nodes[2 * p + 1].radius >= 0.0)
+            .then(|| (2 * p + 1, at.then(&self.nodes[p].to_right)));
+        std::iter::once((2 * p, *at)).chain(right)
+    }
+
+    /// The nodes whose runs make up tiles `lo..=hi`, fewest first-to-last, each with the world
+    /// pose of its first tile (tile 0 at the origin heading +x), appended to `out`.
+    pub fn cover(&self, lo: usize, hi: usize, out: &mut Vec<(usize, Rigid)>) {
+        let mut stack = vec![(1usize, Rigid::IDENTITY)];
+        while let Some((p, at)) = stack.pop() {
+            let (first, last) = (self.first(p), self.last(p));
+            if first > hi || last < lo || self.nodes[p].radius < 0.0 {
+                continue;
+            }
+            if lo <= first && last <= hi {
+                out.push((p, at));
+                continue;
+            }
+            let kids: Vec<(usize, Rigid)> = self.children(p, &at).collect();
+            stack.extend(kids.into_iter().rev());
+        }
+    }
+
+    /// The world pose of tile `i`.
+    pub fn pose_of(&self, i: usize) -> Rigid {
+        let mut out = Vec::with_capacity(1);
+        self.cover(i, i, &mut out);
+        out.first().map_or(Rigid::IDENTITY, |&(_, at)| at)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Point, b: (f64, f64)) -> bool {
+        (a.x - b.0).abs() < 1e-9 && (a.y - b.1).abs() < 1e-9
+    }
+
+    fn angles(n: usize, seed: u64) -> Vec<f64> {
+        let mut s = seed;
+        (0..n)
+            .map(|_| {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * std::f64::consts::PI
+            })
+            .collect()
+    }
+
+    #[test]
+    fn poses_and_discs_follow_the_kinematics() {
+        // a chain of 77 tiles at random angles, then some joints turned: every tile's pose is
+        // the kinematics' one, and every node's disc holds its tiles' outlines
+        let mut a = angles(76, 42);
+        let mut tree = ChainTree::new(a.clone());
+        let r = Octagon::new(1.0).circumradius();
+        for round in 0..4 {
+            let poses = kinematics::poses_at_angles(&a, 1.0);
+            for (i, p) in poses.iter().enumerate() {
+                let at = tree.pose_of(i);
+                assert!(close(at.apply(Point::ORIGIN), (p.x, p.y)), "tile {i}");
+                let ahead = at.apply(Point::new(1.0, 0.0));
+                assert!(close(ahead, p.transform_point((1.0, 0.0))), "tile {i}");
+            }
+            for p in 1..2 * tree.leaves {
+                if tree.nodes[p].radius < 0.0 {
+                    continue;
+                }
+                let mut cover = Vec::new();
+                tree.cover(tree.first(p), tree.last(p), &mut cover);
+                assert_eq!(cover.len(), 1, "node {p}");
+                let (centre, radius) = tree.disc(p);
+                let c = cover[0].1.apply(centre);
+                for q in &poses[tree.first(p)..=tree.last(p)] {
+                    assert!((c - Point::new(q.x, q.y)).hypot() + r <= radius + 1e-9);
+                }
+            }
+            for k in [0, 5 + round, 40, 75] {
+                a[k] = -a[k] * 0.5;
+                tree.set_angle(k, a[k]);
+            }
+        }
+    }
+
+    #[test]
+    fn cover_is_a_few_runs_in_order() {
+        let tree = ChainTree::new(vec![0.0; 999]);
+        let mut cover = Vec::new();
+        tree.cover(3, 871, &mut cover);
+        let mut next = 3;
+        for &(p, _) in &cover {
+            assert_eq!(tree.first(p), next);
+            next = tree.last(p) + 1;
+        }
+        assert_eq!(next, 872);
+        assert!(cover.len() <= 2 * 10, "{}", cover.len());
+        // straight chain: tile i at (i, 0)
+        for &(p, at) in &cover {
+            assert!(close(at.apply(Point::ORIGIN), (tree.first(p) as f64, 0.0)));
+        }
+    }
+
+    #[test]
+    fn rotation_about_a_point() {
+        let r = Rigid::rotation_about(Point::new(1.0, 1.0), std::f64::consts::FRAC_PI_2);
+        assert!(close(r.apply(Point::new(2.0, 1.0)), (1.0, 2.0)));
+        let back = Rigid::rotation_about(Point::new(1.0, 1.0), -std::f64::consts::FRAC_PI_2);
+        assert!(close(back.then(&r).apply(Point::new(5.0, -3.0)), (5.0, -3.0)));
+    }
+}
