@@ -275,4 +275,126 @@ mod tests {
             Err(ScheduleError::BadTrack { joint: 5, .. })
         ));
     }
+
+    /// The plain check the block check must agree with: every pair of tiles with a moving
+    /// joint between them, conservative advancement with one global step (each tile's speed
+    /// bounded by its chain distance from the moving hinges), poses from the kinematics.
+    /// `None` when clean; the contact time and tiles otherwise; panics past `max_steps`.
+    fn plain_check(
+        w: &FoldWord,
+        s: &FoldSchedule,
+        max_steps: usize,
+    ) -> Option<(f64, (usize, usize))> {
+        use crate::{kinematics, Pose};
+        let n = w.tiles();
+        let shape = Octagon::new(1.0)
+            .to_parry(CheckOptions::default().tolerance)
+            .unwrap();
+        let r = Octagon::new(1.0).circumradius();
+        // consecutive centres are at most two hinge distances apart
+        let step = 2.0 * (0.25 + 0.25 * (std::f64::consts::SQRT_2 - 1.0).powi(2)).sqrt();
+        let walk = Walk::new(w, s);
+        let mut steps = 0;
+        for seg in walk.breakpoints.windows(2) {
+            let (ta, tb) = (seg[0], seg[1]);
+            let (a0, a1) = (s.angles_at(w.joints(), ta), s.angles_at(w.joints(), tb));
+            let rate: Vec<f64> = (0..w.joints())
+                .map(|k| ((a1[k] - a0[k]) / (tb - ta)).abs())
+                .collect();
+            let bound = |i: usize, j: usize| -> f64 {
+                (i..j).map(|k| rate[k] * (step * (j - k) as f64 + r)).sum()
+            };
+            let mut t = ta;
+            while t < tb {
+                let poses: Vec<Pose> =
+                    kinematics::poses_at_angles(&s.angles_at(w.joints(), t), 1.0);
+                let mut dt = tb - t;
+                for j in 0..n {
+                    for i in 0..j.saturating_sub(1) {
+                        let v = bound(i, j);
+                        if v == 0.0 {
+                            continue;
+                        }
+                        let d = parry2d_f64::query::distance(
+                            &poses[i].to_parry(),
+                            &shape,
+                            &poses[j].to_parry(),
+                            &shape,
+                        )
+                        .unwrap();
+                        if d <= 1e-12 {
+                            return Some((t, (i, j)));
+                        }
+                        dt = dt.min(d / v);
+                    }
+                }
+                steps += 1;
+                assert!(steps < max_steps, "plain check did not finish");
+                t += dt.max(1e-13);
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn block_check_agrees_with_the_plain_check() {
+        // random short words and random overlapping schedules (some joints wiggle through
+        // straight, changing hinge): the same verdict, the same contact time
+        let mut seed = 0x5DEE_CE66_D1CE_B00Fu64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut collided, mut clean) = (0, 0);
+        for round in 0..300 {
+            let n = 4 + (next() * 7.0) as usize;
+            let folds: Vec<crate::Fold> = (0..n - 1)
+                .map(|_| crate::Fold::ALL[(next() * 3.0) as usize % 3])
+                .collect();
+            let w = FoldWord::from_folds(folds);
+            let mut tracks = Vec::new();
+            for (joint, f) in w.folds().iter().enumerate() {
+                let start = next() * n as f64 * 0.4;
+                let len = 0.3 + next();
+                let target = f.quarter_turns() as f64 * FRAC_PI_2;
+                if target != 0.0 {
+                    let mid = target * (0.2 + 0.6 * next());
+                    tracks.push(JointTrack {
+                        joint,
+                        times: vec![start, start + len * next(), start + len],
+                        angles: vec![0.0, mid, target],
+                    });
+                } else if next() < 0.3 {
+                    let a = 0.4 * (next() - 0.5);
+                    tracks.push(JointTrack {
+                        joint,
+                        times: vec![start, start + 0.5 * len, start + len],
+                        angles: vec![0.0, a, -a],
+                    });
+                }
+            }
+            let s = FoldSchedule { tracks };
+            let fast = match check_schedule(&w, &s, &CheckOptions::default()) {
+                Ok(()) => None,
+                Err(ScheduleError::Collision(c)) => Some((c.time.unwrap(), c.tiles)),
+                Err(e) => panic!("round {round}: {e}"),
+            };
+            let plain = plain_check(&w, &s, 2_000_000);
+            match (fast, plain) {
+                (None, None) => clean += 1,
+                (Some((t, ti)), Some((tp, tip))) => {
+                    assert_eq!(ti, tip, "round {round} {w}");
+                    assert!(
+                        (t - tp).abs() < 1e-6 * (1.0 + tp.abs()),
+                        "round {round} {w}: {t} {tp}"
+                    );
+                    collided += 1;
+                }
+                _ => panic!("round {round} {w}: {fast:?} against {plain:?}"),
+            }
+        }
+        assert!(collided > 40 && clean > 150, "{collided} {clean}");
+    }
 }

@@ -193,17 +193,17 @@ impl<'a> Segment<'a> {
         self.outline.map(|v| pose.apply(v))
     }
 
-    /// The pairs of parts to look into when `p` and `q` are too close to settle: the larger
-    /// one split (never a tile).
-    fn split_larger(&self, p: &Part, q: &Part) -> Vec<(Part, Part)> {
+    /// The pairs of parts to look into when `p` and `q` are too close to settle, appended to
+    /// `out`: the larger one split (never a tile).
+    fn split_larger(&self, p: &Part, q: &Part, out: &mut Vec<(Part, Part)>) {
         let mut kids = Vec::new();
         let split_p = self.tile(q).is_some() || (self.tile(p).is_none() && p.radius >= q.radius);
         if split_p {
             self.split(p, &mut kids);
-            kids.into_iter().map(|k| (k, *q)).collect()
+            out.extend(kids.into_iter().map(|k| (k, *q)));
         } else {
             self.split(q, &mut kids);
-            kids.into_iter().map(|k| (*p, k)).collect()
+            out.extend(kids.into_iter().map(|k| (*p, k)));
         }
     }
 
@@ -219,7 +219,7 @@ impl<'a> Segment<'a> {
                 continue;
             }
             let (Some(i), Some(j)) = (self.tile(&p), self.tile(&q)) else {
-                stack.extend(self.split_larger(&p, &q));
+                self.split_larger(&p, &q, &mut stack);
                 continue;
             };
             if i == k && j == k + 1 {
@@ -277,6 +277,7 @@ impl<'a> Segment<'a> {
         }
         let hinge = self.hinges[b - 1];
         let mut stack = vec![(self.roots[a], self.roots[b], self.ta)];
+        let mut kids = Vec::new();
         while let Some((p, q, mut t)) = stack.pop() {
             let speed = w * ((q.centre - hinge).hypot() + q.radius) + kk;
             loop {
@@ -303,12 +304,18 @@ impl<'a> Segment<'a> {
                     t += (d / speed).max(1e-15 * (1.0 + t.abs()));
                     continue;
                 }
+                // parts that cannot meet before the limit are done; parts far apart for their
+                // size step; close ones are split
                 let d = (p.centre - g.apply(q.centre)).hypot() - p.radius - q.radius;
+                if d > 0.0 && t + d / speed >= limit {
+                    break;
+                }
                 if d > p.radius.max(q.radius) {
                     t += d / speed;
                     continue;
                 }
-                stack.extend(self.split_larger(&p, &q).into_iter().map(|(x, y)| (x, y, t)));
+                self.split_larger(&p, &q, &mut kids);
+                stack.extend(kids.drain(..).map(|(x, y)| (x, y, t)));
                 break;
             }
         }
@@ -366,11 +373,14 @@ fn polar(pivot: Point, p: &Part) -> (f64, f64, f64) {
 /// Whether part `q`, turning by `turn` about `pivot`, can meet part `p`: its disc stays in its
 /// annulus about the pivot and within the range of angles it sweeps.
 fn rotation_may_meet(pivot: Point, p: &Part, q: &Part, turn: f64) -> bool {
-    let (dp, ap, hp) = polar(pivot, p);
-    let (dq, aq, hq) = polar(pivot, q);
-    if (dp - dq).abs() > p.radius + q.radius + SLACK {
+    // q's centre moves along an arc no longer than its distance from the pivot times the turn
+    let (dp, dq) = ((p.centre - pivot).hypot(), (q.centre - pivot).hypot());
+    let reach = p.radius + q.radius + SLACK;
+    if (p.centre - q.centre).hypot() > reach + dq * turn.abs().min(2.0) || (dp - dq).abs() > reach {
         return false;
     }
+    let (_, ap, hp) = polar(pivot, p);
+    let (_, aq, hq) = polar(pivot, q);
     if hp >= PI || hq >= PI {
         return true;
     }
@@ -411,8 +421,18 @@ mod tests {
         // across the branch cut at +-pi
         let behind = part(-5.0, 0.1, 0.6);
         assert!(rotation_may_meet(o, &part(-5.0, -0.5, 0.6), &behind, 0.2));
-        assert!(rotation_may_meet(o, &part(0.0, -5.0, 0.6), &behind, PI / 2.0));
+        assert!(rotation_may_meet(
+            o,
+            &part(0.0, -5.0, 0.6),
+            &behind,
+            PI / 2.0
+        ));
         // a disc over the pivot meets everything in its annulus
-        assert!(rotation_may_meet(o, &part(0.0, -1.0, 0.6), &part(0.2, 0.0, 1.0), 0.1));
+        assert!(rotation_may_meet(
+            o,
+            &part(0.0, -1.0, 0.6),
+            &part(0.2, 0.0, 1.0),
+            0.1
+        ));
     }
 }

@@ -33,7 +33,12 @@ impl Rigid {
     /// The motion of a pose (its frame placed in the world).
     pub fn from_pose(p: &Pose) -> Rigid {
         let (s, c) = p.angle.sin_cos();
-        Rigid { c, s, x: p.x, y: p.y }
+        Rigid {
+            c,
+            s,
+            x: p.x,
+            y: p.y,
+        }
     }
 
     /// Rotation by `angle` (radians, counter-clockwise) about `centre`.
@@ -151,10 +156,7 @@ impl ChainTree {
         let joint = self.first(2 * p + 1) - 1;
         let turn = Rigid::from_pose(&kinematics::joint_transform(self.angles[joint], 1.0));
         let to_right = l.to_last.then(&turn);
-        let (centre, radius) = enclose(
-            (l.centre, l.radius),
-            (to_right.apply(r.centre), r.radius),
-        );
+        let (centre, radius) = enclose((l.centre, l.radius), (to_right.apply(r.centre), r.radius));
         self.nodes[p] = Node {
             to_right,
             to_last: to_right.then(&r.to_last),
@@ -314,6 +316,9 @@ mod tests {
         let r = Rigid::rotation_about(Point::new(1.0, 1.0), std::f64::consts::FRAC_PI_2);
         assert!(close(r.apply(Point::new(2.0, 1.0)), (1.0, 2.0)));
         let back = Rigid::rotation_about(Point::new(1.0, 1.0), -std::f64::consts::FRAC_PI_2);
-        assert!(close(back.then(&r).apply(Point::new(5.0, -3.0)), (5.0, -3.0)));
+        assert!(close(
+            back.then(&r).apply(Point::new(5.0, -3.0)),
+            (5.0, -3.0)
+        ));
     }
 }

@@ -45,7 +45,6 @@ pub(crate) use sweep::quarter_contact_within;
 
 use std::fmt;
 
-
 /// How a chain is checked.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]

@@ -447,7 +447,10 @@ mod tests {
                 }
             }
         }
-        assert!(folds_met > 1000 && folds_clean > 1000, "{folds_met} {folds_clean}");
+        assert!(
+            folds_met > 1000 && folds_clean > 1000,
+            "{folds_met} {folds_clean}"
+        );
     }
 
     #[test]
