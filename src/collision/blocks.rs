@@ -16,7 +16,7 @@
 //!   children, down to pairs of tiles, which step by their exact distance. Parts that no
 //!   contact can reach (the far end of a long tail) take one step for the whole segment.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use kurbo::Point;
 use parry2d_f64::query;
@@ -161,10 +161,10 @@ impl<'a> Segment<'a> {
         self.roots.len()
     }
 
-    /// The parts of `part`, appended to `out` (none for a tile).
-    fn split(&self, part: &Part, out: &mut Vec<Part>) {
+    /// Calls `f` with each part of `part` (none for a tile).
+    fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
         if part.node == 0 {
-            out.extend_from_slice(&self.covers[part.block]);
+            self.covers[part.block].iter().for_each(|&c| f(c));
             return;
         }
         if self.tree.tile(part.node).is_some() {
@@ -172,7 +172,7 @@ impl<'a> Segment<'a> {
         }
         for (node, pose) in self.tree.children(part.node, &part.pose) {
             let (c, radius) = self.tree.disc(node);
-            out.push(Part {
+            f(Part {
                 node,
                 block: part.block,
                 pose,
@@ -193,17 +193,14 @@ impl<'a> Segment<'a> {
         self.outline.map(|v| pose.apply(v))
     }
 
-    /// The pairs of parts to look into when `p` and `q` are too close to settle, appended to
-    /// `out`: the larger one split (never a tile).
-    fn split_larger(&self, p: &Part, q: &Part, out: &mut Vec<(Part, Part)>) {
-        let mut kids = Vec::new();
+    /// Calls `f` with the pairs of parts to look into when `p` and `q` are too close to
+    /// settle: the larger one split (never a tile).
+    fn split_larger(&self, p: &Part, q: &Part, mut f: impl FnMut(Part, Part)) {
         let split_p = self.tile(q).is_some() || (self.tile(p).is_none() && p.radius >= q.radius);
         if split_p {
-            self.split(p, &mut kids);
-            out.extend(kids.into_iter().map(|k| (k, *q)));
+            self.each_child(p, |k| f(k, *q));
         } else {
-            self.split(q, &mut kids);
-            out.extend(kids.into_iter().map(|k| (*p, k)));
+            self.each_child(q, |k| f(*p, k));
         }
     }
 
@@ -213,13 +210,19 @@ impl<'a> Segment<'a> {
         let l = b - 1;
         let (k, pivot) = (self.joints[l], self.hinges[l]);
         let turn = self.rate[l] * (self.tb - self.ta);
-        let mut stack = vec![(self.roots[b - 1], self.roots[b])];
+        // pairs are tested before they are stacked
+        let mut stack = Vec::new();
+        let (p0, q0) = (self.roots[b - 1], self.roots[b]);
+        if rotation_may_meet(pivot, &p0, &q0, turn) {
+            stack.push((p0, q0));
+        }
         while let Some((p, q)) = stack.pop() {
-            if !rotation_may_meet(pivot, &p, &q, turn) {
-                continue;
-            }
             let (Some(i), Some(j)) = (self.tile(&p), self.tile(&q)) else {
-                self.split_larger(&p, &q, &mut stack);
+                self.split_larger(&p, &q, |x, y| {
+                    if rotation_may_meet(pivot, &x, &y, turn) {
+                        stack.push((x, y));
+                    }
+                });
                 continue;
             };
             if i == k && j == k + 1 {
@@ -277,7 +280,6 @@ impl<'a> Segment<'a> {
         }
         let hinge = self.hinges[b - 1];
         let mut stack = vec![(self.roots[a], self.roots[b], self.ta)];
-        let mut kids = Vec::new();
         while let Some((p, q, mut t)) = stack.pop() {
             let speed = w * ((q.centre - hinge).hypot() + q.radius) + kk;
             loop {
@@ -314,8 +316,7 @@ impl<'a> Segment<'a> {
                     t += d / speed;
                     continue;
                 }
-                self.split_larger(&p, &q, &mut kids);
-                stack.extend(kids.drain(..).map(|(x, y)| (x, y, t)));
+                self.split_larger(&p, &q, |x, y| stack.push((x, y, t)));
                 break;
             }
         }
@@ -357,41 +358,39 @@ fn enclosing(parts: &[Part]) -> (Point, f64) {
     (c, r * (1.0 + 1e-12))
 }
 
-/// Distance from the pivot, polar angle, and half the angle the disc spans seen from the
-/// pivot (`PI` when the pivot is inside it).
-fn polar(pivot: Point, p: &Part) -> (f64, f64, f64) {
-    let v = p.centre - pivot;
-    let d = v.hypot();
-    let half = if d <= p.radius + SLACK {
+/// Half the angle a disc of radius `radius` at distance `d` spans seen from the pivot, bounded
+/// from above without `asin` (`asin x <= x pi/2` on `[0, 1]`); `PI` when the pivot is inside.
+fn half_angle(d: f64, radius: f64) -> f64 {
+    if d <= radius + SLACK {
         PI
     } else {
-        ((p.radius + SLACK) / d).min(1.0).asin() + SLACK
-    };
-    (d, v.atan2(), half)
+        (radius + SLACK) / d * FRAC_PI_2 + SLACK
+    }
 }
 
-/// Whether part `q`, turning by `turn` about `pivot`, can meet part `p`: its disc stays in its
-/// annulus about the pivot and within the range of angles it sweeps.
+/// Whether part `q`, turning by `turn` about `pivot`, can meet part `p`: its disc moves no
+/// further than its distance from the pivot times the turn, stays in its annulus about the
+/// pivot, and sweeps a known range of angles.
 fn rotation_may_meet(pivot: Point, p: &Part, q: &Part, turn: f64) -> bool {
-    // q's centre moves along an arc no longer than its distance from the pivot times the turn
-    let (dp, dq) = ((p.centre - pivot).hypot(), (q.centre - pivot).hypot());
+    let (vp, vq) = (p.centre - pivot, q.centre - pivot);
+    let (dp, dq) = (vp.hypot(), vq.hypot());
     let reach = p.radius + q.radius + SLACK;
     if (p.centre - q.centre).hypot() > reach + dq * turn.abs().min(2.0) || (dp - dq).abs() > reach {
         return false;
     }
-    let (_, ap, hp) = polar(pivot, p);
-    let (_, aq, hq) = polar(pivot, q);
+    let (hp, hq) = (half_angle(dp, p.radius), half_angle(dq, q.radius));
     if hp >= PI || hq >= PI {
         return true;
     }
-    let (p0, p1) = (ap - hp, ap + hp);
-    let (q0, q1) = (aq - hq + turn.min(0.0), aq + hq + turn.max(0.0));
-    if q1 - q0 >= TAU {
+    // angles measured from p's direction: p spans [-hp, hp], q sweeps [q0, q1]
+    let a = vp.cross(vq).atan2(vp.dot(vq));
+    let (q0, q1) = (a - hq + turn.min(0.0), a + hq + turn.max(0.0));
+    if q1 - q0 + 2.0 * hp >= TAU {
         return true;
     }
-    // q's range shifted to start within one turn after p0
-    let s = p0 + (q0 - p0).rem_euclid(TAU);
-    s <= p1 || s + (q1 - q0) >= p0 + TAU
+    // q's range shifted to start within one turn after -hp
+    let s = -hp + (q0 + hp).rem_euclid(TAU);
+    s <= hp || s + (q1 - q0) >= TAU - hp
 }
 
 #[cfg(test)]
