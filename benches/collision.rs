@@ -1,12 +1,20 @@
-//! Collision benchmark: `cargo bench --bench collision`.
+//! Collision benchmark: `cargo bench --bench collision` (median of a few runs each, one core).
 //!
-//! Prints the time of the sequential sweep check of serpentine chains from 1,000 to 1,000,000
-//! tiles. (The counting benchmark is `benches/count.rs`.)
+//! 1. The sequential check (`check_word`: every fold sweep and the final shape) of serpentine
+//!    chains from 1,000 to 1,000,000 tiles, rows of about sqrt(n) tiles.
+//! 2. The 10^6-tile serpentine of rows of 1,000 (`S*998 L L S*998 R R ...`): the whole check,
+//!    the sweeps alone and the final shape alone (`final_overlap`).
+//! 3. The timed schedule check (`check_schedule`) of the event engine's fold schedule at
+//!    `s = 0.1 mm` (the two folds of each U-turn overlap in time) for serpentines of 1,000 to
+//!    100,000 tiles; the engine's run is not timed.
+//!
+//! (The counting benchmark is `benches/count.rs`.)
 
 use std::time::Instant;
 
-use foldchain::collision::{check_word, CheckOptions};
-use foldchain::{Fold, FoldWord};
+use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions};
+use foldchain::engine::{fold_schedule, run, EngineOptions, SValue, TileDesigns};
+use foldchain::{folded_word, kinematics, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
 fn serpentine(tiles: usize, row: usize) -> FoldWord {
@@ -30,22 +38,88 @@ fn serpentine(tiles: usize, row: usize) -> FoldWord {
     FoldWord::from_folds(folds)
 }
 
+/// The median wall time of `runs` calls of `f`, and its last result.
+fn median<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut times = Vec::with_capacity(runs);
+    let mut last = None;
+    for _ in 0..runs {
+        let t = Instant::now();
+        last = Some(f());
+        times.push(t.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    match last {
+        Some(v) => (times[times.len() / 2], v),
+        None => (f64::NAN, f()),
+    }
+}
+
+fn verdict<E>(r: &Result<(), E>) -> &'static str {
+    if r.is_ok() {
+        "valid"
+    } else {
+        "collides"
+    }
+}
+
 fn main() {
-    println!(
-        "{:>9} {:>6} {:>10} {:>8}",
-        "tiles", "row", "seconds", "verdict"
-    );
+    let opts = CheckOptions::default();
+    println!("Sequential check of serpentines (rows of about sqrt(n) tiles):");
+    println!("| tiles | row | seconds (median of 5) | verdict |");
+    println!("|---:|---:|---:|---|");
     for tiles in [1_000usize, 10_000, 100_000, 1_000_000] {
         let row = (tiles as f64).sqrt().round() as usize;
         let w = serpentine(tiles, row);
-        let t = Instant::now();
-        let ok = check_word(&w, &CheckOptions::default()).is_ok();
-        println!(
-            "{:>9} {:>6} {:>10.3} {:>8}",
-            tiles,
-            row,
-            t.elapsed().as_secs_f64(),
-            if ok { "valid" } else { "collides" }
-        );
+        let (s, r) = median(5, || check_word(&w, &opts));
+        println!("| {tiles} | {row} | {s:.4} | {} |", verdict(&r));
+    }
+
+    // the 10^6-tile serpentine of rows of 1,000: S*998 L L S*998 R R ... (999,999 letters)
+    let mut folds = Vec::with_capacity(1_000_000);
+    for r in 0..500 {
+        folds.extend(std::iter::repeat_n(Fold::S, 998));
+        folds.extend([Fold::L, Fold::L]);
+        folds.extend(std::iter::repeat_n(Fold::S, 998));
+        folds.extend(if r < 499 {
+            vec![Fold::R, Fold::R]
+        } else {
+            vec![Fold::R]
+        });
+    }
+    let w = FoldWord::from_folds(folds);
+    let poses = kinematics::final_poses(&w);
+    let (all, r) = median(5, || check_word(&w, &opts));
+    let (finals, _) = median(5, || final_overlap(&poses));
+    let (kin, _) = median(5, || kinematics::final_poses(&w));
+    println!();
+    println!("The {}-tile serpentine of rows of 1,000:", w.tiles());
+    println!("| part | seconds (median of 5) |");
+    println!("|---|---:|");
+    println!(
+        "| `check_word` (final poses, every sweep, final shape; {}) | {all:.4} |",
+        verdict(&r)
+    );
+    println!("| final poses (`kinematics::final_poses`) | {kin:.4} |");
+    println!("| final shape (`final_overlap`) | {finals:.4} |");
+    println!("| sweeps (the rest) | {:.4} |", all - kin - finals);
+
+    println!();
+    println!("Timed schedule check of the engine's schedule at s = 0.1 mm:");
+    println!("| tiles | row | folds | seconds (median of 3) | verdict |");
+    println!("|---:|---:|---:|---:|---|");
+    let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
+    for (tiles, row) in [(1_022usize, 32usize), (10_000, 100), (100_000, 316)] {
+        let chain = serpentine(tiles, row).to_chain();
+        let Ok(tl) = run(&chain, &designs, &EngineOptions::default()) else {
+            println!("| {tiles} | {row} | - | engine refused the chain | - |");
+            continue;
+        };
+        let (word, schedule) = (folded_word(&tl), fold_schedule(&tl));
+        let (s, r) = median(3, || check_schedule(&word, &schedule, &opts));
+        let v = match &r {
+            Ok(()) => "clean".to_string(),
+            Err(e) => e.to_string(),
+        };
+        println!("| {tiles} | {row} | {} | {s:.3} | {v} |", tl.folds.len());
     }
 }

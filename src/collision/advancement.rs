@@ -340,13 +340,8 @@ mod tests {
     fn block_check_agrees_with_the_plain_check() {
         // random short words and random overlapping schedules (some joints wiggle through
         // straight, changing hinge): the same verdict, the same contact time
-        let mut seed = 0x5DEE_CE66_D1CE_B00Fu64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut bits = super::super::xorshift(0x5DEE_CE66_D1CE_B00F);
+        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
         let (mut collided, mut clean) = (0, 0);
         for round in 0..300 {
             let n = 4 + (next() * 7.0) as usize;

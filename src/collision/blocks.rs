@@ -82,6 +82,12 @@ pub(super) struct Segment<'a> {
     rate: Vec<f64>,
     /// World hinge of each moving joint at the segment's start.
     hinges: Vec<Point>,
+    /// Prefix sums over the moving joints `l' < l`: of `|rate|`; of the distances between
+    /// consecutive hinges (`chain[l]`: from the first hinge to hinge `l` along the hinges);
+    /// of `|rate| * chain`.
+    spin: Vec<f64>,
+    chain: Vec<f64>,
+    spin_chain: Vec<f64>,
     /// The tree nodes making up each block.
     covers: Vec<Vec<Part>>,
     roots: Vec<Part>,
@@ -103,7 +109,7 @@ impl<'a> Segment<'a> {
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
-        let hinges = moving
+        let hinges: Vec<Point> = moving
             .iter()
             .map(|&(k, a0, a1)| {
                 let (x, y) = o.hinge(a0 + a1 > 0.0);
@@ -141,14 +147,27 @@ impl<'a> Segment<'a> {
             covers.push(parts);
             lo = hi + 1;
         }
+        let rate: Vec<f64> = moving.iter().map(|m| (m.2 - m.1) / span).collect();
+        let (mut spin, mut chain, mut spin_chain) = (vec![0.0], vec![0.0], vec![0.0]);
+        for l in 0..rate.len() {
+            let next: f64 = hinges
+                .get(l + 1)
+                .map_or(0.0, |h: &Point| (*h - hinges[l]).hypot());
+            spin.push(spin[l] + rate[l].abs());
+            spin_chain.push(spin_chain[l] + rate[l].abs() * chain[l]);
+            chain.push(chain[l] + next);
+        }
         Segment {
             tree,
             ta,
             tb,
             joints: moving.iter().map(|m| m.0).collect(),
             start: moving.iter().map(|m| m.1).collect(),
-            rate: moving.iter().map(|m| (m.2 - m.1) / span).collect(),
+            rate,
             hinges,
+            spin,
+            chain,
+            spin_chain,
             covers,
             roots,
             outline: o.inset_vertices(tolerance).map(Point::from),
@@ -248,6 +267,9 @@ impl<'a> Segment<'a> {
     /// The motion, from the segment's start to `t`, of block `b` seen from block `a`: the
     /// rotations about the hinges between, in world coordinates at the start.
     fn motion(&self, a: usize, b: usize, t: f64) -> Rigid {
+        if t == self.ta {
+            return Rigid::IDENTITY;
+        }
         (a..b).fold(Rigid::IDENTITY, |g, l| {
             g.then(&Rigid::rotation_about(
                 self.hinges[l],
@@ -270,18 +292,14 @@ impl<'a> Segment<'a> {
     ) -> Result<(), OverBudget> {
         // speed of a point at distance rho from hinge b-1 (block b's first hinge):
         // w * rho + kk, from the fixed distances between consecutive moving hinges
-        let (mut w, mut kk, mut chain) = (0.0, 0.0, 0.0);
-        for l in (a..b).rev() {
-            if l + 1 < b {
-                chain += (self.hinges[l + 1] - self.hinges[l]).hypot();
-            }
-            w += self.rate[l].abs();
-            kk += self.rate[l].abs() * chain;
-        }
+        // (prefix sums: w = sum |rate_l|, kk = sum |rate_l| * (chain to hinge b-1 from l))
+        let w = self.spin[b] - self.spin[a];
+        let kk = (self.chain[b - 1] * w - (self.spin_chain[b] - self.spin_chain[a])).max(0.0);
         let hinge = self.hinges[b - 1];
         let mut stack = vec![(self.roots[a], self.roots[b], self.ta)];
         while let Some((p, q, mut t)) = stack.pop() {
-            let speed = w * ((q.centre - hinge).hypot() + q.radius) + kk;
+            // grown by a hair over the rounding of the prefix sums
+            let speed = (w * ((q.centre - hinge).hypot() + q.radius) + kk) * (1.0 + 1e-9);
             loop {
                 let limit = best.map_or(self.tb, |c| c.time.min(self.tb));
                 if t >= limit || speed <= 0.0 {

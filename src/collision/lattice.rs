@@ -164,16 +164,13 @@ mod tests {
     fn cells_find_the_pair_a_plain_scan_finds() {
         // random words (some folded tight, some running along a diagonal, which takes the
         // sparse cells): the same first pair as the scan of every pair
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = super::super::xorshift(0x9E37_79B9_7F4A_7C15);
         let mut overlapped = 0;
         for round in 0..300 {
             let n = 2 + (round % 90);
             let folds: Vec<crate::Fold> = (0..n)
                 .map(|i| {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 7;
-                    seed ^= seed << 17;
-                    match (round % 3, seed % 6) {
+                    match (round % 3, next() % 6) {
                         (0, _) => [crate::Fold::L, crate::Fold::R][i % 2], // staircase
                         (_, 0 | 1) => crate::Fold::L,
                         (_, 2) => crate::Fold::R,

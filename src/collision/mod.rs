@@ -112,3 +112,14 @@ impl fmt::Display for Collision {
 }
 
 impl std::error::Error for Collision {}
+
+/// A small xorshift generator, for the tests' random words and schedules.
+#[cfg(test)]
+fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}

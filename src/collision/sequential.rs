@@ -401,13 +401,7 @@ mod tests {
         // not only the first collision: at every fold of random words (short ones, and
         // serpentines of up to 600 tiles with random letters mixed in), the first-hit memo says
         // "collides" exactly when the pair-by-pair sweep finds a contact
-        let mut seed = 0x1234_5678_9ABC_DEF1u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = super::super::xorshift(0x1234_5678_9ABC_DEF1);
         let (mut folds_met, mut folds_clean) = (0, 0);
         for round in 0..120 {
             let w: Vec<Fold> = if round % 2 == 0 {
