@@ -45,6 +45,7 @@ pub mod reference;
 pub mod render;
 mod simulation;
 mod tile;
+pub mod viewer;
 mod word;
 
 pub use bom::BillOfMaterials;

@@ -1,0 +1,152 @@
+//! The animated viewer: one self-contained HTML page (no network, no external script or
+//! font; it opens from disk) that plays a run from its [`RunSource`]: tiles turning at their
+//! hinges, magnets sliding along their paths coloured by pole, the RI, the target outline,
+//! the first collision at its time and place; play, pause, a time scrubber, playback speed,
+//! jumps between events, zoom and pan. One page can hold several runs side by side on one
+//! clock (the event engine and the reference on the same chain, [`viewer_html`] with two
+//! [`RunView`]s).
+//!
+//! The page computes the chain itself, as the library does: joint angles and magnet travel
+//! from [`Track`]s (piecewise linear within [`ANGLE_TOLERANCE`] and [`TRAVEL_TOLERANCE`]),
+//! tile poses by composing the octagon chain's hinge turns ([`crate::kinematics`]), magnets
+//! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
+//! about 28 bytes per tile on the event engine's serpentines.
+//!
+//! State for tests and people: the URL hash `#t=SECONDS` (or `#t=end`) opens the page paused
+//! at that time; `<body>` carries `data-time`, `data-folded` (joints at 90 degrees),
+//! `data-moving` (magnets moving), `data-collision` (the two tiles, once they have met),
+//! `data-render-ms` (the last frame's drawing time) and `data-view` (CSS pixels per mm and
+//! the pixel position of the world origin in the first panel), updated on every frame. Hash
+//! options for tests: `poses=1` puts every tile's pose on each panel's `data-poses`,
+//! `detail=all` draws every part of every tile whatever its size on screen, and `bench=N`
+//! draws `N` frames on load, each flushed to pixels, and reports the last frame's time.
+
+mod base64;
+mod path_form;
+mod run_data;
+mod track;
+
+use crate::render::RunSource;
+
+pub use path_form::PathForm;
+pub use run_data::{PackedInts, RunData};
+pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+
+const TEMPLATE: &str = include_str!("assets/viewer.html");
+const STYLE: &str = include_str!("assets/viewer.css");
+const SCRIPT: &str = include_str!("assets/viewer.js");
+
+/// One run as the viewer shows it: its source, a title, the outcome in words, the first
+/// collision and the target outline.
+pub struct RunView<'a> {
+    source: &'a dyn RunSource,
+    label: String,
+    title: String,
+    note: String,
+    collision: Option<(Option<f64>, (usize, usize))>,
+    target: Vec<Vec<(f64, f64)>>,
+}
+
+impl<'a> RunView<'a> {
+    /// The run of `source` titled `title`; no label, note, collision or target.
+    pub fn new(source: &'a dyn RunSource, title: impl Into<String>) -> RunView<'a> {
+        RunView {
+            source,
+            label: String::new(),
+            title: title.into(),
+            note: String::new(),
+            collision: None,
+            target: Vec::new(),
+        }
+    }
+
+    /// A short label over the panel (`engine`, `reference`); default none.
+    pub fn with_label(mut self, label: impl Into<String>) -> RunView<'a> {
+        self.label = label.into();
+        self
+    }
+
+    /// The outcome in words, shown under the title; default none.
+    pub fn with_note(mut self, note: impl Into<String>) -> RunView<'a> {
+        self.note = note.into();
+        self
+    }
+
+    /// The first collision: its time (`None` when found only in the final shape, then shown
+    /// at the end) and the two tiles; default none.
+    pub fn with_collision(mut self, time: Option<f64>, tiles: (usize, usize)) -> RunView<'a> {
+        self.collision = Some((time, tiles));
+        self
+    }
+
+    /// The target outline, rings of points in the chain's world frame (mm, tile 0 at the
+    /// origin heading +x, y up); default none.
+    pub fn with_target(mut self, rings: Vec<Vec<(f64, f64)>>) -> RunView<'a> {
+        self.target = rings;
+        self
+    }
+}
+
+/// The page playing `runs` side by side on one clock, titled `title`.
+pub fn viewer_html(title: &str, runs: &[RunView<'_>]) -> String {
+    let data: Vec<RunData> = runs.iter().map(RunData::from_view).collect();
+    let json = serde_json::to_string(&data).unwrap_or_else(|_| "[]".to_string());
+    // inside <script>, "</" could close the element: JSON allows "<\/" for it
+    let json = json.replace("</", "<\\/");
+    let title = escape_html(title);
+    fill_template(TEMPLATE, &[
+        ("TITLE", &title),
+        ("STYLE", STYLE),
+        ("SCRIPT", SCRIPT),
+        ("DATA", &json),
+    ])
+}
+
+/// `template` with each `{{NAME}}` replaced by its value, in one pass (values are never
+/// scanned for placeholders); unknown names are left as they are.
+fn fill_template(template: &str, values: &[(&str, &str)]) -> String {
+    let mut out = String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
+    let mut rest = template;
+    while let Some(i) = rest.find("{{") {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 2..];
+        let value = after
+            .find("}}")
+            .and_then(|j| values.iter().find(|v| v.0 == &after[..j]).map(|v| (j, v.1)));
+        match value {
+            Some((j, v)) => {
+                out.push_str(v);
+                rest = &after[j + 2..];
+            }
+            None => {
+                out.push_str("{{");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Text for HTML content and attributes.
+fn escape_html(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn template_is_filled_in_one_pass() {
+        let t = "a{{X}}b{{Y}}c{{Z}}d{{";
+        assert_eq!(
+            fill_template(t, &[("X", "{{Y}}"), ("Y", "<y>")]),
+            "a{{Y}}b<y>c{{Z}}d{{"
+        );
+        assert_eq!(escape_html("<a & \"b\">"), "&lt;a &amp; &quot;b&quot;&gt;");
+    }
+}
