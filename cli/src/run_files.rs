@@ -1,6 +1,7 @@
-//! A run's files: step frames, `final.svg`, `transition.svg`, `energy.svg`, `timeline.json`
-//! and `summary.json`, written into an output directory from either the event engine's
-//! timeline or the reference integrator's recorded states ([`RunSource`]).
+//! A run's files: step frames, `final.svg`, `transition.svg`, `energy.svg`, the animated
+//! viewer `index.html`, `timeline.json` and `summary.json`, written into an output directory
+//! from either the event engine's timeline or the reference integrator's recorded states
+//! ([`RunSource`]); and the page that plays both side by side ([`write_compare_page`]).
 //!
 //! Frames are drawn and written one at a time, so memory does not grow with their number.
 //! Every file is written atomically into the directory, which is shared with whatever else a
@@ -14,6 +15,7 @@ use foldchain::engine::Summary;
 use foldchain::render::{
     energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, RunSource, DETAIL_TILES,
 };
+use foldchain::viewer::{viewer_html, RunView};
 
 use crate::output::{OutputDir, WriteError};
 
@@ -30,6 +32,53 @@ pub struct RunFilesOptions {
     pub frames: Option<usize>,
     /// Tiles shown in the transition diagram (inclusive); `None` for the first six.
     pub transition_tiles: Option<(usize, usize)>,
+    /// The target outline the chain was planned for, drawn by the viewer: rings in the
+    /// chain's own frame (tile 0 at the origin heading +x, y up) in tile widths; empty when
+    /// there is none.
+    pub target: Vec<Vec<(f64, f64)>>,
+}
+
+/// The most tiles a run's `index.html` is written for: the page carries about 28 bytes per
+/// tile (28 MB at a million tiles), more than a browser opens comfortably beyond this.
+pub const MAX_VIEWER_TILES: usize = 200_000;
+
+/// The viewer's view of a run: its title, outcome, first collision and target outline.
+pub fn run_view<'a>(
+    source: &'a dyn RunSource,
+    summary: &Summary,
+    opts: &RunFilesOptions,
+    label: &str,
+) -> RunView<'a> {
+    let w = source.geometry().w;
+    let mut view = RunView::new(source, opts.name.clone())
+        .with_label(label)
+        .with_note(final_note(summary))
+        .with_target(
+            opts.target
+                .iter()
+                .map(|ring| ring.iter().map(|&(x, y)| (x * w, y * w)).collect())
+                .collect(),
+        );
+    if let Some(c) = summary.first_collision {
+        view = view.with_collision(c.time, c.tiles);
+    }
+    view
+}
+
+/// Writes `index.html` into `dir` (created if needed): the page playing `views` side by
+/// side on one clock, titled `title`. Returns `false` (and writes nothing) for runs longer
+/// than [`MAX_VIEWER_TILES`].
+pub fn write_compare_page(
+    dir: &Path,
+    title: &str,
+    views: &[RunView<'_>],
+) -> Result<bool, WriteError> {
+    if views.iter().any(|v| v.tiles() > MAX_VIEWER_TILES) {
+        return Ok(false);
+    }
+    let mut out = OutputDir::create(dir)?;
+    out.write("index.html", viewer_html(title, views).as_bytes())?;
+    Ok(true)
 }
 
 /// The default number of step frames: 40 for short chains, fewer for long ones (a frame of
@@ -129,8 +178,15 @@ pub fn write_run_files(
     let svg = energy_svg(source.folds(), &source.energy(samples), &title);
     out.write("energy.svg", svg.as_bytes())?;
     progress("energy", 1, 1);
+    if tiles <= MAX_VIEWER_TILES {
+        progress("viewer", 0, 1);
+        let view = run_view(source, summary, opts, "");
+        out.write("index.html", viewer_html(&opts.name, &[view]).as_bytes())?;
+        progress("viewer", 1, 1);
+    }
     out.write("timeline.json", source.timeline_json().as_bytes())?;
-    out.remove_stale(&is_step_frame, &is_run_file)?;
+    // a page of an earlier, shorter run of this chain would show the wrong run
+    out.remove_stale(&|n| is_step_frame(n) || n == "index.html", &is_run_file)?;
     let mut summary_json = summary.to_json();
     summary_json.push('\n');
     out.write("summary.json", summary_json.as_bytes())?;

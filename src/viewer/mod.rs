@@ -34,7 +34,14 @@ pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 
 const TEMPLATE: &str = include_str!("assets/viewer.html");
 const STYLE: &str = include_str!("assets/viewer.css");
-const SCRIPT: &str = include_str!("assets/viewer.js");
+/// The page's script, in four parts: data and kinematics, drawing with the canvas (few
+/// tiles in view), drawing into a pixel buffer (many tiles in view), the page itself (concatenated inside one function scope by the template).
+const SCRIPTS: [&str; 4] = [
+    include_str!("assets/viewer-data.js"),
+    include_str!("assets/viewer-2d.js"),
+    include_str!("assets/viewer-raster.js"),
+    include_str!("assets/viewer-ui.js"),
+];
 
 /// One run as the viewer shows it: its source, a title, the outcome in words, the first
 /// collision and the target outline.
@@ -79,6 +86,11 @@ impl<'a> RunView<'a> {
         self
     }
 
+    /// Tiles in the run.
+    pub fn tiles(&self) -> usize {
+        self.source.tiles()
+    }
+
     /// The target outline, rings of points in the chain's world frame (mm, tile 0 at the
     /// origin heading +x, y up); default none.
     pub fn with_target(mut self, rings: Vec<Vec<(f64, f64)>>) -> RunView<'a> {
@@ -94,10 +106,11 @@ pub fn viewer_html(title: &str, runs: &[RunView<'_>]) -> String {
     // inside <script>, "</" could close the element: JSON allows "<\/" for it
     let json = json.replace("</", "<\\/");
     let title = escape_html(title);
+    let script = SCRIPTS.join("\n");
     fill_template(TEMPLATE, &[
         ("TITLE", &title),
         ("STYLE", STYLE),
-        ("SCRIPT", SCRIPT),
+        ("SCRIPT", &script),
         ("DATA", &json),
     ])
 }
