@@ -2,7 +2,7 @@
 // the state on <body>, and the test options.
 
 // options from the hash: view=X0,Y0,X1,Y1, and for tests poses=1, detail=all,
-// renderer=2d|raster, bench=N
+// renderer=2d|raster, bench=N, probe=T1,T2,...
 const hash = readHash();
 const opts = { detailAll: hash.detail === 'all', poses: hash.poses === '1', renderer: hash.renderer || 'auto', flush: false };
 const runs = JSON.parse(document.getElementById('run-data').textContent).map(decode);
@@ -34,6 +34,13 @@ const panels = runs.map(function (r) {
 
 panels.forEach(function (p) { p.midCtx = p.mid.getContext('2d'); });
 
+// every tile's pose, 'x,y,angle;...' (mm, radians)
+function posesText(r) {
+  const a = [];
+  for (let i = 0; i < r.tiles; i++) a.push(r.px[i] + ',' + r.py[i] + ',' + r.pa[i]);
+  return a.join(';');
+}
+
 // how many tile centres lie in the panel
 function inView(p) {
   const r = p.run, v = p.view, m = r.w * v.k;
@@ -45,7 +52,8 @@ function inView(p) {
   return count;
 }
 
-// the shared view: world centre and pixels per mm
+// the shared view: the world point at the panels' top left corner (mm) and pixels per mm;
+// a resized window keeps that corner where it is
 const cam = { x: 0, y: 0, k: 1 };
 // the view holding the box b (world mm), or the whole run
 function fitAll(b) {
@@ -56,10 +64,10 @@ function fitAll(b) {
     });
   }
   const p = panels[0];
-  cam.x = 0.5 * (b[0] + b[2]); cam.y = 0.5 * (b[1] + b[3]);
-  cam.k = Math.min((p.cssW - 20) / Math.max(b[2] - b[0], 1e-9), (p.cssH - 70) / Math.max(b[3] - b[1], 1e-9));
-  // leave room for the caption
-  cam.y += 25 / cam.k;
+  // leave room for the caption (70 px at the top)
+  cam.k = Math.min((p.cssW - 20) / Math.max(b[2] - b[0], 1e-9), (p.cssH - 80) / Math.max(b[3] - b[1], 1e-9));
+  cam.x = 0.5 * (b[0] + b[2]) - 0.5 * p.cssW / cam.k;
+  cam.y = 0.5 * (b[1] + b[3]) + (0.5 * (p.cssH - 70) + 70) / cam.k;
 }
 function layout() {
   panels.forEach(function (p) {
@@ -75,8 +83,8 @@ function layout() {
 function applyCam() {
   panels.forEach(function (p) {
     p.view.k = cam.k;
-    p.view.ox = 0.5 * p.cssW - cam.x * cam.k;
-    p.view.oy = 0.5 * p.cssH + cam.y * cam.k;
+    p.view.ox = -cam.x * cam.k;
+    p.view.oy = cam.y * cam.k;
   });
 }
 
@@ -135,11 +143,7 @@ function render() {
       (runs.length > 1 ? ' (ends at ' + fmt(r.end) + ' s)' : '');
     p.hitEl.textContent = r.hit ? 'collision: tiles ' + r.hit[0] + ' and ' + r.hit[1] +
       (r.collision[0] === null ? ' in the final shape' : ' at t = ' + fmt(r.collision[0]) + ' s') : '';
-    if (opts.poses) {
-      const a = [];
-      for (let i = 0; i < r.tiles; i++) a.push(r.px[i] + ',' + r.py[i] + ',' + r.pa[i]);
-      p.el.dataset.poses = a.join(';');
-    }
+    if (opts.poses) p.el.dataset.poses = posesText(r);
   });
   const first = panels[0];
   body.dataset.time = String(t);
@@ -202,8 +206,8 @@ function zoom(f, sx, sy) {
   if (sx === undefined) { sx = 0.5 * p.cssW; sy = 0.5 * p.cssH; }
   const wx = (sx - p.view.ox) / cam.k, wy = (p.view.oy - sy) / cam.k;
   cam.k *= f;
-  cam.x = wx - (sx - 0.5 * p.cssW) / cam.k;
-  cam.y = wy + (sy - 0.5 * p.cssH) / cam.k;
+  cam.x = wx - sx / cam.k;
+  cam.y = wy + sy / cam.k;
   applyCam(); render();
 }
 function pan(dx, dy) {
@@ -334,4 +338,15 @@ if (bench > 0) {
 } else {
   render();
 }
-if (t0 === null && end > 0) play(true);
+// probe=T1,T2,...: the poses at those times on each panel's data-poses-1, data-poses-2, ...
+if (hash.probe) {
+  hash.probe.split(',').map(parseFloat).forEach(function (t, i) {
+    panels.forEach(function (p) {
+      update(p.run, t);
+      p.el.setAttribute('data-poses-' + (i + 1), posesText(p.run));
+    });
+  });
+  render();
+}
+// opened without a time: play from the start
+if (t0 === null && !hash.probe && !(bench > 0) && end > 0) play(true);
