@@ -1,13 +1,11 @@
-//! Collision and counting benchmarks: `cargo bench --bench collision [-- MAX_N]`.
+//! Collision benchmark: `cargo bench --bench collision`.
 //!
-//! Prints, for the fold-word count (thesis Table 5.1 extended), the valid count and the wall
-//! time for each longest length up to MAX_N (default 22), and the time of the sequential
-//! sweep check of serpentine chains from 1,000 to 1,000,000 tiles.
+//! Prints the time of the sequential sweep check of serpentine chains from 1,000 to 1,000,000
+//! tiles. (The counting benchmark is `benches/count.rs`.)
 
 use std::time::Instant;
 
 use foldchain::collision::{check_word, CheckOptions};
-use foldchain::count::{count_valid, CountOptions};
 use foldchain::{Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
@@ -33,26 +31,6 @@ fn serpentine(tiles: usize, row: usize) -> FoldWord {
 }
 
 fn main() {
-    let max_n: usize = std::env::args()
-        .skip(1)
-        .find_map(|a| a.parse().ok())
-        .unwrap_or(22);
-    println!("threads: {}", rayon::current_num_threads());
-    println!("{:>5} {:>14} {:>10}", "N", "valid(N)", "seconds");
-    let mut n = 12;
-    while n <= max_n {
-        let t = Instant::now();
-        let rows = count_valid(&CountOptions::default().with_tiles(n, n), &|_, _| {})
-            .expect("valid options");
-        println!(
-            "{:>5} {:>14} {:>10.3}",
-            n,
-            rows[0].valid,
-            t.elapsed().as_secs_f64()
-        );
-        n += 2;
-    }
-    println!();
     println!(
         "{:>9} {:>6} {:>10} {:>8}",
         "tiles", "row", "seconds", "verdict"

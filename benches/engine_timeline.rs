@@ -5,7 +5,8 @@
 
 use std::time::Instant;
 
-use foldchain::engine::{run, EngineOptions, TileDesigns};
+use foldchain::engine::{run, EngineOptions};
+use foldchain::timeline::TileDesigns;
 use foldchain::{Fold, FoldWord};
 
 fn serpentine(n: usize) -> FoldWord {

@@ -15,29 +15,37 @@ use crate::{ChainError, Fold, FoldWord, JointOutcome, Tile};
 /// against hostile run-length counts such as `SS*99999999999`.
 pub const MAX_TILES: usize = 20_000_000;
 
-/// A chain of tiles, from the reaction-initiator end.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(try_from = "ChainJson", into = "ChainJson")]
+/// A chain of tiles, from the reaction-initiator end. Its JSON form is
+/// `{"tiles":["SS","SL",...]}`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(try_from = "ChainJson")]
 pub struct Chain {
     tiles: Vec<Tile>,
 }
 
-#[derive(serde::Serialize, serde::Deserialize)]
+/// The JSON form as read: checked into a [`Chain`].
+#[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ChainJson {
     tiles: Vec<Tile>,
+}
+
+/// The JSON form as written, borrowing the tiles.
+#[derive(serde::Serialize)]
+struct ChainJsonRef<'a> {
+    tiles: &'a [Tile],
+}
+
+impl serde::Serialize for Chain {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        ChainJsonRef { tiles: &self.tiles }.serialize(s)
+    }
 }
 
 impl TryFrom<ChainJson> for Chain {
     type Error = ChainError;
     fn try_from(j: ChainJson) -> Result<Chain, ChainError> {
         Chain::from_tiles(j.tiles)
-    }
-}
-
-impl From<Chain> for ChainJson {
-    fn from(c: Chain) -> ChainJson {
-        ChainJson { tiles: c.tiles }
     }
 }
 
@@ -117,17 +125,8 @@ impl Chain {
 
     /// The JSON form `{"tiles":["SS","SL",...]}`.
     pub fn to_json(&self) -> String {
-        let mut s = String::from("{\"tiles\":[");
-        for (i, t) in self.tiles.iter().enumerate() {
-            if i > 0 {
-                s.push(',');
-            }
-            s.push('"');
-            s.push_str(&t.to_string());
-            s.push('"');
-        }
-        s.push_str("]}");
-        s
+        // a list of two-letter strings always serialises; the empty string is unreachable
+        serde_json::to_string(self).unwrap_or_default()
     }
 
     /// The tiles.
@@ -250,6 +249,15 @@ mod tests {
         assert_eq!(Chain::parse("SS").unwrap().len(), 3);
         assert_eq!(Chain::parse("SS*12").unwrap().len(), 12);
         assert_eq!(Chain::parse("word:SS*12").unwrap().len(), 14); // S then S*12: 13 joints
+    }
+
+    #[test]
+    fn json_form_round_trips() {
+        let c = Chain::parse("SS SL LL LS SS").unwrap();
+        assert_eq!(c.to_json(), r#"{"tiles":["SS","SL","LL","LS","SS"]}"#);
+        assert_eq!(Chain::from_json(&c.to_json()).unwrap(), c);
+        assert_eq!(serde_json::to_value(&c).unwrap()["tiles"][2], "LL");
+        assert!(Chain::from_json(r#"{"tiles":["SS"],"extra":1}"#).is_err());
     }
 
     #[test]

@@ -32,6 +32,15 @@ impl Surd {
         (self.a as f64 + self.b as f64 * std::f64::consts::FRAC_1_SQRT_2) * 0.5 * w
     }
 
+    /// The absolute value, decided exactly.
+    pub fn abs(self) -> Surd {
+        if self.signum() == Ordering::Less {
+            -self
+        } else {
+            self
+        }
+    }
+
     /// The sign of the value, decided exactly.
     pub fn signum(self) -> Ordering {
         // sign(a + b/sqrt2) = sign(a*sqrt2 + b); compare 2a^2 with b^2 when the signs differ.
@@ -115,6 +124,16 @@ impl QuarterTurns {
     /// The angle in degrees: 0, 90, 180 or 270.
     pub fn to_degrees(self) -> f64 {
         self.0 as f64 * 90.0
+    }
+
+    /// The unit vector of the heading, exactly: `(1, 0)`, `(0, 1)`, `(-1, 0)` or `(0, -1)`.
+    pub fn unit_vector(self) -> kurbo::Vec2 {
+        match self.0 {
+            0 => kurbo::Vec2::new(1.0, 0.0),
+            1 => kurbo::Vec2::new(0.0, 1.0),
+            2 => kurbo::Vec2::new(-1.0, 0.0),
+            _ => kurbo::Vec2::new(0.0, -1.0),
+        }
     }
 }
 
@@ -208,6 +227,8 @@ mod tests {
         assert_eq!(Surd::new(-3, 5).signum(), Ordering::Greater); // -3 + 3.54
         assert_eq!(Surd::new(0, 0).signum(), Ordering::Equal);
         assert!(Surd::new(0, 2) > Surd::new(1, 0));
+        assert_eq!(Surd::new(1, -2).abs(), Surd::new(-1, 2));
+        assert_eq!(Surd::new(1, -1).abs(), Surd::new(1, -1));
     }
 
     #[test]
@@ -221,5 +242,16 @@ mod tests {
                 .rotated(QuarterTurns::new(3)),
             p
         );
+    }
+
+    #[test]
+    fn unit_vector_turns_with_the_heading() {
+        // the unit vector of heading q is (1, 0) turned by q quarter turns, as rotated() says
+        let one = ExactPoint::new(Surd::new(2, 0), Surd::ZERO);
+        for q in 0..4 {
+            let h = QuarterTurns::new(q);
+            let (x, y) = one.rotated(h).to_f64(1.0);
+            assert_eq!(h.unit_vector(), kurbo::Vec2::new(x, y), "heading {q}");
+        }
     }
 }

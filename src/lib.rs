@@ -4,12 +4,20 @@
 //! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
 //! initiator starts them (see `SPEC.md` and the thesis it follows).
 //!
-//! This crate is the core model: paths, tiles and joints ([`PathKind`], [`Tile`], [`JointOutcome`]),
-//! chains in their three forms ([`Chain`], [`FoldWord`], JSON), exact and floating-point
-//! kinematics of the octagon chain ([`kinematics`]), and the tile design with the path-length
-//! inequalities ([`Design`]).
+//! This crate is the core model and computes only; the command-line tools live in the
+//! `foldchain-cli` crate.
+//! - Paths, tiles and joints ([`PathKind`], [`Tile`], [`JointOutcome`]); chains in their three
+//!   forms ([`Chain`], [`FoldWord`], JSON); the tile design with the path-length inequalities
+//!   ([`Design`]) and its bill of materials ([`BillOfMaterials`]).
+//! - Exact and floating-point kinematics of the octagon chain ([`kinematics`], with exact
+//!   coordinates in [`exact`]).
+//! - Self-intersection, exactly, during every fold and in the final shape ([`collision`]), and
+//!   the counts of chains that fold cleanly ([`count`]).
+//! - The folding run: the event engine ([`engine`]), the force-integrated reference
+//!   ([`reference`](mod@reference)) and their pictures ([`render`]).
 //!
 //! ```
+//! use foldchain::collision::{check_word, CheckOptions};
 //! use foldchain::{kinematics, Chain, Design};
 //!
 //! // A tight U-turn: two left folds, one LL tile.
@@ -21,6 +29,11 @@
 //! let w = 30.0;
 //! let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
 //! assert!((pitch - 2f64.sqrt() * w).abs() < 1e-12);
+//! // it folds without any two tiles overlapping; five tiles in a ring do not
+//! assert!(check_word(&word, &CheckOptions::default()).is_ok());
+//! let ring = Chain::parse("LLLL").unwrap().to_word().unwrap();
+//! let collision = check_word(&ring, &CheckOptions::default()).unwrap_err();
+//! assert_eq!(collision.tiles, (0, 4));
 //! // the thesis design satisfies inequalities (6.1) to (6.10)
 //! assert!(Design::thesis().check().is_ok());
 //! ```
@@ -30,7 +43,6 @@ mod chain;
 pub mod collision;
 pub mod count;
 pub mod design;
-pub mod dipole;
 pub mod engine;
 mod error;
 pub mod exact;
@@ -40,11 +52,13 @@ pub mod kinematics;
 pub mod magnet_path;
 mod octagon;
 mod path_kind;
+pub mod physics;
 mod pose;
 pub mod reference;
 pub mod render;
 mod simulation;
 mod tile;
+pub mod timeline;
 pub mod viewer;
 mod word;
 

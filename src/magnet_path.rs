@@ -19,6 +19,8 @@
 
 use std::f64::consts::SQRT_2;
 
+use kurbo::Point;
+
 use crate::{Design, PathKind};
 
 /// Which end of its tile a path lies at.
@@ -159,6 +161,29 @@ impl MagnetPath {
         self.arc.is_some()
     }
 
+    /// The unit tangent (tile frame) along which a magnet at arc length `u` moves forwards.
+    /// On the straight part it is the direction away from the tile centre, exactly; on the
+    /// arc, the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept on the arc, which
+    /// is parallel to the arc's tangent at `u`.
+    pub fn tangent_at(&self, u: f64) -> (f64, f64) {
+        let len = self.length();
+        let along = (self.sign(), 0.0);
+        if self.arc.is_none() || u < self.straight {
+            return along;
+        }
+        let h = 1e-6 * len;
+        let lo = (u - h).max(self.straight.min(len));
+        let hi = (u + h).min(len);
+        let (a, b) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        let d = Point::from(self.point_at(b)) - Point::from(self.point_at(a));
+        let norm = d.hypot();
+        if norm > 0.0 {
+            (d.x / norm, d.y / norm)
+        } else {
+            along
+        }
+    }
+
     /// Points along the path for drawing, at most `max_step` mm apart.
     pub fn polyline(&self, max_step: f64) -> Vec<(f64, f64)> {
         let len = self.length();
@@ -194,7 +219,7 @@ mod tests {
     use super::*;
 
     fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
-        ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt()
+        Point::from(a).distance(Point::from(b))
     }
 
     #[test]
@@ -254,5 +279,38 @@ mod tests {
         let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);
         let b = next.transform_point(b);
         assert!((dist(a, b) - 2.0 * d.c()).abs() < 1e-9, "{}", dist(a, b));
+    }
+
+    #[test]
+    fn tangents_are_unit_and_follow_the_path() {
+        let d = Design::thesis();
+        for s in [0.0, 0.3] {
+            for kind in PathKind::ALL {
+                for end in [PathEnd::First, PathEnd::Second] {
+                    let p = MagnetPath::new(kind, end, &d.with_s(s)).unwrap();
+                    let sign = if end == PathEnd::First { -1.0 } else { 1.0 };
+                    // leaves its rest point away from the tile centre, or along its arc
+                    // when it has no straight part
+                    let t0 = p.tangent_at(0.0);
+                    if kind == PathKind::S || s > 0.0 {
+                        assert_eq!(t0, (sign, 0.0), "{kind:?} {end:?} s {s}");
+                    }
+                    let len = p.length();
+                    for i in 0..=20 {
+                        let u = len * i as f64 / 20.0;
+                        let t = p.tangent_at(u);
+                        assert!((t.0.hypot(t.1) - 1.0).abs() < 1e-12);
+                        // a small step forwards moves along the tangent
+                        let (a, b) = (
+                            p.point_at((u - 1e-4).max(0.0)),
+                            p.point_at((u + 1e-4).min(len)),
+                        );
+                        let step = (b.0 - a.0, b.1 - a.1);
+                        let cos = (step.0 * t.0 + step.1 * t.1) / step.0.hypot(step.1);
+                        assert!(cos > 0.999, "{kind:?} {end:?} s {s} u {u}: {cos}");
+                    }
+                }
+            }
+        }
     }
 }

@@ -2,12 +2,9 @@
 //! checked for self-intersection, and the summary of both ([`simulate`]); the timeline as
 //! JSON ([`timeline_json`]).
 
-use std::fmt::Write as _;
-
 use crate::collision::{check_schedule, CheckOptions, Collision, ScheduleError};
-use crate::engine::{
-    fold_schedule, run, EngineError, EngineOptions, Summary, TileDesigns, Timeline,
-};
+use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
+use crate::timeline::{CollisionReport, Summary, TileDesigns, TimelineJson, EVENT_INDEX};
 use crate::{Chain, Fold, FoldWord};
 
 /// Why a simulation could not be made.
@@ -41,7 +38,15 @@ pub fn simulate(
 ) -> Result<(Timeline, Summary), SimulateError> {
     let tl = run(chain, designs, engine)?;
     let (collision, undecided) = check_timeline(&tl, check)?;
-    let mut summary = Summary::new(&tl, collision.as_ref());
+    let mut summary = tl.summary();
+    if let Some(c) = collision {
+        summary = summary.overruled("collided", c.to_string());
+        summary.first_collision = Some(CollisionReport {
+            time: c.time,
+            joint: c.joint,
+            tiles: c.tiles,
+        });
+    }
     if let Some(msg) = undecided {
         summary.completed = false;
         summary.result = "undecided";
@@ -78,21 +83,13 @@ pub const MAX_TIMELINE_EVENTS: usize = 2_000_000;
 /// [`MAX_TIMELINE_EVENTS`] of them.
 pub fn timeline_json(tl: &Timeline) -> String {
     let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
-    let mut s = String::with_capacity(40 * shown + 200);
-    let _ = writeln!(
-        s,
-        "{{\"tiles\":{},\"speed_law\":{},\"events_total\":{},\"truncated\":{},\"index\":\"magnet k is magnet k mod 2 of tile k/2; joint events index the joint\",\"events\":[",
-        tl.tiles(),
-        serde_json::to_string(&tl.speed).unwrap_or_else(|_| "null".into()),
-        tl.events.len(),
-        shown < tl.events.len()
-    );
-    for (i, e) in tl.events.iter().take(shown).enumerate() {
-        if i > 0 {
-            s.push_str(",\n");
-        }
-        s.push_str(&e.to_json());
+    TimelineJson {
+        tiles: tl.tiles(),
+        speed_law: tl.speed,
+        events_total: Some(tl.events.len()),
+        truncated: Some(shown < tl.events.len()),
+        index: EVENT_INDEX,
+        events: &tl.events[..shown],
     }
-    s.push_str("\n]}\n");
-    s
+    .to_json()
 }

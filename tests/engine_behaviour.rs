@@ -4,11 +4,11 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 use foldchain::collision::CheckOptions;
-use foldchain::engine::{
-    joint_of_magnet, run, EngineOptions, EventKind, Outcome, SpeedLaw, TileDesigns, Timeline,
-};
-use foldchain::simulate;
-use foldchain::{Chain, Design};
+use foldchain::engine::{joint_angles_at, run, EngineOptions, Timeline};
+use foldchain::kinematics::poses_at_angles;
+use foldchain::timeline::{joint_of_magnet, EventKind, Outcome, SpeedLaw, TileDesigns};
+use foldchain::{simulate, Chain, Design, Octagon};
+use parry2d_f64::query::intersection_test;
 
 fn run_with(chain: &str, designs: TileDesigns, speed: SpeedLaw) -> Timeline {
     run(
@@ -97,7 +97,7 @@ fn sl_sr_sl_propagates_as_ss_ss_ss() {
     };
     assert_eq!(kinds(&mixed), kinds(&plain));
     // and the same final shape: every joint straight
-    let angles = foldchain::engine::joint_angles_at(&mixed, mixed.duration());
+    let angles = joint_angles_at(&mixed, mixed.duration());
     assert_eq!(angles, vec![0.0, 0.0]);
 }
 
@@ -211,7 +211,7 @@ fn thesis_three_tile_experiments_complete() {
         assert!(summary.completed, "{word}: {summary:?}");
         assert_eq!(summary.folds, folds, "{word}");
         assert_eq!(summary.first_collision, None);
-        let angles = foldchain::engine::joint_angles_at(&tl, tl.duration());
+        let angles = joint_angles_at(&tl, tl.duration());
         let expect =
             foldchain::kinematics::final_angles(&foldchain::FoldWord::parse(word).unwrap());
         assert_eq!(angles, expect, "{word}");
@@ -240,10 +240,29 @@ fn mixed_s_mixes_sequential_and_simultaneous_stretches() {
     }
 }
 
+/// The pairs of tiles, not neighbours, whose outlines (inset by the collision check's
+/// default tolerance, 1e-7 w) overlap at time `t`: parry's intersection test on the poses
+/// of the engine's joint angles, independent of the collision check.
+fn overlapping_tiles(tl: &Timeline, t: f64) -> Vec<(usize, usize)> {
+    let w = tl.geometry.w;
+    let poses = poses_at_angles(&joint_angles_at(tl, t), w);
+    let shape = Octagon::new(w).to_parry(1e-7 * w).unwrap();
+    let mut pairs = Vec::new();
+    for a in 0..poses.len() {
+        for b in a + 2..poses.len() {
+            let (pa, pb) = (poses[a].to_parry(), poses[b].to_parry());
+            if intersection_test(&pa, &shape, &pb, &shape).unwrap() {
+                pairs.push((a, b));
+            }
+        }
+    }
+    pairs
+}
+
 #[test]
 fn collisions_are_reported_with_time_and_tiles() {
-    // LLLL on its own closes a ring and then tile 4 runs into tile 0
-    let (_, summary) = simulate(
+    // LLLL closes a ring, and the tile after it runs into the ring
+    let (tl, summary) = simulate(
         &Chain::parse("SLLLLS").unwrap(),
         &TileDesigns::default(),
         &EngineOptions::default(),
@@ -251,6 +270,28 @@ fn collisions_are_reported_with_time_and_tiles() {
     )
     .unwrap();
     assert_eq!(summary.result, "collided", "{summary:?}");
+    assert!(!summary.completed);
     let c = summary.first_collision.unwrap();
-    assert!(c.time.is_some_and(|t| t > 0.0 && t <= summary.duration_s));
+    let t = c.time.unwrap();
+    assert!(t > 0.0 && t <= summary.duration_s, "{c:?}");
+    // the fold turning at contact lies between the two tiles, and contact falls inside it
+    let (a, b) = c.tiles;
+    let j = c.joint.unwrap();
+    assert!(a + 2 <= b && (a..b).contains(&j), "{c:?}");
+    let f = tl.fold_at(j).unwrap();
+    assert!(f.start < t && t <= f.end, "{c:?} {f:?}");
+    // the reported tiles overlap just after the reported time, and no two tiles just before
+    let dt = 1e-3 * (f.end - f.start);
+    assert_eq!(overlapping_tiles(&tl, t - dt), vec![], "{c:?}");
+    assert!(
+        overlapping_tiles(&tl, (t + dt).min(f.end)).contains(&(a, b)),
+        "{c:?}"
+    );
+    let reason = summary.reason.unwrap();
+    assert!(
+        reason.starts_with(&format!(
+            "tiles {a} and {b} collide at t = {t:.6} s while joint {j} folds"
+        )),
+        "{reason}"
+    );
 }

@@ -4,11 +4,12 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{run, EngineOptions, Event, EventKind, Outcome, StartRule};
-use foldchain::reference::dynamics::DEFAULT_CUTOFF;
+use foldchain::engine::{run, EngineOptions, StartRule};
+use foldchain::physics::DEFAULT_CUTOFF;
 use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::validate::compare_events;
 use foldchain::reference::{run_reference, ReferenceOptions};
+use foldchain::timeline::{Event, EventKind, Outcome};
 
 fn only(events: &[Event], kinds: &[EventKind]) -> Vec<Event> {
     events

@@ -4,9 +4,11 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{run, EngineOptions, EventKind, Outcome, StartRule, TileDesigns};
+use foldchain::engine::{joint_angles_at, run, EngineOptions, StartRule};
 use foldchain::kinematics::{final_poses, poses_at_angles};
+use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 use foldchain::reference::{run_reference, Method, ModelOptions, ReferenceOptions, ReferenceRun};
+use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
 
 fn reference(word: &str, d: Design, model: ModelOptions, method: Method) -> ReferenceRun {
@@ -24,7 +26,7 @@ fn reference(word: &str, d: Design, model: ModelOptions, method: Method) -> Refe
     r
 }
 
-fn starts(events: &[foldchain::engine::Event]) -> Vec<u32> {
+fn starts(events: &[Event]) -> Vec<u32> {
     events
         .iter()
         .filter(|e| e.kind == EventKind::MagnetStarts)
@@ -92,7 +94,7 @@ fn sequential_edge_then_stall() {
     // the engine's force rule weighs the same pairs as the reference and stalls where it
     // does, at both values of s
     let force = EngineOptions::default().with_start_rule(StartRule::Force {
-        cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+        cutoff: DEFAULT_CUTOFF,
     });
     for (s, joint, magnet) in [(t.e / 3.0, 4, 10), (t.e / 3.0 + 0.05, 0, 2)] {
         let tl = run(
@@ -207,30 +209,119 @@ fn integrators_agree_and_engine_starts_magnets_in_the_same_order() {
     assert_eq!(starts(&b.events), starts(&tl.events));
 }
 
+/// Whether JSON `a` equals `b`, numbers within 1e-15 relative (JSON text need not round-trip
+/// the last bit of an f64).
+fn same_json(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    use serde_json::Value;
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            (x - y).abs() <= 1e-15 * x.abs().max(y.abs())
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(p, q)| same_json(p, q))
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            x.len() == y.len()
+                && x.iter()
+                    .all(|(k, v)| y.get(k).is_some_and(|w| same_json(v, w)))
+        }
+        _ => a == b,
+    }
+}
+
 #[test]
-fn summary_and_timeline_have_the_engine_fields() {
+fn summary_and_timeline_say_what_the_run_did() {
     let r = reference(
         "SLLS",
         Design::thesis(),
         ModelOptions::default(),
         Method::Dopri5,
     );
-    let s = r.to_summary();
-    assert!(s.completed);
-    assert_eq!(s.folds, vec![1, 2]);
-    let json: serde_json::Value = serde_json::from_str(&s.to_json()).unwrap();
-    for key in [
-        "tiles",
-        "completed",
-        "result",
-        "duration_s",
-        "events",
-        "folds",
+    // the summary, in the engine's fields, holds the run's own values
+    let json: serde_json::Value = serde_json::from_str(&r.to_summary().to_json()).unwrap();
+    let duration = r.duration();
+    assert!(duration > 0.0 && duration <= r.end_time);
+    let want = serde_json::json!({
+        "tiles": 5,
+        "completed": true,
+        "result": "completed",
+        "duration_s": duration,
+        "events": r.events.len(),
+        "folds": [1, 2],
+        "max_moving_magnets": r.max_moving.0,
+        "inhibited_at": null,
+        "stalled_at": null,
+        "reason": null,
+        "first_collision": null,
+        "speed_law": {"overdamped": {"drag": DEFAULT_DRAG}},
+    });
+    assert!(same_json(&json, &want), "{json}");
+    // every magnet but the last started and arrived, both folds started and ended
+    for (kind, n) in [
+        (EventKind::MagnetStarts, 9),
+        (EventKind::MagnetArrives, 9),
+        (EventKind::FoldStarts, 2),
+        (EventKind::FoldEnds, 2),
+        (EventKind::RiContact, 1),
     ] {
-        assert!(json.get(key).is_some(), "{key}");
+        assert_eq!(
+            r.events.iter().filter(|e| e.kind == kind).count(),
+            n,
+            "{kind}"
+        );
     }
+    assert!(
+        r.max_moving.0 >= 2 && r.max_moving.0 <= 9,
+        "{:?}",
+        r.max_moving
+    );
+    // the timeline holds every event as [time, kind, index], in time order
     let tl: serde_json::Value = serde_json::from_str(&r.timeline_json()).unwrap();
-    assert_eq!(tl["events"].as_array().unwrap().len(), r.events.len());
+    let events: Vec<serde_json::Value> = r
+        .events
+        .iter()
+        .map(|e| serde_json::json!([e.time, e.kind.name(), e.index]))
+        .collect();
+    let want = serde_json::json!({
+        "tiles": 5,
+        "speed_law": {"reference": {
+            "method": "dopri5",
+            "tolerance": 1e-5,
+            "drag": DEFAULT_DRAG,
+            "rotational_drag": DEFAULT_ROTATIONAL_DRAG,
+        }},
+        "index": "magnet k is magnet k mod 2 of tile k/2; joint events index the joint",
+        "events": events,
+    });
+    assert!(same_json(&tl, &want), "{tl}");
+    assert_eq!(tl["events"][0], serde_json::json!([0.0, "ri_contact", 0]));
+    assert!(r.events.windows(2).all(|w| w[0].time <= w[1].time));
+    // a stall reads the same way: in the three-tile U-turn the first fold closes, then
+    // magnet 3 comes to rest mid-path, balanced, and magnet 4 never starts: joint 1 stays
+    // open
+    let r = reference(
+        "LL",
+        Design::thesis(),
+        ModelOptions::default(),
+        Method::Dopri5,
+    );
+    let s = r.to_summary();
+    match &r.outcome {
+        Outcome::Stalled { joint, magnet, .. } => assert_eq!((*joint, *magnet), (1, 4)),
+        o => panic!("{o:?}"),
+    }
+    assert_eq!((s.result, s.completed), ("stalled", false));
+    assert_eq!((s.stalled_at, s.inhibited_at), (Some(1), None));
+    assert_eq!(s.folds, vec![0]);
+    let reason = s.reason.unwrap();
+    assert!(reason.starts_with("magnet 3 came to rest"), "{reason}");
+    let along = r.final_state[r.model.magnet_var(3)];
+    assert!(along > 0.1 && along < 0.9, "{along}");
+    assert_eq!(
+        r.events.last().map(|e| (e.kind, e.index)),
+        Some((EventKind::Stalled, 1))
+    );
 }
 
 fn engine_pose_drift(tiles: usize) -> f64 {
@@ -247,7 +338,7 @@ fn engine_pose_drift(tiles: usize) -> f64 {
     let chain = Chain::parse(&word).unwrap();
     let tl = run(&chain, &TileDesigns::default(), &EngineOptions::default()).unwrap();
     assert_eq!(tl.outcome, Outcome::Completed);
-    let angles = foldchain::engine::joint_angles_at(&tl, tl.duration());
+    let angles = joint_angles_at(&tl, tl.duration());
     let w = 30.0;
     let approx = poses_at_angles(&angles, w);
     let exact = final_poses(&FoldWord::parse(&word).unwrap());

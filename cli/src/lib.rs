@@ -2,11 +2,15 @@
 //!
 //! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`
 //! and `fold-validate` (in `src/bin/`), and the pieces they share: writing outputs without
-//! touching anything the tools did not write ([`output`]) and writing a run's pictures and
-//! JSON into its output directory ([`run_files`]). The libraries `foldchain` and
+//! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
+//! into its output directory ([`run_files`]), reading chains and guarding input files
+//! ([`inputs`]), progress on stderr ([`progress`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all five tools with `cargo install --path cli` from the repository root.
 
+pub mod inputs;
 pub mod output;
+pub mod progress;
+pub mod report;
 pub mod run_files;

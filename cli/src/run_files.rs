@@ -21,7 +21,7 @@ use crate::output::{OutputDir, WriteError};
 
 /// The most step frames a run writes: each is a full SVG of the chain (a few kB to a few MB),
 /// so more than this is almost certainly a mistake.
-pub const MAX_FRAMES: usize = 10_000;
+pub const MAX_FRAMES: usize = 100_000;
 
 /// How a run's files are drawn.
 #[derive(Clone, Debug, PartialEq)]
@@ -131,15 +131,12 @@ pub fn write_run_files(
         .unwrap_or_else(|| default_frames(source.tiles()))
         .clamp(1, MAX_FRAMES);
     let duration = source.end_time();
+    let times = frame_times(duration, frames, collision.and_then(|(ct, _)| ct));
+    let frames = times.len();
     // Each step is framed on the chain as it stands at that moment: one view holding every
     // sweep would show a long straight tail and leave the folded part a speck.
-    for i in 0..frames {
+    for (i, &t) in times.iter().enumerate() {
         progress("frames", i, frames);
-        let t = if frames == 1 {
-            duration
-        } else {
-            duration * i as f64 / (frames - 1) as f64
-        };
         let hit = collision.and_then(|(ct, tiles)| ct.is_some_and(|ct| t >= ct).then_some(tiles));
         let fo = FrameOptions {
             title: opts.name.clone(),
@@ -193,6 +190,27 @@ pub fn write_run_files(
     Ok(out.written().to_vec())
 }
 
+/// `frames` evenly spaced times from 0 to `duration` (just `duration` for one frame), and the
+/// moment of a collision as a frame of its own.
+fn frame_times(duration: f64, frames: usize, collision: Option<f64>) -> Vec<f64> {
+    let mut times: Vec<f64> = (0..frames)
+        .map(|i| {
+            if frames == 1 {
+                duration
+            } else {
+                duration * i as f64 / (frames - 1) as f64
+            }
+        })
+        .collect();
+    if let Some(ct) = collision.filter(|ct| (0.0..=duration).contains(ct)) {
+        if !times.contains(&ct) {
+            let at = times.partition_point(|&t| t < ct);
+            times.insert(at, ct);
+        }
+    }
+    times
+}
+
 /// The final frame's note: the result and its reason, at most 150 characters.
 fn final_note(summary: &Summary) -> String {
     let note = match &summary.reason {
@@ -223,5 +241,13 @@ mod tests {
             assert!(!is_step_frame(n), "{n}");
         }
         assert!(is_run_file("summary.json") && !is_run_file("notes.txt"));
+    }
+
+    #[test]
+    fn a_collision_gets_a_frame_at_its_moment() {
+        assert_eq!(frame_times(4.0, 3, None), vec![0.0, 2.0, 4.0]);
+        assert_eq!(frame_times(4.0, 3, Some(2.5)), vec![0.0, 2.0, 2.5, 4.0]);
+        assert_eq!(frame_times(4.0, 3, Some(2.0)), vec![0.0, 2.0, 4.0]);
+        assert_eq!(frame_times(4.0, 1, Some(1.0)), vec![1.0, 4.0]);
     }
 }

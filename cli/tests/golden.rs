@@ -16,8 +16,8 @@ use serde_json::Value;
 /// below any change of model or algorithm.
 const RELATIVE: f64 = 1e-12;
 
-/// Fields that measure the machine, not the model.
-const WALL_CLOCK: [&str; 3] = ["wall_s", "reference_wall_s", "seconds"];
+/// Fields that measure the machine or name its paths, not the model.
+const WALL_CLOCK: [&str; 4] = ["wall_s", "reference_wall_s", "seconds", "out_dir"];
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")

@@ -45,21 +45,88 @@ fn json_rows_for_one_scene() {
     );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let rows = v["rows"].as_array().unwrap();
-    assert_eq!(rows[0]["method"], "event");
-    assert!(rows[0]["tolerance"].is_null());
-    for key in [
-        "scene",
-        "method",
-        "tolerance",
-        "error_time",
-        "error_pose",
-        "wall_s",
-        "steps",
-    ] {
-        assert!(rows.iter().all(|r| r.get(key).is_some()), "{key}");
+    // the engine with both start rules, then the quick ladders
+    let ladder: Vec<(String, Option<f64>)> = rows
+        .iter()
+        .map(|r| {
+            (
+                r["method"].as_str().unwrap().to_string(),
+                r["tolerance"].as_f64(),
+            )
+        })
+        .collect();
+    let want: Vec<(String, Option<f64>)> = [
+        ("event", None),
+        ("event-dist", None),
+        ("dopri5", Some(1e-3)),
+        ("dopri5", Some(1e-4)),
+        ("dopri5", Some(1e-5)),
+        ("dopri5", Some(1e-6)),
+        ("ros2", Some(1e-2)),
+        ("ros2", Some(1e-3)),
+        ("ros2", Some(1e-4)),
+    ]
+    .iter()
+    .map(|&(m, t)| (m.to_string(), t))
+    .collect();
+    assert_eq!(ladder, want);
+    assert!(rows.iter().all(|r| r["scene"] == "3-tile SL"));
+    // the reference stalls the three-tile fold at its last tile; so do the integrators at
+    // every tolerance and the engine with the force rule, while the thesis' distance rule
+    // completes it
+    let scene = &v["scenes"][0];
+    assert_eq!(scene["tiles"], 3);
+    assert_eq!(scene["reference_outcome"], "stalled");
+    assert_eq!(scene["engine_outcome"], "stalled");
+    assert!(scene["reference_reason"]
+        .as_str()
+        .unwrap()
+        .starts_with("magnet 3 came to rest"));
+    let outcome = |r: &serde_json::Value| r["outcome"].as_str().unwrap().to_string();
+    assert_eq!(outcome(&rows[0]), "stalled");
+    assert_eq!(outcome(&rows[1]), "completed");
+    for r in &rows[2..] {
+        assert_eq!(outcome(r), "stalled", "{r}");
+        // the same events as the reference, in the same order, their times within ten
+        // times the tolerance of the reference's (measured: 0.3 to 5 times)
+        assert_eq!(
+            (r["missing"].as_u64(), r["inversions"].as_u64()),
+            (Some(0), Some(0)),
+            "{r}"
+        );
+        let (err, tol) = (
+            r["error_time"].as_f64().unwrap(),
+            r["tolerance"].as_f64().unwrap(),
+        );
+        assert!(err >= 0.0 && err < 10.0 * tol, "{r}");
+        assert!(r["error_pose"].as_f64().unwrap() < 1e-2, "{r}");
     }
-    assert!(rows.iter().any(|r| r["method"] == "dopri5"));
-    assert!(rows.iter().any(|r| r["method"] == "ros2"));
-    assert!(dir.join("work-precision.svg").exists());
+    // tighter tolerances: smaller errors, more steps
+    for w in rows[2..6].windows(2).chain(rows[6..].windows(2)) {
+        assert!(
+            w[1]["error_time"].as_f64() < w[0]["error_time"].as_f64(),
+            "{w:?}"
+        );
+        assert!(w[1]["steps"].as_u64() > w[0]["steps"].as_u64(), "{w:?}");
+    }
+    // the files: the same JSON, and the plot with one panel (two ladders, two diamonds)
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("work-precision.json")).unwrap())
+            .unwrap();
+    assert_eq!(written["rows"].as_array().unwrap().len(), rows.len());
+    assert_eq!(written["scenes"], v["scenes"]);
+    let svg = std::fs::read_to_string(dir.join("work-precision.svg")).unwrap();
+    let doc = usvg::roxmltree::Document::parse(&svg).unwrap();
+    let count = |tag: &str| {
+        doc.descendants()
+            .filter(|n| n.tag_name().name() == tag)
+            .count()
+    };
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    assert_eq!(
+        (count("polyline"), count("circle"), count("path")),
+        (2, 7, 2)
+    );
+    assert!(svg.contains("3-tile SL (ref: stalled)"));
     std::fs::remove_dir_all(&dir).unwrap();
 }

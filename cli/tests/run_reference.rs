@@ -68,12 +68,26 @@ fn reference_run_writes_the_engine_summary() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let mut v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["out_dir"], dir.to_str().unwrap());
+    v.as_object_mut().unwrap().remove("out_dir");
     assert_eq!(v["tiles"], 5);
     assert_eq!(v["completed"], true);
+    assert_eq!(v["result"], "completed");
     assert_eq!(v["folds"], serde_json::json!([1, 2]));
+    assert_eq!(v["reason"], serde_json::Value::Null);
     assert_eq!(json(&dir.join("summary.json")), v);
-    assert!(dir.join("timeline.json").is_file());
+    // the timeline holds the events the summary counts, the last at its duration, in the
+    // reference's law
+    let tl = json(&dir.join("timeline.json"));
+    let events = tl["events"].as_array().unwrap();
+    assert_eq!(Some(events.len() as u64), v["events"].as_u64());
+    assert_eq!(events.last().unwrap()[0], v["duration_s"]);
+    assert!(v["duration_s"].as_f64().unwrap() > 0.0);
+    assert_eq!(tl["speed_law"]["reference"]["method"], "dopri5");
+    let count = |kind: &str| events.iter().filter(|e| e[1] == kind).count();
+    assert_eq!((count("magnet_starts"), count("magnet_arrives")), (9, 9));
+    assert_eq!((count("fold_starts"), count("fold_ends")), (2, 2));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -131,13 +145,21 @@ fn reference_pictures_show_where_a_stalled_chain_stopped() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert_eq!(json(&refr.join("summary.json"))["result"], "stalled");
+    let summary = json(&refr.join("summary.json"));
+    assert_eq!(summary["result"], "stalled");
+    assert_eq!(summary["stalled_at"], 1);
+    assert_eq!(summary["folds"], serde_json::json!([0]));
     assert_eq!(names(&refr), names(&eng));
     assert_eq!(check_svgs(&refr), 3);
     let fin = std::fs::read_to_string(refr.join("final.svg")).unwrap();
     assert!(fin.contains("stalled"), "{fin}");
     // only joint 0 folded: one hinge drawn (the engine folds both)
-    let hinges = |svg: &str| svg.matches(r##"fill="#333"/>"##).count();
+    let hinges = |svg: &str| {
+        let doc = usvg::roxmltree::Document::parse(svg).unwrap();
+        doc.descendants()
+            .filter(|n| n.has_tag_name("circle") && n.attribute("fill") == Some("#333"))
+            .count()
+    };
     assert_eq!(hinges(&fin), 1);
     assert_eq!(
         hinges(&std::fs::read_to_string(eng.join("final.svg")).unwrap()),

@@ -8,9 +8,10 @@
 //! below it when the two touch one to one and neither end jumps by more than the given
 //! step (a jump is an edge along the sweep line, where the key's shaft meets its head).
 
+use kurbo::Point;
 use petgraph::graph::{NodeIndex, UnGraph};
 
-use crate::{Ring, Shape};
+use crate::shape::{Ring, Shape};
 
 /// One monotone cell.
 #[derive(Clone, Debug)]
@@ -37,16 +38,17 @@ struct Piece {
     y1: f64,
 }
 
+/// The cell decomposition of a shape in the axis frame at unit tiles: ends jumping by more
+/// than a tile start a new cell; cells under one tile are dropped.
+pub(crate) fn cells_of(axis_shape: &Shape) -> Cells {
+    decompose(axis_shape, 1.0, 1.0)
+}
+
 /// Decomposes `shape` along y into monotone cells. Ends that jump by more than `jump` start a
 /// new cell; cells smaller than `min_area` are dropped (with their edges).
 pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
-    let (xmin, ymin, xmax, ymax) = shape.bbox();
-    let size = (xmax - xmin).max(ymax - ymin);
-    let mut ys: Vec<f64> = shape
-        .rings()
-        .flat_map(|r| r.points.iter().map(|p| p.1))
-        .collect();
-    ys.sort_by(f64::total_cmp);
+    let size = shape.size();
+    let mut ys = shape.vertex_heights();
     ys.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * size);
     // slabs[i]: the pieces between ys[i] and ys[i + 1]
     let mut slabs: Vec<Vec<Piece>> = Vec::new();
@@ -139,14 +141,14 @@ pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
         if area < min_area {
             continue;
         }
-        let mut pts: Vec<(f64, f64)> = Vec::with_capacity(4 * ps.len());
+        let mut pts: Vec<Point> = Vec::with_capacity(4 * ps.len());
         for p in ps {
-            pts.push((p.lo.0, p.y0));
-            pts.push((p.hi.0, p.y1));
+            pts.push(Point::new(p.lo.0, p.y0));
+            pts.push(Point::new(p.hi.0, p.y1));
         }
         for p in ps.iter().rev() {
-            pts.push((p.hi.1, p.y1));
-            pts.push((p.lo.1, p.y0));
+            pts.push(Point::new(p.hi.1, p.y1));
+            pts.push(Point::new(p.lo.1, p.y0));
         }
         pts.dedup();
         keep[id] = Some(cells.len());
@@ -244,7 +246,7 @@ mod tests {
 
     fn poly(points: &[(f64, f64)]) -> Ring {
         Ring {
-            points: points.to_vec(),
+            points: points.iter().map(|&p| Point::from(p)).collect(),
         }
     }
 
@@ -281,22 +283,12 @@ mod tests {
         assert_eq!(c.orders(10, 1000).len(), 2);
         assert_eq!(decompose(&s, 1.0, 17.0).cells.len(), 1);
     }
-}
-
-#[cfg(test)]
-#[allow(clippy::unwrap_used)]
-mod gap_tests {
-    use super::*;
 
     /// Two squares one above the other with a gap: the slab between is empty.
     #[test]
     fn separate_parts_are_separate_components() {
-        let a = Ring {
-            points: vec![(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)],
-        };
-        let b = Ring {
-            points: vec![(0.0, 6.0), (4.0, 6.0), (4.0, 9.0), (0.0, 9.0)],
-        };
+        let a = poly(&[(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)]);
+        let b = poly(&[(0.0, 6.0), (4.0, 6.0), (4.0, 9.0), (0.0, 9.0)]);
         let c = decompose(&Shape::from_rings(vec![a, b]), 1.0, 0.0);
         assert_eq!(c.cells.len(), 2);
         assert_eq!(c.components(), 2);

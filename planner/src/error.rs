@@ -49,11 +49,13 @@ pub enum PlanError {
         y: f64,
     },
     /// An option value that cannot be used.
-    #[error("bad option {option}: {reason}")]
+    #[error("bad {option} {value}: {reason}")]
     BadOption {
         /// The option.
-        option: &'static str,
-        /// Why.
+        option: PlanOption,
+        /// The value given.
+        value: String,
+        /// What was expected.
         reason: String,
     },
     /// The shape is valid but no collision-free chain was found that fills it.
@@ -64,6 +66,26 @@ pub enum PlanError {
         /// Which part failed and what would be needed.
         reason: String,
     },
+}
+
+/// An option of [`crate::PlanOptions`], as errors name it (a command line maps it to its
+/// flag).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PlanOption {
+    /// [`crate::PlanOptions::tiles`].
+    Tiles,
+    /// [`crate::PlanOptions::tile_size`].
+    TileSize,
+}
+
+impl std::fmt::Display for PlanOption {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            PlanOption::Tiles => "tile count",
+            PlanOption::TileSize => "tile size",
+        })
+    }
 }
 
 impl PlanError {

@@ -1,50 +1,82 @@
 //! # foldchain-planner
 //!
 //! Plans a self-folding tile chain that fills a target shape drawn in SVG (thesis section
-//! 5.5, SPEC section 5): the shape is read with `usvg` (all shapes, paths, transforms,
-//! viewBox and units), flattened to polygons, and filled with serpentine rows of straight
-//! tiles joined by U-turns that alternate in direction, along a direction in which the shape
-//! is monotone. Row lengths, orientation and start corner are chosen by dynamic programming
-//! to minimise the fit error. Every plan is checked by sequential folding with the
+//! 5.5, SPEC section 5). The shape is read with `usvg` (all shapes, paths, transforms,
+//! viewBox and units) and flattened to polygons; it is filled with serpentine rows of
+//! straight tiles joined by U-turns that alternate in direction, along a direction in which
+//! the shape is monotone, or, where it splits into monotone cells, with one serpentine per
+//! cell joined by turns. Row lengths, orientation and start corner are chosen by dynamic
+//! programming to minimise the fit error, the tile size so that the chain holds about the
+//! asked number of tiles. Every plan is checked by sequential folding with the
 //! self-intersection check before it is returned.
 //!
-//! ```no_run
-//! use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
-//! let opts = PlanOptions::default().with_tiles(107).with_turns(Turns::Tight);
-//! let plan = plan_svg_file(std::path::Path::new("shapes/square.svg"), &opts).unwrap();
-//! println!("{}\n{}", plan.tile_list, plan.summary());
 //! ```
+//! use foldchain_planner::{plan_svg_str, PlanOptions, Turns};
+//! let square = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">
+//!     <rect x="10" y="10" width="80" height="80"/></svg>"#;
+//! let opts = PlanOptions::default().with_tiles(60).with_turns(Turns::Tight);
+//! let plan = plan_svg_str(square, "square.svg", &opts)?;
+//! assert_eq!(plan.poses.len(), plan.tiles);
+//! assert_eq!(plan.fold_word()?.tiles(), plan.tiles);
+//! println!("{}\n{}", plan.tile_list, plan.summary());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! How the parts fit: [`plan_svg_file`] and [`plan_svg_str`] read a [`Shape`] (`drawing`)
+//! and hand it to the top level (`plan_shape`), which checks the [`PlanOptions`] and asks two
+//! planners: one serpentine over the whole shape (`serpentine`) and routes through monotone
+//! cells (`cells`, `route`, `cell_plan`). Both solve rows with one dynamic programme
+//! (`rows`), search the tile width the same way (`sizing`), map between frames with kurbo
+//! affines (`frame`) and turn a checked fold word into a [`Plan`] (`assembly`) whose fit is
+//! measured on sample points (`fit`, `centre_grid`). [`preview_svg`] draws a plan over its
+//! shape.
 
+mod assembly;
+mod cell_plan;
 mod cells;
+mod centre_grid;
 mod check;
+mod drawing;
 mod error;
+mod fit;
+mod frame;
 mod options;
 mod plan;
-mod planner;
-pub mod preview;
+mod plan_shape;
+mod preview;
 mod route;
 mod rows;
+mod serpentine;
 mod shape;
+mod sizing;
 
-pub use error::PlanError;
-pub use options::{PlanOptions, Turns, DEFAULT_TILES};
+/// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
+/// takes and returns (re-exported so that callers use the same version).
+pub use kurbo;
+
+pub use drawing::FLATTEN_TOLERANCE;
+pub use error::{PlanError, PlanOption};
+pub use options::{ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
 pub use plan::{Metrics, Plan, PlanPose};
-pub use planner::MAX_PLAN_TILES;
-pub use shape::{Ring, Shape, FLATTEN_TOLERANCE};
+pub use preview::{preview_svg, preview_svg_file};
+pub use shape::{Ring, Shape};
 
-/// Plans the shape in an SVG file.
+/// Plans the shape in an SVG file; the file's name (as given) names it in errors and in the
+/// plan's `source`.
 pub fn plan_svg_file(path: &std::path::Path, opts: &PlanOptions) -> Result<Plan, PlanError> {
     let text = std::fs::read(path).map_err(|source| PlanError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    let name = path.display().to_string();
-    let shape = Shape::from_svg_data(&text, &name)?;
-    planner::plan_shape(&shape, opts, &name)
+    plan_svg_data(&text, &path.display().to_string(), opts)
 }
 
 /// Plans the shape in SVG text; `name` names it in errors and in the plan's `source`.
 pub fn plan_svg_str(svg: &str, name: &str, opts: &PlanOptions) -> Result<Plan, PlanError> {
-    let shape = Shape::from_svg_data(svg.as_bytes(), name)?;
-    planner::plan_shape(&shape, opts, name)
+    plan_svg_data(svg.as_bytes(), name, opts)
+}
+
+fn plan_svg_data(data: &[u8], name: &str, opts: &PlanOptions) -> Result<Plan, PlanError> {
+    let shape = Shape::from_svg_data(data, name)?;
+    plan_shape::plan_shape(&shape, opts, name)
 }

@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::Turns;
+use crate::options::Turns;
 
 /// One tile centre of the folded chain, in the SVG's user units.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -10,13 +10,24 @@
 //! all row-length choices. Row tables are built in one merge pass per line (the column
 //! boundaries and the shape's intervals are both sorted), into flat buffers allocated once
 //! per programme.
+//!
+//! A solved programme is read back as a [`Serpentine`]: its rows in chain order, their tile
+//! centres and their folds (rows of straight joints, U-turns between them).
 
 use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
 
-use crate::{Shape, Turns};
+use foldchain::Fold;
+use kurbo::{Point, Rect};
+
+use crate::options::Turns;
+use crate::shape::Shape;
 
 /// Offsets across a row (tile widths) at which the shape is sampled for row costs.
 pub(crate) const ROW_SAMPLES: [f64; 3] = [-0.3, 0.0, 0.3];
+
+/// Horizontal and vertical phases of a free lattice, as shares of a column and of a row
+/// pitch: the lattice is tried at each of the nine.
+const PHASES: [f64; 3] = [0.0, 1.0 / 3.0, 2.0 / 3.0];
 
 /// The geometry of one turn style, in tile widths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,6 +62,45 @@ pub(crate) struct Lattice {
     pub nrows: usize,
 }
 
+impl Lattice {
+    /// The lattices of a free serpentine over a shape with bounding box `b` (unit tiles),
+    /// one per phase pair (horizontal phase outer): two spare columns on either side, the
+    /// first row half a tile above the bottom less the vertical phase.
+    pub(crate) fn phased(b: Rect, pitch: f64) -> impl Iterator<Item = Lattice> {
+        PHASES.iter().flat_map(move |&xp| {
+            PHASES.iter().map(move |&yp| {
+                let x0 = b.x0.floor() - 2.0 + xp;
+                let y0 = b.y0 + 0.5 + (yp - 1.0) * pitch;
+                Lattice {
+                    x0,
+                    y0,
+                    cols: ((b.x1 - x0).ceil() as usize) + 3,
+                    nrows: (((b.y1 - y0) / pitch).ceil() as usize) + 2,
+                }
+            })
+        })
+    }
+
+    /// The lattice of a serpentine whose first tile is at the origin (unit tiles), over a
+    /// shape with bounding box `b`, and the column of that first tile: row 0 at y = 0, the
+    /// columns reaching at least two past the origin on either side.
+    pub(crate) fn from_origin(b: Rect, pitch: f64) -> (Lattice, usize) {
+        let x0 = (b.x0.floor() - 2.0).min(-2.0);
+        let c0 = (-x0) as usize;
+        let lat = Lattice {
+            x0,
+            y0: 0.0,
+            cols: (((b.x1 - x0).ceil() as usize) + 3).max(c0 + 3),
+            nrows: if b.y1 > 0.0 {
+                ((b.y1 / pitch).ceil() as usize) + 2
+            } else {
+                1
+            },
+        };
+        (lat, c0)
+    }
+}
+
 /// A solved programme: the best cost of every row end, ready for back-tracking.
 pub(crate) struct Solved {
     cols: usize,
@@ -81,6 +131,24 @@ fn add_measures(iv: &[(f64, f64)], b0: f64, sign: f64, out: &mut [f64]) {
             0.0
         };
         *o += sign * (done + part);
+    }
+}
+
+/// Keeps `(v, at)` in `min` if `v` is less than its value.
+#[inline]
+fn lower(min: &mut (f64, usize), v: f64, at: usize) {
+    if v < min.0 {
+        *min = (v, at);
+    }
+}
+
+/// Lowers the best cost `cur` of a row end to `cost` if that is less, recording the start
+/// column and whether the row is the chain's first.
+#[inline]
+fn relax(cur: &mut f64, back: &mut (u32, bool), cost: f64, (start, first): (usize, bool)) {
+    if cost < *cur {
+        *cur = cost;
+        *back = (start as u32, first);
     }
 }
 
@@ -152,63 +220,50 @@ pub(crate) fn solve_rows(
             None => true,
             Some(c) => k == 0 && s == c,
         };
-        let first_len = if fixed_start.is_some() { 1 } else { 0 };
+        let rightward = k % 2 == 0;
+        // a fixed first row (rightward) needs s <= e - 1: its own column joins the minimum
+        // only after it is used
+        let first_after = rightward && fixed_start.is_some();
         let mut first_min = (inf, 0usize);
         let mut cont_min = (inf, 0usize);
-        if k % 2 == 0 {
-            // rightward: cost(s, e) = (e + 1) + len - 2 hi[e] + (2 lo[s] - s)
-            for e in 0..cols {
-                let term_s = 2.0 * lo(e) - e as f64;
-                let base = (e as f64 + 1.0) + r_len - 2.0 * hi(e);
-                // a fixed first row needs s <= e - 1: add s = e after using the minimum
-                if first_len == 0 && first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1 as u32, true);
-                }
-                if first_len == 1 && first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                if let Some((pd, pt)) = prev {
-                    // continuation needs s < e: cont_min holds s <= e - 1
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1 as u32, false);
-                    }
-                    let v = pd[e] + pt[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
+        // e runs the way the row does, so the minima hold every start column behind it
+        for i in 0..cols {
+            let e = if rightward { i } else { cols - 1 - i };
+            // the cost of a row from s to e is base(e) + term_s(s):
+            // rightward: (e + 1) + len - 2 hi[e] + (2 lo[s] - s);
+            // leftward: (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
+            let (term_s, base) = if rightward {
+                (
+                    2.0 * lo(e) - e as f64,
+                    (e as f64 + 1.0) + r_len - 2.0 * hi(e),
+                )
+            } else {
+                (
+                    (e as f64 + 1.0) - 2.0 * hi(e),
+                    r_len + 2.0 * lo(e) - e as f64,
+                )
+            };
+            if !first_after && first_ok(e) {
+                lower(&mut first_min, before + term_s, e);
             }
-        } else {
-            // leftward from s down to e: cost = (s + 1) + len - 2 hi[s] + (2 lo[e] - e)
-            for e in (0..cols).rev() {
-                let term_s = (e as f64 + 1.0) - 2.0 * hi(e);
-                if first_ok(e) && before + term_s < first_min.0 {
-                    first_min = (before + term_s, e);
-                }
-                let base = r_len + 2.0 * lo(e) - e as f64;
-                let cf = base + first_min.0;
-                if cf < cur[e] {
-                    cur[e] = cf;
-                    bk[e] = (first_min.1 as u32, true);
-                }
-                if let Some((pd, pt)) = prev {
-                    let cc = base + cont_min.0;
-                    if cc < cur[e] {
-                        cur[e] = cc;
-                        bk[e] = (cont_min.1 as u32, false);
-                    }
-                    let v = pd[e] + pt[e] + term_s;
-                    if v < cont_min.0 {
-                        cont_min = (v, e);
-                    }
-                }
+            relax(
+                &mut cur[e],
+                &mut bk[e],
+                base + first_min.0,
+                (first_min.1, true),
+            );
+            if first_after && first_ok(e) {
+                lower(&mut first_min, before + term_s, e);
+            }
+            if let Some((pd, pt)) = prev {
+                // continuation needs s before e: cont_min holds the columns behind e
+                relax(
+                    &mut cur[e],
+                    &mut bk[e],
+                    base + cont_min.0,
+                    (cont_min.1, false),
+                );
+                lower(&mut cont_min, pd[e] + pt[e] + term_s, e);
             }
         }
         if fixed_start.is_none() {
@@ -241,9 +296,19 @@ impl Solved {
         best
     }
 
+    /// The serpentine on `lat` that ends in row `k` at column `e`.
+    pub(crate) fn serpentine(&self, lat: Lattice, pitch: f64, k: usize, e: usize) -> Serpentine {
+        Serpentine {
+            x0: lat.x0,
+            y0: lat.y0,
+            pitch,
+            rows: self.rows_to(k, e),
+        }
+    }
+
     /// The rows `(row k, start column, end column)` in chain order of the chain ending in
     /// row `k` at column `e`.
-    pub(crate) fn rows_to(&self, mut k: usize, mut e: usize) -> Vec<(usize, i64, i64)> {
+    fn rows_to(&self, mut k: usize, mut e: usize) -> Vec<(usize, i64, i64)> {
         let mut out = Vec::new();
         loop {
             let (s, first) = self.back[k * self.cols + e];
@@ -259,15 +324,125 @@ impl Solved {
     }
 }
 
+/// A solved serpentine in its lattice frame (unit tiles): row `k` at `y0 + k pitch` runs +x
+/// for even `k`, -x for odd, over the columns `x0 + j`.
+#[derive(Clone, Debug)]
+pub(crate) struct Serpentine {
+    pub x0: f64,
+    pub y0: f64,
+    pub pitch: f64,
+    /// (row index k, start column, end column) in chain order.
+    pub rows: Vec<(usize, i64, i64)>,
+}
+
+impl Serpentine {
+    /// The first row `(k, start column)`, or row 0 column 0 for an empty serpentine.
+    pub(crate) fn first(&self) -> (usize, i64) {
+        self.rows.first().map_or((0, 0), |&(k, s, _)| (k, s))
+    }
+
+    /// The last row `(k, end column)`, or row 0 column 0 for an empty serpentine.
+    pub(crate) fn last(&self) -> (usize, i64) {
+        self.rows.last().map_or((0, 0), |&(k, _, e)| (k, e))
+    }
+
+    /// The direction (+1 along +x, -1 along -x) in which row `k` runs.
+    pub(crate) fn runs(k: usize) -> f64 {
+        if k % 2 == 0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
+    /// The number of U-turns.
+    pub(crate) fn u_turns(&self) -> usize {
+        self.rows.len().saturating_sub(1)
+    }
+
+    /// The number of tiles of its chain.
+    pub(crate) fn tiles(&self, style: Style) -> usize {
+        let row_tiles: usize = self
+            .rows
+            .iter()
+            .map(|&(_, s, e)| (e - s).unsigned_abs() as usize + 1)
+            .sum();
+        // a tight U-turn adds its LL/RR tile, a loose one that and a straight tile
+        let turn_tiles = if style.turns == Turns::Loose { 2 } else { 1 };
+        row_tiles + turn_tiles * self.u_turns()
+    }
+
+    /// The centre of the tile in row `k`, column `j`.
+    pub(crate) fn centre(&self, k: usize, j: i64) -> Point {
+        Point::new(self.x0 + j as f64, self.y0 + k as f64 * self.pitch)
+    }
+
+    /// Every tile centre (rows and U-turn tiles) in chain order.
+    pub(crate) fn centres(&self, style: Style) -> Vec<Point> {
+        let mut out = Vec::new();
+        for (i, &(k, s, e)) in self.rows.iter().enumerate() {
+            let step = if e >= s { 1 } else { -1 };
+            let mut j = s;
+            loop {
+                out.push(self.centre(k, j));
+                if j == e {
+                    break;
+                }
+                j += step;
+            }
+            if i + 1 < self.rows.len() {
+                let x = self.x0 + e as f64 + Serpentine::runs(k) * FRAC_1_SQRT_2;
+                let y = self.y0 + k as f64 * self.pitch + FRAC_1_SQRT_2;
+                out.push(Point::new(x, y));
+                if style.turns == Turns::Loose {
+                    out.push(Point::new(x, y + 1.0));
+                }
+            }
+        }
+        out
+    }
+
+    /// Appends the folds of its rows and U-turns: straight joints along a row, and each
+    /// U-turn two L folds or two R folds (with a straight one between for loose turns).
+    /// `ccw` says whether turning from +x towards +y is counter-clockwise (an L fold) in the
+    /// physical frame.
+    pub(crate) fn folds(&self, style: Style, ccw: bool, out: &mut Vec<Fold>) {
+        for (i, &(k, s, e)) in self.rows.iter().enumerate() {
+            out.extend(std::iter::repeat_n(
+                Fold::S,
+                (e - s).unsigned_abs() as usize,
+            ));
+            if i + 1 < self.rows.len() {
+                // from a +x row the U-turn turns towards +y, from a -x row away from it
+                let f = if (k % 2 == 0) == ccw {
+                    Fold::L
+                } else {
+                    Fold::R
+                };
+                out.push(f);
+                if style.turns == Turns::Loose {
+                    out.push(Fold::S);
+                }
+                out.push(f);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-    use crate::Ring;
+    use crate::shape::Ring;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
         Shape::from_rings(vec![Ring {
-            points: vec![(x0, y0), (x1, y0), (x1, y1), (x0, y1)],
+            points: vec![
+                Point::new(x0, y0),
+                Point::new(x1, y0),
+                Point::new(x1, y1),
+                Point::new(x0, y1),
+            ],
         }])
     }
 

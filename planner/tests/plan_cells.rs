@@ -1,37 +1,16 @@
 //! Shapes that are monotone in no direction or have holes: planned by monotone cells joined
-//! by turns (or by one serpentine where that fits better), and every plan folds; a shape one
-//! chain cannot fill exits 1 with a reason.
+//! by turns (or by one serpentine where that fits better), and every plan is sound (checked
+//! by plain geometry in `common`); a shape one chain cannot fill is refused with a reason.
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use foldchain::collision::{check_word, CheckOptions};
+use common::{assert_sound, row_density, sample as shape};
 use foldchain_planner::{plan_svg_file, plan_svg_str, Plan, PlanOptions, Turns};
 
-fn shape(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shapes")
-        .join(name)
-}
-
-/// Word, tiles and poses agree, the poses are the exact kinematics through `chain_to_svg`,
-/// no LR/RL tile is used and the chain folds without collision (sequential sweeps).
-fn assert_sound(p: &Plan) {
-    let word = p.fold_word().unwrap();
-    assert_eq!(word.tiles(), p.tiles);
-    assert_eq!(word.to_chain().to_tile_list(), p.tile_list);
-    assert_eq!(p.poses.len(), p.tiles);
-    assert!(word.first_opposite_pair().is_none(), "LR/RL tiles used");
-    check_word(&word, &CheckOptions::default()).unwrap();
-    let m = p.chain_to_svg;
-    let exact = foldchain::kinematics::final_poses(&word);
-    assert_eq!(exact.len(), p.poses.len());
-    for (e, q) in exact.iter().zip(&p.poses) {
-        let (x, y) = e.centre.to_f64(1.0);
-        let (sx, sy) = (m[0] * x + m[2] * y + m[4], m[1] * x + m[3] * y + m[5]);
-        assert!((sx - q.x).abs() < 1e-6 * p.tile_size && (sy - q.y).abs() < 1e-6 * p.tile_size);
-    }
+/// A quarter turn joins two cells: a plan has fewer quarter turns than cells.
+fn assert_cells_joined(p: &Plan) {
     assert!(p.cells >= 1);
     assert!(
         p.quarter_turns < p.cells.max(1),
@@ -49,14 +28,18 @@ fn plan_sizes(name: &str) -> Vec<Plan> {
             let p =
                 plan_svg_file(&shape(name), &opts).unwrap_or_else(|e| panic!("{name} {n}: {e}"));
             assert_sound(&p);
+            assert_cells_joined(&p);
             assert!(
                 p.tiles.abs_diff(n) * 10 <= n,
                 "{name}: {} tiles for {n}",
                 p.tiles
             );
-            assert!(p.metrics.covered_share > 0.4, "{name} {n}: {}", p.summary());
+            // today: at least 85% of what rows can cover (dog at 150 tiles: 0.851) with at
+            // most 12.3% of the chain outside (the same plan)
+            let reach = p.metrics.covered_share / row_density(false);
+            assert!(reach > 0.84, "{name} {n}: {reach:.3}: {}", p.summary());
             assert!(
-                p.metrics.outside_share < 0.15,
+                p.metrics.outside_share < 0.13,
                 "{name} {n}: {}",
                 p.summary()
             );

@@ -1,40 +1,46 @@
-//! Sizes no run could finish are refused up front as bad input, never a panic or a hang.
+//! Sizes no run could finish are refused up front as bad input, never a panic or a hang;
+//! the error names the option and the value (the library knows no command-line flags).
 
-use foldchain_planner::{plan_svg_str, PlanOptions, MAX_PLAN_TILES};
+use foldchain_planner::{plan_svg_str, PlanError, PlanOption, PlanOptions, MAX_PLAN_TILES};
 
 const SQUARE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><rect x="10" y="10" width="80" height="80"/></svg>"#;
 
+/// The error of planning the square with `opts`, which must be a bad `option`.
+fn refused(opts: &PlanOptions, option: PlanOption) -> String {
+    let e = plan_svg_str(SQUARE, "square.svg", opts).expect_err("refused");
+    assert!(e.is_bad_input(), "{e}");
+    assert!(
+        matches!(e, PlanError::BadOption { option: o, .. } if o == option),
+        "{e:?}"
+    );
+    let m = e.to_string();
+    assert!(m.contains(&option.to_string()) && !m.contains("--"), "{m}");
+    m
+}
+
 #[test]
 fn too_many_tiles_is_bad_input() {
-    let e = plan_svg_str(
-        SQUARE,
-        "square.svg",
-        &PlanOptions::default().with_tiles(MAX_PLAN_TILES + 1),
-    )
-    .unwrap_err();
-    assert!(e.is_bad_input(), "{e}");
-    assert!(e.to_string().contains("--tiles"), "{e}");
+    let n = MAX_PLAN_TILES + 1;
+    let m = refused(&PlanOptions::default().with_tiles(n), PlanOption::Tiles);
+    assert!(m.contains(&n.to_string()), "{m}");
+    let m = refused(&PlanOptions::default().with_tiles(0), PlanOption::Tiles);
+    assert!(m.contains("at least 1"), "{m}");
 }
 
 #[test]
 fn tiny_tile_size_is_bad_input() {
     for w in [1e-9, 1e-300, 0.01] {
-        let e = plan_svg_str(
-            SQUARE,
-            "square.svg",
+        let m = refused(
             &PlanOptions::default().with_tile_size(w),
-        )
-        .unwrap_err();
-        assert!(e.is_bad_input(), "{w}: {e}");
-        assert!(e.to_string().contains("--tile-size"), "{w}: {e}");
+            PlanOption::TileSize,
+        );
+        assert!(m.contains(&w.to_string()) && m.contains("more than"), "{m}");
     }
     for w in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        let e = plan_svg_str(
-            SQUARE,
-            "square.svg",
+        let m = refused(
             &PlanOptions::default().with_tile_size(w),
-        )
-        .unwrap_err();
-        assert!(e.is_bad_input(), "{w}: {e}");
+            PlanOption::TileSize,
+        );
+        assert!(m.contains("positive"), "{w}: {m}");
     }
 }

@@ -11,21 +11,13 @@ use crate::exact::{ExactPoint, ExactPose, Surd};
 
 use super::Collision;
 
-fn abs(s: Surd) -> Surd {
-    if s.signum() == std::cmp::Ordering::Less {
-        -s
-    } else {
-        s
-    }
-}
-
 /// Whether two tiles with centres `a` and `b` overlap with positive area (touching is not
 /// overlap).
-pub fn lattice_overlap(a: ExactPoint, b: ExactPoint) -> bool {
+pub(crate) fn lattice_overlap(a: ExactPoint, b: ExactPoint) -> bool {
     let d = b - a;
     let w = Surd::new(2, 0); // w in half widths
     let diag = Surd::new(0, 4); // sqrt2 w
-    abs(d.x) < w && abs(d.y) < w && abs(d.x + d.y) < diag && abs(d.x - d.y) < diag
+    d.x.abs() < w && d.y.abs() < w && (d.x + d.y).abs() < diag && (d.x - d.y).abs() < diag
 }
 
 /// The first pair of tiles (by the later tile's index, then the earlier one's) that overlap

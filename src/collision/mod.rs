@@ -3,7 +3,7 @@
 //!
 //! - [`check_word`] follows the thesis' sequential folding from the reaction-initiator end:
 //!   while joint `k` folds, everything after it is still straight and turns 90 degrees about
-//!   joint `k`'s hinge. Each sweep is checked in closed form (see `sweep`): the first contact
+//!   joint `k`'s hinge. Each sweep is checked in closed form: the first contact
 //!   of a turning octagon with a fixed one is the smallest angle at which a vertex's circular
 //!   arc crosses an edge, so nothing between samples can be missed. A parry2d BVH over the
 //!   tiles already in place keeps long chains fast: only tiles near the swept sector are
@@ -23,18 +23,25 @@
 //! (about `1e-16` of the chain's extent, `1e-10 w` at a million tiles) and far below anything
 //! physical.
 
+mod advancement;
 mod lattice;
 mod schedule;
 mod sequential;
-pub mod sweep;
+mod sweep;
 
+pub use advancement::check_schedule;
 pub use lattice::final_overlap;
-pub(crate) use lattice::lattice_overlap as lattice_overlap_pub;
-pub use schedule::{check_schedule, FoldSchedule, JointTrack, ScheduleError};
-pub(crate) use sequential::unit as unit_pub;
+pub use schedule::{FoldSchedule, JointTrack, ScheduleError};
 pub use sequential::{check_chain, check_word, Verdict};
 
+// for the counting search (`crate::count`), which grows words with the same exact tests
+pub(crate) use lattice::lattice_overlap;
+pub(crate) use sweep::quarter_contact_within;
+
 use std::fmt;
+
+use parry2d_f64::bounding_volume::Aabb;
+use parry2d_f64::math::Vector;
 
 /// How a chain is checked.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -103,3 +110,8 @@ impl fmt::Display for Collision {
 }
 
 impl std::error::Error for Collision {}
+
+/// parry2d's box of a rectangle, for the broad phases.
+fn bounding_box(r: kurbo::Rect) -> Aabb {
+    Aabb::new(Vector::new(r.x0, r.y0), Vector::new(r.x1, r.y1))
+}

@@ -4,19 +4,18 @@
 //! form a straight tail that turns 90 degrees about joint `k`'s hinge. A fixed tile can only
 //! meet a tail tile whose centre passes at a similar distance from the hinge, so for each
 //! fixed tile near the swept sector (found with a parry2d BVH) only a handful of tail tiles
-//! are tested, each in closed form ([`super::sweep::first_contact`]).
+//! are tested, each in closed form ([`super::sweep`]).
 
 use std::f64::consts::FRAC_PI_2;
 
-use parry2d_f64::bounding_volume::Aabb;
-use parry2d_f64::math::Vector;
+use kurbo::{Point, Rect, Vec2};
 use parry2d_f64::partitioning::Bvh;
 
-use crate::exact::{ExactPose, QuarterTurns};
+use crate::exact::ExactPose;
 use crate::{kinematics, Chain, FoldWord, Octagon};
 
-use super::sweep::{first_contact_within, quarter_contact_within, V2};
-use super::{final_overlap, CheckOptions, Collision};
+use super::sweep::{first_contact_within, quarter_contact_within, sector_box};
+use super::{bounding_box, final_overlap, CheckOptions, Collision};
 
 /// The outcome of checking a chain of tiles.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -60,22 +59,23 @@ pub fn check_word(word: &FoldWord, opts: &CheckOptions) -> Result<(), Collision>
     }
 }
 
-/// Geometry shared by the sweep checks, at tile width 1.
-pub(crate) struct TileGeometry {
-    /// Inset outline, centred at the origin (the octagon is symmetric under quarter turns, so
-    /// the heading does not change it).
-    pub outline: [V2; 8],
+/// The tile of width 1 as the sweeps see it: its inset outline and the measures that bound
+/// which tiles can meet.
+struct UnitTile {
+    /// Inset outline, as offsets from the centre (the octagon is symmetric under quarter
+    /// turns, so the heading does not change it).
+    outline: [Vec2; 8],
     /// Circumradius of the full outline.
-    pub radius: f64,
+    radius: f64,
     /// Half the side, the hinge's offset across the chain.
-    pub half_side: f64,
+    half_side: f64,
 }
 
-impl TileGeometry {
-    pub fn new(tolerance: f64) -> TileGeometry {
+impl UnitTile {
+    fn new(tolerance: f64) -> UnitTile {
         let o = Octagon::new(1.0);
-        TileGeometry {
-            outline: o.inset_vertices(tolerance),
+        UnitTile {
+            outline: o.inset_vertices(tolerance).map(Vec2::from),
             radius: o.circumradius(),
             half_side: 0.5 * o.side(),
         }
@@ -85,31 +85,32 @@ impl TileGeometry {
     /// about `pivot` (the way `theta`'s sign says), can meet at all: the moving centre stays
     /// in the quadrant spanned by its start direction and that direction turned, so the fixed
     /// centre must be within two circumradii of that quadrant.
-    pub fn may_meet(&self, moving: V2, fixed: V2, pivot: V2, theta: f64) -> bool {
-        let (mx, my) = (moving.0 - pivot.0, moving.1 - pivot.1);
-        let rr = (mx * mx + my * my).sqrt();
+    fn may_meet(&self, moving: Point, fixed: Point, pivot: Point, theta: f64) -> bool {
+        let m = moving - pivot;
+        let rr = m.hypot2().sqrt();
         if rr == 0.0 {
             return true;
         }
-        let u0 = (mx / rr, my / rr);
-        let u1 = if theta >= 0.0 {
-            (-u0.1, u0.0)
+        let start = Vec2::new(m.x / rr, m.y / rr);
+        let end = if theta >= 0.0 {
+            start.turn_90()
         } else {
-            (u0.1, -u0.0)
+            -start.turn_90()
         };
-        let p = (fixed.0 - pivot.0, fixed.1 - pivot.1);
+        let p = fixed - pivot;
         let margin = -2.0 * self.radius - 1e-9;
-        p.0 * u0.0 + p.1 * u0.1 >= margin && p.0 * u1.0 + p.1 * u1.1 >= margin
+        p.dot(start) >= margin && p.dot(end) >= margin
     }
 
-    pub fn at(&self, c: V2) -> [V2; 8] {
-        self.outline.map(|(x, y)| (x + c.0, y + c.1))
+    /// The outline placed with its centre at `c`.
+    fn at(&self, c: Point) -> [Point; 8] {
+        self.outline.map(|v| c + v)
     }
 
     /// Range of tail offsets `t` (tile `k + 1 + t`) whose centres pass within `2 r` of the
     /// distance `d` from the hinge; the tail centre `t` is at distance
     /// `sqrt((1/2 + t)^2 + (half_side)^2)`.
-    pub fn tail_range(&self, d: f64, tail_len: usize) -> Option<(usize, usize)> {
+    fn tail_range(&self, d: f64, tail_len: usize) -> Option<(usize, usize)> {
         if tail_len == 0 {
             return None;
         }
@@ -129,39 +130,11 @@ impl TileGeometry {
     }
 }
 
-pub(crate) fn unit(h: QuarterTurns) -> V2 {
-    match h.get() {
-        0 => (1.0, 0.0),
-        1 => (0.0, 1.0),
-        2 => (-1.0, 0.0),
-        _ => (0.0, -1.0),
-    }
-}
-
-/// The axis-aligned box of the sector swept by points within `radius` of the pivot at angles
-/// in `[a0, a1]` (radians, `a0 <= a1`).
-pub(crate) fn sector_box(pivot: V2, radius: f64, a0: f64, a1: f64) -> (V2, V2) {
-    let mut lo = pivot;
-    let mut hi = pivot;
-    let mut add = |a: f64| {
-        let p = (pivot.0 + radius * a.cos(), pivot.1 + radius * a.sin());
-        lo = (lo.0.min(p.0), lo.1.min(p.1));
-        hi = (hi.0.max(p.0), hi.1.max(p.1));
-    };
-    add(a0);
-    add(a1);
-    let mut k = (a0 / FRAC_PI_2).ceil();
-    while k * FRAC_PI_2 <= a1 {
-        add(k * FRAC_PI_2);
-        k += 1.0;
-    }
-    (lo, hi)
-}
-
+/// The sequential sweeps of one word: tiles enter a BVH as they come to rest.
 struct Sweeper<'a> {
     poses: &'a [ExactPose],
-    centres: Vec<V2>,
-    geo: TileGeometry,
+    centres: Vec<Point>,
+    tile: UnitTile,
     bvh: Bvh,
     inserted: usize,
 }
@@ -170,8 +143,11 @@ impl<'a> Sweeper<'a> {
     fn new(poses: &'a [ExactPose], tolerance: f64) -> Sweeper<'a> {
         Sweeper {
             poses,
-            centres: poses.iter().map(|p| p.centre.to_f64(1.0)).collect(),
-            geo: TileGeometry::new(tolerance),
+            centres: poses
+                .iter()
+                .map(|p| Point::from(p.centre.to_f64(1.0)))
+                .collect(),
+            tile: UnitTile::new(tolerance),
             bvh: Bvh::new(),
             inserted: 0,
         }
@@ -182,8 +158,8 @@ impl<'a> Sweeper<'a> {
             // tiles 0..=k are in place for this sweep and every later one
             while self.inserted <= k {
                 let c = self.centres[self.inserted];
-                let r = self.geo.radius;
-                let aabb = Aabb::new(Vector::new(c.0 - r, c.1 - r), Vector::new(c.0 + r, c.1 + r));
+                let r = self.tile.radius;
+                let aabb = bounding_box(Rect::from_points(c, c).inflate(r, r));
                 self.bvh.insert(aabb, self.inserted as u32);
                 self.inserted += 1;
             }
@@ -192,7 +168,7 @@ impl<'a> Sweeper<'a> {
             };
             if let Some(c) = self.sweep(
                 k,
-                hinge.to_f64(1.0),
+                Point::from(hinge.to_f64(1.0)),
                 fold.quarter_turns() as f64 * FRAC_PI_2,
             ) {
                 return Err(c);
@@ -202,21 +178,17 @@ impl<'a> Sweeper<'a> {
     }
 
     /// Checks the sweep of joint `k` about `pivot` by `theta`; the first contact, if any.
-    fn sweep(&self, k: usize, pivot: V2, theta: f64) -> Option<Collision> {
+    fn sweep(&self, k: usize, pivot: Point, theta: f64) -> Option<Collision> {
         let n = self.centres.len();
         let tail_len = n - k - 1;
         let ck = self.centres[k];
-        let u = unit(self.poses[k].heading);
-        let tail_centre = |t: usize| -> V2 {
-            let s = (t + 1) as f64;
-            (ck.0 + s * u.0, ck.1 + s * u.1)
-        };
+        let u = self.poses[k].heading.unit_vector();
+        let tail_centre = |t: usize| -> Point { ck + (t + 1) as f64 * u };
         // the sector the tail's centres sweep
         let first = tail_centre(0);
         let last = tail_centre(tail_len - 1);
-        let ang = |p: V2| (p.1 - pivot.1).atan2(p.0 - pivot.0);
-        let base = ang(last);
-        let mut a_first = ang(first);
+        let base = (last - pivot).atan2();
+        let mut a_first = (first - pivot).atan2();
         // keep the two angles on the same branch
         while a_first - base > std::f64::consts::PI {
             a_first -= std::f64::consts::TAU;
@@ -230,34 +202,29 @@ impl<'a> Sweeper<'a> {
         } else {
             a0 += theta;
         }
-        let far = ((last.0 - pivot.0).powi(2) + (last.1 - pivot.1).powi(2)).sqrt();
-        let (lo, hi) = sector_box(pivot, far, a0, a1);
-        let r = self.geo.radius;
-        let query = Aabb::new(
-            Vector::new(lo.0 - r, lo.1 - r),
-            Vector::new(hi.0 + r, hi.1 + r),
-        );
+        let far = (last - pivot).hypot2().sqrt();
+        let r = self.tile.radius;
+        let query = bounding_box(sector_box(pivot, far, a0, a1).inflate(r, r));
 
         let mut best: Option<(f64, usize, usize)> = None;
         for i in self.bvh.intersect_aabb(&query) {
             let i = i as usize;
             let ci = self.centres[i];
-            let d = ((ci.0 - pivot.0).powi(2) + (ci.1 - pivot.1).powi(2)).sqrt();
-            let Some((t0, t1)) = self.geo.tail_range(d, tail_len) else {
+            let d = (ci - pivot).hypot2().sqrt();
+            let Some((t0, t1)) = self.tile.tail_range(d, tail_len) else {
                 continue;
             };
-            let fixed = self.geo.at(ci);
+            let fixed = self.tile.at(ci);
             for t in t0..=t1 {
                 let j = k + 1 + t;
                 if i == k && j == k + 1 {
                     continue; // hinged neighbours: they only touch at the hinge and the closing walls
                 }
                 let c = tail_centre(t);
-                if !self.geo.may_meet(c, ci, pivot, theta) {
+                if !self.tile.may_meet(c, ci, pivot, theta) {
                     continue;
                 }
-                let moving = self.geo.at(c);
-                let r = self.geo.radius;
+                let moving = self.tile.at(c);
                 if !quarter_contact_within(&moving, c, &fixed, ci, r, pivot, theta > 0.0) {
                     continue;
                 }
@@ -324,32 +291,29 @@ mod tests {
     /// Every pair, every sweep, no broad phase: the reference the fast path must match.
     fn brute_force(word: &FoldWord, tolerance: f64) -> Option<(usize, usize, usize)> {
         let poses = kinematics::final_poses(word);
-        let geo = TileGeometry::new(tolerance);
-        let centres: Vec<V2> = poses.iter().map(|p| p.centre.to_f64(1.0)).collect();
+        let tile = UnitTile::new(tolerance);
+        let centres: Vec<Point> = poses
+            .iter()
+            .map(|p| Point::from(p.centre.to_f64(1.0)))
+            .collect();
         for (k, &fold) in word.folds().iter().enumerate() {
             let Some(h) = kinematics::exact_hinge(poses[k], fold) else {
                 continue;
             };
-            let pivot = h.to_f64(1.0);
+            let pivot = Point::from(h.to_f64(1.0));
             let theta = fold.quarter_turns() as f64 * FRAC_PI_2;
-            let u = unit(poses[k].heading);
+            let u = poses[k].heading.unit_vector();
             let mut best: Option<(f64, usize, usize)> = None;
             for j in k + 1..centres.len() {
-                let s = (j - k) as f64;
-                let c = (centres[k].0 + s * u.0, centres[k].1 + s * u.1);
+                let c = centres[k] + (j - k) as f64 * u;
                 for (i, &ci) in centres.iter().enumerate().take(k + 1) {
                     if i == k && j == k + 1 {
                         continue;
                     }
-                    if let Some(phi) = first_contact_within(
-                        &geo.at(c),
-                        c,
-                        &geo.at(ci),
-                        ci,
-                        geo.radius,
-                        pivot,
-                        theta,
-                    ) {
+                    let (moving, fixed) = (tile.at(c), tile.at(ci));
+                    let r = tile.radius;
+                    if let Some(phi) = first_contact_within(&moving, c, &fixed, ci, r, pivot, theta)
+                    {
                         if best.is_none_or(|b| (phi, i, j) < b) {
                             best = Some((phi, i, j));
                         }
@@ -405,19 +369,8 @@ mod tests {
     }
 
     #[test]
-    fn sector_box_covers_quadrant() {
-        let (lo, hi) = sector_box((0.0, 0.0), 2.0, -0.1, FRAC_PI_2 + 0.1);
-        assert!(
-            lo.0 <= -0.19
-                && lo.1 <= -0.19
-                && (hi.0 - 2.0).abs() < 1e-12
-                && (hi.1 - 2.0).abs() < 1e-12
-        );
-    }
-
-    #[test]
     fn tail_range_brackets_the_distance() {
-        let g = TileGeometry::new(0.0);
+        let g = UnitTile::new(0.0);
         let (a, b) = g.tail_range(5.0, 100).unwrap();
         assert!(a <= 3 && b >= 5, "{a} {b}");
         assert!(g.tail_range(100.0, 10).is_none());

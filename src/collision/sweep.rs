@@ -1,4 +1,4 @@
-//! Exact first contact of a convex polygon turning about a fixed point with a static one.
+//! Exact first contact of an octagon turning about a fixed point with a static one.
 //!
 //! Two convex polygons that are disjoint at the start of a rotation can only come to overlap
 //! after their boundaries meet, and boundaries first meet with a vertex of one on an edge of
@@ -7,37 +7,25 @@
 //! (vertex, edge) pair, solved in closed form. No sampling: a graze between two samples cannot
 //! be missed. Vertices of the static polygon are followed in the moving polygon's frame (the
 //! same arcs turned the other way).
+//!
+//! Points and vectors are [`kurbo`]'s; every product and sum is the one the closed form
+//! needs, in the same order, so the answers are exact up to the rounding of those operations.
 
-/// A point or vector in the plane.
-pub type V2 = (f64, f64);
-
-#[inline]
-fn sub(a: V2, b: V2) -> V2 {
-    (a.0 - b.0, a.1 - b.1)
-}
-#[inline]
-fn dot(a: V2, b: V2) -> f64 {
-    a.0 * b.0 + a.1 * b.1
-}
-#[inline]
-fn cross(a: V2, b: V2) -> f64 {
-    a.0 * b.1 - a.1 * b.0
-}
+use kurbo::{Point, Rect, Vec2};
 
 /// The points (relative to `pivot`) where the circle about `pivot` through `v` crosses the
 /// segment `a`-`b`: none, one or two, from the quadratic in the segment parameter.
 #[inline]
-fn circle_crossings(v: V2, pivot: V2, a: V2, b: V2) -> [Option<V2>; 2] {
-    let pv = sub(v, pivot);
-    let r2 = dot(pv, pv);
-    let d = sub(b, a);
-    let ac = sub(a, pivot);
-    let qa = dot(d, d);
+fn circle_crossings(v: Point, pivot: Point, a: Point, b: Point) -> [Option<Vec2>; 2] {
+    let r2 = (v - pivot).hypot2();
+    let d = b - a;
+    let ac = a - pivot;
+    let qa = d.hypot2();
     if qa == 0.0 {
         return [None, None];
     }
-    let qb = 2.0 * dot(d, ac);
-    let qc = dot(ac, ac) - r2;
+    let qb = 2.0 * d.dot(ac);
+    let qc = ac.hypot2() - r2;
     let disc = qb * qb - 4.0 * qa * qc;
     if disc < 0.0 {
         return [None, None];
@@ -49,21 +37,17 @@ fn circle_crossings(v: V2, pivot: V2, a: V2, b: V2) -> [Option<V2>; 2] {
     } else {
         (-qb / (2.0 * qa), -qb / (2.0 * qa))
     };
-    [t1, t2].map(|t| {
-        (0.0..=1.0)
-            .contains(&t)
-            .then_some((ac.0 + t * d.0, ac.1 + t * d.1))
-    })
+    [t1, t2].map(|t| (0.0..=1.0).contains(&t).then_some(ac + t * d))
 }
 
 /// The smallest angle in `(0, |theta|]`, turning the way `theta`'s sign says (positive =
 /// counter-clockwise), at which `v`, turning about `pivot`, lies on the segment `a`-`b`.
 #[inline]
-pub fn arc_hits_segment(v: V2, pivot: V2, theta: f64, a: V2, b: V2) -> Option<f64> {
-    let pv = sub(v, pivot);
+fn arc_hits_segment(v: Point, pivot: Point, theta: f64, a: Point, b: Point) -> Option<f64> {
+    let pv = v - pivot;
     let mut best: Option<f64> = None;
     for x in circle_crossings(v, pivot, a, b).into_iter().flatten() {
-        let mut phi = cross(pv, x).atan2(dot(pv, x));
+        let mut phi = pv.cross(x).atan2(pv.dot(x));
         if theta >= 0.0 {
             if phi < 0.0 {
                 phi += std::f64::consts::TAU;
@@ -81,76 +65,37 @@ pub fn arc_hits_segment(v: V2, pivot: V2, theta: f64, a: V2, b: V2) -> Option<f6
     best
 }
 
-/// The first angle (absolute, radians) in `(0, |theta|]` at which the convex polygon
-/// `moving`, turned about `pivot` by up to `theta` (signed), touches the convex polygon
-/// `fixed`, assuming the two are disjoint at the start. `None` when they never meet.
-pub fn first_contact(moving: &[V2], fixed: &[V2], pivot: V2, theta: f64) -> Option<f64> {
-    let mut best: Option<f64> = None;
-    let mut consider = |phi: Option<f64>| {
-        if let Some(p) = phi {
-            if best.is_none_or(|b| p < b) {
-                best = Some(p);
-            }
-        }
-    };
-    let n = fixed.len();
-    for &v in moving {
-        for e in 0..n {
-            consider(arc_hits_segment(
-                v,
-                pivot,
-                theta,
-                fixed[e],
-                fixed[(e + 1) % n],
-            ));
-        }
-    }
-    let m = moving.len();
-    for &v in fixed {
-        for e in 0..m {
-            consider(arc_hits_segment(
-                v,
-                pivot,
-                -theta,
-                moving[e],
-                moving[(e + 1) % m],
-            ));
-        }
-    }
-    best
-}
-
 /// Whether `v`, turning a quarter turn about `pivot` (counter-clockwise when `left`), lies
 /// on the segment `a`-`b` at some moment: [`arc_hits_segment`] with `theta = +-pi/2`, without
 /// computing the angle (a crossing point is within the quarter turn exactly when it is on the
 /// turning side of the start direction and not behind the pivot).
 #[inline]
-pub fn quarter_arc_hits_segment(v: V2, pivot: V2, left: bool, a: V2, b: V2) -> bool {
-    let pv = sub(v, pivot);
+fn quarter_arc_hits_segment(v: Point, pivot: Point, left: bool, a: Point, b: Point) -> bool {
+    let pv = v - pivot;
     circle_crossings(v, pivot, a, b)
         .into_iter()
         .flatten()
         .any(|x| {
-            let c = cross(pv, x);
-            dot(pv, x) >= 0.0 && if left { c >= 0.0 } else { c <= 0.0 }
+            let c = pv.cross(x);
+            pv.dot(x) >= 0.0 && if left { c >= 0.0 } else { c <= 0.0 }
         })
 }
 
 /// Calls `hit(vertex, edge start, edge end, turns_forward)` for every (vertex, edge) pair of
-/// two polygons within `r` of their centres whose vertex arc can reach the other polygon's
-/// annulus about `pivot`; `turns_forward` is true for the moving polygon's vertices (the
-/// fixed polygon's turn the other way in the moving frame). Stops when `hit` returns true.
+/// two octagons within `r` of their centres whose vertex arc can reach the other octagon's
+/// annulus about `pivot`; `turns_forward` is true for the moving octagon's vertices (the
+/// fixed octagon's turn the other way in the moving frame). Stops when `hit` returns true.
 fn for_each_reachable_pair(
-    moving: &[V2; 8],
-    moving_centre: V2,
-    fixed: &[V2; 8],
-    fixed_centre: V2,
+    moving: &[Point; 8],
+    moving_centre: Point,
+    fixed: &[Point; 8],
+    fixed_centre: Point,
     r: f64,
-    pivot: V2,
-    mut hit: impl FnMut(V2, V2, V2, bool) -> bool,
+    pivot: Point,
+    mut hit: impl FnMut(Point, Point, Point, bool) -> bool,
 ) {
-    let ring = |c: V2| {
-        let d = dot(sub(c, pivot), sub(c, pivot)).sqrt();
+    let ring = |c: Point| {
+        let d = (c - pivot).hypot2().sqrt();
         let lo = (d - r).max(0.0);
         (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
     };
@@ -160,7 +105,7 @@ fn for_each_reachable_pair(
     ];
     for (verts, edges, (lo, hi), forward) in sides {
         for &v in verts {
-            let rho = dot(sub(v, pivot), sub(v, pivot));
+            let rho = (v - pivot).hypot2();
             if rho < lo || rho > hi {
                 continue;
             }
@@ -173,16 +118,16 @@ fn for_each_reachable_pair(
     }
 }
 
-/// Whether two octagons within `r` of their centres meet while `moving` turns a quarter turn
-/// about `pivot` (counter-clockwise when `left`), assuming they are apart at the start: the
-/// yes/no form of [`first_contact_within`] for full folds.
-pub fn quarter_contact_within(
-    moving: &[V2; 8],
-    moving_centre: V2,
-    fixed: &[V2; 8],
-    fixed_centre: V2,
+/// Whether two octagons (vertices counter-clockwise) within `r` of their centres meet while
+/// `moving` turns a quarter turn about `pivot` (counter-clockwise when `left`), assuming they
+/// are apart at the start: the yes/no form of [`first_contact_within`] for full folds.
+pub(crate) fn quarter_contact_within(
+    moving: &[Point; 8],
+    moving_centre: Point,
+    fixed: &[Point; 8],
+    fixed_centre: Point,
     r: f64,
-    pivot: V2,
+    pivot: Point,
     left: bool,
 ) -> bool {
     let mut found = false;
@@ -201,18 +146,20 @@ pub fn quarter_contact_within(
     found
 }
 
-/// [`first_contact`] for two polygons known to lie within distance `r` of the centres
-/// `moving_centre` and `fixed_centre`: vertices whose arc stays outside the annulus that holds
-/// the other polygon are skipped, which leaves the result unchanged and saves most of the
-/// work.
+/// The first angle (absolute, radians) in `(0, |theta|]` at which the octagon `moving`,
+/// turned about `pivot` by up to `theta` (signed, positive = counter-clockwise), touches the
+/// octagon `fixed`, assuming the two are disjoint at the start; `None` when they never meet.
+/// Both lie within distance `r` of their centres `moving_centre` and `fixed_centre`:
+/// vertices whose arc stays outside the annulus that holds the other octagon are skipped,
+/// which leaves the result unchanged and saves most of the work.
 #[allow(clippy::too_many_arguments)]
-pub fn first_contact_within(
-    moving: &[V2; 8],
-    moving_centre: V2,
-    fixed: &[V2; 8],
-    fixed_centre: V2,
+pub(crate) fn first_contact_within(
+    moving: &[Point; 8],
+    moving_centre: Point,
+    fixed: &[Point; 8],
+    fixed_centre: Point,
     r: f64,
-    pivot: V2,
+    pivot: Point,
     theta: f64,
 ) -> Option<f64> {
     let mut best: Option<f64> = None;
@@ -236,48 +183,80 @@ pub fn first_contact_within(
     best
 }
 
-/// Whether two convex polygons (counter-clockwise) overlap, by separating axes; touching
-/// counts as overlapping.
-pub fn convex_overlap(p: &[V2], q: &[V2]) -> bool {
-    fn separated(p: &[V2], q: &[V2]) -> bool {
-        let n = p.len();
-        for i in 0..n {
-            let a = p[i];
-            let e = sub(p[(i + 1) % n], a);
-            // outward normal of a counter-clockwise polygon is (e.y, -e.x)
-            if q.iter().all(|&v| cross(e, sub(v, a)) < 0.0) {
-                return true;
-            }
-        }
-        false
+/// The axis-aligned box of the sector swept by points within `radius` of `pivot` at angles
+/// in `[a0, a1]` (radians, `a0 <= a1`).
+pub(crate) fn sector_box(pivot: Point, radius: f64, a0: f64, a1: f64) -> Rect {
+    let mut bounds = Rect::from_points(pivot, pivot);
+    let mut add = |a: f64| {
+        let p = Point::new(pivot.x + radius * a.cos(), pivot.y + radius * a.sin());
+        bounds = bounds.union_pt(p);
+    };
+    add(a0);
+    add(a1);
+    let mut k = (a0 / std::f64::consts::FRAC_PI_2).ceil();
+    while k * std::f64::consts::FRAC_PI_2 <= a1 {
+        add(k * std::f64::consts::FRAC_PI_2);
+        k += 1.0;
     }
-    !(separated(p, q) || separated(q, p))
+    bounds
 }
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
+
     use super::*;
 
-    fn square(cx: f64, cy: f64, h: f64) -> Vec<V2> {
+    /// The first contact of two convex polygons of any size, every (vertex, edge) pair tried:
+    /// the plain form that [`first_contact_within`] must agree with.
+    fn first_contact(moving: &[Point], fixed: &[Point], pivot: Point, theta: f64) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        for (verts, edges, turn) in [(moving, fixed, theta), (fixed, moving, -theta)] {
+            for &v in verts {
+                for e in 0..edges.len() {
+                    let hit =
+                        arc_hits_segment(v, pivot, turn, edges[e], edges[(e + 1) % edges.len()]);
+                    if let Some(p) = hit {
+                        if best.is_none_or(|b| p < b) {
+                            best = Some(p);
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    fn square(cx: f64, cy: f64, h: f64) -> Vec<Point> {
         vec![
-            (cx - h, cy - h),
-            (cx + h, cy - h),
-            (cx + h, cy + h),
-            (cx - h, cy + h),
+            Point::new(cx - h, cy - h),
+            Point::new(cx + h, cy - h),
+            Point::new(cx + h, cy + h),
+            Point::new(cx - h, cy + h),
         ]
     }
 
+    /// A regular octagon of across-flats width 1 centred at `c` (vertices counter-clockwise).
+    fn octagon(c: Point) -> [Point; 8] {
+        crate::Octagon::new(1.0)
+            .vertices()
+            .map(|(x, y)| c + Vec2::new(x, y))
+    }
+
+    const O: Point = Point::ORIGIN;
+
     #[test]
     fn vertex_arc_meets_edge() {
-        use std::f64::consts::FRAC_PI_6;
         // (1, 0) turning about the origin crosses y = 0.5 at 30 and 150 degrees
-        let seg = ((-1.0, 0.5), (1.0, 0.5));
-        let hit = arc_hits_segment((1.0, 0.0), (0.0, 0.0), 2.0, seg.0, seg.1).unwrap();
+        let (a, b) = (Point::new(-1.0, 0.5), Point::new(1.0, 0.5));
+        let v = Point::new(1.0, 0.0);
+        let hit = arc_hits_segment(v, O, 2.0, a, b).unwrap();
         assert!((hit - FRAC_PI_6).abs() < 1e-12, "{hit}");
-        assert!(arc_hits_segment((1.0, 0.0), (0.0, 0.0), 0.5, seg.0, seg.1).is_none());
+        assert!(arc_hits_segment(v, O, 0.5, a, b).is_none());
         // turning clockwise it goes the long way round: not within 2 rad
-        assert!(arc_hits_segment((1.0, 0.0), (0.0, 0.0), -2.0, seg.0, seg.1).is_none());
-        let cw = arc_hits_segment((1.0, 0.0), (0.0, 0.0), -2.0, (-1.0, -0.5), (1.0, -0.5)).unwrap();
+        assert!(arc_hits_segment(v, O, -2.0, a, b).is_none());
+        let below = (Point::new(-1.0, -0.5), Point::new(1.0, -0.5));
+        let cw = arc_hits_segment(v, O, -2.0, below.0, below.1).unwrap();
         assert!((cw - FRAC_PI_6).abs() < 1e-12, "{cw}");
     }
 
@@ -286,29 +265,11 @@ mod tests {
         // a square at (3, 0) swinging counter-clockwise about the origin hits one at (0, 3)
         // before a quarter turn; with the other one further out it misses.
         let m = square(3.0, 0.0, 0.5);
-        let hit = first_contact(
-            &m,
-            &square(0.0, 3.0, 0.5),
-            (0.0, 0.0),
-            std::f64::consts::FRAC_PI_2,
-        )
-        .unwrap();
-        assert!(hit > 0.5 && hit < std::f64::consts::FRAC_PI_2, "{hit}");
-        assert!(first_contact(
-            &m,
-            &square(0.0, 5.0, 0.5),
-            (0.0, 0.0),
-            std::f64::consts::FRAC_PI_2
-        )
-        .is_none());
+        let hit = first_contact(&m, &square(0.0, 3.0, 0.5), O, FRAC_PI_2).unwrap();
+        assert!(hit > 0.5 && hit < FRAC_PI_2, "{hit}");
+        assert!(first_contact(&m, &square(0.0, 5.0, 0.5), O, FRAC_PI_2).is_none());
         // turning clockwise it meets nothing above
-        assert!(first_contact(
-            &m,
-            &square(0.0, 3.0, 0.5),
-            (0.0, 0.0),
-            -std::f64::consts::FRAC_PI_2
-        )
-        .is_none());
+        assert!(first_contact(&m, &square(0.0, 3.0, 0.5), O, -FRAC_PI_2).is_none());
     }
 
     #[test]
@@ -322,40 +283,36 @@ mod tests {
         for (gap, expect) in [(-1e-6, true), (1e-6, false)] {
             let d = corner_r + 0.01 + gap;
             // the target turned to face the pivot, its near face 0.01 inside its centre
-            let target: Vec<V2> = square(d, 0.0, 0.01)
+            let target: Vec<Point> = square(d, 0.0, 0.01)
                 .iter()
-                .map(|&(x, y)| (c * x - s * y, s * x + c * y))
+                .map(|p| Point::new(c * p.x - s * p.y, s * p.x + c * p.y))
                 .collect();
             assert_eq!(
-                first_contact(&m, &target, (0.0, 0.0), theta).is_some(),
+                first_contact(&m, &target, O, theta).is_some(),
                 expect,
                 "gap {gap}"
             );
         }
     }
 
-    #[test]
-    fn quarter_predicate_agrees_with_angles() {
-        let mut seed = 12345u64;
-        let mut rnd = || {
+    /// A small xorshift generator of numbers in `[-3, 3)`.
+    fn numbers(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
-        };
+        }
+    }
+
+    #[test]
+    fn quarter_predicate_agrees_with_angles() {
+        let mut rnd = numbers(12345);
+        let mut point = || Point::new(rnd(), rnd());
         for _ in 0..20_000 {
-            let (v, p, a, b) = (
-                (rnd(), rnd()),
-                (rnd(), rnd()),
-                (rnd(), rnd()),
-                (rnd(), rnd()),
-            );
+            let (v, p, a, b) = (point(), point(), point(), point());
             for left in [true, false] {
-                let theta = if left {
-                    std::f64::consts::FRAC_PI_2
-                } else {
-                    -std::f64::consts::FRAC_PI_2
-                };
+                let theta = if left { FRAC_PI_2 } else { -FRAC_PI_2 };
                 assert_eq!(
                     quarter_arc_hits_segment(v, p, left, a, b),
                     arc_hits_segment(v, p, theta, a, b).is_some(),
@@ -366,14 +323,36 @@ mod tests {
     }
 
     #[test]
-    fn overlap_by_axes() {
-        assert!(convex_overlap(
-            &square(0.0, 0.0, 1.0),
-            &square(1.5, 0.0, 1.0)
-        ));
-        assert!(!convex_overlap(
-            &square(0.0, 0.0, 1.0),
-            &square(2.5, 0.0, 1.0)
-        ));
+    fn skipping_far_vertices_changes_nothing() {
+        // octagons at random places, turning about random pivots: the annulus filter of
+        // first_contact_within and quarter_contact_within gives the plain answer
+        let mut rnd = numbers(987_654_321);
+        let r = crate::Octagon::new(1.0).circumradius();
+        let mut met = 0;
+        for _ in 0..5_000 {
+            let (mc, fc) = (Point::new(rnd(), rnd()), Point::new(rnd(), rnd()));
+            if (mc - fc).hypot2().sqrt() < 2.0 * r {
+                continue; // may overlap at the start
+            }
+            let pivot = Point::new(rnd(), rnd());
+            let theta = rnd();
+            let (m, f) = (octagon(mc), octagon(fc));
+            let plain = first_contact(&m, &f, pivot, theta);
+            assert_eq!(first_contact_within(&m, mc, &f, fc, r, pivot, theta), plain);
+            let quarter = first_contact(&m, &f, pivot, FRAC_PI_2);
+            assert_eq!(
+                quarter_contact_within(&m, mc, &f, fc, r, pivot, true),
+                quarter.is_some()
+            );
+            met += usize::from(plain.is_some());
+        }
+        assert!(met > 100, "{met}");
+    }
+
+    #[test]
+    fn sector_box_covers_quadrant() {
+        let b = sector_box(O, 2.0, -0.1, FRAC_PI_2 + 0.1);
+        assert!(b.x0 <= -0.19 && b.y0 <= -0.19);
+        assert!((b.x1 - 2.0).abs() < 1e-12 && (b.y1 - 2.0).abs() < 1e-12);
     }
 }

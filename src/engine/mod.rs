@@ -2,8 +2,14 @@
 //! geometry of the paths (SPEC section 4, thesis chapter 6), as an ordered queue of discrete
 //! events; the fold schedule it implies; and the energy of the chain over time.
 //!
+//! - [`run`]: the event queue and its rules ([`EngineOptions`], [`StartRule`], the speed law
+//!   [`Motion`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
+//! - [`fold_angle`], [`joint_angles_at`]: the fold law; [`fold_schedule`]: the folds as
+//!   tracks for the collision check; [`energy_curve`]: the total dipole energy.
+//!
 //! ```
-//! use foldchain::engine::{run, EngineOptions, Outcome, SpeedLaw, TileDesigns};
+//! use foldchain::engine::{run, EngineOptions};
+//! use foldchain::timeline::{Outcome, SpeedLaw, TileDesigns};
 //! use foldchain::{Chain, Design};
 //!
 //! // sequential assembly: s = e/3, one magnet moving at a time
@@ -15,22 +21,40 @@
 //! assert_eq!(tl.max_moving_magnets(), 1);
 //! ```
 
-mod designs;
 mod energy;
-mod event;
-mod fold;
-mod geometry;
+mod fold_law;
+mod progress;
+mod queue;
+mod result;
 mod run;
+mod schedule;
 mod speed;
 mod start_rule;
-mod summary;
+mod trigger;
 
-pub use designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
-pub use energy::{energy_curve, EnergySample};
-pub use event::{Event, EventKind};
-pub use fold::{fold_angle, fold_schedule, joint_angles_at, ANGLE_TOLERANCE};
-pub use geometry::{Geometry, Trigger, LENGTH_TOLERANCE};
-pub use run::{joint_of_magnet, run, EngineError, EngineOptions, FoldRecord, Outcome, Timeline};
-pub use speed::{Motion, SpeedLaw, DEFAULT_DRAG};
+pub use energy::energy_curve;
+pub use result::{fold_angle, joint_angles_at, Timeline};
+pub use run::{run, EngineError, EngineOptions};
+pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
+pub use speed::Motion;
 pub use start_rule::{StartRule, DRIVE_TOLERANCE};
-pub use summary::{CollisionReport, Summary};
+
+// The shared vocabulary the engine's results are written in, where the command-line tools and
+// the pictures have long found it (one home: `crate::timeline`, `crate::physics`).
+pub use crate::physics::DEFAULT_DRAG;
+pub use crate::timeline::{
+    joint_of_magnet, CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry,
+    Outcome, SValue, SpeedLaw, Summary, TileDesigns, LENGTH_TOLERANCE,
+};
+
+/// The engine's timeline of `word` with the thesis design and the default options, for tests.
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+pub(crate) fn thesis_timeline(word: &str) -> Timeline {
+    run(
+        &crate::Chain::parse(word).unwrap(),
+        &TileDesigns::default(),
+        &EngineOptions::default(),
+    )
+    .unwrap()
+}

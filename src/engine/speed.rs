@@ -8,37 +8,25 @@
 //! the distance between the two path ends (the reaction initiator for the first magnet).
 //! Then `r^5` falls linearly: `t(u) = gamma (rho^5 - (rho - u)^5) / (5K)` and
 //! `u(t) = rho - (rho^5 - 5K t / gamma)^(1/5)`, in seconds. The drag coefficient `gamma` is
-//! not in the thesis: the default, [`DEFAULT_DRAG`], is an assumed value that makes a
-//! straight-path move of the thesis design take about a third of a second; every time scales
-//! linearly with it.
+//! not in the thesis: the default, [`crate::physics::DEFAULT_DRAG`], is an assumed value that
+//! makes a straight-path move of the thesis design take about a third of a second; every time
+//! scales linearly with it. The closed form is the point-dipole law's (`1/r^4`): another
+//! [`ForceLaw`] needs its own.
 //!
 //! **Unit speed.** Every magnet moves at 1 mm per second: the timeline is then the thesis'
 //! transition diagram (figure 6.3), time in seconds equal to distance in millimetres.
+//!
+//! **The motion table.** A magnet's motion depends on its path, its partner's path and the
+//! fold between them only, so a run keeps one [`Motion`] per distinct triple
+//! ([`MotionTable`]).
 
-use crate::design::MU0;
-use crate::Design;
+use std::f64::consts::FRAC_PI_2;
 
-/// Default drag coefficient, N s/m (an assumption: see the module documentation).
-pub const DEFAULT_DRAG: f64 = 5.0;
+use rustc_hash::FxHashMap;
 
-/// The speed law.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SpeedLaw {
-    /// Overdamped motion under the pair's `1/r^4` attraction, drag coefficient in N s/m.
-    Overdamped {
-        /// Drag coefficient, N s/m.
-        drag: f64,
-    },
-    /// 1 mm per second: the transition diagram's timeline.
-    Unit,
-}
-
-impl Default for SpeedLaw {
-    fn default() -> SpeedLaw {
-        SpeedLaw::Overdamped { drag: DEFAULT_DRAG }
-    }
-}
+use crate::physics::ForceLaw;
+use crate::timeline::{Geometry, SpeedLaw};
+use crate::{Design, Fold};
 
 /// The motion of one magnet along its path, from the moment it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,8 +47,9 @@ impl Motion {
             SpeedLaw::Unit => None,
             SpeedLaw::Overdamped { drag } => {
                 let m = design.moment();
-                let k = 3.0 * MU0 / (4.0 * std::f64::consts::PI) * m * m; // N m^4
-                                                                          // gamma (rho^5 - r^5) / 5K with lengths in metres = 1e-15 * (same in mm)
+                // K, N m^4: the point-dipole force at 1 m
+                let k = ForceLaw::PointDipole.magnitude(m, m, 1.0);
+                // gamma (rho^5 - r^5) / 5K with lengths in metres = 1e-15 * (same in mm)
                 Some(drag * 1e-15 / (5.0 * k))
             }
         };
@@ -108,6 +97,82 @@ impl Motion {
     }
 }
 
+/// Every magnet's motion, one [`Motion`] per distinct (path, partner's path, fold).
+#[derive(Debug)]
+pub(crate) struct MotionTable {
+    motions: Vec<Motion>,
+    motion_of: Vec<u32>,
+}
+
+impl MotionTable {
+    /// The motions of every magnet of `geometry` under `law`.
+    pub(crate) fn new(geometry: &Geometry, law: SpeedLaw) -> MotionTable {
+        let n = geometry.magnets();
+        let tiles = geometry.tiles();
+        let mut motions: Vec<Motion> = Vec::new();
+        // The end gap depends on the two paths of the pair and the fold between them only.
+        let mut index: FxHashMap<(u32, u32, Fold), u32> = FxHashMap::default();
+        let mut motion_of = Vec::with_capacity(n);
+        for k in 0..n {
+            let other = if k == 0 {
+                u32::MAX
+            } else if k % 2 == 1 {
+                if k + 1 < n {
+                    geometry.path_id(k + 1)
+                } else {
+                    u32::MAX - 1
+                }
+            } else {
+                geometry.path_id(k - 1)
+            };
+            let j = if k % 2 == 1 {
+                k / 2
+            } else {
+                (k / 2).wrapping_sub(1)
+            };
+            let fold = if k == 0 || j + 1 >= tiles {
+                Fold::S
+            } else {
+                geometry.joint_fold(j)
+            };
+            let key = (geometry.path_id(k), other, fold);
+            let id = *index.entry(key).or_insert_with(|| {
+                motions.push(Motion::new(
+                    geometry.path(k).length(),
+                    end_gap(geometry, k),
+                    geometry.design(k / 2),
+                    law,
+                ));
+                (motions.len() - 1) as u32
+            });
+            motion_of.push(id);
+        }
+        MotionTable { motions, motion_of }
+    }
+
+    /// Magnet `k`'s motion.
+    pub(crate) fn of(&self, k: usize) -> &Motion {
+        &self.motions[self.motion_of[k] as usize]
+    }
+}
+
+/// The distance between the final points of magnet `k` and the one it heads for, in the
+/// final shape (a folding pair measured after its fold: `2c`, as a straight pair).
+fn end_gap(g: &Geometry, k: usize) -> f64 {
+    if k == 0 {
+        return g.end_in(0, 0).distance(g.ri().position);
+    }
+    let (a, b) = if k % 2 == 1 { (k, k + 1) } else { (k - 1, k) };
+    if b >= g.magnets() {
+        return 0.0;
+    }
+    let j = a / 2;
+    let pa = kurbo::Point::from(g.path(a).end_point());
+    let angle = g.joint_fold(j).quarter_turns() as f64 * FRAC_PI_2;
+    let pb = crate::kinematics::joint_transform(angle, g.w).transform_point(g.path(b).end_point());
+    pa.distance(pb.into())
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
@@ -142,7 +207,10 @@ mod tests {
         let h = 1e-6;
         let v = 2.0 * h / (m.time_to(u + h) - m.time_to(u - h)); // mm/s
         let r = (m.rho - u) * 1e-3;
-        let f = crate::dipole::pair_force(d.moment(), r);
-        assert!((v * 1e-3 - f / DEFAULT_DRAG).abs() / v < 1e-5, "{v}");
+        let f = ForceLaw::default().magnitude(d.moment(), d.moment(), r);
+        assert!(
+            (v * 1e-3 - f / crate::physics::DEFAULT_DRAG).abs() / v < 1e-5,
+            "{v}"
+        );
     }
 }

@@ -12,23 +12,22 @@
 //! by the engine's fold law. With `cutoff = 1` and straight paths it is the distance rule;
 //! the longer-range pairs decide where the nearest ones balance: at the sequential edge
 //! `s = e/3` and on a curved path that only just reaches its trigger, where the last tile
-//! of a chain lacks the same-pole push of a magnet one tile further on. The pair force and
-//! the neighbour set are the reference integrator's ([`crate::reference`]), so the two agree
-//! on which magnets start; the engine's times still come from its speed law.
+//! of a chain lacks the same-pole push of a magnet one tile further on. The pair force, the
+//! drive along the path and the neighbour set come from [`crate::physics`], as the reference
+//! integrator's do ([`crate::reference`]), so the two agree on which magnets start; the
+//! engine's times still come from its speed law.
 //!
 //! The force rule samples the drive at 64 points along the mover's path (and 16 after it
 //! arrives, while magnets behind it still move), then bisects the first sign change to
 //! 1e-15 of the span. Its cost is about 100 force evaluations of at most `2 cutoff` pairs
 //! per magnet, with nothing cached: for chains up to some 1e5 tiles.
 
-use std::f64::consts::PI;
+use kurbo::{Point, Vec2};
 
-use crate::design::MU0;
-use crate::engine::fold::fold_angle_from;
-use crate::engine::geometry::Geometry;
-use crate::engine::run::FoldRecord;
-use crate::engine::speed::Motion;
+use crate::engine::progress::Progress;
 use crate::kinematics::joint_transform;
+use crate::physics::{along_path, neighbours, reach, ForceLaw, Pole};
+use crate::timeline::Geometry;
 use crate::Pose;
 
 /// A drive smaller than this fraction of the bonded rest force counts as zero (the
@@ -69,187 +68,115 @@ pub(crate) enum ForceStart {
     },
 }
 
-/// What the force rule reads of the run so far.
-pub(crate) struct RunState<'a> {
-    pub geometry: &'a Geometry,
-    pub start: &'a [f64],
-    pub motions: &'a [Motion],
-    pub motion_of: &'a [u32],
-    pub folds: &'a [FoldRecord],
-    pub fold_of_joint: &'a [u32],
+/// The force rule's view of a run: the chain, the run so far, the law and the cutoff.
+pub(crate) struct ForceRule<'a> {
+    pub(crate) geometry: &'a Geometry,
+    pub(crate) progress: Progress<'a>,
+    pub(crate) law: ForceLaw,
+    pub(crate) cutoff: usize,
 }
 
-impl RunState<'_> {
-    fn motion(&self, k: usize) -> &Motion {
-        &self.motions[self.motion_of[k] as usize]
-    }
-
-    fn travel(&self, k: usize, t: f64) -> f64 {
-        let s = self.start[k];
-        if s.is_nan() || t <= s {
-            0.0
-        } else {
-            self.motion(k).distance_at(t - s)
-        }
-    }
-
-    fn arrival(&self, k: usize) -> Option<f64> {
-        let s = self.start[k];
-        (!s.is_nan()).then(|| s + self.motion(k).duration())
-    }
-
-    fn joint_angle(&self, j: usize, t: f64) -> f64 {
-        match self
-            .fold_of_joint
-            .get(j)
-            .and_then(|&i| self.folds.get(i as usize))
-        {
-            Some(f) => {
-                let (a, b) = (2 * f.joint + 1, 2 * f.joint + 2);
-                let frac = |k: usize| self.travel(k, t) / self.motion(k).length;
-                fold_angle_from(f, t, frac(a), frac(b))
-            }
-            None => 0.0,
-        }
-    }
-
-    /// The bonded rest force, N: the scale of every drive (as the reference's).
-    fn force_scale(&self) -> f64 {
-        let d0 = self.geometry.design(0);
-        let m = d0.moment();
-        let b = d0.b().max(d0.magnet_diameter) * 1e-3;
-        3.0 * MU0 / (4.0 * PI) * m * m / b.powi(4)
-    }
-
+impl ForceRule<'_> {
     /// The force (N) along magnet `m`'s path at its rest point at time `t`, from every
-    /// magnet within `cutoff` of it in chain index.
-    fn drive(&self, m: usize, cutoff: usize, t: f64) -> f64 {
+    /// magnet within the cutoff of it in chain index (and the RI while within reach), each
+    /// where the run has it then.
+    fn drive(&self, m: usize, t: f64) -> f64 {
         let g = self.geometry;
-        let n = g.magnets();
-        let lo = m.saturating_sub(cutoff);
-        let hi = (m + cutoff).min(n - 1);
-        let (tlo, thi) = (lo / 2, hi / 2);
+        let within = reach(m, self.cutoff, g.magnets());
+        let (tlo, thi) = (within.start() / 2, within.end() / 2);
         // tile poses in the frame of tile `tlo`
         let mut poses = Vec::with_capacity(thi - tlo + 1);
         let mut pose = Pose::IDENTITY;
         poses.push(pose);
         for j in tlo..thi {
-            pose = pose.then(&joint_transform(self.joint_angle(j, t), g.w));
+            pose = pose.then(&joint_transform(self.progress.joint_angle(j, t), g.w));
             poses.push(pose);
         }
         let at = |k: usize| {
-            let p = g.path(k).point_at(self.travel(k, t));
-            poses[k / 2 - tlo].transform_point(p)
+            let p = g.path(k).point_at(self.progress.travel_at(k, t));
+            Point::from(poses[k / 2 - tlo].transform_point(p))
         };
+        let on = Pole::Magnet(m);
         let pm = at(m);
-        let tangent = poses[m / 2 - tlo].transform_vector(start_tangent(g, m));
+        let tangent = Vec2::from(poses[m / 2 - tlo].transform_vector(g.path(m).tangent_at(0.0)));
         let mm = g.design(m / 2).moment();
-        let k_force = 3.0 * MU0 / (4.0 * PI);
-        let push = |p: (f64, f64), moment: f64, attract: bool| {
-            let (dx, dy) = ((pm.0 - p.0) * 1e-3, (pm.1 - p.1) * 1e-3);
-            let r2 = dx * dx + dy * dy;
-            if r2 <= 0.0 {
-                return 0.0;
-            }
-            let r = r2.sqrt();
-            let mag = k_force * moment * mm / (r2 * r2);
-            let sign = if attract { -1.0 } else { 1.0 };
-            sign * mag * (dx * tangent.0 + dy * tangent.1) / r
-        };
+        let ri = g.ri();
         let mut drive = 0.0;
-        for k in lo..=hi {
-            if k != m {
-                drive += push(at(k), g.design(k / 2).moment(), (m.abs_diff(k)) % 2 == 1);
-            }
-        }
-        // the RI is magnet -1, fixed in tile 0's frame
-        if m < cutoff {
-            let ri = poses[0].transform_point(g.ri_position());
-            drive += push(ri, g.design(0).moment(), m % 2 == 0);
+        for source in neighbours(m, self.cutoff, g.magnets()) {
+            let (p, moment) = match source {
+                Pole::Magnet(k) => (at(k), g.design(k / 2).moment()),
+                // the RI is fixed in tile 0's frame
+                Pole::Ri => (
+                    Point::from(poses[0].transform_point(ri.position.into())),
+                    ri.moment,
+                ),
+            };
+            let force = self.law.force(p, pm, moment, mm, source.attracts(on));
+            drive += along_path(force, tangent);
         }
         drive
     }
-}
 
-/// The unit tangent (tile frame) in which magnet `k` leaves its rest point.
-fn start_tangent(g: &Geometry, k: usize) -> (f64, f64) {
-    let path = g.path(k);
-    let away = if k % 2 == 0 { -1.0 } else { 1.0 };
-    if !path.is_curved() || g.design(k / 2).s > 0.0 {
-        return (away, 0.0);
-    }
-    // a curved path with no straight part leaves along its arc
-    let h = 1e-6 * path.length();
-    let (a, b) = (path.point_at(0.0), path.point_at(h));
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let norm = (dx * dx + dy * dy).sqrt();
-    if norm > 0.0 {
-        (dx / norm, dy / norm)
-    } else {
-        (away, 0.0)
-    }
-}
-
-/// When magnet `m` starts under the force rule, magnet `m - 1` having started at `t0`.
-pub(crate) fn force_start(state: &RunState, m: usize, cutoff: usize, t0: f64) -> ForceStart {
-    let threshold = DRIVE_TOLERANCE * state.force_scale();
-    let mover = m - 1;
-    let motion = *state.motion(mover);
-    let mover_end = t0 + motion.duration();
-    // the last moment anything within reach behind `m` still moves
-    let lo = m.saturating_sub(cutoff);
-    let last = (lo..m)
-        .filter_map(|k| state.arrival(k))
-        .fold(mover_end, f64::max);
-    let mut times = Vec::with_capacity(PATH_SAMPLES + AFTER_SAMPLES + 1);
-    times.push(t0);
-    for i in 1..=PATH_SAMPLES {
-        times.push(t0 + motion.time_to(motion.length * i as f64 / PATH_SAMPLES as f64));
-    }
-    if last > mover_end {
-        for i in 1..=AFTER_SAMPLES {
-            times.push(mover_end + (last - mover_end) * i as f64 / AFTER_SAMPLES as f64);
+    /// When magnet `m` starts, magnet `m - 1` having started at `t0`.
+    pub(crate) fn start(&self, m: usize, t0: f64) -> ForceStart {
+        let threshold = DRIVE_TOLERANCE * self.law.bonded_rest_force(self.geometry.design(0));
+        let mover = m - 1;
+        let motion = *self.progress.motion(mover);
+        let mover_end = t0 + motion.duration();
+        // the last moment anything within reach behind `m` still moves
+        let lo = m.saturating_sub(self.cutoff);
+        let last = (lo..m)
+            .filter_map(|k| self.progress.arrival_of(k))
+            .fold(mover_end, f64::max);
+        let mut times = Vec::with_capacity(PATH_SAMPLES + AFTER_SAMPLES + 1);
+        times.push(t0);
+        for i in 1..=PATH_SAMPLES {
+            times.push(t0 + motion.time_to(motion.length * i as f64 / PATH_SAMPLES as f64));
         }
-    }
-    let drive = |t: f64| state.drive(m, cutoff, t);
-    let mut best = (t0, f64::NEG_INFINITY);
-    let mut prev = t0;
-    for (i, &t) in times.iter().enumerate() {
-        let v = drive(t);
-        if v > threshold {
-            if i == 0 {
-                return ForceStart::At(t0);
+        if last > mover_end {
+            for i in 1..=AFTER_SAMPLES {
+                times.push(mover_end + (last - mover_end) * i as f64 / AFTER_SAMPLES as f64);
             }
-            let (mut a, mut b) = (prev, t);
-            for _ in 0..60 {
-                let mid = 0.5 * (a + b);
-                if mid <= a || mid >= b {
-                    break;
+        }
+        let mut best = (t0, f64::NEG_INFINITY);
+        let mut prev = t0;
+        for (i, &t) in times.iter().enumerate() {
+            let v = self.drive(m, t);
+            if v > threshold {
+                if i == 0 {
+                    return ForceStart::At(t0);
                 }
-                if drive(mid) > threshold {
-                    b = mid;
-                } else {
-                    a = mid;
+                let (mut a, mut b) = (prev, t);
+                for _ in 0..60 {
+                    let mid = 0.5 * (a + b);
+                    if mid <= a || mid >= b {
+                        break;
+                    }
+                    if self.drive(m, mid) > threshold {
+                        b = mid;
+                    } else {
+                        a = mid;
+                    }
                 }
+                return ForceStart::At(b);
             }
-            return ForceStart::At(b);
+            if v > best.1 {
+                best = (t, v);
+            }
+            prev = t;
         }
-        if v > best.1 {
-            best = (t, v);
+        ForceStart::Never {
+            time: best.0,
+            drive: best.1,
         }
-        prev = t;
-    }
-    ForceStart::Never {
-        time: best.0,
-        drive: best.1,
     }
 }
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
-    use crate::engine::{run, EngineError, EngineOptions, EventKind, Outcome, StartRule};
-    use crate::engine::{SpeedLaw, TileDesigns};
+    use crate::engine::{run, EngineError, EngineOptions, StartRule};
+    use crate::timeline::{EventKind, Outcome, SpeedLaw, TileDesigns};
     use crate::{Chain, Design};
 
     fn run_with(word: &str, s: f64, rule: StartRule) -> crate::engine::Timeline {

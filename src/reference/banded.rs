@@ -8,7 +8,7 @@
 /// A square band matrix with `lower` sub- and `upper` super-diagonals (storage keeps room
 /// for `lower` more above, the pivoting fill-in).
 #[derive(Clone, Debug)]
-pub struct Band {
+pub(crate) struct Band {
     n: usize,
     lower: usize,
     upper: usize,
@@ -20,14 +20,14 @@ pub struct Band {
 /// A zero pivot: the matrix is singular (the caller shrinks the step).
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error("singular band matrix: zero pivot in column {column}")]
-pub struct Singular {
+pub(crate) struct Singular {
     /// The column.
-    pub column: usize,
+    pub(crate) column: usize,
 }
 
 impl Band {
     /// A zero `n x n` band matrix.
-    pub fn zeros(n: usize, lower: usize, upper: usize) -> Band {
+    pub(crate) fn zeros(n: usize, lower: usize, upper: usize) -> Band {
         let width = 2 * lower + upper + 1;
         Band {
             n,
@@ -39,11 +39,6 @@ impl Band {
         }
     }
 
-    /// Size.
-    pub fn n(&self) -> usize {
-        self.n
-    }
-
     /// Whether `(i, j)` lies in the stored band (including fill-in room).
     fn slot(&self, i: usize, j: usize) -> Option<usize> {
         if j + self.lower < i || j > i + self.upper + self.lower || i >= self.n || j >= self.n {
@@ -53,12 +48,12 @@ impl Band {
     }
 
     /// Entry `(i, j)` (zero outside the band).
-    pub fn get(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
         self.slot(i, j).map_or(0.0, |s| self.data[s])
     }
 
     /// Sets entry `(i, j)` inside the original band (`j - upper <= i <= j + lower`).
-    pub fn set(&mut self, i: usize, j: usize, v: f64) {
+    pub(crate) fn set(&mut self, i: usize, j: usize, v: f64) {
         if j > i + self.upper {
             return;
         }
@@ -68,12 +63,12 @@ impl Band {
     }
 
     /// Sets every entry to zero.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.data.iter_mut().for_each(|x| *x = 0.0);
     }
 
     /// Factorises in place (partial pivoting).
-    pub fn factor(&mut self) -> Result<(), Singular> {
+    pub(crate) fn factor(&mut self) -> Result<(), Singular> {
         let n = self.n;
         let fill = self.upper + self.lower;
         for k in 0..n {
@@ -121,7 +116,7 @@ impl Band {
     }
 
     /// Solves `A x = b` in place after [`Band::factor`].
-    pub fn solve(&self, b: &mut [f64]) {
+    pub(crate) fn solve(&self, b: &mut [f64]) {
         let n = self.n;
         let fill = self.upper + self.lower;
         for k in 0..n {
@@ -181,5 +176,97 @@ mod tests {
         for i in 0..n {
             assert!((b[i] - x[i]).abs() < 1e-9, "{i}: {} {}", b[i], x[i]);
         }
+    }
+
+    /// A pseudo-random number in [-0.5, 0.5) (a linear congruential generator).
+    fn next(seed: &mut u64) -> f64 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+    }
+
+    /// Solves `a x = b` densely: Gaussian elimination with partial pivoting.
+    #[allow(clippy::needless_range_loop)] // matrix indices read clearer here
+    fn dense_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+        let n = b.len();
+        for k in 0..n {
+            let p = (k..n)
+                .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
+                .unwrap();
+            a.swap(k, p);
+            b.swap(k, p);
+            for i in k + 1..n {
+                let l = a[i][k] / a[k][k];
+                for j in k..n {
+                    a[i][j] -= l * a[k][j];
+                }
+                b[i] -= l * b[k];
+            }
+        }
+        let mut x = vec![0.0; n];
+        for k in (0..n).rev() {
+            let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
+            x[k] = (b[k] - s) / a[k][k];
+        }
+        x
+    }
+
+    #[test]
+    #[allow(clippy::needless_range_loop)] // matrix indices read clearer here
+    fn agrees_with_a_dense_solve_on_random_band_matrices() {
+        let mut seed = 2024u64;
+        for (n, kl, ku) in [
+            (1, 0, 0),
+            (5, 1, 1),
+            (12, 2, 3),
+            (30, 3, 1),
+            (40, 4, 4),
+            (7, 6, 6),
+        ] {
+            for _ in 0..20 {
+                let mut a = Band::zeros(n, kl, ku);
+                let mut dense = vec![vec![0.0; n]; n];
+                for i in 0..n {
+                    for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                        // small diagonals now and then, so pivoting is needed
+                        let v = next(&mut seed)
+                            * if i == j && next(&mut seed) > 0.0 {
+                                1e-3
+                            } else {
+                                1.0
+                            };
+                        a.set(i, j, v);
+                        dense[i][j] = v;
+                    }
+                }
+                let b: Vec<f64> = (0..n).map(|_| next(&mut seed)).collect();
+                let want = dense_solve(dense, b.clone());
+                let mut x = b;
+                a.factor().unwrap();
+                a.solve(&mut x);
+                let scale = want.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                for (i, (p, q)) in x.iter().zip(&want).enumerate() {
+                    assert!(
+                        (p - q).abs() < 1e-9 * scale,
+                        "n {n} kl {kl} ku {ku} x[{i}]: {p} {q}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_zero_column_is_singular() {
+        let mut a = Band::zeros(4, 1, 1);
+        for i in 0..4 {
+            a.set(i, i, 1.0);
+        }
+        for i in 1..3 {
+            a.set(i, 2, 0.0);
+        }
+        a.set(2, 2, 0.0);
+        a.set(3, 2, 0.0);
+        assert_eq!(a.factor(), Err(Singular { column: 2 }));
     }
 }

@@ -7,14 +7,12 @@
 //! tile size. Unknowns are interleaved tile by tile (`x_2t, x_2t+1, psi_t`), so that with the
 //! chain-index cutoff the Jacobian is banded with a fixed bandwidth ([`Model::bandwidth`]).
 //!
-//! **Forces.** Moments stand upright and alternate along the chain (the RI is magnet `-1`),
-//! so the pair force is central: `F = 3 mu0 m_i m_j / (4 pi r^4)`, attracting for an odd
-//! index difference and repelling for an even one. Only pairs at most
-//! [`ModelOptions::cutoff`] apart in chain index interact (default 3: partner,
-//! neighbour, the same-pole magnets one tile away and the next opposite pole). The first
-//! pair left out is 4 apart, two tiles (about `2w`) away in a straight run: `(b / 2w)^4`
-//! = 0.33% of the bonded rest force on the thesis design, and the left-out terms alternate
-//! in sign. [`Model::cutoff_error`] measures it on a given configuration against all pairs.
+//! **Forces.** The pair law, the polarity of each pair and the chain-index cutoff are
+//! [`crate::physics`]'s, as in the event engine's force start rule: by default point dipoles
+//! (`F = 3 mu0 m_i m_j / (4 pi r^4)`, attracting for an odd index difference, the RI being
+//! magnet `-1`), pairs at most [`ModelOptions::cutoff`] apart (default
+//! [`crate::physics::DEFAULT_CUTOFF`]). [`Model::cutoff_error`] measures what the cutoff
+//! leaves out on a given configuration against all pairs.
 //!
 //! **Motion.** A magnet slides with `gamma du/dt = F . t` (the force along its path's
 //! tangent; the wall takes the rest); a joint turns with `gamma_rot dtheta/dt = tau`, the
@@ -23,24 +21,21 @@
 //! Each unknown has a mode: at its start, free, or at its end. A clamped unknown does not
 //! move until its drive (the force along the path, or the torque towards folding) pushes it
 //! away from the end by more than the static friction threshold; the driver finds those
-//! moments, and the arrivals, as events ([`crate::reference::events`]). Non-folding joints
+//! moments, and the arrivals, as events ([`crate::reference::run_reference`]). Non-folding joints
 //! are rigid: a straight or LR joint has no hinge that opens the way the pair pulls.
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::design::MU0;
-use crate::engine::{Geometry, TileDesigns, DEFAULT_DRAG};
+use kurbo::{Point, Vec2};
+
 use crate::magnet_path::MagnetPath;
-use crate::{Chain, Octagon, PathKind, Pose};
-
-/// Default chain-index cutoff of the pair forces (see the module documentation).
-pub const DEFAULT_CUTOFF: usize = 3;
-
-/// Default rotational drag of a joint, N m s: the magnet drag [`DEFAULT_DRAG`] times the
-/// square of the thesis' magnet radius (1.5 mm), 1.125e-5. The thesis gives no value; with
-/// it a fold of the thesis design takes about as long as the magnets' move, as in the event
-/// engine's fold law. Fold times scale with it.
-pub const DEFAULT_ROTATIONAL_DRAG: f64 = DEFAULT_DRAG * 1.5e-3 * 1.5e-3;
+use crate::physics::{
+    along_path, joints_between, torque_about, upstream, ForceLaw, Pole, ReactionInitiator,
+    DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG,
+};
+use crate::reference::integrators::System;
+use crate::timeline::{Geometry, GeometryError, TileDesigns};
+use crate::{Chain, Octagon, Pose};
 
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
@@ -48,7 +43,8 @@ pub const DEFAULT_ROTATIONAL_DRAG: f64 = DEFAULT_DRAG * 1.5e-3 * 1.5e-3;
 pub const BALANCE_TOLERANCE: f64 = 1e-12;
 
 /// Options of the reference model. Defaults: drag [`DEFAULT_DRAG`], rotational drag
-/// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`].
+/// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`], the
+/// point-dipole law.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModelOptions {
     /// Drag of a magnet in its channel, N s/m.
@@ -60,6 +56,8 @@ pub struct ModelOptions {
     pub static_friction: f64,
     /// Pairs at most this many apart in chain index interact (at least 1).
     pub cutoff: usize,
+    /// The pair law.
+    pub force_law: ForceLaw,
 }
 
 impl Default for ModelOptions {
@@ -69,6 +67,7 @@ impl Default for ModelOptions {
             rotational_drag: DEFAULT_ROTATIONAL_DRAG,
             static_friction: 0.0,
             cutoff: DEFAULT_CUTOFF,
+            force_law: ForceLaw::default(),
         }
     }
 }
@@ -94,11 +93,16 @@ impl ModelOptions {
         self.cutoff = cutoff;
         self
     }
+    /// Another pair law.
+    pub fn with_force_law(mut self, force_law: ForceLaw) -> ModelOptions {
+        self.force_law = force_law;
+        self
+    }
 }
 
 /// What one unknown is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Unknown {
+pub(crate) enum Unknown {
     /// Magnet `k`'s fraction of path travelled.
     Magnet(usize),
     /// Joint `j`'s fraction of fold made.
@@ -107,7 +111,7 @@ pub enum Unknown {
 
 /// Where an unknown is held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
+pub(crate) enum Mode {
     /// Held at 0 (magnet at rest, joint straight).
     AtStart,
     /// Moving freely inside `(0, 1)`.
@@ -119,11 +123,11 @@ pub enum Mode {
 /// The model of one chain.
 #[derive(Debug)]
 pub struct Model {
-    /// The engine's geometry (paths in tile frames).
+    /// The chain at rest (paths in tile frames).
     pub geometry: Geometry,
     opts: ModelOptions,
     /// The unknowns, in state order.
-    pub unknowns: Vec<Unknown>,
+    pub(crate) unknowns: Vec<Unknown>,
     /// State index of each magnet.
     magnet_var: Vec<usize>,
     /// State index of each joint, `usize::MAX` for rigid joints.
@@ -131,11 +135,10 @@ pub struct Model {
     /// Fold direction of each joint: +1 left, -1 right, 0 rigid.
     joint_sign: Vec<f64>,
     lengths: Vec<f64>,
-    kinks: Vec<f64>,
     moments: Vec<f64>,
-    ri_moment: f64,
-    hinge_left: (f64, f64),
-    hinge_right: (f64, f64),
+    ri: ReactionInitiator,
+    hinge_left: Point,
+    hinge_right: Point,
     /// Bonded rest force, N (scale of the drives).
     pub force_scale: f64,
     /// Bonded rest torque about a hinge, N m.
@@ -147,20 +150,20 @@ pub struct Model {
 
 /// Everything the forces give at one state.
 #[derive(Clone, Debug, Default)]
-pub struct Forces {
+pub(crate) struct Forces {
     /// World positions of the magnets, mm.
-    pub positions: Vec<(f64, f64)>,
+    pub(crate) positions: Vec<Point>,
     /// Drive of each unknown (force along the path, N, or torque towards folding, N m).
-    pub drive: Vec<f64>,
+    pub(crate) drive: Vec<f64>,
 }
 
 /// Why a model cannot be built.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ModelError {
-    /// Bad design.
+    /// A design parameter out of range, or a curved path that cannot be built.
     #[error(transparent)]
-    Engine(#[from] crate::engine::EngineError),
+    Geometry(#[from] GeometryError),
     /// A model option out of range.
     #[error("reference option `{name}` = {value}: expected {expected}")]
     BadOption {
@@ -171,14 +174,6 @@ pub enum ModelError {
         /// What was expected.
         expected: &'static str,
     },
-}
-
-fn fold_sign(a: PathKind, b: PathKind) -> f64 {
-    match (a, b) {
-        (PathKind::L, PathKind::L) => 1.0,
-        (PathKind::R, PathKind::R) => -1.0,
-        _ => 0.0,
-    }
 }
 
 impl Model {
@@ -211,25 +206,20 @@ impl Model {
         if opts.cutoff == 0 {
             return Err(bad("cutoff", 0.0, "at least 1"));
         }
-        designs
-            .validate("design")
-            .map_err(crate::engine::EngineError::from)?;
-        let (list, per_tile) = designs.resolve(chain.len());
-        let geometry =
-            Geometry::new(chain, list, per_tile).map_err(crate::engine::EngineError::from)?;
-        let tiles = chain.tiles();
+        let geometry = Geometry::from_designs(chain, designs)?;
+        let tiles = geometry.tiles();
         let n = geometry.magnets();
         let mut unknowns = Vec::new();
         let mut magnet_var = vec![0; n];
-        let mut joint_var = vec![usize::MAX; tiles.len().saturating_sub(1)];
-        let mut joint_sign = vec![0.0; tiles.len().saturating_sub(1)];
-        for t in 0..tiles.len() {
+        let mut joint_var = vec![usize::MAX; tiles.saturating_sub(1)];
+        let mut joint_sign = vec![0.0; tiles.saturating_sub(1)];
+        for t in 0..tiles {
             for k in [2 * t, 2 * t + 1] {
                 magnet_var[k] = unknowns.len();
                 unknowns.push(Unknown::Magnet(k));
             }
-            if t + 1 < tiles.len() {
-                let sign = fold_sign(tiles[t].second, tiles[t + 1].first);
+            if t + 1 < tiles {
+                let sign = geometry.joint_fold(t).quarter_turns() as f64;
                 joint_sign[t] = sign;
                 if sign != 0.0 {
                     joint_var[t] = unknowns.len();
@@ -238,21 +228,9 @@ impl Model {
             }
         }
         let lengths: Vec<f64> = (0..n).map(|k| geometry.path(k).length()).collect();
-        let kinks: Vec<f64> = (0..n)
-            .map(|k| {
-                if geometry.path(k).is_curved() {
-                    geometry.design(k / 2).s
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .collect();
         let moments: Vec<f64> = (0..n).map(|k| geometry.design(k / 2).moment()).collect();
-        let d0 = *geometry.design(0);
         let oct = Octagon::new(geometry.w);
-        let b = d0.b().max(d0.magnet_diameter) * 1e-3;
-        let force_scale =
-            3.0 * MU0 / (4.0 * std::f64::consts::PI) * moments[0] * moments[0] / b.powi(4);
+        let force_scale = opts.force_law.bonded_rest_force(geometry.design(0));
         let torque_scale = force_scale * 0.5 * oct.side() * 1e-3;
         let time_scale = opts.drag * lengths[0] * 1e-3 / force_scale;
         let cutoff = opts.cutoff;
@@ -263,22 +241,21 @@ impl Model {
             bandwidth = bandwidth.max(magnet_var[hi] - magnet_var[k] + 1);
         }
         Ok(Model {
-            geometry,
             opts: *opts,
             unknowns,
             magnet_var,
             joint_var,
             joint_sign,
             lengths,
-            kinks,
-            ri_moment: moments[0],
             moments,
-            hinge_left: oct.hinge(true),
-            hinge_right: oct.hinge(false),
+            ri: geometry.ri(),
+            hinge_left: oct.hinge(true).into(),
+            hinge_right: oct.hinge(false).into(),
             force_scale,
             torque_scale,
             time_scale,
             bandwidth,
+            geometry,
         })
     }
 
@@ -324,7 +301,7 @@ impl Model {
     }
 
     /// The scale a drive of unknown `i` is measured against.
-    pub fn drive_scale(&self, i: usize) -> f64 {
+    pub(crate) fn drive_scale(&self, i: usize) -> f64 {
         match self.unknowns[i] {
             Unknown::Magnet(_) => self.force_scale,
             Unknown::Joint(_) => self.torque_scale,
@@ -332,7 +309,7 @@ impl Model {
     }
 
     /// The static threshold a drive must exceed to move a clamped unknown.
-    pub fn threshold(&self, i: usize) -> f64 {
+    pub(crate) fn threshold(&self, i: usize) -> f64 {
         let balance = BALANCE_TOLERANCE * self.drive_scale(i);
         match self.unknowns[i] {
             Unknown::Magnet(_) => self.opts.static_friction.max(balance),
@@ -364,31 +341,7 @@ impl Model {
         let p = self.path(k);
         let len = self.lengths[k];
         let u = (x * len).clamp(0.0, len);
-        let point = p.point_at(u);
-        let kink = self.kinks[k];
-        let (a, b) = if u < kink {
-            // straight part: the direction away from the tile centre, exactly
-            let sx = if k % 2 == 0 { -1.0 } else { 1.0 };
-            return (point, (sx, 0.0));
-        } else {
-            // a chord symmetric about u is parallel to an arc's tangent at u; kept on the arc
-            let h = 1e-6 * len;
-            let lo = (u - h).max(kink.min(len));
-            let hi = (u + h).min(len);
-            if hi > lo {
-                (lo, hi)
-            } else {
-                (lo - h, lo)
-            }
-        };
-        let (pa, pb) = (p.point_at(a), p.point_at(b));
-        let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
-        let norm = (dx * dx + dy * dy).sqrt();
-        if norm > 0.0 {
-            (point, (dx / norm, dy / norm))
-        } else {
-            (point, (if k % 2 == 0 { -1.0 } else { 1.0 }, 0.0))
-        }
+        (p.point_at(u), p.tangent_at(u))
     }
 
     /// World positions of the magnets (mm) at state `y`.
@@ -402,93 +355,67 @@ impl Model {
             .collect()
     }
 
-    /// Force (N) on magnet at `q` from one at `p`, moments `mp`, `mq`, attracting or not.
-    fn pair(p: (f64, f64), q: (f64, f64), mp: f64, mq: f64, attract: bool) -> (f64, f64) {
-        let (dx, dy) = ((q.0 - p.0) * 1e-3, (q.1 - p.1) * 1e-3);
-        let r2 = dx * dx + dy * dy;
-        if r2 <= 0.0 {
-            return (0.0, 0.0);
-        }
-        let r = r2.sqrt();
-        let mag = 3.0 * MU0 / (4.0 * std::f64::consts::PI) * mp * mq / (r2 * r2);
-        let sign = if attract { -1.0 } else { 1.0 };
-        (sign * mag * dx / r, sign * mag * dy / r)
-    }
-
     /// Drives of every unknown at state `y` (see [`Forces`]), with pairs up to `cutoff`
     /// apart in chain index.
-    pub fn forces_with_cutoff(&self, y: &[f64], cutoff: usize, out: &mut Forces) {
+    pub(crate) fn forces_with_cutoff(&self, y: &[f64], cutoff: usize, out: &mut Forces) {
         let n = self.geometry.magnets();
-        let poses = self.poses(y);
+        let poses: Vec<Pose> = self.poses(y);
         out.positions.clear();
         let mut tangents = Vec::with_capacity(n);
         for k in 0..n {
             let (p, t) = self.local(k, y[self.magnet_var[k]]);
             let pose = &poses[k / 2];
-            out.positions.push(pose.transform_point(p));
-            tangents.push(pose.transform_vector(t));
+            out.positions.push(pose.transform_point(p).into());
+            tangents.push(Vec2::from(pose.transform_vector(t)));
         }
-        let mut force = vec![(0.0, 0.0); n];
+        let mut force = vec![Vec2::ZERO; n];
         out.drive.clear();
         out.drive.resize(self.len(), 0.0);
-        let hinges: Vec<(f64, f64)> = (0..self.joint_var.len())
+        let hinges: Vec<Point> = (0..self.joint_var.len())
             .map(|j| {
                 let h = if self.joint_sign[j] >= 0.0 {
                     self.hinge_left
                 } else {
                     self.hinge_right
                 };
-                poses[j].transform_point(h)
+                poses[j].transform_point(h.into()).into()
             })
             .collect();
-        let ri = self.geometry.ri_position();
-        // a = -1 is the RI (fixed in tile 0's frame, which is the world frame)
+        let law = self.opts.force_law;
         for b in 0..n {
-            let lo = b.saturating_sub(cutoff);
-            let first: isize = if b < cutoff { -1 } else { lo as isize };
-            for a in first..b as isize {
-                let (pa, ma) = if a < 0 {
-                    (ri, self.ri_moment)
-                } else {
-                    (out.positions[a as usize], self.moments[a as usize])
+            let on = out.positions[b];
+            for a in upstream(b, cutoff) {
+                // the RI is fixed in tile 0's frame, which is the world frame
+                let (pa, ma) = match a {
+                    Pole::Ri => (self.ri.position, self.ri.moment),
+                    Pole::Magnet(a) => (out.positions[a], self.moments[a]),
                 };
-                let attract = (b as isize - a) % 2 == 1;
-                let f = Model::pair(pa, out.positions[b], ma, self.moments[b], attract);
-                force[b].0 += f.0;
-                force[b].1 += f.1;
-                if a >= 0 {
-                    force[a as usize].0 -= f.0;
-                    force[a as usize].1 -= f.1;
+                let f = law.force(pa, on, ma, self.moments[b], a.attracts(Pole::Magnet(b)));
+                force[b] += f;
+                if let Pole::Magnet(a) = a {
+                    force[a] -= f;
                 }
                 // torque on every folding joint between the two (b downstream)
-                let ta = if a < 0 { 0 } else { a as usize / 2 };
-                for (j, &h) in hinges.iter().enumerate().take(b / 2).skip(ta) {
+                for j in joints_between(a, b) {
                     let v = self.joint_var[j];
-                    if v == usize::MAX {
-                        continue;
+                    if v != usize::MAX {
+                        out.drive[v] += self.joint_sign[j] * torque_about(hinges[j], on, f);
                     }
-                    let r = (
-                        (out.positions[b].0 - h.0) * 1e-3,
-                        (out.positions[b].1 - h.1) * 1e-3,
-                    );
-                    let tau = r.0 * f.1 - r.1 * f.0;
-                    out.drive[v] += self.joint_sign[j] * tau;
                 }
             }
         }
         for k in 0..n {
-            let (f, t) = (force[k], tangents[k]);
-            out.drive[self.magnet_var[k]] = f.0 * t.0 + f.1 * t.1;
+            out.drive[self.magnet_var[k]] = along_path(force[k], tangents[k]);
         }
     }
 
     /// Drives at state `y` with the model's cutoff.
-    pub fn forces(&self, y: &[f64], out: &mut Forces) {
+    pub(crate) fn forces(&self, y: &[f64], out: &mut Forces) {
         self.forces_with_cutoff(y, self.opts.cutoff, out);
     }
 
     /// The rate of unknown `i` (per second) for drive `drive` in mode `mode`.
-    pub fn rate(&self, i: usize, drive: f64, mode: Mode) -> f64 {
+    pub(crate) fn rate(&self, i: usize, drive: f64, mode: Mode) -> f64 {
         if mode != Mode::Free {
             return 0.0;
         }
@@ -504,7 +431,7 @@ impl Model {
     }
 
     /// The right-hand side `dy/dt` at `y` with `modes`; also leaves the drives in `work`.
-    pub fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
+    pub(crate) fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
         self.forces(y, work);
         for i in 0..self.len() {
             dy[i] = self.rate(i, work.drive[i], modes[i]);
@@ -524,6 +451,28 @@ impl Model {
             }
         }
         worst
+    }
+}
+
+/// The model with its unknowns' modes: the system the integrators step.
+pub(crate) struct Moving<'a> {
+    pub(crate) model: &'a Model,
+    pub(crate) modes: &'a [Mode],
+}
+
+impl System for Moving<'_> {
+    type Work = Forces;
+
+    fn bandwidth(&self) -> usize {
+        self.model.bandwidth()
+    }
+
+    fn counts(&self, i: usize) -> bool {
+        self.modes[i] == Mode::Free
+    }
+
+    fn rhs(&self, y: &[f64], work: &mut Forces, out: &mut [f64]) {
+        self.model.rhs(y, self.modes, work, out);
     }
 }
 

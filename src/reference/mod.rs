@@ -1,21 +1,23 @@
-//! The reference force integrator: the chain's motion from the point-dipole forces
-//! (SPEC (6.11), (6.12)), integrated in time, against which the event engine's inequalities
-//! are measured (issue 6).
+//! The reference force integrator: the chain's motion from the pair forces of
+//! [`crate::physics`] (SPEC (6.11), (6.12)), integrated in time, against which the event
+//! engine's inequalities are measured (issue 6). It shares the physics and the vocabulary of
+//! its results ([`crate::timeline`]) with the event engine, and nothing else.
 //!
-//! - [`dynamics`]: the overdamped model, magnets held to their paths, joints turning under
-//!   the magnets' torque and stopped by their walls, forces within a chain-index cutoff.
-//! - [`integrators`]: Dormand-Prince 5(4) (explicit) and ROS2 (Rosenbrock, for stiff cases).
-//! - [`banded`]: the banded Jacobian and LU the stiff integrator uses.
-//! - [`events`]: the hybrid driver and [`run_reference`], with the engine's event kinds and
-//!   summary fields.
-//! - [`scenes`]: the scenes `fold-validate` runs.
-//! - `pictures`: the reference's recorded states as the pictures' chain states, energy curve
-//!   and transition data.
-//! - [`validate`]: errors against run time (the work-precision table and plot).
+//! - The model ([`Model`]): overdamped dynamics, magnets held to their paths, joints turning
+//!   under the magnets' torque and stopped by their walls, forces within a chain-index cutoff.
+//! - Two integrators ([`Method`]): Dormand-Prince 5(4) (explicit) and ROS2 (Rosenbrock, for
+//!   stiff cases), the latter with a banded Jacobian and LU.
+//! - [`run_reference`]: the hybrid driver, which locates every event on real integrator steps
+//!   and switches the unknowns' modes there; its result ([`ReferenceRun`]) carries the
+//!   engine's event kinds and summary fields.
+//! - [`scenes`]: the scenes `fold-validate` runs; [`validate`]: errors against run time (the
+//!   work-precision table and plot); [`stiff`]: the stiff cases and their study.
+//! - The pictures' data from the reference's recorded states ([`reference_state`],
+//!   [`reference_energy`], [`reference_transition`]).
 //!
 //! ```
 //! use foldchain::reference::{run_reference, Method, ReferenceOptions};
-//! use foldchain::engine::{Outcome, TileDesigns};
+//! use foldchain::timeline::{Outcome, TileDesigns};
 //! use foldchain::Chain;
 //!
 //! // a straight tile, a tight U-turn (two left folds), a straight tile
@@ -28,20 +30,28 @@
 //! assert_eq!(run.to_summary().result, "completed");
 //! ```
 
-pub mod banded;
-pub mod dynamics;
-pub mod events;
-pub mod integrators;
+mod banded;
+mod driver;
+mod dynamics;
+mod event_log;
+mod integrators;
+mod locate;
+mod options;
 mod pictures;
+mod recorder;
+mod run_result;
 pub mod scenes;
 pub mod stiff;
 pub mod validate;
+mod verdict;
 
-pub use dynamics::{Model, ModelError, ModelOptions};
-pub use events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
+pub use driver::run_reference;
+pub use dynamics::{Model, ModelError, ModelOptions, BALANCE_TOLERANCE};
 pub use integrators::{Method, StepStats};
+pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{
     reference_energy, reference_final_state, reference_state, reference_state_near,
     reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
 };
+pub use run_result::ReferenceRun;
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

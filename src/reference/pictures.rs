@@ -11,12 +11,14 @@
 //! as the integrator had them ([`crate::reference::Model::poses`],
 //! [`crate::reference::Model::positions`]).
 
-use crate::dipole::pair_energy;
-use crate::engine::{EnergySample, EventKind};
+use kurbo::Point;
+
+use crate::physics::{EnergyUnit, Pole};
 #[cfg(doc)]
-use crate::reference::events::Recording;
-use crate::reference::events::ReferenceRun;
+use crate::reference::options::Recording;
+use crate::reference::run_result::ReferenceRun;
 use crate::render::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
+use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
 /// states (one state is 8 bytes per unknown, at most three unknowns per tile).
@@ -115,33 +117,21 @@ fn along(points: &[(f64, f64)], t: f64) -> f64 {
 }
 
 /// The total dipole energy (J) of state `y`: the pairs the event engine's curve sums
-/// ([`crate::engine::energy_curve`]): the RI with tile 0's magnets, the two magnets of each
-/// tile and the four pairs across each joint, with [`pair_energy`] at the world positions.
+/// ([`EnergyUnit`]: the RI with tile 0's magnets, the two magnets of each tile and the four
+/// pairs across each joint), under the model's pair law at the world positions.
 pub fn state_energy(run: &ReferenceRun, y: &[f64]) -> f64 {
     let g = &run.model.geometry;
     let moment = g.design(0).moment();
+    let law = run.model.options().force_law;
     let p = run.model.positions(y);
-    let pair = |a: (f64, f64), b: (f64, f64), attract: bool| {
-        let r = ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt() * 1e-3;
-        if r > 0.0 {
-            pair_energy(moment, r, attract)
-        } else {
-            0.0
-        }
+    let ri = g.ri().position;
+    let at = |pole: Pole| match pole {
+        Pole::Ri => ri,
+        Pole::Magnet(k) => Point::from(p[k]),
     };
-    let ri = g.ri_position();
-    let mut e = pair(ri, p[0], true) + pair(ri, p[1], false);
-    for i in 0..g.tiles() {
-        e += pair(p[2 * i], p[2 * i + 1], true);
-    }
-    for j in 0..g.tiles().saturating_sub(1) {
-        for a in [2 * j, 2 * j + 1] {
-            for b in [2 * j + 2, 2 * j + 3] {
-                e += pair(p[a], p[b], (b - a) % 2 == 1);
-            }
-        }
-    }
-    e
+    EnergyUnit::all(g.tiles())
+        .map(|u| u.energy(law, moment, at))
+        .sum()
 }
 
 /// The energy curve: for each of `samples` evenly spaced times from 0 to
@@ -263,9 +253,9 @@ pub fn reference_final_state(run: &ReferenceRun) -> ChainState {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::{energy_curve, run, EngineOptions, Outcome, TileDesigns};
-    use crate::reference::events::Recording;
-    use crate::reference::{run_reference, ReferenceOptions};
+    use crate::engine::{energy_curve, run, EngineOptions};
+    use crate::reference::{run_reference, Recording, ReferenceOptions};
+    use crate::timeline::{Outcome, TileDesigns};
     use crate::Chain;
 
     #[test]

@@ -7,7 +7,7 @@
 //! `sqrt2 w` apart, so the square is about 11 w by 9 sqrt2 w (330 mm by 382 mm on 30 mm
 //! tiles), as the thesis' 107-tile square with tight turns.
 
-use crate::engine::TileDesigns;
+use crate::timeline::TileDesigns;
 use crate::{Chain, Design};
 
 /// One scene.

@@ -37,10 +37,12 @@
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
-use crate::engine::{Outcome, TileDesigns};
+use crate::reference::driver::run_reference;
 use crate::reference::dynamics::{Model, ModelOptions};
-use crate::reference::events::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 use crate::reference::integrators::Method;
+use crate::reference::options::{ReferenceError, ReferenceOptions};
+use crate::reference::run_result::ReferenceRun;
+use crate::timeline::TileDesigns;
 use crate::{Chain, ChainError, Design};
 
 /// One case of the study: a chain, a design and drags, and the tolerance both integrators
@@ -53,7 +55,7 @@ pub struct StiffCase {
     pub word: &'static str,
     /// Every magnet's remanence (so its moment) times this, on the thesis design.
     pub moment_factor: f64,
-    /// The rotational drag is [`crate::reference::dynamics::DEFAULT_ROTATIONAL_DRAG`] times
+    /// The rotational drag is [`crate::physics::DEFAULT_ROTATIONAL_DRAG`] times
     /// this (the magnet drag stays the default).
     pub rotational_drag_factor: f64,
     /// Tolerance of both integrators.
@@ -294,12 +296,7 @@ impl StiffRow {
                 .filter(|f| !f.end.is_nan())
                 .map(|f| f.end - f.start)
                 .reduce(f64::max),
-            outcome: match r.outcome {
-                Outcome::Completed => "completed",
-                Outcome::Inhibited { .. } => "inhibited",
-                Outcome::Stalled { .. } => "stalled",
-            }
-            .to_string(),
+            outcome: r.outcome.name().to_string(),
             stopped: r.stopped.clone(),
         }
     }

@@ -7,48 +7,52 @@
 //! magnets over it, and no magnets or paths, so a frame of a 100,000-tile chain stays a few
 //! megabytes at most.
 
-use std::fmt::Write;
+use kurbo::{Point, Rect};
+use svg::node::element::{Circle, Group, Polygon, Polyline, Text};
+use svg::Document;
 
 use crate::engine::Geometry;
-use crate::render::{esc, n, ChainState};
-use crate::{Octagon, Pose};
+use crate::render::{document, num, points, to_text, ChainState};
+use crate::{Fold, Octagon, Pose};
 
 /// Chains up to this many tiles are drawn in detail (outlines, paths, magnets, hinges).
 pub const DETAIL_TILES: usize = 400;
 
-/// The view box shared by all frames of a run, in world mm: `(min x, min y, max x, max y)`.
+/// Tiles drawn over the lean polyline of a long chain, at most (moving or colliding ones).
+const LEAN_TILES_SHOWN: usize = 2000;
+
+/// The view box shared by all frames of a run, in world mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameView {
-    /// Bounds in world mm.
-    pub bounds: (f64, f64, f64, f64),
+    /// Bounds in world mm (`x0, y0` the least corner).
+    pub bounds: Rect,
 }
 
 impl FrameView {
     /// A view holding every pose in `poses` (tile centres), padded by a tile.
     pub fn around(poses: impl IntoIterator<Item = Pose>, w: f64) -> FrameView {
-        let mut b = (
+        let empty = Rect::new(
             f64::INFINITY,
             f64::INFINITY,
             f64::NEG_INFINITY,
             f64::NEG_INFINITY,
         );
-        for p in poses {
-            b = (b.0.min(p.x), b.1.min(p.y), b.2.max(p.x), b.3.max(p.y));
-        }
-        if !b.0.is_finite() {
-            b = (0.0, 0.0, 0.0, 0.0);
+        let mut b = poses
+            .into_iter()
+            .fold(empty, |b, p| b.union_pt(Point::new(p.x, p.y)));
+        if !b.x0.is_finite() {
+            b = Rect::ZERO;
         }
         let pad = 1.2 * w;
         FrameView {
-            bounds: (b.0 - 2.0 * pad, b.1 - pad, b.2 + pad, b.3 + pad),
+            bounds: Rect::new(b.x0 - 2.0 * pad, b.y0 - pad, b.x1 + pad, b.y1 + pad),
         }
     }
 
     /// Grows the view to hold another.
     pub fn union(self, o: FrameView) -> FrameView {
-        let (a, b) = (self.bounds, o.bounds);
         FrameView {
-            bounds: (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3)),
+            bounds: self.bounds.union(o.bounds),
         }
     }
 }
@@ -64,6 +68,26 @@ pub struct FrameOptions {
     pub note: Option<String>,
 }
 
+/// World millimetres to the picture's pixels (y down).
+struct PageMap {
+    /// The world bounds shown.
+    view: Rect,
+    /// Pixels per millimetre.
+    scale: f64,
+}
+
+impl PageMap {
+    fn x(&self, x: f64) -> f64 {
+        (x - self.view.x0) * self.scale
+    }
+    fn y(&self, y: f64) -> f64 {
+        (self.view.y1 - y) * self.scale
+    }
+    fn point(&self, (x, y): (f64, f64)) -> (f64, f64) {
+        (self.x(x), self.y(y))
+    }
+}
+
 /// The SVG of the chain in `state`, with paths and magnet sizes from `geometry`.
 pub fn frame_svg(
     geometry: &Geometry,
@@ -72,184 +96,216 @@ pub fn frame_svg(
     opts: &FrameOptions,
 ) -> String {
     let w = geometry.w;
-    let poses = &state.poses;
-    let (x0, y0, x1, y1) = view.bounds;
-    let (vw, vh) = (x1 - x0, y1 - y0);
+    let b = view.bounds;
     // pixel size: 900 px wide at most, at least 1 px per 0.05 mm for small chains
-    let px_w = 900.0_f64.min(vw * 6.0).max(300.0);
-    let scale = px_w / vw;
-    let px_h = (vh * scale).max(120.0);
-    let tx = |x: f64| (x - x0) * scale;
-    let ty = |y: f64| (y1 - y) * scale;
-    let mut s = String::with_capacity(4096);
-    let _ = write!(
-        s,
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="sans-serif">
-<rect width="100%" height="100%" fill="#fbfbf8"/>
-"##,
-        n(px_w),
-        n(px_h + 40.0),
-        n(px_w),
-        n(px_h + 40.0)
-    );
-    let moving_tile = |i: usize| state.tile_moving(i);
-    let folding_joint = |j: usize| state.joint_folding(j);
+    let px_w = 900.0_f64.min(b.width() * 6.0).max(300.0);
+    let page = PageMap {
+        view: b,
+        scale: px_w / b.width(),
+    };
+    let px_h = (b.height() * page.scale).max(120.0);
+    let mut doc = document(px_w, px_h + 40.0, "#fbfbf8");
     let in_collision = |i: usize| opts.collision.is_some_and(|(a, b)| a == i || b == i);
     let oct = Octagon::new(w);
-    let tiles = state.tiles();
-    let polygon = |s: &mut String, p: &Pose, fill: &str, stroke: &str| {
-        let pts: Vec<String> = oct
-            .vertices_at(p)
-            .iter()
-            .map(|&(x, y)| format!("{},{}", n(tx(x)), n(ty(y))))
-            .collect();
-        let _ = writeln!(
-            s,
-            r#"<polygon points="{}" fill="{fill}" stroke="{stroke}" stroke-width="{}"/>"#,
-            pts.join(" "),
-            n((0.04 * w * scale).clamp(0.3, 1.5))
-        );
+    // tile outlines: filled octagons in a group that strokes them all alike
+    let outline = |p: &Pose, fill: &str| {
+        Polygon::new()
+            .set("points", points(oct.vertices_at(p).map(|v| page.point(v))))
+            .set("fill", fill)
     };
-    if tiles <= DETAIL_TILES {
-        for (i, p) in poses.iter().enumerate() {
-            let fill = if in_collision(i) {
-                "#f28b82"
-            } else if (i > 0 && folding_joint(i - 1)) || (i + 1 < tiles && folding_joint(i)) {
-                "#c6dbf7"
-            } else if moving_tile(i) {
-                "#e4eefb"
-            } else {
-                "#e9e6df"
-            };
-            polygon(&mut s, p, fill, "#55524c");
-        }
-        let r = 0.5 * geometry.design(0).magnet_diameter;
-        for (i, p) in poses.iter().enumerate() {
-            for k in [2 * i, 2 * i + 1] {
-                let path = geometry.path(k);
-                let pts: Vec<String> = path
-                    .polyline(0.5)
-                    .into_iter()
-                    .map(|q| {
-                        let (x, y) = p.transform_point(q);
-                        format!("{},{}", n(tx(x)), n(ty(y)))
-                    })
-                    .collect();
-                let _ = writeln!(
-                    s,
-                    r##"<polyline points="{}" fill="none" stroke="#9c968a" stroke-width="{}" stroke-linecap="round"/>"##,
-                    pts.join(" "),
-                    n((2.0 * r * scale).max(1.0) * 1.1)
-                );
-            }
-        }
-        // hinges of fold joints
-        for (j, pose) in poses.iter().enumerate().take(tiles.saturating_sub(1)) {
-            if let Some(Some(fold)) = state.folds.get(j) {
-                let (hx, hy) = oct.hinge(*fold == crate::Fold::L);
-                let (x, y) = pose.transform_point((hx, hy));
-                let col = if folding_joint(j) { "#1a56b8" } else { "#333" };
-                let _ = writeln!(
-                    s,
-                    r#"<circle cx="{}" cy="{}" r="{}" fill="{col}"/>"#,
-                    n(tx(x)),
-                    n(ty(y)),
-                    n((0.06 * w * scale).max(1.5))
-                );
-            }
-        }
-        for (k, &(x, y)) in state.magnets.iter().enumerate() {
-            let fill = if k % 2 == 0 { "#d93025" } else { "#188038" };
-            let moving = state.moving.get(k).copied().unwrap_or(false);
-            let _ = writeln!(
-                s,
-                r##"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="{}" stroke-width="{}"/>"##,
-                n(tx(x)),
-                n(ty(y)),
-                n((r * scale).max(1.0)),
-                if moving { "#ff9800" } else { "#222" },
-                if moving {
-                    n((0.5 * r * scale).max(1.5))
-                } else {
-                    "0.5".into()
-                }
-            );
-        }
-    } else {
-        // lean: one thick polyline through the centres, collinear runs merged
-        let mut pts: Vec<(f64, f64)> = Vec::new();
-        for p in poses {
-            let q = (p.x, p.y);
-            if pts.len() >= 2 {
-                let a = pts[pts.len() - 2];
-                let b = pts[pts.len() - 1];
-                let cross = (b.0 - a.0) * (q.1 - b.1) - (b.1 - a.1) * (q.0 - b.0);
-                let dot = (b.0 - a.0) * (q.0 - b.0) + (b.1 - a.1) * (q.1 - b.1);
-                if cross.abs() < 1e-9 * w * w && dot > 0.0 {
-                    let last = pts.len() - 1;
-                    pts[last] = q;
-                    continue;
-                }
-            }
-            pts.push(q);
-        }
-        let d: Vec<String> = pts
-            .iter()
-            .map(|&(x, y)| format!("{},{}", n(tx(x)), n(ty(y))))
-            .collect();
-        let _ = writeln!(
-            s,
-            r##"<polyline points="{}" fill="none" stroke="#b9b3a6" stroke-width="{}" stroke-linejoin="round" stroke-linecap="round"/>"##,
-            d.join(" "),
-            n((w * scale).max(1.0))
+    let outlines = Group::new()
+        .set("stroke", "#55524c")
+        .set("stroke-width", num((0.04 * w * page.scale).clamp(0.3, 1.5)));
+    if state.tiles() <= DETAIL_TILES {
+        doc = draw_detail(
+            doc,
+            geometry,
+            state,
+            &page,
+            &in_collision,
+            outlines,
+            &outline,
         );
-        let mut shown = 0;
-        for (i, p) in poses.iter().enumerate() {
-            if shown < 2000 && (moving_tile(i) || in_collision(i)) {
-                let fill = if in_collision(i) {
-                    "#f28b82"
-                } else {
-                    "#c6dbf7"
-                };
-                polygon(&mut s, p, fill, "#55524c");
-                shown += 1;
-            }
-        }
+    } else {
+        doc = draw_lean(doc, state, w, &page, &in_collision, outlines, &outline);
     }
     // the RI, held at the outer edge of tile 0
-    let (rx, ry) = poses[0].transform_point(geometry.ri_position());
+    let (rx, ry) = page.point(state.poses[0].transform_point(geometry.ri_position()));
     let r = 0.5 * geometry.design(0).magnet_diameter;
-    let _ = writeln!(
-        s,
-        r##"<circle cx="{}" cy="{}" r="{}" fill="#7b1fa2" stroke="#222" stroke-width="0.5"/><text x="{}" y="{}" font-size="11" text-anchor="end" fill="#7b1fa2">RI</text>"##,
-        n(tx(rx)),
-        n(ty(ry)),
-        n((r * scale).max(1.5)),
-        n(tx(rx) - (r * scale).max(1.5) - 2.0),
-        n(ty(ry) + 4.0)
-    );
-    let moving = state.moving_count();
-    let _ = writeln!(
-        s,
-        r##"<text x="8" y="{}" font-size="13" fill="#222">{}  t = {:.4} s  ({} moving)</text>"##,
-        n(px_h + 18.0),
-        esc(&opts.title),
+    let ri_r = (r * page.scale).max(1.5);
+    doc = doc
+        .add(
+            Circle::new()
+                .set("cx", num(rx))
+                .set("cy", num(ry))
+                .set("r", num(ri_r))
+                .set("fill", "#7b1fa2")
+                .set("stroke", "#222")
+                .set("stroke-width", "0.5"),
+        )
+        .add(
+            Text::new("RI")
+                .set("x", num(rx - ri_r - 2.0))
+                .set("y", num(ry + 4.0))
+                .set("font-size", "11")
+                .set("text-anchor", "end")
+                .set("fill", "#7b1fa2"),
+        );
+    let stamp = format!(
+        "{}  t = {:.4} s  ({} moving)",
+        opts.title,
         state.time,
-        moving
+        state.moving_count()
+    );
+    doc = doc.add(
+        Text::new(stamp)
+            .set("x", "8")
+            .set("y", num(px_h + 18.0))
+            .set("font-size", "13")
+            .set("fill", "#222"),
     );
     if let Some(note) = &opts.note {
-        let _ = writeln!(
-            s,
-            r##"<text x="8" y="{}" font-size="12" fill="{}">{}</text>"##,
-            n(px_h + 34.0),
-            if opts.collision.is_some() {
-                "#c5221f"
-            } else {
-                "#444"
-            },
-            esc(note)
+        let colour = if opts.collision.is_some() {
+            "#c5221f"
+        } else {
+            "#444"
+        };
+        doc = doc.add(
+            Text::new(note.as_str())
+                .set("x", "8")
+                .set("y", num(px_h + 34.0))
+                .set("font-size", "12")
+                .set("fill", colour),
         );
     }
-    s.push_str("</svg>\n");
-    s
+    to_text(&doc)
+}
+
+/// A chain of at most [`DETAIL_TILES`] tiles: outlines, paths, hinges of fold joints and
+/// magnets.
+fn draw_detail(
+    mut doc: Document,
+    geometry: &Geometry,
+    state: &ChainState,
+    page: &PageMap,
+    in_collision: &impl Fn(usize) -> bool,
+    mut outlines: Group,
+    outline: &impl Fn(&Pose, &str) -> Polygon,
+) -> Document {
+    let w = geometry.w;
+    let tiles = state.tiles();
+    for (i, p) in state.poses.iter().enumerate() {
+        let fill = if in_collision(i) {
+            "#f28b82"
+        } else if (i > 0 && state.joint_folding(i - 1)) || (i + 1 < tiles && state.joint_folding(i))
+        {
+            "#c6dbf7"
+        } else if state.tile_moving(i) {
+            "#e4eefb"
+        } else {
+            "#e9e6df"
+        };
+        outlines = outlines.add(outline(p, fill));
+    }
+    doc = doc.add(outlines);
+    let r = 0.5 * geometry.design(0).magnet_diameter;
+    // the magnets' paths: one stroke for all
+    let mut paths = Group::new()
+        .set("fill", "none")
+        .set("stroke", "#9c968a")
+        .set("stroke-width", num((2.0 * r * page.scale).max(1.0) * 1.1))
+        .set("stroke-linecap", "round");
+    for (i, p) in state.poses.iter().enumerate() {
+        for k in [2 * i, 2 * i + 1] {
+            let path = geometry.path(k).polyline(0.5);
+            let pts = path.into_iter().map(|q| page.point(p.transform_point(q)));
+            paths = paths.add(Polyline::new().set("points", points(pts)));
+        }
+    }
+    doc = doc.add(paths);
+    // hinges of fold joints
+    for (j, pose) in state.poses.iter().enumerate().take(tiles.saturating_sub(1)) {
+        if let Some(Some(fold)) = state.folds.get(j) {
+            let (x, y) = page.point(pose.transform_point(Octagon::new(w).hinge(*fold == Fold::L)));
+            let colour = if state.joint_folding(j) {
+                "#1a56b8"
+            } else {
+                "#333"
+            };
+            doc = doc.add(
+                Circle::new()
+                    .set("cx", num(x))
+                    .set("cy", num(y))
+                    .set("r", num((0.06 * w * page.scale).max(1.5)))
+                    .set("fill", colour),
+            );
+        }
+    }
+    for (k, &m) in state.magnets.iter().enumerate() {
+        let (x, y) = page.point(m);
+        let fill = if k % 2 == 0 { "#d93025" } else { "#188038" };
+        let moving = state.moving.get(k).copied().unwrap_or(false);
+        let (stroke, stroke_width) = if moving {
+            ("#ff9800", num((0.5 * r * page.scale).max(1.5)))
+        } else {
+            ("#222", "0.5".to_string())
+        };
+        doc = doc.add(
+            Circle::new()
+                .set("cx", num(x))
+                .set("cy", num(y))
+                .set("r", num((r * page.scale).max(1.0)))
+                .set("fill", fill)
+                .set("stroke", stroke)
+                .set("stroke-width", stroke_width),
+        );
+    }
+    doc
+}
+
+/// A long chain: one thick polyline through the centres, collinear runs merged, and the
+/// moving or colliding tiles over it (at most [`LEAN_TILES_SHOWN`]).
+fn draw_lean(
+    mut doc: Document,
+    state: &ChainState,
+    w: f64,
+    page: &PageMap,
+    in_collision: &impl Fn(usize) -> bool,
+    mut outlines: Group,
+    outline: &impl Fn(&Pose, &str) -> Polygon,
+) -> Document {
+    let mut line: Vec<Point> = Vec::new();
+    for p in &state.poses {
+        let q = Point::new(p.x, p.y);
+        if let [.., a, b] = line[..] {
+            let (ab, bq) = (b - a, q - b);
+            if ab.cross(bq).abs() < 1e-9 * w * w && ab.dot(bq) > 0.0 {
+                let last = line.len() - 1;
+                line[last] = q;
+                continue;
+            }
+        }
+        line.push(q);
+    }
+    doc = doc.add(
+        Polyline::new()
+            .set("points", points(line.iter().map(|&q| page.point(q.into()))))
+            .set("fill", "none")
+            .set("stroke", "#b9b3a6")
+            .set("stroke-width", num((w * page.scale).max(1.0)))
+            .set("stroke-linejoin", "round")
+            .set("stroke-linecap", "round"),
+    );
+    let shown = (0..state.tiles())
+        .filter(|&i| state.tile_moving(i) || in_collision(i))
+        .take(LEAN_TILES_SHOWN);
+    for i in shown {
+        let fill = if in_collision(i) {
+            "#f28b82"
+        } else {
+            "#c6dbf7"
+        };
+        outlines = outlines.add(outline(&state.poses[i], fill));
+    }
+    doc.add(outlines)
 }

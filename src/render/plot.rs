@@ -1,93 +1,114 @@
 //! Line plots with axes: the energy curve (thesis figure 7.5), and the axes shared with the
 //! transition diagram.
 
-use std::fmt::Write;
+use svg::node::element::{Line, Polyline, Rectangle, Text};
+use svg::Document;
 
 use crate::engine::{EnergySample, FoldRecord};
-use crate::render::{esc, n};
+use crate::render::{document, num, points, to_text};
 
 /// A plot area: data ranges mapped to pixels.
 pub(crate) struct Axes {
+    /// Data x at the left edge of the plot area.
     pub x0: f64,
+    /// Data x at the right edge.
     pub x1: f64,
+    /// Data y at the bottom edge.
     pub y0: f64,
+    /// Data y at the top edge.
     pub y1: f64,
+    /// Pixels from the picture's left edge to the plot area.
     pub left: f64,
+    /// Pixels from the picture's top edge to the plot area.
     pub top: f64,
+    /// Width of the plot area, pixels.
     pub width: f64,
+    /// Height of the plot area, pixels.
     pub height: f64,
 }
 
 impl Axes {
+    /// The pixel column of data x.
     pub fn px(&self, x: f64) -> f64 {
         self.left + (x - self.x0) / (self.x1 - self.x0).max(1e-300) * self.width
     }
+
+    /// The pixel row of data y.
     pub fn py(&self, y: f64) -> f64 {
         self.top + self.height - (y - self.y0) / (self.y1 - self.y0).max(1e-300) * self.height
     }
 
-    /// Frame, ticks, labels and title, opening an SVG document.
-    pub fn open(&self, title: &str, xlabel: &str, ylabel: &str) -> String {
+    /// A document holding the frame, grid, ticks, labels and title, to draw the data on.
+    pub fn open(&self, title: &str, xlabel: &str, ylabel: &str) -> Document {
         let (wt, ht) = (self.left + self.width + 30.0, self.top + self.height + 50.0);
-        let mut s = String::new();
-        let _ = writeln!(
-            s,
-            r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}" font-family="sans-serif" font-size="12">
-<rect width="100%" height="100%" fill="white"/>
-<text x="{}" y="20" font-size="14" text-anchor="middle">{}</text>
-<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#333"/>"##,
-            n(wt),
-            n(ht),
-            n(wt),
-            n(ht),
-            n(self.left + 0.5 * self.width),
-            esc(title),
-            n(self.left),
-            n(self.top),
-            n(self.width),
-            n(self.height)
-        );
-        for (v, along_x) in ticks(self.x0, self.x1)
-            .into_iter()
-            .map(|v| (v, true))
-            .chain(ticks(self.y0, self.y1).into_iter().map(|v| (v, false)))
-        {
-            if along_x {
-                let x = self.px(v);
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="#ddd"/><text x="{x}" y="{}" text-anchor="middle">{}</text>"##,
-                    n(self.top),
-                    n(self.top + self.height),
-                    n(self.top + self.height + 16.0),
-                    fmt_tick(v),
-                    x = n(x)
+        let mut doc = document(wt, ht, "white")
+            .set("font-size", "12")
+            .add(
+                Text::new(title)
+                    .set("x", num(self.left + 0.5 * self.width))
+                    .set("y", "20")
+                    .set("font-size", "14")
+                    .set("text-anchor", "middle"),
+            )
+            .add(
+                Rectangle::new()
+                    .set("x", num(self.left))
+                    .set("y", num(self.top))
+                    .set("width", num(self.width))
+                    .set("height", num(self.height))
+                    .set("fill", "none")
+                    .set("stroke", "#333"),
+            );
+        for v in ticks(self.x0, self.x1) {
+            let x = self.px(v);
+            doc = doc
+                .add(grid_line((x, self.top), (x, self.top + self.height)))
+                .add(
+                    Text::new(fmt_tick(v))
+                        .set("x", num(x))
+                        .set("y", num(self.top + self.height + 16.0))
+                        .set("text-anchor", "middle"),
                 );
-            } else {
-                let y = self.py(v);
-                let _ = writeln!(
-                    s,
-                    r##"<line x1="{}" y1="{y}" x2="{}" y2="{y}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end">{}</text>"##,
-                    n(self.left),
-                    n(self.left + self.width),
-                    n(self.left - 6.0),
-                    n(y + 4.0),
-                    fmt_tick(v),
-                    y = n(y)
-                );
-            }
         }
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle">{}</text><text transform="translate(16,{}) rotate(-90)" text-anchor="middle">{}</text>"#,
-            n(self.left + 0.5 * self.width),
-            n(self.top + self.height + 36.0),
-            esc(xlabel),
-            n(self.top + 0.5 * self.height),
-            esc(ylabel)
-        );
-        s
+        for v in ticks(self.y0, self.y1) {
+            let y = self.py(v);
+            doc = doc
+                .add(grid_line((self.left, y), (self.left + self.width, y)))
+                .add(
+                    Text::new(fmt_tick(v))
+                        .set("x", num(self.left - 6.0))
+                        .set("y", num(y + 4.0))
+                        .set("text-anchor", "end"),
+                );
+        }
+        doc.add(
+            Text::new(xlabel)
+                .set("x", num(self.left + 0.5 * self.width))
+                .set("y", num(self.top + self.height + 36.0))
+                .set("text-anchor", "middle"),
+        )
+        .add(
+            Text::new(ylabel)
+                .set(
+                    "transform",
+                    format!(
+                        "translate(16,{}) rotate(-90)",
+                        num(self.top + 0.5 * self.height)
+                    ),
+                )
+                .set("text-anchor", "middle"),
+        )
     }
+}
+
+/// A light grid line between two pixel positions.
+fn grid_line(from: (f64, f64), to: (f64, f64)) -> Line {
+    Line::new()
+        .set("x1", num(from.0))
+        .set("y1", num(from.1))
+        .set("x2", num(to.0))
+        .set("y2", num(to.1))
+        .set("stroke", "#ddd")
 }
 
 /// About six round tick values covering `[a, b]`.
@@ -149,37 +170,38 @@ pub fn energy_svg(folds: &[FoldRecord], curve: &[EnergySample], title: &str) -> 
         width: 640.0,
         height: 340.0,
     };
-    let mut s = ax.open(title, "time (s)", "total dipole energy (mJ)");
+    let mut doc = ax.open(title, "time (s)", "total dipole energy (mJ)");
     // shade at most 200 fold windows
     for f in folds.iter().take(200) {
         let end = if f.end.is_nan() { t1 } else { f.end };
-        let _ = writeln!(
-            s,
-            r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#1a56b8" fill-opacity="0.08"/>"##,
-            n(ax.px(f.start)),
-            n(ax.top),
-            n((ax.px(end) - ax.px(f.start)).max(0.5)),
-            n(ax.height)
+        doc = doc.add(
+            Rectangle::new()
+                .set("x", num(ax.px(f.start)))
+                .set("y", num(ax.top))
+                .set("width", num((ax.px(end) - ax.px(f.start)).max(0.5)))
+                .set("height", num(ax.height))
+                .set("fill", "#1a56b8")
+                .set("fill-opacity", "0.08"),
         );
     }
-    let pts: Vec<String> = curve
+    let pts = curve
         .iter()
         .zip(&ys)
-        .map(|(c, &y)| format!("{},{}", n(ax.px(c.time)), n(ax.py(y))))
-        .collect();
-    let _ = writeln!(
-        s,
-        r##"<polyline points="{}" fill="none" stroke="#c5221f" stroke-width="2"/>"##,
-        pts.join(" ")
+        .map(|(c, &y)| (ax.px(c.time), ax.py(y)));
+    doc = doc.add(
+        Polyline::new()
+            .set("points", points(pts))
+            .set("fill", "none")
+            .set("stroke", "#c5221f")
+            .set("stroke-width", "2"),
     );
     if !folds.is_empty() {
-        let _ = writeln!(
-            s,
-            r##"<text x="{}" y="{}" fill="#1a56b8">shaded: folds turning</text>"##,
-            n(ax.left + 8.0),
-            n(ax.top + 16.0)
+        doc = doc.add(
+            Text::new("shaded: folds turning")
+                .set("x", num(ax.left + 8.0))
+                .set("y", num(ax.top + 16.0))
+                .set("fill", "#1a56b8"),
         );
     }
-    s.push_str("</svg>\n");
-    s
+    to_text(&doc)
 }

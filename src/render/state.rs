@@ -1,6 +1,6 @@
 //! The chain at one moment, as a frame draws it: the same data whichever simulation made it
 //! (the event engine's timeline, [`ChainState::from_timeline`], or a recorded state of the
-//! force-integrated reference, [`crate::fold_run`]).
+//! force-integrated reference, [`crate::reference`]).
 
 use crate::engine::{joint_angles_at, Timeline};
 use crate::kinematics::poses_at_angles;

@@ -3,11 +3,11 @@
 //! the path from the rest point (so a curved path shows its full travel); dashed lines mark
 //! tile edges, dots where a magnet starts and ticks where it starts the next one.
 
-use std::fmt::Write;
+use svg::node::element::{Circle, Line, Polyline, Text};
 
 use crate::engine::{EventKind, Geometry, Timeline};
-use crate::render::n;
 use crate::render::plot::Axes;
+use crate::render::{num, points, to_text};
 
 /// One magnet's line in the transition diagram.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -20,7 +20,7 @@ pub struct MagnetTrack {
 
 /// What the transition diagram shows: the same whichever simulation made it (the event
 /// engine's timeline, [`TransitionData::from_timeline`], or the reference integrator's
-/// recorded states, [`crate::fold_run`]).
+/// recorded states, [`crate::reference`]; see [`crate::render::RunSource`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TransitionData {
     /// First tile shown.
@@ -109,60 +109,68 @@ pub fn transition_svg(geometry: &Geometry, data: &TransitionData, title: &str) -
         width: 640.0,
         height: (60.0 * (last - first + 1) as f64).clamp(240.0, 900.0),
     };
-    let mut s = ax.open(title, "time (s)", "position along the chain (mm)");
+    let mut doc = ax.open(title, "time (s)", "position along the chain (mm)");
     for i in first..=last + 1 {
-        let y = ax.py(i as f64 * w - 0.5 * w);
-        let _ = writeln!(
-            s,
-            r##"<line x1="{}" y1="{y}" x2="{}" y2="{y}" stroke="#888" stroke-dasharray="4 3"/>"##,
-            n(ax.left),
-            n(ax.left + ax.width),
-            y = n(y)
+        let y = num(ax.py(i as f64 * w - 0.5 * w));
+        doc = doc.add(
+            Line::new()
+                .set("x1", num(ax.left))
+                .set("y1", y.clone())
+                .set("x2", num(ax.left + ax.width))
+                .set("y2", y)
+                .set("stroke", "#888")
+                .set("stroke-dasharray", "4 3"),
         );
     }
+    // position along the chain of magnet `k` after travelling `u` from its rest point
+    let position = |k: usize, u: f64| {
+        let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
+        (k / 2) as f64 * w + geometry.path(k).rest().0 + dir * u
+    };
     for (i, track) in data.tracks.iter().enumerate() {
         let k = 2 * first + i;
-        let tile = k / 2;
-        let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
-        let rest = tile as f64 * w + geometry.path(k).rest().0;
         let colour = if k % 2 == 0 { "#d93025" } else { "#188038" };
-        let d: Vec<String> = track
+        let pts = track
             .travel
             .iter()
-            .map(|&(t, u)| format!("{},{}", n(ax.px(t)), n(ax.py(rest + dir * u))))
-            .collect();
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="2"/>"#,
-            d.join(" ")
+            .map(|&(t, u)| (ax.px(t), ax.py(position(k, u))));
+        doc = doc.add(
+            Polyline::new()
+                .set("points", points(pts))
+                .set("fill", "none")
+                .set("stroke", colour)
+                .set("stroke-width", "2"),
         );
         if let Some(s0) = track.start {
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{}" cy="{}" r="3.5" fill="{colour}"/>"#,
-                n(ax.px(s0)),
-                n(ax.py(rest))
+            doc = doc.add(
+                Circle::new()
+                    .set("cx", num(ax.px(s0)))
+                    .set("cy", num(ax.py(position(k, 0.0))))
+                    .set("r", "3.5")
+                    .set("fill", colour),
             );
         }
     }
     for &(k, time, u) in &data.triggers {
-        let tile = k / 2;
-        let dir = if k % 2 == 0 { -1.0 } else { 1.0 };
-        let y = tile as f64 * w + geometry.path(k).rest().0 + dir * u;
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x}" y1="{}" x2="{x}" y2="{}" stroke="#7b1fa2" stroke-width="2"/>"##,
-            n(ax.py(y) - 6.0),
-            n(ax.py(y) + 6.0),
-            x = n(ax.px(time))
+        let (x, y) = (num(ax.px(time)), ax.py(position(k, u)));
+        doc = doc.add(
+            Line::new()
+                .set("x1", x.clone())
+                .set("y1", num(y - 6.0))
+                .set("x2", x)
+                .set("y2", num(y + 6.0))
+                .set("stroke", "#7b1fa2")
+                .set("stroke-width", "2"),
         );
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="{}" y="{}" fill="#444">red/green: magnets by pole; dot: starts; purple tick: starts the next magnet; dashed: tile edges</text>"##,
-        n(ax.left),
-        n(ax.top + ax.height + 48.0)
+    doc = doc.add(
+        Text::new(
+            "red/green: magnets by pole; dot: starts; purple tick: starts the next magnet; \
+             dashed: tile edges",
+        )
+        .set("x", num(ax.left))
+        .set("y", num(ax.top + ax.height + 48.0))
+        .set("fill", "#444"),
     );
-    s.push_str("</svg>\n");
-    s
+    to_text(&doc)
 }

@@ -6,12 +6,25 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
-use foldchain::input::read_chain_arg;
+use foldchain_cli::inputs::read_chain;
+use foldchain_cli::report::print_error;
 
 /// Checks that a chain of tiles folds sequentially from the reaction-initiator end without
 /// any two tiles overlapping, at every moment of every fold and in the final shape.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    name = "fold-check",
+    version,
+    about = "Does a chain of tiles fold without hitting itself? Checks every fold sweep (sequential folding from the reaction-initiator end) and the final shape.",
+    after_help = "Examples:
+  fold-check SLLS                  a tight U-turn: valid
+  fold-check LSLLSR                collision: tiles 0 and 6 meet while joint 3 folds
+  fold-check --final-only LSLLSR   valid: the final shape is clean, the sweep is not
+  fold-check 'SS SL LL LS SS' --json
+  fold-check chain.txt             a file holding a word, a tile list or JSON
+
+Exit codes: 0 valid, 1 collides or propagation inhibited, 2 bad input."
+)]
 struct Args {
     /// The chain: a fold word (`SLLS`), a tile list (`SS SL LL LS SS`, `SS*12`), JSON, or a
     /// file holding one of them.
@@ -32,7 +45,7 @@ fn main() -> ExitCode {
     match run(&args) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("fold-check: {e:#}");
+            print_error("fold-check", &e);
             ExitCode::from(2)
         }
     }
@@ -45,7 +58,7 @@ fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.tolerance
         );
     }
-    let chain = read_chain_arg(&args.chain)?;
+    let chain = read_chain(&args.chain)?;
     let opts = CheckOptions::default()
         .with_final_only(args.final_only)
         .with_tolerance(args.tolerance);

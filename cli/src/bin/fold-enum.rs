@@ -1,25 +1,47 @@
 //! `fold-enum --max-tiles N`: counts the fold words that fold without self-intersection
 //! (thesis Table 5.1).
 
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::count::{count_valid, estimate_random, CountOptions, CountRow};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use foldchain::count::{
+    count_valid, estimate_random, merge_reports, CountOptions, CountReport, CountRow, Shard,
+    MAX_COUNT_TILES,
+};
+use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
+use foldchain_cli::report::print_error;
 
 /// Counts, for each chain length, the candidate fold words (3^(n-1)) and those that fold
 /// sequentially without any two tiles overlapping, from the geometry and the sweep check.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    name = "fold-enum",
+    version,
+    about = "Counts the fold words whose chains fold without self-intersection, for every chain length (thesis Table 5.1), from the geometry and the exact sweep check; optionally the chance that a chain of random tiles folds.",
+    after_help = "Examples:
+  fold-enum --max-tiles 6                 thesis Table 5.1: 3 7 17 35 79
+  fold-enum --max-tiles 20 --json
+  fold-enum --max-tiles 12 --random       with the probability for random tiles
+  fold-enum --max-tiles 26 --shard 3/8 --json > part-3.json
+                                          part 3 of 8 of the search (parts add up)
+  fold-enum --merge part-*.json           the whole count from all 8 parts
+
+The count grows about twice per tile: a run expected to take more than a few minutes says
+so before it starts. On a terminal a progress bar appears after a second; otherwise a
+progress line is printed every few seconds (--quiet silences both).
+
+Exit codes: 0 done, 2 bad input."
+)]
 struct Args {
-    /// Longest chain counted, in tiles.
-    #[arg(long)]
-    max_tiles: usize,
+    /// Longest chain counted, in tiles (2 to 40).
+    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true, required_unless_present = "merge")]
+    max_tiles: Option<usize>,
     /// Shortest chain counted, in tiles.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = tiles_arg, allow_hyphen_values = true)]
     min_tiles: usize,
     /// Count words with adjacent opposite folds (L then R), which need LR/RL tiles.
     #[arg(long)]
@@ -34,9 +56,10 @@ struct Args {
     /// Longest chain for which the random-chain probability is computed exactly.
     #[arg(long, default_value_t = 16)]
     random_exact_max: usize,
-    /// Chains sampled per length beyond exact reach.
-    #[arg(long, default_value_t = 200_000)]
-    samples: u64,
+    /// With --random: chains sampled per length beyond exact reach (default 200000; 1e6
+    /// is accepted).
+    #[arg(long, value_parser = samples_arg, allow_hyphen_values = true)]
+    samples: Option<u64>,
     /// Seed of the sampling.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -44,94 +67,152 @@ struct Args {
     /// counts add up exactly.
     #[arg(long, value_name = "K/M")]
     shard: Option<String>,
+    /// Add up the JSON reports of all the parts of one --shard run and print the whole
+    /// count; refuses a missing or doubled part, or parts of different searches.
+    #[arg(long, num_args = 1.., value_name = "FILE", conflicts_with_all = ["max_tiles", "shard", "random", "allow_lr", "final_only"])]
+    merge: Vec<PathBuf>,
     /// Print JSON: {"rows":[{"tiles":n,"candidates":c,"valid":v,...}]}.
     #[arg(long)]
     json: bool,
+    /// No progress on stderr, no estimate.
+    #[arg(long)]
+    quiet: bool,
 }
+
+/// A chain length on the command line: a whole number of tiles.
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .map_err(|_| format!("expected a whole number of tiles from 2 to {MAX_COUNT_TILES}"))
+}
+
+/// A sample count: a whole number, also written as 1e6.
+fn samples_arg(s: &str) -> Result<u64, String> {
+    let bad = || "expected a whole number of samples >= 1 (e.g. 200000 or 1e6)".to_string();
+    let v: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(v >= 1.0 && v.fract() == 0.0 && v < 1.8e19) {
+        return Err(bad());
+    }
+    Ok(v as u64)
+}
+
+/// Chains sampled per length beyond exact reach, by default.
+const DEFAULT_SAMPLES: u64 = 200_000;
+
+/// A run expected to take longer than this says so before it starts.
+const WARN_SECONDS: f64 = 180.0;
 
 fn main() -> ExitCode {
     let args = Args::parse();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("fold-enum: {e:#}");
+            print_error("fold-enum", &e);
             ExitCode::from(2)
         }
     }
 }
 
-fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
-    let bad =
-        || anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8");
-    let (k, m) = s.split_once('/').ok_or_else(bad)?;
-    let (k, m): (usize, usize) = (
-        k.trim().parse().map_err(|_| bad())?,
-        m.trim().parse().map_err(|_| bad())?,
-    );
-    if k < 1 || k > m {
-        return Err(bad());
-    }
-    Ok((k, m))
+fn parse_shard(s: &str) -> anyhow::Result<Shard> {
+    s.parse().map_err(|_| {
+        anyhow::anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8")
+    })
 }
 
-/// A progress bar on stderr that appears only once a run has taken more than a second and
-/// only on a terminal.
-struct Progress {
-    bar: ProgressBar,
-    start: Instant,
-    shown: Mutex<bool>,
+/// The rough cost of counting up to `max` tiles: a calibration run to 22 tiles is timed,
+/// and the work grows per tile by the ratio of its last two rows' valid counts (about 2).
+/// Returns the expected valid words at `max` and the seconds; `None` when the run is short
+/// anyway.
+fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f64, f64)>> {
+    const CALIBRATE: usize = 22;
+    if max <= 24 {
+        return Ok(None);
+    }
+    let start = Instant::now();
+    let rows = count_valid(&opts.with_tiles(2, CALIBRATE), &|_, _| {})?;
+    let secs = start.elapsed().as_secs_f64();
+    let valid: Vec<f64> = rows.iter().map(|r| r.valid as f64).collect();
+    let (last, before) = (valid[valid.len() - 1], valid[valid.len() - 2]);
+    let ratio = (last / before.max(1.0)).max(1.0);
+    // every length up to max is counted: the time is a geometric sum over the lengths
+    let growth: f64 = (1..=max - CALIBRATE).map(|k| ratio.powi(k as i32)).sum();
+    let share = opts.shard.map_or(1.0, |(_, m)| 1.0 / m as f64);
+    let words = last * ratio.powi((max - CALIBRATE) as i32);
+    Ok(Some((words, secs * growth * share)))
 }
 
-impl Progress {
-    fn new() -> Progress {
-        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-        if let Ok(style) = ProgressStyle::with_template(
-            "{msg} [{bar:40}] {pos}/{len} parts, {elapsed} (eta {eta})",
-        ) {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        Progress {
-            bar,
-            start: Instant::now(),
-            shown: Mutex::new(false),
-        }
+/// `--merge`: the whole count from the parts' reports.
+fn merge(args: &Args) -> anyhow::Result<()> {
+    let mut files = Vec::with_capacity(args.merge.len());
+    for path in &args.merge {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read the shard report", path.display()))?;
+        files.push((path.display().to_string(), text));
     }
-
-    fn update(&self, msg: &str, done: u64, total: u64) {
-        if let Ok(mut shown) = self.shown.lock() {
-            if !*shown && self.start.elapsed() > Duration::from_secs(1) {
-                *shown = true;
-                self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            }
-        }
-        self.bar.set_message(msg.to_string());
-        self.bar.set_length(total);
-        self.bar.set_position(done);
+    let merged = merge_reports(&files)?;
+    if args.json {
+        println!("{}", serde_json::to_string(&merged)?);
+    } else {
+        let (allow_lr, final_only) = merged
+            .options
+            .map_or((false, false), |o| (o.allow_opposite, o.final_only));
+        let label = format!(", merged from {} parts", files.len());
+        print_table(&merged.rows, allow_lr, final_only, &label, false);
+        eprintln!("{:.2} s in all parts", merged.seconds);
     }
+    Ok(())
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
+    if !args.merge.is_empty() {
+        return merge(args);
+    }
+    let Some(max_tiles) = args.max_tiles else {
+        bail!("--max-tiles N is needed (or --merge FILES to add up shard reports)");
+    };
+    if !(2..=MAX_COUNT_TILES).contains(&max_tiles) {
+        bail!("--max-tiles {max_tiles}: expected a chain length from 2 to {MAX_COUNT_TILES} tiles");
+    }
+    if args.min_tiles < 2 || args.min_tiles > max_tiles {
+        bail!(
+            "--min-tiles {}: expected 2 to --max-tiles ({max_tiles})",
+            args.min_tiles
+        );
+    }
+    if args.samples.is_some() && !args.random {
+        bail!("--samples applies only with --random (the random-chain probability)");
+    }
+    let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
     let mut opts = CountOptions::default()
-        .with_tiles(args.min_tiles, args.max_tiles)
+        .with_tiles(args.min_tiles, max_tiles)
         .with_allow_opposite(args.allow_lr)
         .with_final_only(args.final_only);
-    if let Some(s) = &args.shard {
-        let (k, m) = parse_shard(s)?;
-        opts = opts.with_shard(k, m);
+    let shard = args.shard.as_deref().map(parse_shard).transpose()?;
+    if let Some(s) = shard {
+        opts = opts.with_shard(s.k, s.m);
     }
     if args.random && opts.shard.is_some() {
         anyhow::bail!(
             "--random cannot be combined with --shard (the probability needs the whole search)"
         );
     }
-    if args.random && args.samples == 0 {
-        anyhow::bail!("--samples 0: expected at least one sample");
+    let mode = ProgressMode::detect(args.quiet);
+    if mode != ProgressMode::Quiet {
+        if let Some((nodes, secs)) = estimate_seconds(&opts, max_tiles)? {
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: counting up to {} tiles finds about {nodes:.1e} valid words: roughly {} on this machine (from a timed calibration run to 22 tiles); --shard K/M splits the work",
+                    max_tiles,
+                    duration_words(secs)
+                );
+            }
+        }
     }
-    let progress = Progress::new();
+    let progress = Progress::new("fold-enum", "parts", mode);
     let start = Instant::now();
     let mut rows = count_valid(&opts, &|d, t| progress.update("counting", d, t))?;
     if args.random {
-        let exact_max = args.random_exact_max.min(args.max_tiles);
+        let exact_max = args.random_exact_max.min(max_tiles);
         if exact_max >= args.min_tiles {
             let exact = count_valid(
                 &opts.with_tiles(args.min_tiles, exact_max).with_random(true),
@@ -144,8 +225,24 @@ fn run(args: &Args) -> anyhow::Result<()> {
             }
         }
         let check = CheckOptions::default().with_final_only(args.final_only);
-        for row in rows.iter_mut().filter(|r| r.p_random.is_none()) {
-            let est = estimate_random(row.tiles, args.samples, args.seed, &check);
+        let sampled = rows.iter().filter(|r| r.p_random.is_none()).count() as u64;
+        if sampled > 0 && mode != ProgressMode::Quiet {
+            // time a small sample of the longest chains to say what the full one costs
+            let probe = 2_000.min(samples);
+            let t0 = Instant::now();
+            estimate_random(max_tiles, probe, args.seed, &check);
+            let secs =
+                t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
+            if secs > WARN_SECONDS {
+                eprintln!(
+                    "fold-enum: sampling {samples} chains at each of {sampled} lengths takes roughly {} on this machine",
+                    duration_words(secs)
+                );
+            }
+        }
+        for (i, row) in rows.iter_mut().filter(|r| r.p_random.is_none()).enumerate() {
+            progress.update("sampling random chains", i as u64, sampled);
+            let est = estimate_random(row.tiles, samples, args.seed, &check);
             row.p_random = Some(est.p);
             row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
             row.p_random_exact = Some(format!(
@@ -154,33 +251,34 @@ fn run(args: &Args) -> anyhow::Result<()> {
             ));
         }
     }
-    progress.bar.finish_and_clear();
+    progress.finish();
     let seconds = start.elapsed().as_secs_f64();
     if args.json {
-        let out = serde_json::json!({ "rows": rows, "seconds": seconds, "shard": args.shard });
-        println!("{out}");
+        // a shard carries its options, so that --merge can refuse parts of other searches
+        let report = CountReport {
+            rows,
+            seconds,
+            shard,
+            options: shard.map(|_| opts),
+        };
+        println!("{}", serde_json::to_string(&report)?);
     } else {
-        print_table(&rows, args);
+        let label = shard.map(|s| format!(", shard {s}")).unwrap_or_default();
+        print_table(&rows, args.allow_lr, args.final_only, &label, args.random);
         eprintln!("{:.2} s", seconds);
     }
     Ok(())
 }
 
-fn print_table(rows: &[CountRow], args: &Args) {
-    let mode = match (args.allow_lr, args.final_only) {
+fn print_table(rows: &[CountRow], allow_lr: bool, final_only: bool, label: &str, random: bool) {
+    let mode = match (allow_lr, final_only) {
         (false, false) => "adjacent LR/RL not used, sequential folding",
         (true, false) => "adjacent LR/RL allowed, sequential folding",
         (false, true) => "adjacent LR/RL not used, final shape only",
         (true, true) => "adjacent LR/RL allowed, final shape only",
     };
-    println!(
-        "# valid fold words ({mode}){}",
-        args.shard
-            .as_deref()
-            .map(|s| format!(", shard {s}"))
-            .unwrap_or_default()
-    );
-    if args.random {
+    println!("# valid fold words ({mode}){label}");
+    if random {
         println!(
             "{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact",
             "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)"
@@ -192,7 +290,7 @@ fn print_table(rows: &[CountRow], args: &Args) {
         );
     }
     for r in rows {
-        if args.random {
+        if random {
             println!(
                 "{:>5} {:>22} {:>16} {:>16} {:>12.8} {:>12.8}  {}",
                 r.tiles,

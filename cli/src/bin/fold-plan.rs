@@ -8,19 +8,33 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Parser;
-use foldchain_planner::{plan_svg_file, preview, PlanError, PlanOptions, Turns};
+use foldchain_cli::inputs::refuse_overwrite;
+use foldchain_cli::report::message;
+use foldchain_planner::{plan_svg_file, preview_svg_file, PlanError, PlanOptions, Turns};
 
 /// Plan a self-folding tile chain that fills the shape drawn in an SVG file.
 #[derive(Parser, Debug)]
-#[command(name = "fold-plan", version)]
+#[command(
+    name = "fold-plan",
+    version,
+    about = "Plans the chain of tiles that folds into a shape drawn in SVG: serpentine rows joined by U-turns, monotone cells joined by turns; every plan is checked to fold without self-intersection.",
+    after_help = "Examples:
+  fold-plan shapes/square.svg --tiles 107 --turns tight
+  fold-plan shapes/key.svg --tiles 171 --preview key-plan.svg --out key-plan.json
+  fold-plan shapes/ring.svg --tiles 300 --json
+  fold-run --plan key-plan.json     fold the planned chain
+
+Prints the run-length tile list and a summary line (or the plan JSON with --json).
+Exit codes: 0 planned, 1 the shape cannot be planned (the reason is given), 2 bad input."
+)]
 struct Args {
     /// The target shape: an SVG file; its filled areas are the shape.
     shape: PathBuf,
     /// About this many tiles (default 200 when --tile-size is not given).
-    #[arg(long, conflicts_with = "tile_size")]
+    #[arg(long, conflicts_with = "tile_size", value_parser = tiles_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
     /// Tile width (across flats) in SVG user units.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     tile_size: Option<f64>,
     /// U-turn style: tight (LL/RR tiles), loose (no LL/RR tiles) or auto (better fit).
     #[arg(long, default_value = "auto")]
@@ -36,6 +50,14 @@ struct Args {
     json: bool,
 }
 
+/// A tile count on the command line: a whole number >= 1.
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("expected a whole number of tiles >= 1".into()),
+    }
+}
+
 fn main() -> ExitCode {
     let args = match Args::try_parse() {
         Ok(a) => a,
@@ -47,7 +69,7 @@ fn main() -> ExitCode {
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("fold-plan: {e:#}");
+            eprintln!("fold-plan: {}", message(&e));
             let code = e
                 .downcast_ref::<PlanError>()
                 .map_or(2, |p| p.exit_code() as u8);
@@ -57,6 +79,15 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
+    if let Some(out) = &args.out {
+        refuse_overwrite(&[&args.shape], out, "--out")?;
+    }
+    if let Some(p) = &args.preview {
+        refuse_overwrite(&[&args.shape], p, "--preview")?;
+        if let Some(out) = &args.out {
+            refuse_overwrite(&[out], p, "--preview")?;
+        }
+    }
     let opts = PlanOptions {
         tiles: args.tiles,
         tile_size: args.tile_size,
@@ -68,7 +99,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             .context("writing the plan")?;
     }
     if let Some(p) = &args.preview {
-        let svg = preview::to_svg(&args.shape, &plan).context("drawing the preview")?;
+        let svg = preview_svg_file(&args.shape, &plan).context("drawing the preview")?;
         foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
     if args.json {

@@ -11,18 +11,41 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
-use foldchain::reference::events::Recording;
+use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
+use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
+use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
-    run_view, write_compare_page, write_run_files, RunFilesOptions,
+    is_run_file, run_view, write_compare_page, write_run_files, RunFilesOptions, MAX_FRAMES,
 };
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
-#[command(name = "fold-run", version, about)]
+#[command(
+    name = "fold-run",
+    version,
+    about = "Folds a chain of tiles: when every magnet moves and every joint folds (the event engine, or the force-integrated reference with --reference), whether two tiles collide on the way, and the pictures and JSON of the run.",
+    after_help = "Examples:
+  fold-run SLLS                         a straight tile, a tight U-turn, a straight tile
+  fold-run \"S*4 L L S*4 R R S*4\" --json
+  fold-run shapes/key.svg --tiles 171   plan the shape, then fold it
+  fold-run --plan key-plan.json --design my-design.json
+  fold-run LSLLSR --s e/3 --frames 60 --out out/lsllsr
+  fold-run SLLS --reference             the force-integrated reference (up to 2,000 tiles)
+  fold-run LSLLSR --compare             engine and reference side by side in one page
+
+Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
+energy.svg, index.html (the animated viewer: open it in a browser; #t=SECONDS opens it at
+that time), timeline.json and summary.json (written last). Nothing else in DIR is touched.
+Times are simulated seconds. The design JSON is described in README.md (see also
+docs/design-example.json).
+
+Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
+2 bad input."
+)]
 struct Args {
     /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
     /// target shape `SHAPE.svg` to plan and fold in one go.
@@ -40,8 +63,8 @@ struct Args {
     /// Output directory (default out/<name>/).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// Number of step frames (default: 40, fewer for long chains).
-    #[arg(long, value_name = "N")]
+    /// Number of step frames (default: 40, fewer for long chains; at most 100000).
+    #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
     frames: Option<usize>,
     /// Print the summary as JSON.
     #[arg(long)]
@@ -55,28 +78,28 @@ struct Args {
     #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
     start_rule: String,
     /// Drag coefficient of the overdamped law, N s/m.
-    #[arg(long, default_value_t = DEFAULT_DRAG)]
+    #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
     /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
     #[arg(long, value_name = "A..B")]
     transition: Option<String>,
     /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
     /// event engine: writes the same files (step frames, final.svg, transition.svg,
-    /// energy.svg, timeline.json, summary.json) drawn from the reference's recorded states
-    /// (default out/<name>-reference/; the reference has no collision check). For chains up
-    /// to 2,000 tiles.
+    /// energy.svg, index.html, timeline.json, summary.json) drawn from the reference's
+    /// recorded states (default out/<name>-reference/; the reference has no collision
+    /// check). For chains up to 2,000 tiles.
     #[arg(long, conflicts_with = "compare")]
     reference: bool,
-    /// Run both the event engine and the reference on the chain and write both runs' files
-    /// (DIR/engine, DIR/reference) and DIR/index.html playing them side by side on one clock
-    /// (default out/<name>-compare/). For chains up to 2,000 tiles.
+    /// Run both the event engine and the reference on the chain: both runs' files in
+    /// DIR/engine and DIR/reference, and DIR/index.html playing them side by side on one
+    /// clock (default out/<name>-compare/). For chains up to 2,000 tiles.
     #[arg(long)]
     compare: bool,
     /// SHAPE.svg only: about this many tiles.
-    #[arg(long)]
+    #[arg(long, value_parser = count_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
     /// SHAPE.svg only: tile width in SVG user units.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     tile_size: Option<f64>,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
@@ -88,9 +111,43 @@ fn main() -> ExitCode {
     match run(args) {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
-            eprintln!("fold-run: {e:#}");
+            print_error("fold-run", &e);
             ExitCode::from(2)
         }
+    }
+}
+
+/// A count on the command line: a whole number >= 1.
+fn count_arg(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("expected a whole number >= 1".into()),
+    }
+}
+
+/// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
+/// [`SValue::parse`] reads (`0.3mm`, `e/3`, `0.25e`).
+fn s_value(text: &str) -> anyhow::Result<SValue> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
+        Ok(_) => bail!("--s '{text}': expected a finite length >= 0 in mm"),
+        Err(_) => Ok(SValue::parse(text)?),
+    }
+}
+
+/// The name of a run given inline: the text itself when it is short and plain, else a name
+/// made from its fold word or its length.
+fn inline_name(arg: &str, chain: &Chain) -> String {
+    let t = arg.trim();
+    let plain = t
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || matches!(c, ' ' | '*' | '-' | '_'));
+    if plain && t.len() <= 40 {
+        return sanitize(t);
+    }
+    match chain.to_word() {
+        Ok(w) if w.to_string().len() <= 40 => sanitize(&w.to_string()),
+        _ => format!("chain-{}-tiles", chain.len()),
     }
 }
 
@@ -130,24 +187,18 @@ fn run(args: Args) -> anyhow::Result<u8> {
             "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
         ),
         (None, Some(plan_path)) => {
-            let plan = read_plan_file(plan_path)?;
-            // the plan names its shape file; draw it when it is still there
+            let (chain, plan) = read_plan_file(plan_path)?;
+            // the plan names its shape file; drawn when it is still there
             let shape = Path::new(&plan.source);
             if shape.is_file() {
                 target = target_outline(&plan, shape).unwrap_or_default();
             }
-            let word = plan
-                .fold_word()
-                .with_context(|| format!("{}: bad fold word in the plan", plan_path.display()))?;
-            (word.to_chain(), stem(plan_path))
+            (chain, stem(plan_path))
         }
         (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
             let path = Path::new(arg);
             let mut po = PlanOptions::default();
             if let Some(n) = args.tiles {
-                if n == 0 {
-                    bail!("--tiles 0: expected at least 1");
-                }
                 po = po.with_tiles(n);
             }
             if let Some(w) = args.tile_size {
@@ -177,11 +228,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
             if shape_opts_given {
                 bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg");
             }
-            let chain = foldchain::input::read_chain_arg(arg)?;
+            let chain = read_chain(arg)?;
             let name = if Path::new(arg).is_file() {
                 stem(Path::new(arg))
             } else {
-                sanitize(arg.trim())
+                inline_name(arg, &chain)
             };
             (chain, name)
         }
@@ -191,7 +242,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
         None => TileDesigns::default(),
     };
     if let Some(s) = &args.s {
-        designs = designs.with_s(SValue::parse(s)?);
+        designs = designs.with_s(s_value(s)?);
         designs.validate("--s")?;
     }
     let speed = match args.speed.as_str() {
@@ -203,8 +254,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
             SpeedLaw::Overdamped { drag: args.drag }
         }
     };
-    if args.frames == Some(0) {
-        bail!("--frames 0: expected at least 1");
+    if let Some(n) = args.frames.filter(|&n| n > MAX_FRAMES) {
+        bail!("--frames {n}: at most {MAX_FRAMES} step frames (each is a full SVG of the chain)");
     }
     let transition_tiles = match &args.transition {
         None => None,
@@ -247,6 +298,20 @@ fn run(args: Args) -> anyhow::Result<u8> {
             Mode::Compare => format!("{name}-compare"),
         })
     });
+    let mut inputs: Vec<&Path> = Vec::new();
+    if let Some(arg) = &args.chain {
+        if Path::new(arg).is_file() {
+            inputs.push(Path::new(arg));
+        }
+    }
+    inputs.extend(args.plan.as_deref());
+    inputs.extend(args.design.as_deref());
+    refuse_overwrite_in(&inputs, &out_dir, &is_run_file, "--out")?;
+    if mode == Mode::Compare {
+        for sub in ["engine", "reference"] {
+            refuse_overwrite_in(&inputs, &out_dir.join(sub), &is_run_file, "--out")?;
+        }
+    }
     let reference = || -> anyhow::Result<ReferenceRun> {
         if chain.len() > MAX_REFERENCE_TILES {
             bail!(
@@ -262,7 +327,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let engine = EngineOptions::default().with_speed(speed).with_start_rule(
         match args.start_rule.as_str() {
             "force" => StartRule::Force {
-                cutoff: foldchain::reference::dynamics::DEFAULT_CUTOFF,
+                cutoff: foldchain::physics::DEFAULT_CUTOFF,
             },
             _ => StartRule::Distance,
         },
@@ -280,13 +345,13 @@ fn run(args: Args) -> anyhow::Result<u8> {
             let run = reference()?;
             let summary = run.to_summary();
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
-            print_summary(&files.name, &summary, &out_dir, args.json);
+            print_summary(&files.name, &summary, &out_dir, args.json)?;
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
             let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
             write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
-            print_summary(&name, &summary, &out_dir, args.json);
+            print_summary(&name, &summary, &out_dir, args.json)?;
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
@@ -297,8 +362,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 name: format!("{name} (reference)"),
                 ..files.clone()
             };
-            write_files(&tl, &es, &out_dir.join("engine"), &files, bar.as_ref())?;
-            write_files(&run, &rs, &out_dir.join("reference"), &rfiles, bar.as_ref())?;
+            let (edir, rdir) = (out_dir.join("engine"), out_dir.join("reference"));
+            write_files(&tl, &es, &edir, &files, bar.as_ref())?;
+            write_files(&run, &rs, &rdir, &rfiles, bar.as_ref())?;
             let views = [
                 run_view(&tl, &es, &files, "engine"),
                 run_view(&run, &rs, &rfiles, "reference"),
@@ -306,13 +372,15 @@ fn run(args: Args) -> anyhow::Result<u8> {
             let title = format!("{name}: event engine and reference");
             write_compare_page(&out_dir, &title, &views)?;
             if args.json {
-                println!(
-                    "{}",
-                    serde_json::json!({ "engine": es, "reference": rs })
-                );
+                let v = serde_json::json!({
+                    "engine": with_out_dir(&es, &edir)?,
+                    "reference": with_out_dir(&rs, &rdir)?,
+                    "out_dir": out_dir.display().to_string(),
+                });
+                println!("{}", serde_json::to_string_pretty(&v)?);
             } else {
-                print_summary(&name, &es, &out_dir.join("engine"), false);
-                print_summary(&rfiles.name, &rs, &out_dir.join("reference"), false);
+                print_summary(&name, &es, &edir, false)?;
+                print_summary(&rfiles.name, &rs, &rdir, false)?;
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
@@ -339,7 +407,8 @@ enum Mode {
 /// validation scenes go up to 107 tiles.
 const MAX_REFERENCE_TILES: usize = 2_000;
 
-/// Writes the run's files, with a progress bar for long runs.
+/// Writes the run's files, with a progress bar for long runs, and warns of a simulated
+/// time far from a physical chain's.
 fn write_files(
     source: &dyn RunSource,
     s: &Summary,
@@ -355,17 +424,32 @@ fn write_files(
         }
     };
     write_run_files(source, s, out_dir, files, &mut progress)?;
+    let d = s.duration_s;
+    if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
+        eprintln!(
+            "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
+        );
+    }
     Ok(())
 }
 
-/// Prints a run's summary: one line (and the reason), or JSON.
-fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) {
+/// The summary as JSON with the directory its files went to.
+fn with_out_dir(s: &Summary, out_dir: &Path) -> anyhow::Result<serde_json::Value> {
+    let mut v = serde_json::to_value(s)?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("out_dir".into(), out_dir.display().to_string().into());
+    }
+    Ok(v)
+}
+
+/// Prints a run's summary: one line (and the reason), or JSON with `out_dir`.
+fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow::Result<()> {
     if json {
-        println!("{}", s.to_json());
-        return;
+        println!("{}", serde_json::to_string_pretty(&with_out_dir(s, out_dir)?)?);
+        return Ok(());
     }
     println!(
-        "{}: {} tiles, {} in {:.4} s, {} events, {} folds, at most {} magnets moving; wrote {}",
+        "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
         name,
         s.tiles,
         s.result,
@@ -378,6 +462,7 @@ fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) {
     if let Some(r) = &s.reason {
         println!("  {r}");
     }
+    Ok(())
 }
 
 /// 0 when every run completed, 1 otherwise.
@@ -389,16 +474,29 @@ fn exit_code(summaries: &[&Summary]) -> u8 {
     }
 }
 
-/// Reads a plan file (`fold-plan --out` or `--json`).
-fn read_plan_file(path: &Path) -> anyhow::Result<Plan> {
+/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
+fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read plan file {}", path.display()))?;
-    Plan::from_json(&text).map_err(|e| {
+    let plan = Plan::from_json(&text).map_err(|e| {
         anyhow!(
             "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
             path.display()
         )
-    })
+    })?;
+    let word = plan
+        .fold_word()
+        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
+    let chain = word.to_chain();
+    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
+        bail!(
+            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
+            path.display(),
+            chain.len(),
+            plan.tiles
+        );
+    }
+    Ok((chain, plan))
 }
 
 /// The outline of the shape in `shape_path` in the chain's own frame, in tile widths (tile
@@ -420,7 +518,7 @@ fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>
     Some(
         shape
             .rings()
-            .map(|r| r.points.iter().map(|&p| to_chain(p)).collect())
+            .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
             .collect(),
     )
 }

@@ -12,16 +12,23 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::bail;
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches, Parser};
+use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::stiff::{run_stiff_study, select_cases};
 use foldchain::reference::validate::{validate, ValidateOptions};
+use foldchain::reference::STIFF_CASES;
 use foldchain_cli::output::OutputDir;
+use foldchain_cli::report::print_error;
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
 /// integrator (Dormand-Prince 5(4), ROS2) along a ladder of tolerances, and reports each
 /// one's error (event times over the duration, final poses in tile widths) and wall time.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    name = "fold-validate",
+    version,
+    about = "Measures the event engine and the integrators against a tight force-integrated reference on the thesis' scenes: errors against run time (the work-precision table and plot)."
+)]
 struct Args {
     /// Print the rows as JSON instead of the table.
     #[arg(long)]
@@ -33,7 +40,7 @@ struct Args {
     #[arg(long, default_value = "out/validate")]
     out: PathBuf,
     /// Tolerance of the reference run.
-    #[arg(long, default_value_t = ValidateOptions::default().reference_tolerance)]
+    #[arg(long, default_value_t = ValidateOptions::default().reference_tolerance, conflicts_with = "quick")]
     reference_tolerance: f64,
     /// Quicker ladders (Dormand-Prince 1e-3 to 1e-6, ROS2 1e-2 to 1e-4; reference 1e-9).
     #[arg(long)]
@@ -79,8 +86,41 @@ fn stiff(args: &Args) -> anyhow::Result<String> {
     })
 }
 
+/// The help's closing text: examples, the scene and case names, the exit codes.
+fn after_help() -> String {
+    let scenes: Vec<String> = all_scenes()
+        .iter()
+        .map(|s| format!("  \"{}\"", s.name))
+        .collect();
+    let cases: Vec<String> = STIFF_CASES
+        .iter()
+        .map(|c| format!("  \"{}\"", c.name))
+        .collect();
+    format!(
+        "Examples:
+  fold-validate --quick                  every scene, shorter ladders (about 30 s)
+  fold-validate --scene \"3-tile SL\" --json
+  fold-validate --stiff --case \"SLLS rot x1e7\"
+
+Scenes (--scene):
+{}
+
+Stiff cases (--stiff --case):
+{}
+
+Writes work-precision.svg and work-precision.json into --out (not with --stiff).
+Exit codes: 0 done, 2 bad input.",
+        scenes.join("\n"),
+        cases.join("\n")
+    )
+}
+
 fn main() -> ExitCode {
-    let args = Args::parse();
+    let matches = Args::command().after_help(after_help()).get_matches();
+    let args = match Args::from_arg_matches(&matches) {
+        Ok(a) => a,
+        Err(e) => e.exit(),
+    };
     if args.stiff {
         return match stiff(&args) {
             Ok(text) => {
@@ -88,12 +128,19 @@ fn main() -> ExitCode {
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("fold-validate: {e:#}");
+                print_error("fold-validate", &e);
                 ExitCode::from(2)
             }
         };
     }
     let result = options(&args).and_then(|opts| {
+        // the output is checked before the work: a file in the way fails now, not after it
+        if args.out.exists() && !args.out.is_dir() {
+            bail!(
+                "--out {}: exists and is not a directory",
+                args.out.display()
+            );
+        }
         let quiet = args.json;
         let v = validate(&opts, &mut |scene, method, tol| {
             if !quiet {
@@ -122,7 +169,7 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("fold-validate: {e:#}");
+            print_error("fold-validate", &e);
             ExitCode::from(2)
         }
     }

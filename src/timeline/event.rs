@@ -1,4 +1,5 @@
-//! The events of a run: what happens, when, to which magnet or joint.
+//! The events of a run: what happens, when, to which magnet or joint; and which joint a
+//! magnet closes.
 
 use std::fmt;
 
@@ -55,7 +56,8 @@ impl fmt::Display for EventKind {
     }
 }
 
-/// One event: 16 bytes, so a million-tile timeline stays about 100 MB.
+/// One event: 16 bytes, so a million-tile timeline stays about 100 MB. In JSON, the array
+/// `[time, "kind", index]` (a time that is not finite is `null`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Event {
     /// Time, seconds from RI contact.
@@ -66,23 +68,55 @@ pub struct Event {
     pub kind: EventKind,
 }
 
-impl Event {
-    /// The event as one compact JSON array `[time, "kind", index]`.
-    pub fn to_json(&self) -> String {
-        format!(
-            "[{},\"{}\",{}]",
-            json_f64(self.time),
-            self.kind.name(),
-            self.index
-        )
+impl serde::Serialize for Event {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        (self.time, self.kind, self.index).serialize(serializer)
     }
 }
 
-/// A finite f64 printed for JSON (shortest round-trip form).
-pub(crate) fn json_f64(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x}")
+/// The joint whose closing a magnet takes part in: odd magnet `2j + 1` and even magnet
+/// `2j + 2` close joint `j` (magnet 0 belongs to the RI contact: joint 0).
+pub fn joint_of_magnet(k: usize) -> usize {
+    if k % 2 == 1 {
+        (k - 1) / 2
     } else {
-        "null".to_string()
+        (k / 2).saturating_sub(1)
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+
+    #[test]
+    fn events_are_compact_json_arrays() {
+        let e = Event {
+            time: 0.25,
+            index: 7,
+            kind: EventKind::MagnetStarts,
+        };
+        assert_eq!(
+            serde_json::to_string(&e).unwrap(),
+            r#"[0.25,"magnet_starts",7]"#
+        );
+        let e = Event {
+            time: f64::NAN,
+            ..e
+        };
+        assert_eq!(
+            serde_json::to_string(&e).unwrap(),
+            r#"[null,"magnet_starts",7]"#
+        );
+        assert_eq!(std::mem::size_of::<Event>(), 16);
+    }
+
+    #[test]
+    fn each_joint_is_closed_by_its_pair() {
+        assert_eq!(joint_of_magnet(0), 0);
+        for j in 0..5 {
+            assert_eq!(joint_of_magnet(2 * j + 1), j);
+            assert_eq!(joint_of_magnet(2 * j + 2), j);
+        }
     }
 }

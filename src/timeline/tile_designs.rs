@@ -1,6 +1,6 @@
-//! Design parameters for a whole chain: one global [`Design`] with optional per-tile `s` and
-//! `e` (so sequential and simultaneous stretches can mix in one chain), their JSON file form,
-//! and `s` given in millimetres or as a fraction of `e`.
+//! The designs of a chain's tiles, what every run starts from: one global [`Design`] with
+//! optional per-tile `s` and `e` (so sequential and simultaneous stretches can mix in one
+//! chain), their JSON file form, and `s` given in millimetres or as a fraction of `e`.
 //!
 //! The file form is either a plain [`Design`] object or
 //! `{"global": {...Design...}, "tiles": [{"from": 10, "to": 19, "s": 0.0}, ...]}`, where each
@@ -8,7 +8,7 @@
 //! initiator); later entries win. Tile width, `d`, `c` and the magnets stay global: the tiles
 //! of one chain share their outline.
 
-use std::path::{Path as FsPath, PathBuf};
+use std::path::{Path, PathBuf};
 
 use crate::{Design, DesignError};
 
@@ -200,7 +200,7 @@ impl TileDesigns {
     }
 
     /// Reads a design file.
-    pub fn from_file(path: &FsPath) -> Result<TileDesigns, DesignsError> {
+    pub fn from_file(path: &Path) -> Result<TileDesigns, DesignsError> {
         let text = std::fs::read_to_string(path).map_err(|source| DesignsError::Read {
             path: path.to_path_buf(),
             source,

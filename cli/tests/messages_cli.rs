@@ -1,0 +1,345 @@
+//! What the tools say, and refuse, on the command line (issue 14): each tool's own help with
+//! its exit codes, errors said once, missing files not read as fold words, outputs that
+//! would overwrite an input refused before any work, options that would be ignored refused,
+//! progress when stderr is not a terminal, and the run's own report.
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn tool(name: &str) -> Command {
+    let path = match name {
+        "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
+        "fold-run" => env!("CARGO_BIN_EXE_fold-run"),
+        "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
+        "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
+        _ => env!("CARGO_BIN_EXE_fold-validate"),
+    };
+    Command::new(path)
+}
+
+fn run(name: &str, args: &[&str]) -> Output {
+    tool(name).args(args).output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn tmp(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("foldchain-msg-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn square() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/square.svg")
+}
+
+/// Asserts exit code 2 and a message holding every one of `words`.
+fn bad(o: &Output, words: &[&str]) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    for w in words {
+        assert!(e.contains(w), "missing {w:?} in: {e}");
+    }
+}
+
+#[test]
+fn every_tool_has_its_own_help_with_exit_codes() {
+    let mut abouts = Vec::new();
+    for t in [
+        "fold-plan",
+        "fold-run",
+        "fold-check",
+        "fold-enum",
+        "fold-validate",
+    ] {
+        let o = run(t, &["--help"]);
+        assert_eq!(o.status.code(), Some(0), "{t}");
+        let h = String::from_utf8(o.stdout).unwrap();
+        assert!(
+            h.contains("Exit codes:") && h.contains("Examples:"),
+            "{t}: {h}"
+        );
+        assert!(h.contains(t), "{t} help names its tool: {h}");
+        abouts.push(h.lines().next().unwrap().to_string());
+    }
+    abouts.sort();
+    abouts.dedup();
+    assert_eq!(abouts.len(), 5, "each tool describes itself: {abouts:?}");
+    let h = String::from_utf8(run("fold-validate", &["--help"]).stdout).unwrap();
+    for scene in [
+        "3-tile SL",
+        "20-tile s=0.3",
+        "107-tile square",
+        "SLLS rot x1e7",
+    ] {
+        assert!(h.contains(scene), "fold-validate --help lists {scene}");
+    }
+}
+
+#[test]
+fn an_error_is_said_once() {
+    let d = tmp("once");
+    let missing = d.join("nope.svg");
+    let o = run("fold-plan", &[missing.to_str().unwrap()]);
+    bad(&o, &["nope.svg"]);
+    assert_eq!(
+        stderr(&o).matches("No such file").count(),
+        1,
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(stderr(&o).lines().count(), 1);
+}
+
+#[test]
+fn a_missing_file_is_not_read_as_a_fold_word() {
+    let o = run("fold-check", &["nope.txt"]);
+    bad(&o, &["nope.txt", "no such file, and not a fold word"]);
+    let o = run("fold-check", &[square().to_str().unwrap()]);
+    bad(&o, &["square.svg", "fold-plan", "fold-run"]);
+    let o = run("fold-run", &["missing/chain.json"]);
+    bad(&o, &["missing/chain.json", "no such file"]);
+}
+
+#[test]
+fn an_output_over_an_input_is_refused_before_any_work() {
+    let d = tmp("over");
+    let sq = d.join("sq.svg");
+    std::fs::copy(square(), &sq).unwrap();
+    let before = std::fs::read(&sq).unwrap();
+    for flag in ["--preview", "--out"] {
+        let o = run(
+            "fold-plan",
+            &[sq.to_str().unwrap(), flag, sq.to_str().unwrap()],
+        );
+        bad(&o, &[flag, "refusing to overwrite"]);
+        // the same file through another spelling of its path
+        let other = d.join(".").join("sq.svg");
+        let o = run(
+            "fold-plan",
+            &[sq.to_str().unwrap(), flag, other.to_str().unwrap()],
+        );
+        bad(&o, &[flag]);
+    }
+    assert_eq!(std::fs::read(&sq).unwrap(), before);
+    // fold-run: a design file kept in the output directory under one of the run's names
+    let design = d.join("summary.json");
+    std::fs::write(&design, r#"{"s": 0.3}"#).unwrap();
+    let o = run(
+        "fold-run",
+        &[
+            "SLLS",
+            "--design",
+            design.to_str().unwrap(),
+            "--out",
+            d.to_str().unwrap(),
+        ],
+    );
+    bad(&o, &["--out", "would overwrite the input file"]);
+    assert_eq!(std::fs::read_to_string(&design).unwrap(), r#"{"s": 0.3}"#);
+}
+
+#[test]
+fn options_that_would_be_ignored_are_refused() {
+    bad(
+        &run("fold-enum", &["--max-tiles", "5", "--samples", "10"]),
+        &["--samples", "--random"],
+    );
+    bad(
+        &run("fold-validate", &["--case", "SLLS control"]),
+        &["--stiff"],
+    );
+    bad(
+        &run(
+            "fold-validate",
+            &["--quick", "--reference-tolerance", "1e-8"],
+        ),
+        &["--quick", "--reference-tolerance"],
+    );
+    bad(
+        &run("fold-run", &["SLLS", "--tiles", "40"]),
+        &["--tiles", "SHAPE.svg"],
+    );
+}
+
+#[test]
+fn bad_numbers_get_our_messages() {
+    bad(
+        &run("fold-run", &["SLLS", "--tiles", "-5"]),
+        &["-5", "whole number"],
+    );
+    bad(
+        &run("fold-plan", &[square().to_str().unwrap(), "--tiles", "-5"]),
+        &["-5", "whole number"],
+    );
+    let o = run("fold-enum", &["--max-tiles", "1"]);
+    bad(&o, &["--max-tiles 1", "from 2 to"]);
+    assert!(!stderr(&o).contains("min"), "{}", stderr(&o));
+    bad(
+        &run("fold-run", &["SLLS", "--frames", "100001"]),
+        &["--frames 100001", "at most 100000"],
+    );
+    // 1e-3 is a number of millimetres, not the design parameter e
+    let d = tmp("s");
+    let o = run(
+        "fold-run",
+        &["SS", "--s", "1e-3", "--out", d.to_str().unwrap(), "--json"],
+    );
+    assert_ne!(o.status.code(), Some(2), "{}", stderr(&o));
+    let a = run(
+        "fold-run",
+        &[
+            "SS",
+            "--s",
+            "0.001",
+            "--out",
+            d.join("b").to_str().unwrap(),
+            "--json",
+        ],
+    );
+    let v = |o: &Output| -> serde_json::Value { serde_json::from_slice(&o.stdout).unwrap() };
+    assert_eq!(v(&o)["duration_s"], v(&a)["duration_s"]);
+}
+
+#[test]
+fn the_validation_output_is_checked_before_the_work() {
+    let d = tmp("vout");
+    let f = d.join("afile.txt");
+    std::fs::write(&f, "x").unwrap();
+    let t0 = std::time::Instant::now();
+    let o = run("fold-validate", &["--out", f.to_str().unwrap()]);
+    bad(&o, &["afile.txt", "not a directory"]);
+    // the full validation takes minutes; a refusal before it, well under that
+    assert!(t0.elapsed().as_secs() < 20);
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), "x");
+}
+
+#[test]
+fn a_plan_whose_word_and_tile_list_disagree_is_refused() {
+    let d = tmp("plan");
+    let p = d.join("p.json");
+    let o = run(
+        "fold-plan",
+        &[
+            square().to_str().unwrap(),
+            "--tiles",
+            "30",
+            "--out",
+            p.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let mut plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    plan["tile_list"] = "SS SS SS".into();
+    std::fs::write(&p, plan.to_string()).unwrap();
+    bad(
+        &run(
+            "fold-run",
+            &[
+                "--plan",
+                p.to_str().unwrap(),
+                "--out",
+                d.join("o").to_str().unwrap(),
+            ],
+        ),
+        &["p.json", "disagree"],
+    );
+    assert!(!d.join("o").exists());
+}
+
+#[test]
+fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
+    let d = tmp("report");
+    // an inline JSON chain gets a plain folder name
+    let o = tool("fold-run")
+        .current_dir(&d)
+        .args([r#"{"tiles":["SS","SL","LS"]}"#])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let names: Vec<String> = std::fs::read_dir(d.join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["SL"]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("s of simulated time"), "{text}");
+    // --json names the output directory
+    let out = d.join("j");
+    let o = run(
+        "fold-run",
+        &["SLLS", "--json", "--out", out.to_str().unwrap()],
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["out_dir"], out.to_str().unwrap());
+    // an absurd remanence folds in no time: say so
+    let design = d.join("absurd.json");
+    std::fs::write(&design, r#"{"s": 0.3, "remanence": 1e300}"#).unwrap();
+    let o = run(
+        "fold-run",
+        &[
+            "SLLS",
+            "--design",
+            design.to_str().unwrap(),
+            "--out",
+            d.join("a").to_str().unwrap(),
+        ],
+    );
+    assert!(
+        stderr(&o).contains("warning") && stderr(&o).contains("simulated time"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn a_long_count_is_never_silent_off_a_terminal() {
+    // 22 tiles: about 0.2 s of counting (19 tiles took 0.03 s since issue 16, less than the
+    // progress interval below)
+    let o = tool("fold-enum")
+        .env("FOLDCHAIN_PROGRESS_SECONDS", "0.05")
+        .args(["--max-tiles", "22"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    let e = stderr(&o);
+    let line = e
+        .lines()
+        .find(|l| l.contains("counting:"))
+        .unwrap_or_else(|| panic!("no progress line: {e}"));
+    assert!(
+        line.contains("parts") && line.contains("/s") && line.contains("left"),
+        "{line}"
+    );
+    let o = tool("fold-enum")
+        .env("FOLDCHAIN_PROGRESS_SECONDS", "0.05")
+        .args(["--max-tiles", "22", "--quiet"])
+        .output()
+        .unwrap();
+    assert!(!stderr(&o).contains("counting:"), "{}", stderr(&o));
+    // a run that would take days says so first
+    let mut child = tool("fold-enum")
+        .args(["--max-tiles", "40"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    {
+        use std::io::BufRead;
+        let mut r = std::io::BufReader::new(child.stderr.take().unwrap());
+        r.read_line(&mut first).unwrap();
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        first.contains("valid words") && first.contains("days"),
+        "{first}"
+    );
+}

@@ -1,0 +1,253 @@
+//! Planning by cells (thesis section 5.5, the key): along each sweep axis the shape is split
+//! into monotone cells ([`crate::cells`]), the cells are visited in the orders of the
+//! Hamiltonian paths of their graph, and each order is routed ([`crate::route`]); the tile
+//! width is searched on the cheapest route ([`crate::sizing`]), the cheapest routes are
+//! checked by sequential folding like every plan, and the best fit wins. When no axis gives
+//! a route, the error says why, per axis.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+
+use crate::assembly::Assembly;
+use crate::cells::cells_of;
+use crate::check::check_folds;
+use crate::frame::{stacking_axis_deg, Orientation};
+use crate::options::{PlanOptions, DEFAULT_TILES};
+use crate::plan::Plan;
+use crate::route::{route_order, Route, Routed};
+use crate::rows::Style;
+use crate::shape::Shape;
+use crate::sizing::{width_for, SizeSearch};
+
+/// Size steps of the tile width search.
+const SIZE_STEPS: usize = 5;
+/// The size search stops once the count is within this share of the target (2%: a cell
+/// route changes by whole rows in several cells at once).
+const CELL_COUNT_TOLERANCE: f64 = 0.02;
+/// Routes (cheapest first, over all axes) checked and measured.
+const CHECKED_ROUTES: usize = 6;
+/// Hamiltonian paths tried per axis, and the search steps spent finding them.
+const MAX_ORDERS: usize = 12;
+const MAX_ORDER_STEPS: usize = 20_000;
+/// Axes with more cells than this are not planned by cells.
+const MAX_CELLS: usize = 12;
+/// Complete routes per axis turned into words and checked.
+const ROUTES_KEPT: usize = 4;
+
+/// Why an axis gave no route.
+type Why = String;
+
+/// Reasons why axes gave no route, each with the axes it holds for (SVG degrees).
+type Reasons = Vec<(Why, Vec<String>)>;
+
+/// The best routes over the cells of `axis_shape` (axis frame, unit tiles), cheapest first,
+/// or why there is none. `describe` names a cell for messages.
+fn plan_cells(
+    axis_shape: &Shape,
+    style: Style,
+    describe: &dyn Fn(&Shape) -> String,
+) -> Result<Vec<Routed>, Why> {
+    let cells = cells_of(axis_shape);
+    let n = cells.cells.len();
+    if n == 0 {
+        return Err("no cell larger than a tile".into());
+    }
+    if n > MAX_CELLS {
+        return Err(format!(
+            "{n} cells (more than {MAX_CELLS}): the outline has too many steps and branches at this tile size"
+        ));
+    }
+    let parts = cells.components();
+    if parts > 1 {
+        return Err(format!(
+            "the shape is in {parts} separate parts at this tile size; one chain would have to cross the gap between them"
+        ));
+    }
+    let orders = cells.orders(MAX_ORDERS, MAX_ORDER_STEPS);
+    if orders.is_empty() {
+        let (deg, c) = cells.max_degree();
+        return Err(format!(
+            "{n} cells and no order visits each once: cell {} ({}) touches {deg} others, more than a path through it can enter and leave; it needs splitting (Cheung et al.) or another axis",
+            c,
+            describe(&cells.cells[c].shape)
+        ));
+    }
+    let mut routes: Vec<Route> = orders
+        .par_iter()
+        .flat_map_iter(|o| route_order(&cells, o, style).into_iter().take(2))
+        .collect();
+    if routes.is_empty() {
+        return Err(format!(
+            "{n} cells; every join between them ({} orders tried) lays tiles over earlier ones",
+            orders.len()
+        ));
+    }
+    routes.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+    Ok(routes
+        .iter()
+        .take(ROUTES_KEPT)
+        .filter_map(|r| r.to_routed(style))
+        .collect())
+}
+
+/// Axes to sweep (radians, physical frame): the x and y axes and the long edge directions,
+/// each with its orthogonal sweep.
+pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::new();
+    let mut push = |a: f64| {
+        let a = a.rem_euclid(PI);
+        if !out.iter().any(|&b| {
+            let d = (a - b).rem_euclid(PI);
+            d.min(PI - d) < 1e-6
+        }) {
+            out.push(a);
+        }
+    };
+    for a in std::iter::once(0.0).chain(shape.long_edge_angles(3)) {
+        push(a);
+        push(a + PI / 2.0);
+    }
+    out.truncate(6);
+    out
+}
+
+/// Plans `shape` by cells with one turn style: the tile width is searched like the
+/// serpentine's (a few secant steps on the count), every axis is routed in parallel, and the
+/// cheapest routes are checked by sequential folding; the best fit wins. The error says, per
+/// axis, why no route was found.
+pub(crate) fn plan_by_cells(
+    shape: &Shape,
+    opts: &PlanOptions,
+    style: Style,
+    name: &str,
+) -> Result<Plan, String> {
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let w0 = opts
+        .tile_size
+        .unwrap_or_else(|| width_for(shape.area(), target, style.pitch));
+    let axes = axes(shape);
+    // why axes gave no route, at the last width tried
+    let mut why: Reasons = Vec::new();
+    let search = SizeSearch {
+        secant_steps: if opts.tile_size.is_some() {
+            1
+        } else {
+            SIZE_STEPS
+        },
+        nudges: &[],
+        tolerance: ((CELL_COUNT_TOLERANCE * target as f64) as usize).max(1),
+        shrink_when_empty: None,
+    };
+    let found = search.run(target, w0, |w| {
+        let (routes, reasons) = route_axes(shape, &axes, style, w);
+        why = reasons;
+        let n = routes.first()?.1.word.tiles();
+        // routes at different widths are compared by their count only: an equal miss
+        // keeps the width found first
+        Some((n, 0.0, routes))
+    });
+    let Some(found) = found else {
+        let text: Vec<String> = why
+            .iter()
+            .map(|(r, axes)| format!("along axes {} deg: {r}", axes.join(", ")))
+            .collect();
+        return Err(text.join("; "));
+    };
+    let w = found.w;
+    let mut plans: Vec<Plan> = Vec::new();
+    let mut collide = String::new();
+    for (a, r) in found.plans.iter().take(CHECKED_ROUTES) {
+        if let Err(e) = check_folds(&r.word) {
+            collide = e;
+            continue;
+        }
+        let orient = Orientation::along(*a);
+        let work = orient.work_shape(shape, w);
+        let asm = Assembly {
+            work: &work,
+            chain_to_work: r.chain_to_axis,
+            work_to_svg: orient.work_to_svg(w),
+            row_angle: *a,
+            style,
+            w,
+            u_turns: r.u_turns,
+            quarter_turns: r.quarter_turns,
+            cells: r.cells,
+        };
+        if !asm.agrees(&r.word, &r.centres) {
+            collide =
+                String::from("internal: the route's tile centres disagree with the kinematics");
+            continue;
+        }
+        plans.push(asm.to_plan(&r.word, name));
+    }
+    plans
+        .into_iter()
+        .min_by(|x, y| x.metrics.fit_error().total_cmp(&y.metrics.fit_error()))
+        .ok_or_else(|| format!("every cell route collides when folded (first: {collide})"))
+}
+
+/// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest
+/// first, and why the other axes gave none (each reason with the axes, SVG degrees).
+fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, Routed)>, Reasons) {
+    let per_axis: Vec<(f64, Result<Vec<Routed>, Why>)> = axes
+        .par_iter()
+        .map(|&a| {
+            let axis_shape = Orientation::along(a).work_shape(shape, w);
+            let describe = |cell: &Shape| describe_cell(cell, a, w);
+            (a, plan_cells(&axis_shape, style, &describe))
+        })
+        .collect();
+    let mut routes: Vec<(f64, Routed)> = Vec::new();
+    let mut why: Reasons = Vec::new();
+    for (a, r) in per_axis {
+        match r {
+            Ok(v) => routes.extend(v.into_iter().map(|x| (a, x))),
+            Err(e) => {
+                let deg = format!("{:.0}", stacking_axis_deg(a).round() % 180.0 + 0.0);
+                match why.iter_mut().find(|(r, _)| *r == e) {
+                    Some((_, axes)) => axes.push(deg),
+                    None => why.push((e, vec![deg])),
+                }
+            }
+        }
+    }
+    routes.sort_by(|x, y| x.1.cost.total_cmp(&y.1.cost));
+    (routes, why)
+}
+
+/// A cell (axis frame of row angle `a`, tiles of width `w`) by its bounding box in SVG user
+/// units.
+fn describe_cell(cell: &Shape, a: f64, w: f64) -> String {
+    let b = cell.scaled(w).rotated(a).bbox();
+    format!(
+        "x {:.0} to {:.0}, y {:.0} to {:.0}",
+        b.x0, b.x1, -b.y1, -b.y0
+    )
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::rows::TIGHT;
+
+    fn sample(name: &str) -> Shape {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../shapes")
+            .join(name);
+        Shape::from_svg_data(&std::fs::read(path).unwrap(), name).unwrap()
+    }
+
+    /// The thesis key by cells: head and shaft as separate cells, every route folds.
+    #[test]
+    fn key_by_cells() {
+        let opts = PlanOptions::default().with_tiles(171);
+        let p = plan_by_cells(&sample("key.svg"), &opts, TIGHT, "key.svg").unwrap();
+        assert!(p.cells >= 2, "{}", p.summary());
+        let w = p.fold_word().unwrap();
+        assert!(w.first_opposite_pair().is_none());
+        assert!(foldchain::collision::check_word(&w, &Default::default()).is_ok());
+    }
+}

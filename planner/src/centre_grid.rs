@@ -1,0 +1,104 @@
+//! Tile centres bucketed by unit cell (unit tiles), for "which tiles are near this point":
+//! the fit measures ask it for every sample point, the cell router for every new tile.
+
+use kurbo::Point;
+
+/// Tile centres bucketed by unit cell (compressed rows).
+pub(crate) struct CentreGrid {
+    x0: i64,
+    y0: i64,
+    nx: i64,
+    ny: i64,
+    /// `start[c]..start[c + 1]` indexes `ids` for cell `c`.
+    start: Vec<usize>,
+    ids: Vec<usize>,
+}
+
+/// The unit cell holding `p`.
+fn cell_of(p: Point) -> (i64, i64) {
+    (p.x.floor() as i64, p.y.floor() as i64)
+}
+
+impl CentreGrid {
+    /// The grid of `centres` (their indices are the tile ids).
+    pub(crate) fn new(centres: &[Point]) -> CentreGrid {
+        let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
+        for c in centres.iter().map(|&p| cell_of(p)) {
+            (x0, y0, x1, y1) = (x0.min(c.0), y0.min(c.1), x1.max(c.0), y1.max(c.1));
+        }
+        let (nx, ny) = if centres.is_empty() {
+            (0, 0)
+        } else {
+            (x1 - x0 + 1, y1 - y0 + 1)
+        };
+        let index = |(cx, cy): (i64, i64)| ((cy - y0) * nx + (cx - x0)) as usize;
+        let mut start = vec![0usize; (nx * ny) as usize + 1];
+        for c in centres.iter().map(|&p| cell_of(p)) {
+            start[index(c) + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut fill = start.clone();
+        let mut ids = vec![0usize; centres.len()];
+        for (i, c) in centres.iter().map(|&p| cell_of(p)).enumerate() {
+            let k = index(c);
+            ids[fill[k]] = i;
+            fill[k] += 1;
+        }
+        CentreGrid {
+            x0,
+            y0,
+            nx,
+            ny,
+            start,
+            ids,
+        }
+    }
+
+    /// The tiles whose centre lies in the cell `(cx, cy)`.
+    fn in_cell(&self, cx: i64, cy: i64) -> &[usize] {
+        let (i, j) = (cx - self.x0, cy - self.y0);
+        if i < 0 || j < 0 || i >= self.nx || j >= self.ny {
+            return &[];
+        }
+        let k = (j * self.nx + i) as usize;
+        &self.ids[self.start[k]..self.start[k + 1]]
+    }
+
+    /// True if `hit` holds for some tile whose centre lies in the cell of `p` or one of its
+    /// eight neighbours (every centre within one tile width of `p`, and some further).
+    pub(crate) fn any_near(&self, p: Point, mut hit: impl FnMut(usize) -> bool) -> bool {
+        let (cx, cy) = cell_of(p);
+        (-1..=1).any(|i| (-1..=1).any(|j| self.in_cell(cx + i, cy + j).iter().any(|&t| hit(t))))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_exactly_the_centres_within_a_unit() {
+        let centres: Vec<Point> = (0..40)
+            .map(|i| Point::new(0.37 * i as f64, (i % 7) as f64 * 0.9 - 2.0))
+            .collect();
+        let grid = CentreGrid::new(&centres);
+        for probe in [
+            Point::new(3.1, 0.2),
+            Point::new(-5.0, 9.0),
+            Point::new(10.0, -1.6),
+        ] {
+            let mut near = Vec::new();
+            grid.any_near(probe, |t| {
+                near.push(t);
+                false
+            });
+            for (t, c) in centres.iter().enumerate() {
+                if c.distance(probe) <= 1.0 {
+                    assert!(near.contains(&t), "{t} missed near {probe:?}");
+                }
+            }
+        }
+    }
+}

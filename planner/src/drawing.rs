@@ -1,0 +1,450 @@
+//! Reading the target shape from an SVG drawing: `usvg` resolves shapes, transforms, units,
+//! viewBox and `use` into paths; their segments become kurbo curves in the physical frame
+//! (y up), each sub-path is flattened to a ring, and a ring that crosses itself is refused.
+
+use kurbo::{CubicBez, Line, ParamCurve, PathSeg, Point, QuadBez, Vec2};
+use usvg::tiny_skia_path::PathSegment;
+
+use crate::error::PlanError;
+use crate::shape::{FilledPath, Ring, Shape};
+
+/// Curve flattening tolerance, as a share of the larger side of the drawing's bounding box:
+/// every flattened curve lies within this distance of the true curve. 1e-3 of the drawing is
+/// under 0.5 percent of a tile for plans of up to about 200,000 tiles, far below what the
+/// chain can resolve.
+pub const FLATTEN_TOLERANCE: f64 = 1e-3;
+
+/// One filled element as read: its name for messages, its sub-paths, its fill rule.
+struct Element {
+    name: String,
+    subpaths: Vec<Vec<PathSeg>>,
+    even_odd: bool,
+}
+
+impl Shape {
+    /// Reads an SVG document; `name` names it in errors. Checks that it has filled area and
+    /// that no outline crosses itself.
+    pub fn from_svg_data(data: &[u8], name: &str) -> Result<Shape, PlanError> {
+        let no_area = |reason: &str| PlanError::NoFilledArea {
+            name: name.to_string(),
+            reason: reason.into(),
+        };
+        let tree = usvg::Tree::from_data(data, &usvg::Options::default()).map_err(|e| {
+            PlanError::BadSvg {
+                name: name.to_string(),
+                reason: e.to_string(),
+            }
+        })?;
+        let mut elements: Vec<Element> = Vec::new();
+        collect_elements(
+            tree.root(),
+            &mut elements,
+            user_units_transform(data, &tree),
+        );
+        if elements.is_empty() {
+            return Err(no_area(
+                "no visible element with a fill (fill=\"none\" and strokes do not count)",
+            ));
+        }
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for s in elements.iter().flat_map(|e| e.subpaths.iter().flatten()) {
+            for p in control_points(s) {
+                lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+                hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+            }
+        }
+        let size = (hi.x - lo.x).max(hi.y - lo.y);
+        if !size.is_finite() || size <= 0.0 {
+            return Err(no_area("the filled elements have zero size"));
+        }
+        let tol = FLATTEN_TOLERANCE * size;
+        let mut paths = Vec::new();
+        for element in elements {
+            let mut rings = Vec::new();
+            for sp in &element.subpaths {
+                let ring = flatten(sp, tol);
+                if ring.points.len() < 3 {
+                    continue;
+                }
+                if let Some((i, j, p)) = self_intersection(&ring) {
+                    return Err(PlanError::SelfIntersecting {
+                        name: name.to_string(),
+                        element: element.name,
+                        first: i,
+                        second: j,
+                        x: p.x,
+                        y: -p.y,
+                    });
+                }
+                if ring.signed_area().abs() > 1e-12 * size * size {
+                    rings.push(ring);
+                }
+            }
+            if !rings.is_empty() {
+                paths.push(FilledPath {
+                    rings,
+                    even_odd: element.even_odd,
+                });
+            }
+        }
+        let shape = Shape::from_paths(paths);
+        if shape.is_empty() || shape.area() <= 1e-9 * size * size {
+            return Err(no_area("the filled elements enclose no area"));
+        }
+        Ok(shape)
+    }
+}
+
+/// The control points of a segment (its hull holds the curve).
+fn control_points(s: &PathSeg) -> Vec<Point> {
+    match *s {
+        PathSeg::Line(l) => vec![l.p0, l.p1],
+        PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+        PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+    }
+}
+
+/// The transform from usvg's output coordinates back to the root element's user units:
+/// usvg wraps everything in one group holding the viewBox mapping (and the root's own
+/// transform), which is undone here so that plans are in the drawing's user units.
+fn user_units_transform(data: &[u8], tree: &usvg::Tree) -> usvg::Transform {
+    let id = usvg::Transform::identity();
+    let Ok(text) = std::str::from_utf8(data) else {
+        return id;
+    };
+    let Ok(doc) = usvg::roxmltree::Document::parse(text) else {
+        return id;
+    };
+    let root = doc.root_element();
+    let has_ts = root.attribute("transform").is_some();
+    // usvg adds the wrapper only when the viewBox mapping is not the identity
+    let size = tree.size();
+    let vb_moves = root.attribute("viewBox").is_some_and(|vb| {
+        let v: Vec<f64> = vb
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|t| !t.is_empty())
+            .filter_map(|t| t.parse().ok())
+            .collect();
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-6 * (1.0 + b.abs());
+        !(v.len() == 4
+            && same(v[0], 0.0)
+            && same(v[1], 0.0)
+            && same(v[2], size.width() as f64)
+            && same(v[3], size.height() as f64))
+    });
+    let children = tree.root().children();
+    if (vb_moves || has_ts) && children.len() == 1 {
+        if let usvg::Node::Group(g) = &children[0] {
+            let t = g.transform();
+            if !t.is_identity() {
+                return t.invert().unwrap_or(id);
+            }
+        }
+    }
+    id
+}
+
+/// The visible filled paths below `group`, in document order, as kurbo segments in the
+/// physical frame. usvg's transform is applied by usvg itself, in its own `f32` arithmetic
+/// (as the planner always has): mapping in `f64` would move every point in its eighth digit
+/// and with it the plans recorded before.
+fn collect_elements(group: &usvg::Group, out: &mut Vec<Element>, to_user: usvg::Transform) {
+    for node in group.children() {
+        match node {
+            usvg::Node::Group(g) => collect_elements(g, out, to_user),
+            usvg::Node::Path(p) => {
+                let Some(fill) = p.fill() else { continue };
+                if !p.is_visible() {
+                    continue;
+                }
+                let ts = p.abs_transform().post_concat(to_user);
+                let map = |mut q: usvg::tiny_skia_path::Point| {
+                    ts.map_point(&mut q);
+                    Point::new(q.x as f64, -(q.y as f64))
+                };
+                let mut subpaths: Vec<Vec<PathSeg>> = Vec::new();
+                let mut cur: Vec<PathSeg> = Vec::new();
+                let mut start = Point::ZERO;
+                let mut last = Point::ZERO;
+                for seg in p.data().segments() {
+                    let next = match seg {
+                        PathSegment::MoveTo(a) => {
+                            if !cur.is_empty() {
+                                subpaths.push(std::mem::take(&mut cur));
+                            }
+                            start = map(a);
+                            last = start;
+                            continue;
+                        }
+                        PathSegment::LineTo(a) => PathSeg::Line(Line::new(last, map(a))),
+                        PathSegment::QuadTo(a, b) => {
+                            PathSeg::Quad(QuadBez::new(last, map(a), map(b)))
+                        }
+                        PathSegment::CubicTo(a, b, c) => {
+                            PathSeg::Cubic(CubicBez::new(last, map(a), map(b), map(c)))
+                        }
+                        PathSegment::Close => {
+                            let close = last != start;
+                            let line = Line::new(last, start);
+                            last = start;
+                            if !close {
+                                continue;
+                            }
+                            PathSeg::Line(line)
+                        }
+                    };
+                    last = next.end();
+                    cur.push(next);
+                }
+                if !cur.is_empty() {
+                    subpaths.push(cur);
+                }
+                let name = if p.id().is_empty() {
+                    format!("filled element #{}", out.len() + 1)
+                } else {
+                    format!("element id=\"{}\"", p.id())
+                };
+                let even_odd = fill.rule() == usvg::FillRule::EvenOdd;
+                out.push(Element {
+                    name,
+                    subpaths,
+                    even_odd,
+                });
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Flattens a sub-path (closed implicitly, as a fill is) to a ring within `tol`.
+///
+/// Each curve is cut into `n` equal steps of its parameter, `n` from the bound on the chord
+/// error by the second differences of its control points (quadratic: `|p0 - 2 p1 + p2| /
+/// (4 n^2)`; cubic: `0.75 max |second differences| / n^2`). This is the planner's rule from
+/// before the refactor to kurbo, kept on purpose: kurbo's own adaptive flattening
+/// (`kurbo::flatten`) places fewer, different points, which changes the polygons and so the
+/// plans recorded in tests/golden.
+fn flatten(segs: &[PathSeg], tol: f64) -> Ring {
+    let mut pts: Vec<Point> = Vec::new();
+    let push = |pts: &mut Vec<Point>, p: Point| {
+        if pts.last() != Some(&p) {
+            pts.push(p);
+        }
+    };
+    // |a - 2b + c|: the second difference of three control points
+    let second = |a: Point, b: Point, c: Point| {
+        let v: Vec2 = a.to_vec2() - b.to_vec2() * 2.0 + c.to_vec2();
+        v.x.hypot(v.y)
+    };
+    for s in segs {
+        let n = match *s {
+            PathSeg::Line(_) => 1,
+            PathSeg::Quad(q) => {
+                let d = second(q.p0, q.p1, q.p2);
+                ((d / (4.0 * tol)).sqrt().ceil() as usize).clamp(1, 10_000)
+            }
+            PathSeg::Cubic(c) => {
+                let d = second(c.p0, c.p1, c.p2).max(second(c.p1, c.p2, c.p3));
+                ((0.75 * d / tol).sqrt().ceil() as usize).clamp(1, 10_000)
+            }
+        };
+        push(&mut pts, s.start());
+        if let PathSeg::Line(l) = s {
+            push(&mut pts, l.p1);
+            continue;
+        }
+        for i in 1..=n {
+            push(&mut pts, bernstein(s, i as f64 / n as f64));
+        }
+    }
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    Ring { points: pts }
+}
+
+/// The point at `t` of a curve, by its Bernstein form summed term by term. kurbo's `eval`
+/// (a Horner-like form) differs from it in the last bit, which moves a flattened circle's
+/// bounding box and with it the fit's sample grid: the plans recorded before the refactor
+/// (tests/golden) were made with this form.
+fn bernstein(s: &PathSeg, t: f64) -> Point {
+    let u = 1.0 - t;
+    let mix = |terms: &[(f64, Point)]| {
+        let sum = |f: fn(Point) -> f64| {
+            terms
+                .iter()
+                .map(|&(k, p)| k * f(p))
+                .reduce(|a, b| a + b)
+                .unwrap_or(0.0)
+        };
+        Point::new(sum(|p| p.x), sum(|p| p.y))
+    };
+    match *s {
+        PathSeg::Line(l) => mix(&[(u, l.p0), (t, l.p1)]),
+        PathSeg::Quad(q) => mix(&[(u * u, q.p0), (2.0 * u * t, q.p1), (t * t, q.p2)]),
+        PathSeg::Cubic(c) => mix(&[
+            (u * u * u, c.p0),
+            (3.0 * u * u * t, c.p1),
+            (3.0 * u * t * t, c.p2),
+            (t * t * t, c.p3),
+        ]),
+    }
+}
+
+/// The first pair of non-adjacent edges of a ring that meet, with a meeting point.
+fn self_intersection(r: &Ring) -> Option<(usize, usize, Point)> {
+    let n = r.points.len();
+    let seg = |i: usize| (r.points[i], r.points[(i + 1) % n]);
+    // sort edges by min x, sweep
+    let mut order: Vec<usize> = (0..n).collect();
+    let minx = |i: usize| {
+        let (a, b) = seg(i);
+        a.x.min(b.x)
+    };
+    order.sort_by(|&i, &j| minx(i).total_cmp(&minx(j)));
+    for (k, &i) in order.iter().enumerate() {
+        let (a, b) = seg(i);
+        let maxx = a.x.max(b.x);
+        for &j in &order[k + 1..] {
+            if minx(j) > maxx {
+                break;
+            }
+            let adjacent = (i + 1) % n == j || (j + 1) % n == i;
+            if adjacent || i == j {
+                continue;
+            }
+            let (c, d) = seg(j);
+            if let Some(p) = segments_meet(a, b, c, d) {
+                return Some((i.min(j), i.max(j), p));
+            }
+        }
+    }
+    None
+}
+
+/// Where the segments `ab` and `cd` cross (properly: touching ends do not count).
+fn segments_meet(a: Point, b: Point, c: Point, d: Point) -> Option<Point> {
+    let cross = |o: Point, p: Point, q: Point| (p - o).cross(q - o);
+    let d1 = cross(c, d, a);
+    let d2 = cross(c, d, b);
+    let d3 = cross(a, b, c);
+    let d4 = cross(a, b, d);
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return Some(a.lerp(b, d1 / (d1 - d2)));
+    }
+    None
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn svg(body: &str) -> String {
+        format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#)
+    }
+
+    #[test]
+    fn rect_area_and_intervals() {
+        let s = Shape::from_svg_data(
+            svg(r#"<rect x="10" y="20" width="30" height="40"/>"#).as_bytes(),
+            "t",
+        )
+        .unwrap();
+        assert!((s.area() - 1200.0).abs() < 1e-6, "{}", s.area());
+        let iv = s.intervals_at(-30.0);
+        assert_eq!(iv.len(), 1);
+        assert!((iv[0].0 - 10.0).abs() < 1e-9 && (iv[0].1 - 40.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn viewbox_gives_user_units() {
+        let t = r#"<svg xmlns="http://www.w3.org/2000/svg" width="10cm" height="10cm" viewBox="0 0 10 10"><rect x="1" y="1" width="4" height="2"/></svg>"#;
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        assert!((s.area() - 8.0).abs() < 1e-4, "{}", s.area());
+    }
+
+    #[test]
+    fn circle_area_within_tolerance() {
+        let s = Shape::from_svg_data(svg(r#"<circle cx="50" cy="50" r="40"/>"#).as_bytes(), "t")
+            .unwrap();
+        let exact = std::f64::consts::PI * 1600.0;
+        assert!((s.area() - exact).abs() / exact < 0.01, "{}", s.area());
+    }
+
+    /// Every flattened point of a curve lies on it, and every chord stays within the
+    /// tolerance of it (checked at the chord's midpoint against a fine sampling).
+    #[test]
+    fn flattening_stays_within_the_tolerance() {
+        let c = CubicBez::new((0.0, 0.0), (30.0, 80.0), (70.0, -60.0), (100.0, 10.0));
+        let q = QuadBez::new((0.0, 0.0), (50.0, 90.0), (100.0, 0.0));
+        let tol = 0.1;
+        for seg in [PathSeg::Cubic(c), PathSeg::Quad(q)] {
+            let ring = flatten(&[seg], tol);
+            assert!(ring.points.len() > 10, "{}", ring.points.len());
+            let fine: Vec<Point> = (0..=20_000)
+                .map(|i| seg.eval(i as f64 / 20_000.0))
+                .collect();
+            for w in ring.points.windows(2) {
+                let mid = w[0].midpoint(w[1]);
+                let d = fine
+                    .iter()
+                    .map(|p| p.distance(mid))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(d <= tol, "chord midpoint {mid:?} is {d} from the curve");
+            }
+        }
+    }
+
+    #[test]
+    fn evenodd_hole() {
+        let t = svg(r#"<path fill-rule="evenodd" d="M0 0H90V90H0Z M30 30H60V60H30Z"/>"#);
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        assert!((s.area() - (8100.0 - 900.0)).abs() < 1e-6);
+        assert!(!s.contains(Point::new(45.0, -45.0)));
+        assert!(s.contains(Point::new(10.0, -45.0)));
+        // nonzero with the same winding: no hole
+        let t = svg(r#"<path d="M0 0H90V90H0Z M30 30H60V60H30Z"/>"#);
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        assert!(s.contains(Point::new(45.0, -45.0)));
+    }
+
+    #[test]
+    fn bowtie_is_self_intersecting() {
+        let t = svg(r#"<polygon id="bow" points="0,0 50,50 50,0 0,50"/>"#);
+        let e = Shape::from_svg_data(t.as_bytes(), "bow.svg").unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains("bow.svg") && m.contains("bow") && m.contains("self-intersecting"),
+            "{m}"
+        );
+        assert!(e.is_bad_input());
+    }
+
+    #[test]
+    fn no_fill_and_bad_xml() {
+        let t = svg(r#"<rect width="10" height="10" fill="none" stroke="black"/>"#);
+        let e = Shape::from_svg_data(t.as_bytes(), "x.svg").unwrap_err();
+        assert!(matches!(e, PlanError::NoFilledArea { .. }), "{e}");
+        let e = Shape::from_svg_data(b"<svg><rect", "y.svg").unwrap_err();
+        assert!(
+            matches!(e, PlanError::BadSvg { .. }) && e.to_string().contains("y.svg"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn crescent_like_monotone_in_one_axis_only() {
+        // a C open to the right: rows parallel to y (vertical) meet it in two pieces,
+        // horizontal rows in one
+        let t = svg(r#"<path d="M0 0H60V15H20V45H60V60H0Z"/>"#);
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        assert!(s.is_monotone_for_rows(0.0));
+        assert!(!s.is_monotone_for_rows(std::f64::consts::FRAC_PI_2));
+    }
+}

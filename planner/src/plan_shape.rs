@@ -1,0 +1,162 @@
+//! The planner's top level: checks the options, plans the shape as one serpentine
+//! ([`crate::serpentine`]) and, where the shape splits into cells, by cells
+//! ([`crate::cell_plan`]), each with the asked turn styles, and keeps the best fit that folds
+//! without collision; or says why the shape cannot be planned.
+
+use std::f64::consts::PI;
+
+use rayon::prelude::*;
+
+use crate::cell_plan::{axes, plan_by_cells};
+use crate::cells::cells_of;
+use crate::error::PlanError;
+use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
+use crate::plan::Plan;
+use crate::rows::{Style, LOOSE, TIGHT};
+use crate::serpentine::{pick_directions, size_style, Sized};
+use crate::shape::Shape;
+use crate::sizing::{tiles_for, width_for};
+
+/// A shape monotone in no direction is planned as one serpentine that bridges its gaps
+/// only while at most this share of the chain lies outside it; beyond, it is unplannable.
+const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
+/// Shapes monotone in some direction are also planned by cells up to this many tiles.
+const MAX_CELL_TILES: usize = 20_000;
+
+/// Plans a shape (physical frame); `name` names it in errors and in the plan.
+pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Result<Plan, PlanError> {
+    opts.check(shape)?;
+    let styles: Vec<Style> = match opts.turns {
+        Turns::Tight => vec![TIGHT],
+        Turns::Loose => vec![LOOSE],
+        Turns::Auto => vec![TIGHT, LOOSE],
+    };
+    let monotone = shape.monotone_row_angles();
+    let directions = pick_directions(shape, &monotone);
+    let mut failures: Vec<String> = Vec::new();
+    let mut best = best_serpentine(shape, opts, &styles, &directions, name, &mut failures);
+    // the size a tight serpentine would have, for the questions below
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let tiles_est = opts
+        .tile_size
+        .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    let parts = separate_parts(shape, tiles_est);
+    if monotone.is_empty() || parts > 1 {
+        // one serpentine over a shape that is monotone in no direction (or in separate
+        // parts) bridges its gaps: kept only while little of the chain lies outside
+        if let Some(p) = best.take() {
+            if p.metrics.outside_share <= MAX_OUTSIDE_NON_MONOTONE {
+                best = Some(p);
+            } else {
+                failures.push(format!(
+                    "one serpentine covers {:.0}% of the shape with {:.0}% of the chain outside",
+                    100.0 * p.metrics.covered_share,
+                    100.0 * p.metrics.outside_share
+                ));
+            }
+        }
+    }
+    // cells joined by turns, for shapes that split into several cells along some axis and
+    // plans small enough to route (a monotone shape keeps the better fit of the two)
+    if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
+        let by_cells: Vec<Result<Plan, String>> = styles
+            .par_iter()
+            .map(|&style| plan_by_cells(shape, opts, style, name))
+            .collect();
+        for r in by_cells {
+            match r {
+                Ok(p) => {
+                    if best
+                        .as_ref()
+                        .is_none_or(|b| p.metrics.fit_error() < b.metrics.fit_error())
+                    {
+                        best = Some(p);
+                    }
+                }
+                Err(e) => failures.push(format!("by cells: {e}")),
+            }
+        }
+    }
+    best.ok_or_else(|| PlanError::Unplannable {
+        name: name.into(),
+        reason: unplannable_reason(shape, parts, monotone.is_empty(), failures),
+    })
+}
+
+/// The best serpentine over the turn styles that folds without collision: every style is
+/// sized (in parallel) and its best unchecked plan measured, then the styles are checked best
+/// fit first, so a long chain is checked once, not once per style. Failures are added to
+/// `failures`.
+fn best_serpentine(
+    shape: &Shape,
+    opts: &PlanOptions,
+    styles: &[Style],
+    directions: &[f64],
+    name: &str,
+    failures: &mut Vec<String>,
+) -> Option<Plan> {
+    let sized: Vec<Result<Sized, String>> = styles
+        .par_iter()
+        .map(|&style| size_style(shape, opts, style, directions))
+        .collect();
+    let mut scored: Vec<(f64, Plan, Sized)> = Vec::new();
+    for r in sized {
+        match r {
+            Ok(sz) => {
+                if let Some(plan) = sz.best_unchecked(shape, name) {
+                    scored.push((plan.metrics.fit_error(), plan, sz));
+                }
+            }
+            Err(e) => failures.push(e),
+        }
+    }
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (_, plan, sz) in scored {
+        match sz.best_checked(shape, plan, name) {
+            Ok(p) => return Some(p),
+            Err(e) => failures.push(e),
+        }
+    }
+    None
+}
+
+/// Why no plan was found: what is wrong with the shape, then what each planner said.
+fn unplannable_reason(
+    shape: &Shape,
+    parts: usize,
+    nowhere_monotone: bool,
+    mut failures: Vec<String>,
+) -> String {
+    let mut reason = String::new();
+    if parts > 1 {
+        reason = format!(
+            "the shape is in {parts} separate parts and one chain would have to bridge the gaps between them; "
+        );
+    } else if nowhere_monotone {
+        let pieces = (0..12)
+            .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
+            .min()
+            .unwrap_or(2);
+        reason = format!(
+            "the shape is monotone in no direction (lines along every row direction meet it in {pieces} or more pieces); "
+        );
+    }
+    failures.dedup();
+    reason.push_str(&failures.join("; "));
+    reason
+}
+
+/// The number of separate parts of the shape, at about `tiles` tiles (parts smaller than a
+/// tile are not counted).
+fn separate_parts(shape: &Shape, tiles: usize) -> usize {
+    let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
+    cells_of(&shape.scaled(1.0 / w)).components()
+}
+
+/// True if some sweep axis splits the shape into two or more cells at about `tiles` tiles.
+fn splits_into_cells(shape: &Shape, tiles: usize) -> bool {
+    let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
+    axes(shape)
+        .iter()
+        .any(|&a| cells_of(&shape.rotated(-a).scaled(1.0 / w)).cells.len() > 1)
+}

@@ -1,0 +1,85 @@
+//! The fold schedule handed to the collision check: each fold of a timeline as a
+//! piecewise-linear [`JointTrack`], sampled adaptively: an interval is halved until the fold
+//! law ([`crate::engine::fold_angle`]) at its midpoint lies within [`ANGLE_TOLERANCE`] of the
+//! chord, so the track follows the law within that tolerance.
+
+use crate::collision::{FoldSchedule, JointTrack};
+use crate::engine::result::{fold_angle, Timeline};
+use crate::timeline::FoldRecord;
+
+/// How closely a schedule track follows the fold angle law: 1e-3 rad (0.057 degrees). On
+/// 30 mm tiles a tile next to the hinge moves by at most 1e-3 * 1.1 w = 0.03 mm within it.
+pub const ANGLE_TOLERANCE: f64 = 1e-3;
+
+/// Deepest halving of a schedule interval.
+const MAX_DEPTH: u32 = 14;
+
+/// The fold schedule: one adaptively sampled track per fold.
+pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
+    let tracks = timeline
+        .folds
+        .iter()
+        .map(|f| {
+            let mut times = vec![f.start];
+            let mut angles = vec![0.0];
+            let n0 = 8;
+            for i in 0..n0 {
+                let t0 = f.start + (f.end - f.start) * i as f64 / n0 as f64;
+                let t1 = f.start + (f.end - f.start) * (i + 1) as f64 / n0 as f64;
+                refine(timeline, f, t0, t1, 0, &mut times, &mut angles);
+            }
+            JointTrack {
+                joint: f.joint,
+                times,
+                angles,
+            }
+        })
+        .collect();
+    FoldSchedule { tracks }
+}
+
+fn refine(
+    tl: &Timeline,
+    f: &FoldRecord,
+    t0: f64,
+    t1: f64,
+    depth: u32,
+    times: &mut Vec<f64>,
+    angles: &mut Vec<f64>,
+) {
+    let (a0, a1) = (fold_angle(tl, f, t0), fold_angle(tl, f, t1));
+    let tm = 0.5 * (t0 + t1);
+    let am = fold_angle(tl, f, tm);
+    if depth < MAX_DEPTH && (am - 0.5 * (a0 + a1)).abs() > ANGLE_TOLERANCE {
+        refine(tl, f, t0, tm, depth + 1, times, angles);
+        refine(tl, f, tm, t1, depth + 1, times, angles);
+    } else {
+        times.push(t1);
+        angles.push(a1);
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use std::f64::consts::FRAC_PI_2;
+
+    use super::*;
+    use crate::engine::thesis_timeline;
+
+    #[test]
+    fn tracks_follow_the_law_within_tolerance() {
+        let tl = thesis_timeline("SLLS");
+        let sched = fold_schedule(&tl);
+        assert_eq!(sched.tracks.len(), 2);
+        for (tr, f) in sched.tracks.iter().zip(&tl.folds) {
+            assert_eq!(*tr.angles.last().unwrap(), FRAC_PI_2);
+            assert!(tr.angles.windows(2).all(|w| w[1] >= w[0]));
+            for i in 0..=1000 {
+                let t = f.start + (f.end - f.start) * i as f64 / 1000.0;
+                let err = (tr.angle_at(t) - fold_angle(&tl, f, t)).abs();
+                assert!(err < 2.0 * ANGLE_TOLERANCE, "{t}: {err}");
+            }
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! The physics both simulations share: the pair law between two magnets, what a force does
+//! to the chain (its drive along a magnet's path, its torque about a hinge), which pairs
+//! interact (chain index, polarity and the cutoff), the reaction initiator, the drags, and
+//! the chain's dipole energy.
+//!
+//! The event engine's force start rule ([`crate::engine::StartRule::Force`]) and the
+//! reference integrator ([`crate::reference`]) ask these questions of the same functions, so
+//! a change of the model (a finite-cylinder law for [`ForceLaw`], say) is made here once and
+//! holds for both.
+//!
+//! Units: positions in millimetres (as the tiles' frames), forces in newtons, torques in
+//! newton metres, moments in A m^2, energies in joules.
+//!
+//! ```
+//! use foldchain::physics::{along_path, ForceLaw, Pole};
+//! use kurbo::{Point, Vec2};
+//!
+//! // two opposite poles 10 mm apart on the x axis pull each other together
+//! let law = ForceLaw::default();
+//! let attract = Pole::Magnet(0).attracts(Pole::Magnet(1));
+//! let f = law.force(Point::new(0.0, 0.0), Point::new(10.0, 0.0), 0.036, 0.036, attract);
+//! assert!(attract && f.x < 0.0 && f.y == 0.0);
+//! // a magnet whose path runs along -x is driven along it
+//! assert!(along_path(f, Vec2::new(-1.0, 0.0)) > 0.0);
+//! ```
+
+mod dipole;
+mod drag;
+mod drive;
+mod energy;
+mod force_law;
+mod poles;
+mod ri;
+
+pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+pub use drive::{along_path, joints_between, torque_about};
+pub use energy::EnergyUnit;
+pub use force_law::ForceLaw;
+pub use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
+pub use ri::ReactionInitiator;

@@ -1,0 +1,314 @@
+//! The hybrid driver of a reference run ([`run_reference`]): it integrates the model between
+//! events with adaptive steps, locates each event (a magnet starting or arriving, a joint
+//! starting or ending its fold) on real integrator steps ([`crate::reference`]'s event
+//! location), switches the unknown's mode there, and ends when nothing moves.
+//!
+//! **End of a run.** When no unknown is free and no clamped one is driven off its end, the
+//! chain is at rest. A free unknown whose rate would change it by less than 1e-9 over the
+//! time since the last event counts as at rest too, and so does one settling on a stable
+//! balance within the tolerance (a magnet stopped mid-path, its forces along the path
+//! cancelling). A run also stops, with the reason in
+//! [`crate::reference::ReferenceRun::stopped`], at [`ReferenceOptions::max_steps`] steps,
+//! after `1e4` times its slowest time scale without an event, or when the step size falls
+//! below 1e-14 of the time: never a hang.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::reference::dynamics::{Forces, Mode, Model, Moving};
+use crate::reference::event_log::EventLog;
+use crate::reference::integrators::{StepStats, Stepper};
+use crate::reference::locate::{any_event, condition, StepFrom};
+use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
+use crate::reference::recorder::Recorder;
+use crate::reference::run_result::ReferenceRun;
+use crate::reference::verdict::RestState;
+use crate::timeline::{Event, EventKind, Outcome, TileDesigns};
+use crate::Chain;
+
+/// Runs the reference model on `chain` with `designs`.
+pub fn run_reference(
+    chain: &Chain,
+    designs: &TileDesigns,
+    opts: &ReferenceOptions,
+) -> Result<ReferenceRun, ReferenceError> {
+    if !(opts.tolerance > 0.0 && opts.tolerance <= 0.1) {
+        return Err(ReferenceError::BadTolerance(opts.tolerance));
+    }
+    let model = Model::new(chain, designs, &opts.model)?;
+    Ok(Driver::new(model, opts).run())
+}
+
+struct Driver {
+    model: Model,
+    opts: ReferenceOptions,
+    modes: Vec<Mode>,
+    y: Vec<f64>,
+    t: f64,
+    log: EventLog,
+    stats: StepStats,
+    work: Forces,
+}
+
+impl Driver {
+    fn new(model: Model, opts: &ReferenceOptions) -> Driver {
+        let n = model.len();
+        let joints = model.geometry.tiles().saturating_sub(1);
+        Driver {
+            modes: vec![Mode::AtStart; n],
+            y: vec![0.0; n],
+            t: 0.0,
+            log: EventLog::new(joints),
+            stats: StepStats::default(),
+            work: Forces::default(),
+            model,
+            opts: *opts,
+        }
+    }
+
+    /// Applies every mode switch whose condition holds at the current state; records them.
+    fn switch(&mut self) -> bool {
+        self.model.forces(&self.y, &mut self.work);
+        for i in 0..self.model.len() {
+            let Some(next) =
+                condition(&self.model, i, self.modes[i], self.y[i], self.work.drive[i])
+            else {
+                continue;
+            };
+            let prev = std::mem::replace(&mut self.modes[i], next);
+            match next {
+                Mode::AtEnd => self.y[i] = 1.0,
+                Mode::AtStart => self.y[i] = 0.0,
+                Mode::Free => {}
+            }
+            self.log
+                .note(&self.model, i, prev, next, self.t, &self.modes, &self.y);
+        }
+        self.log.close(self.t)
+    }
+
+    /// The rates `dy/dt` at the current state into `f`.
+    fn rates(&mut self, stepper: &mut Stepper<Forces>, f: &mut [f64]) {
+        let moving = Moving {
+            model: &self.model,
+            modes: &self.modes,
+        };
+        stepper.rhs(&moving, &self.y, f, &mut self.stats);
+    }
+
+    /// Why the run must stop before a step of `h` with the unknowns `free` moving, if it
+    /// must; `slowest` is the model's slowest time scale.
+    fn stop_reason(&self, free: usize, h: f64, slowest: f64) -> Option<String> {
+        let last = self.log.last_event;
+        if self.t - last > 1e4 * last.max(slowest) {
+            return Some(format!(
+                "no event for {:.3e} s after the last at {:.6e} s with {free} unknowns still creeping",
+                self.t - last,
+                last,
+            ));
+        }
+        if self.stats.accepted + self.stats.rejected >= self.opts.max_steps {
+            return Some(format!(
+                "step limit of {} reached at t = {:.6e} s with {free} unknowns moving ({} steps rejected)",
+                self.opts.max_steps, self.t, self.stats.rejected
+            ));
+        }
+        if h < 1e-14 * self.t.max(self.model.time_scale) {
+            return Some(format!(
+                "step size underflow at t = {:.6e} s (h = {h:.3e} s): the dynamics is singular here",
+                self.t
+            ));
+        }
+        None
+    }
+
+    fn run(mut self) -> ReferenceRun {
+        let n = self.model.len();
+        let tol = self.opts.tolerance;
+        let mut stepper: Stepper<Forces> =
+            Stepper::new(self.opts.method, self.model.len(), self.model.bandwidth());
+        let q = self.opts.method.error_order() as f64;
+        self.switch();
+        let mut f = vec![0.0; n];
+        self.rates(&mut stepper, &mut f);
+        let scale = self.model.time_scale;
+        // the slowest of the model's time scales: a path at the bonded rest force's speed, or
+        // a fold under the bonded rest torque (heavy tiles fold far slower than magnets move)
+        let slowest =
+            scale.max(self.model.options().rotational_drag * FRAC_PI_2 / self.model.torque_scale);
+        let mut h = scale * 1e-3 * tol.powf(1.0 / (q + 1.0));
+        let mut stopped = None;
+        let mut rec = match self.opts.record {
+            Recording::Off => None,
+            Recording::Grid { max_states } => {
+                Some(Recorder::new(max_states, scale * 1e-3, &self.y))
+            }
+        };
+        loop {
+            let free: Vec<usize> = (0..n).filter(|&i| self.modes[i] == Mode::Free).collect();
+            if free.is_empty() {
+                break;
+            }
+            let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
+            let since = (self.t - self.log.last_event).max(scale);
+            if fastest * since < 1e-9 {
+                break;
+            }
+            if fastest * since < 1e-2 && self.settled(&free, &f) {
+                break;
+            }
+            if let Some(why) = self.stop_reason(free.len(), h, slowest) {
+                stopped = Some(why);
+                break;
+            }
+            let moving = Moving {
+                model: &self.model,
+                modes: &self.modes,
+            };
+            let att = match stepper.attempt(&moving, &self.y, &f, h, tol, &mut self.stats) {
+                Ok(a) => a,
+                Err(_) => {
+                    self.stats.rejected += 1;
+                    h *= 0.5;
+                    continue;
+                }
+            };
+            let finite = att.error.is_finite() && att.y.iter().all(|v| v.is_finite());
+            if !finite || att.error > 1.0 {
+                self.stats.rejected += 1;
+                let factor = if finite {
+                    (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
+                } else {
+                    0.1
+                };
+                h *= factor;
+                continue;
+            }
+            self.stats.accepted += 1;
+            let grow = if att.error > 0.0 {
+                (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
+            } else {
+                5.0
+            };
+            if any_event(&self.model, &self.modes, &att.y, &mut self.work) {
+                self.stats.rhs += 1;
+                let from = StepFrom {
+                    system: Moving {
+                        model: &self.model,
+                        modes: &self.modes,
+                    },
+                    y: &self.y,
+                    f: &f,
+                    tol,
+                };
+                let (hi, y_hi) =
+                    from.locate(&mut stepper, h, att.y, &mut self.stats, &mut self.work);
+                let t0 = self.t;
+                self.t += hi;
+                let y0 = std::mem::replace(&mut self.y, y_hi);
+                self.clamp_free();
+                self.switch();
+                if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
+                    r.cover(t0, &y0, &f, self.t, &self.y, None);
+                }
+                stepper.invalidate();
+                self.rates(&mut stepper, &mut f);
+                h = h.min(hi * 4.0).max(hi);
+                continue;
+            }
+            let t0 = self.t;
+            self.t += h;
+            let y0 = std::mem::replace(&mut self.y, att.y);
+            let f0 = rec
+                .as_ref()
+                .filter(|r| r.next_time() <= self.t)
+                .map(|_| f.clone());
+            stepper.invalidate();
+            match stepper.last_derivative() {
+                Some(d) => f.copy_from_slice(d),
+                None => self.rates(&mut stepper, &mut f),
+            }
+            if let (Some(r), Some(f0)) = (rec.as_mut(), f0) {
+                r.cover(t0, &y0, &f0, self.t, &self.y, Some(&f));
+            }
+            h *= grow;
+        }
+        let states = rec.map(|r| r.finish(self.t, &self.y)).unwrap_or_default();
+        self.finish(stopped, states)
+    }
+
+    /// Whether every free unknown is settling on a stable balance inside its range: its
+    /// own rate falls as it moves (`lambda = d rate / d y < 0`) and the linearised distance
+    /// left, `|rate / lambda|`, is under the tolerance (at least 1e-6) of its range (5 nm on
+    /// a 5 mm path at tight tolerances).
+    fn settled(&mut self, free: &[usize], f: &[f64]) -> bool {
+        let mut y = self.y.clone();
+        let mut work = Forces::default();
+        for &i in free {
+            let delta = if y[i] > 0.5 { -1e-7 } else { 1e-7 };
+            y[i] += delta;
+            self.model.forces(&y, &mut work);
+            self.stats.rhs += 1;
+            let rate = self.model.rate(i, work.drive[i], Mode::Free);
+            y[i] = self.y[i];
+            let lambda = (rate - f[i]) / delta;
+            let left = (f[i] / lambda).abs();
+            if lambda >= 0.0
+                || left > self.opts.tolerance.max(1e-6)
+                || self.y[i] < left
+                || 1.0 - self.y[i] < left
+            {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Keeps clamped unknowns exactly at their ends.
+    fn clamp_free(&mut self) {
+        for i in 0..self.y.len() {
+            match self.modes[i] {
+                Mode::AtStart => self.y[i] = 0.0,
+                Mode::AtEnd => self.y[i] = 1.0,
+                Mode::Free => {}
+            }
+        }
+    }
+
+    fn finish(mut self, stopped: Option<String>, states: Vec<(f64, Vec<f64>)>) -> ReferenceRun {
+        let time = self.log.last_event;
+        self.model.forces(&self.y, &mut self.work);
+        let outcome = RestState {
+            model: &self.model,
+            modes: &self.modes,
+            y: &self.y,
+            drive: &self.work.drive,
+        }
+        .outcome(time);
+        let mut events = self.log.events;
+        let stop = match &outcome {
+            Outcome::Inhibited { joint, .. } => Some((EventKind::Inhibited, *joint)),
+            Outcome::Stalled { joint, .. } => Some((EventKind::Stalled, *joint)),
+            Outcome::Completed => None,
+        };
+        if let Some((kind, joint)) = stop {
+            events.push(Event {
+                time,
+                index: joint as u32,
+                kind,
+            });
+        }
+        ReferenceRun {
+            end_time: self.t,
+            final_state: self.y,
+            states,
+            model: self.model,
+            options: self.opts,
+            events,
+            folds: self.log.folds,
+            outcome,
+            stopped,
+            max_moving: self.log.max_moving,
+            stats: self.stats,
+        }
+    }
+}

@@ -1,0 +1,150 @@
+//! The result of a reference run ([`ReferenceRun`]): its events, folds and outcome in the
+//! event engine's vocabulary ([`crate::timeline`]), the final and recorded states, and the
+//! work it took; its summary and `timeline.json` in the engine's forms.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::reference::dynamics::Model;
+use crate::reference::integrators::{Method, StepStats};
+use crate::reference::options::ReferenceOptions;
+use crate::timeline::{
+    Event, FoldRecord, Outcome, RunFacts, SpeedLaw, Summary, TimelineJson, EVENT_INDEX,
+};
+
+/// The result of a reference run.
+#[derive(Debug)]
+pub struct ReferenceRun {
+    /// The model (geometry and unknowns).
+    pub model: Model,
+    /// The options used.
+    pub options: ReferenceOptions,
+    /// Every event, in time order (the engine's kinds and indices).
+    pub events: Vec<Event>,
+    /// The folds, in the order they start (`end` is NaN for a fold that never closed).
+    pub folds: Vec<FoldRecord>,
+    /// How propagation ended.
+    pub outcome: Outcome,
+    /// Why integration stopped early (step limit, step-size underflow), if it did.
+    pub stopped: Option<String>,
+    /// The state at the end.
+    pub final_state: Vec<f64>,
+    /// Recorded `(time s, state)` pairs in time order, the last one the final state
+    /// ([`ReferenceOptions::record`]; empty when off).
+    pub states: Vec<(f64, Vec<f64>)>,
+    /// When the chain came to rest (or integration stopped), s.
+    pub end_time: f64,
+    /// The most magnets moving at once, and when first.
+    pub max_moving: (usize, f64),
+    /// Work counters.
+    pub stats: StepStats,
+}
+
+/// The law a reference timeline's times are in, as its JSON names it.
+#[derive(serde::Serialize)]
+struct ReferenceLaw {
+    reference: ReferenceSettings,
+}
+
+#[derive(serde::Serialize)]
+struct ReferenceSettings {
+    method: Method,
+    tolerance: f64,
+    drag: f64,
+    rotational_drag: f64,
+}
+
+impl ReferenceRun {
+    /// Number of tiles.
+    pub fn tiles(&self) -> usize {
+        self.model.geometry.tiles()
+    }
+
+    /// When the last event happens, s.
+    pub fn duration(&self) -> f64 {
+        self.events.last().map_or(0.0, |e| e.time)
+    }
+
+    /// The joints that folded (closed), in the order they started.
+    pub fn folded_joints(&self) -> Vec<usize> {
+        self.folds
+            .iter()
+            .filter(|f| !f.end.is_nan())
+            .map(|f| f.joint)
+            .collect()
+    }
+
+    /// The final signed joint angles, radians.
+    pub fn final_angles(&self) -> Vec<f64> {
+        self.model.joint_angles(&self.final_state)
+    }
+
+    /// The final world positions of the magnets, mm.
+    pub fn final_positions(&self) -> Vec<(f64, f64)> {
+        self.model.positions(&self.final_state)
+    }
+
+    /// `completed`, `inhibited`, `stalled`, or `stopped` when integration stopped early.
+    pub fn result_name(&self) -> &'static str {
+        if self.stopped.is_some() {
+            "stopped"
+        } else {
+            self.outcome.name()
+        }
+    }
+
+    /// The summary, with the same fields as the event engine's `summary.json` (no collision
+    /// check: `first_collision` is null; `speed_law` is the overdamped law with the drag).
+    pub fn to_summary(&self) -> Summary {
+        let summary = Summary::new(RunFacts {
+            tiles: self.tiles(),
+            outcome: &self.outcome,
+            decided_by: "reference dynamics",
+            duration_s: self.duration(),
+            events: self.events.len(),
+            folds: self.folded_joints(),
+            max_moving_magnets: self.max_moving.0,
+            speed_law: SpeedLaw::Overdamped {
+                drag: self.model.options().drag,
+            },
+        });
+        match &self.stopped {
+            Some(why) => summary.overruled("stopped", why.clone()),
+            None => summary,
+        }
+    }
+
+    /// `timeline.json` in the event engine's format, the law named `reference`.
+    pub fn timeline_json(&self) -> String {
+        let model = self.model.options();
+        TimelineJson {
+            tiles: self.tiles(),
+            speed_law: ReferenceLaw {
+                reference: ReferenceSettings {
+                    method: self.options.method,
+                    tolerance: self.options.tolerance,
+                    drag: model.drag,
+                    rotational_drag: model.rotational_drag,
+                },
+            },
+            events_total: None,
+            truncated: None,
+            index: EVENT_INDEX,
+            events: &self.events,
+        }
+        .to_json()
+    }
+
+    /// The fraction of each fold made at the end (1 = closed by the walls).
+    pub fn fold_fractions(&self) -> Vec<(usize, f64)> {
+        (0..self.tiles().saturating_sub(1))
+            .filter_map(|j| self.model.joint_var(j).map(|v| (j, self.final_state[v])))
+            .collect()
+    }
+
+    /// The final angle of joint `j` in degrees.
+    pub fn final_angle_degrees(&self, j: usize) -> f64 {
+        self.final_angles()
+            .get(j)
+            .map_or(0.0, |a| a / FRAC_PI_2 * 90.0)
+    }
+}
