@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns};
-use foldchain::reference::events::Recording;
+use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain, Pose};
