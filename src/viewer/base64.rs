@@ -26,12 +26,22 @@ pub fn encode(bytes: &[u8]) -> String {
 
 /// f64 values, little-endian, as base64.
 pub fn encode_f64(values: &[f64]) -> String {
-    encode(&values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>())
+    encode(
+        &values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
 }
 
 /// f32 values, little-endian, as base64.
 pub fn encode_f32(values: &[f32]) -> String {
-    encode(&values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>())
+    encode(
+        &values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
 }
 
 /// Unsigned integers in the fewest bytes that hold the largest (1, 2 or 4), little-endian:

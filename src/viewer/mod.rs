@@ -107,18 +107,22 @@ pub fn viewer_html(title: &str, runs: &[RunView<'_>]) -> String {
     let json = json.replace("</", "<\\/");
     let title = escape_html(title);
     let script = SCRIPTS.join("\n");
-    fill_template(TEMPLATE, &[
-        ("TITLE", &title),
-        ("STYLE", STYLE),
-        ("SCRIPT", &script),
-        ("DATA", &json),
-    ])
+    fill_template(
+        TEMPLATE,
+        &[
+            ("TITLE", &title),
+            ("STYLE", STYLE),
+            ("SCRIPT", &script),
+            ("DATA", &json),
+        ],
+    )
 }
 
 /// `template` with each `{{NAME}}` replaced by its value, in one pass (values are never
 /// scanned for placeholders); unknown names are left as they are.
 fn fill_template(template: &str, values: &[(&str, &str)]) -> String {
-    let mut out = String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
+    let mut out =
+        String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
     let mut rest = template;
     while let Some(i) = rest.find("{{") {
         out.push_str(&rest[..i]);

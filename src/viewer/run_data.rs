@@ -173,7 +173,12 @@ fn run_box(src: &dyn RunSource, joints: &[(usize, Track)], target: &[Vec<(f64, f
         times.push(0.5 * (tr.start + tr.end()));
         times.push(tr.end());
     }
-    let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
     let mut grow = |x: f64, y: f64| {
         b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
     };

@@ -92,13 +92,19 @@ impl Track {
             };
         };
         let v_end = samples[samples.len() - 1].1;
-        let last = samples.iter().rposition(|s| s.1 != v_end).map_or(0, |i| i + 1);
+        let last = samples
+            .iter()
+            .rposition(|s| s.1 != v_end)
+            .map_or(0, |i| i + 1);
         let run = &samples[first - 1..=last.max(first)];
         let keep = douglas_peucker(run, tolerance);
         let start = run[0].0;
         Track {
             start,
-            points: keep.into_iter().map(|i| (run[i].0 - start, run[i].1)).collect(),
+            points: keep
+                .into_iter()
+                .map(|i| (run[i].0 - start, run[i].1))
+                .collect(),
         }
     }
 }
@@ -165,7 +171,11 @@ mod tests {
     fn sampled_track_follows_a_smooth_law_within_its_tolerance() {
         let law = |dt: f64| 5.0 - (5.0f64.powi(5) - 300.0 * dt).max(0.0).powf(0.2);
         let tr = Track::sample(2.0, 10.0, 1e-3, law);
-        assert!(tr.points.len() > 8 && tr.points.len() < 2000, "{}", tr.points.len());
+        assert!(
+            tr.points.len() > 8 && tr.points.len() < 2000,
+            "{}",
+            tr.points.len()
+        );
         for i in 0..=10_000 {
             let dt = 10.0 * i as f64 / 10_000.0;
             let err = (tr.value_at(2.0 + dt) - law(dt)).abs();

@@ -445,7 +445,10 @@ fn with_out_dir(s: &Summary, out_dir: &Path) -> anyhow::Result<serde_json::Value
 /// Prints a run's summary: one line (and the reason), or JSON with `out_dir`.
 fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow::Result<()> {
     if json {
-        println!("{}", serde_json::to_string_pretty(&with_out_dir(s, out_dir)?)?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&with_out_dir(s, out_dir)?)?
+        );
         return Ok(());
     }
     println!(

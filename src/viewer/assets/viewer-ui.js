@@ -151,6 +151,7 @@ function render() {
   body.dataset.moving = first.run.moving;
   body.dataset.collision = first.el.dataset.collision;
   body.dataset.renderMs = ms.toFixed(2);
+  body.dataset.renderer = first.rastered ? 'raster' : 'canvas';
   const cr = first.canvas.getBoundingClientRect();
   body.dataset.view = [first.view.k, cr.left + first.view.ox, cr.top + first.view.oy].join(',');
   clock.textContent = 't = ' + fmt(t) + ' s of ' + fmt(end) + ' s';
@@ -325,15 +326,15 @@ if (bench > 0) {
   // frames at times spread over the run ending at the asked time, each flushed to pixels
   opts.flush = true;
   const target = state.t;
-  let worst = 0, sum = 0;
+  const times = [];
   for (let i = 0; i < bench; i++) {
     state.t = target * (i + 1) / bench;
-    const ms = render();
-    worst = Math.max(worst, ms); sum += ms;
+    times.push(render());
   }
   opts.flush = false;
-  body.dataset.renderMsMax = worst.toFixed(2);
-  body.dataset.renderMsMean = (sum / bench).toFixed(2);
+  times.sort(function (x, y) { return x - y; });
+  body.dataset.renderMsMax = times[bench - 1].toFixed(2);
+  body.dataset.renderMsMedian = times[bench >> 1].toFixed(2);
   body.dataset.renderFrames = String(bench);
 } else {
   render();
