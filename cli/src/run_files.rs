@@ -13,7 +13,8 @@ use std::path::Path;
 
 use foldchain::engine::Summary;
 use foldchain::render::{
-    energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, RunSource, DETAIL_TILES,
+    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, RunSource,
+    DETAIL_TILES,
 };
 use foldchain::viewer::{viewer_html, RunView};
 
@@ -36,7 +37,29 @@ pub struct RunFilesOptions {
     /// chain's own frame (tile 0 at the origin heading +x, y up) in tile widths; empty when
     /// there is none.
     pub target: Vec<Vec<(f64, f64)>>,
+    /// How step frames are framed.
+    pub frames_view: FramesView,
 }
+
+/// How step frames (and `final.svg`) are framed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FramesView {
+    /// Each frame on the chain as it stands; when its tiles would be drawn less than
+    /// [`MIN_TILE_PIXELS`] wide (a long chain seen whole is a hairline), on the part that
+    /// moves instead: [`FOCUS_CONTEXT`] tiles either side of the moving and turning ones,
+    /// the rest clipped.
+    #[default]
+    Auto,
+    /// Every frame in one view: the box holding the chain in all of them.
+    Fixed,
+}
+
+/// Tiles narrower than this in a frame of the whole chain send [`FramesView::Auto`] to the
+/// part that moves.
+pub const MIN_TILE_PIXELS: f64 = 8.0;
+
+/// Tiles shown either side of the part that moves, in [`FramesView::Auto`].
+pub const FOCUS_CONTEXT: usize = 24;
 
 /// The most tiles a run's `index.html` is written for: the page carries about 28 bytes per
 /// tile (28 MB at a million tiles), more than a browser opens comfortably beyond this.
@@ -133,18 +156,25 @@ pub fn write_run_files(
     let duration = source.end_time();
     let times = frame_times(duration, frames, collision.and_then(|(ct, _)| ct));
     let frames = times.len();
-    // Each step is framed on the chain as it stands at that moment: one view holding every
-    // sweep would show a long straight tail and leave the folded part a speck.
+    let fixed = match opts.frames_view {
+        FramesView::Auto => None,
+        FramesView::Fixed => times
+            .iter()
+            .map(|&t| source.state_at(t))
+            .chain(std::iter::once(source.final_state()))
+            .map(|s| FrameView::around(s.poses.iter().copied(), w))
+            .reduce(FrameView::union),
+    };
     for (i, &t) in times.iter().enumerate() {
         progress("frames", i, frames);
         let hit = collision.and_then(|(ct, tiles)| ct.is_some_and(|ct| t >= ct).then_some(tiles));
+        let mut state = source.state_at(t);
+        let (view, note) = frame_view(source, &mut state, fixed, hit);
         let fo = FrameOptions {
             title: opts.name.clone(),
             collision: hit,
-            note: None,
+            note,
         };
-        let state = source.state_at(t);
-        let view = FrameView::around(state.poses.iter().copied(), w);
         let svg = frame_svg(source.geometry(), &state, &view, &fo);
         out.write(&format!("step-{i:04}.svg"), svg.as_bytes())?;
     }
@@ -154,8 +184,8 @@ pub fn write_run_files(
         collision: collision.map(|(_, tiles)| tiles),
         note: Some(final_note(summary)),
     };
-    let final_state = source.final_state();
-    let final_view = FrameView::around(final_state.poses.iter().copied(), w);
+    let mut final_state = source.final_state();
+    let (final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
     let tiles = source.tiles();
@@ -209,6 +239,48 @@ fn frame_times(duration: f64, frames: usize, collision: Option<f64>) -> Vec<f64>
         }
     }
     times
+}
+
+/// The view of a frame of `state` (see [`FramesView`]; `fixed` is the fixed view, if any),
+/// and a note saying when it shows only the part that moves. A long chain's state has no
+/// magnets: those of the tiles in a view of few tiles are placed from the run's tracks.
+fn frame_view(
+    source: &dyn RunSource,
+    state: &mut ChainState,
+    fixed: Option<FrameView>,
+    collision: Option<(usize, usize)>,
+) -> (FrameView, Option<String>) {
+    let w = source.geometry().w;
+    let (view, note) = match fixed {
+        Some(v) => (v, None),
+        None => {
+            let whole = FrameView::around(state.poses.iter().copied(), w);
+            match FrameView::focus(state, w, FOCUS_CONTEXT, collision) {
+                Some((v, (a, b))) if whole.tile_pixels(w) < MIN_TILE_PIXELS => {
+                    let note = format!(
+                        "the part that moves: tiles {a} to {b} of {} (--frames-view fixed shows the whole run)",
+                        state.tiles()
+                    );
+                    (v, Some(note))
+                }
+                _ => (whole, None),
+            }
+        }
+    };
+    if state.magnets.is_empty() {
+        let shown: Vec<usize> = (0..state.tiles())
+            .filter(|&i| view.shows(&state.poses[i], w))
+            .collect();
+        if shown.len() <= DETAIL_TILES {
+            let g = source.geometry();
+            state.magnets = vec![(f64::NAN, f64::NAN); g.magnets()];
+            for k in shown.into_iter().flat_map(|i| [2 * i, 2 * i + 1]) {
+                let u = source.magnet_travel(k).value_at(state.time);
+                state.magnets[k] = state.poses[k / 2].transform_point(g.path(k).point_at(u));
+            }
+        }
+    }
+    (view, note)
 }
 
 /// The final frame's note: the result and its reason, at most 150 characters.

@@ -18,7 +18,8 @@ use foldchain::{simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
-    is_run_file, run_view, write_compare_page, write_run_files, RunFilesOptions, MAX_FRAMES,
+    is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
+    MAX_FRAMES,
 };
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
@@ -66,6 +67,11 @@ struct Args {
     /// Number of step frames (default: 40, fewer for long chains; at most 100000).
     #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
     frames: Option<usize>,
+    /// How step frames are framed: auto (each on the chain as it stands, or on the part
+    /// that moves when a long chain seen whole would be a hairline) or fixed (every frame in
+    /// one view holding the whole run).
+    #[arg(long, value_name = "VIEW", default_value = "auto", value_parser = ["auto", "fixed"])]
+    frames_view: String,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -290,6 +296,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
         frames: args.frames,
         transition_tiles,
         target,
+        frames_view: match args.frames_view.as_str() {
+            "fixed" => FramesView::Fixed,
+            _ => FramesView::Auto,
+        },
     };
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out").join(match mode {
