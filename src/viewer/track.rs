@@ -71,7 +71,8 @@ impl Track {
             for i in 0..n0 {
                 let t0 = duration * i as f64 / n0 as f64;
                 let t1 = duration * (i + 1) as f64 / n0 as f64;
-                refine(&f, t0, t1, tolerance, 0, &mut points);
+                let a = points.last().map_or(0.0, |p| p.1);
+                refine(&f, (t0, a), (t1, f(t1)), tolerance, 0, &mut points);
             }
         }
         Track { start, points }
@@ -111,17 +112,17 @@ impl Track {
 
 fn refine(
     f: &impl Fn(f64) -> f64,
-    t0: f64,
-    t1: f64,
+    (t0, a): (f64, f64),
+    (t1, b): (f64, f64),
     tolerance: f64,
     depth: u32,
     out: &mut Vec<(f64, f64)>,
 ) {
-    let (a, b) = (f(t0), f(t1));
     let tm = 0.5 * (t0 + t1);
-    if depth < MAX_DEPTH && (f(tm) - 0.5 * (a + b)).abs() > tolerance {
-        refine(f, t0, tm, tolerance, depth + 1, out);
-        refine(f, tm, t1, tolerance, depth + 1, out);
+    let m = f(tm);
+    if depth < MAX_DEPTH && (m - 0.5 * (a + b)).abs() > tolerance {
+        refine(f, (t0, a), (tm, m), tolerance, depth + 1, out);
+        refine(f, (tm, m), (t1, b), tolerance, depth + 1, out);
     } else {
         out.push((t1, b));
     }
