@@ -15,7 +15,7 @@ use std::process::Command;
 use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
-use foldchain::engine::{EngineOptions, TileDesigns};
+use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
 use foldchain::render::RunSource;
@@ -23,6 +23,15 @@ use foldchain::{simulate, Chain, Pose};
 
 /// The page's background colour.
 const BACKGROUND: [u8; 3] = [0xfb, 0xfb, 0xf8];
+
+/// The library's engine run of `word` with the thesis design, as `fold-run` makes it.
+fn engine_run(word: &str) -> Timeline {
+    let chain = Chain::parse(word).unwrap();
+    let opts = (EngineOptions::default(), CheckOptions::default());
+    simulate(&chain, &TileDesigns::default(), &opts.0, &opts.1)
+        .unwrap()
+        .0
+}
 
 fn fold_run(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_fold-run"))
@@ -155,15 +164,7 @@ fn screenshots_at_the_start_and_the_end_differ_and_show_the_chain() {
     let o = fold_run(&["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"]);
     assert!(o.status.success());
     let page = d.join("index.html");
-    let chain = Chain::parse("SSLLSS").unwrap();
-    let designs = TileDesigns::default();
-    let (tl, _) = simulate(
-        &chain,
-        &designs,
-        &EngineOptions::default(),
-        &CheckOptions::default(),
-    )
-    .unwrap();
+    let tl = engine_run("SSLLSS");
     let mut shots = Vec::new();
     for (hash, t) in [("t=0", 0.0), ("t=end", tl.end_time())] {
         let view = body(&exe, &page, hash);
@@ -212,18 +213,11 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     );
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
-    let designs = TileDesigns::default();
-    let (tl, _) = simulate(
-        &chain,
-        &designs,
-        &EngineOptions::default(),
-        &CheckOptions::default(),
-    )
-    .unwrap();
+    let tl = engine_run(word);
     let ro = ReferenceOptions::default().with_record(Recording::Grid {
         max_states: state_budget(chain.len()),
     });
-    let reference = run_reference(&chain, &designs, &ro).unwrap();
+    let reference = run_reference(&chain, &TileDesigns::default(), &ro).unwrap();
     let w = tl.geometry().w;
     // the engine at any time (the fold law is sampled within its tolerance), the reference
     // at its recorded states (between them the page interpolates, the library shows the
@@ -274,13 +268,7 @@ fn the_collision_is_marked_at_its_time_and_place() {
         .map(|v| v.as_u64().unwrap() as usize)
         .collect();
     let page = d.join("index.html");
-    let (tl, _) = simulate(
-        &Chain::parse("LSLLSR").unwrap(),
-        &TileDesigns::default(),
-        &EngineOptions::default(),
-        &CheckOptions::default(),
-    )
-    .unwrap();
+    let tl = engine_run("LSLLSR");
     let red = |p: [u8; 3]| p[0] > 200 && p[1] < 90 && p[2] < 90;
     for (when, marked) in [(0.9 * t, false), (t, true)] {
         let hash = format!("t={when}");
