@@ -1,7 +1,7 @@
 // foldchain viewer, the page: panels, the shared clock and view, controls, the URL hash,
 // the state on <body>, and the test options.
 
-// options from the hash: view=X0,Y0,X1,Y1, and for tests poses=1, detail=all,
+// options from the hash: view=X0,Y0,X1,Y1, follow=1, and for tests poses=1, detail=all,
 // renderer=2d|raster, bench=N, probe=T1,T2,...
 const hash = readHash();
 const opts = { detailAll: hash.detail === 'all', poses: hash.poses === '1', renderer: hash.renderer || 'auto', flush: false };
@@ -114,14 +114,51 @@ const playBtn = document.getElementById('play');
 const scrub = document.getElementById('scrub');
 const clock = document.getElementById('clock');
 const speedSel = document.getElementById('speed');
+const followBox = document.getElementById('follow');
+followBox.checked = hash.follow === '1';
 
 function fmt(x) { return x < 1e-3 && x > 0 ? x.toExponential(3) : x.toFixed(4); }
+
+// the tiles from FOLLOW_CONTEXT before the first to as many after the last one that moves
+// in any run, as a box (world mm), or null when nothing moves
+const FOLLOW_CONTEXT = 24;
+function movingBox() {
+  let b = null;
+  runs.forEach(function (r) {
+    let first = -1, last = -1;
+    for (let i = 0; i < r.tiles; i++) if (r.cls[i]) { if (first < 0) first = i; last = i; }
+    if (first < 0) return;
+    const a = Math.max(first - FOLLOW_CONTEXT, 0), z = Math.min(last + FOLLOW_CONTEXT, r.tiles - 1);
+    for (let i = a; i <= z; i++) {
+      const x = r.px[i], y = r.py[i];
+      b = b ? [Math.min(b[0], x), Math.min(b[1], y), Math.max(b[2], x), Math.max(b[3], y)] : [x, y, x, y];
+    }
+    const pad = 1.5 * r.w;
+    b = [b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad];
+  });
+  return b;
+}
+// follow: the view moves to the part that moves, gliding while playing
+function follow() {
+  const b = movingBox();
+  if (!b) return;
+  const was = { x: cam.x, y: cam.y, k: cam.k };
+  fitAll(b);
+  if (state.playing) {
+    const f = 0.15;
+    cam.k = Math.exp(Math.log(was.k) + f * (Math.log(cam.k) - Math.log(was.k)));
+    cam.x = was.x + f * (cam.x - was.x);
+    cam.y = was.y + f * (cam.y - was.y);
+  }
+  applyCam();
+}
 
 function render() {
   const t0 = performance.now();
   const t = state.t;
+  panels.forEach(function (p) { update(p.run, t); });
+  if (followBox.checked) follow();
   panels.forEach(function (p) {
-    update(p.run, t);
     drawUnder(p);
     p.rastered = opts.renderer === 'raster' || (opts.renderer !== '2d' && inView(p) > RASTER_ABOVE);
     p.mid.hidden = !p.rastered;
@@ -206,12 +243,14 @@ function zoom(f, sx, sy) {
   const p = panels[0];
   if (sx === undefined) { sx = 0.5 * p.cssW; sy = 0.5 * p.cssH; }
   const wx = (sx - p.view.ox) / cam.k, wy = (p.view.oy - sy) / cam.k;
+  followBox.checked = false;
   cam.k *= f;
   cam.x = wx - sx / cam.k;
   cam.y = wy + sy / cam.k;
   applyCam(); render();
 }
 function pan(dx, dy) {
+  followBox.checked = false;
   cam.x -= dx / cam.k; cam.y += dy / cam.k;
   applyCam(); render();
 }
@@ -231,7 +270,8 @@ speedSel.addEventListener('change', function () { state.speed = parseFloat(speed
 playBtn.addEventListener('click', function () { play(!state.playing); });
 document.getElementById('prev').addEventListener('click', function () { jump(-1); });
 document.getElementById('next').addEventListener('click', function () { jump(1); });
-document.getElementById('fit').addEventListener('click', function () { fitAll(); applyCam(); render(); });
+document.getElementById('fit').addEventListener('click', function () { followBox.checked = false; fitAll(); applyCam(); render(); });
+followBox.addEventListener('change', function () { render(); });
 scrub.addEventListener('input', function () { state.playing = false; setTime(scrub.value / 1e6 * end); });
 const hitRun = runs.find(function (r) { return r.collision; });
 const ticks = document.getElementById('ticks');
@@ -283,7 +323,8 @@ document.addEventListener('keydown', function (e) {
     case 'End': state.playing = false; setTime(end); break;
     case '+': case '=': zoom(1.25); break;
     case '-': case '_': zoom(0.8); break;
-    case '0': case 'f': fitAll(); applyCam(); render(); break;
+    case '0': case 'f': followBox.checked = false; fitAll(); applyCam(); render(); break;
+    case 'v': followBox.checked = !followBox.checked; render(); break;
     case 'ArrowLeft': pan(step, 0); break;
     case 'ArrowRight': pan(-step, 0); break;
     case 'ArrowUp': pan(0, step); break;
