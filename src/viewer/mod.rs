@@ -13,13 +13,21 @@
 //! about 28 bytes per tile on the event engine's serpentines.
 //!
 //! State for tests and people: the URL hash `#t=SECONDS` (or `#t=end`) opens the page paused
-//! at that time; `<body>` carries `data-time`, `data-folded` (joints at 90 degrees),
+//! at that time, `view=X0,Y0,X1,Y1` (world mm) on that box, `follow=1` following the part
+//! that moves; `<body>` carries `data-time`, `data-folded` (joints at 90 degrees),
 //! `data-moving` (magnets moving), `data-collision` (the two tiles, once they have met),
-//! `data-render-ms` (the last frame's drawing time) and `data-view` (CSS pixels per mm and
-//! the pixel position of the world origin in the first panel), updated on every frame. Hash
-//! options for tests: `poses=1` puts every tile's pose on each panel's `data-poses`,
-//! `detail=all` draws every part of every tile whatever its size on screen, and `bench=N`
-//! draws `N` frames on load, each flushed to pixels, and reports the last frame's time.
+//! `data-render-ms` (the last frame's drawing time), `data-renderer` and `data-view` (CSS
+//! pixels per mm and the pixel position of the world origin in the first panel), updated on
+//! every frame; each panel (`<section data-run=...>`) carries its own `data-folded`,
+//! `data-moving` and `data-collision`. Hash options for tests: `poses=1` puts every tile's
+//! pose on each panel's `data-poses`, `probe=T1,T2,...` the poses at those times on
+//! `data-poses-1`, `data-poses-2`, ..., `detail=all` draws every part of every tile whatever
+//! its size on screen, `renderer=2d|raster` chooses the drawing, and `bench=N` draws `N`
+//! frames on load, each flushed to pixels, and reports their median and slowest.
+//!
+//! Drawing: with many tiles in view the page rasterises the chain itself into a pixel buffer
+//! (Chromium's canvas and its software WebGL are far too slow for 10^4 tiles on a headless
+//! machine: `BENCHMARKS.md`); with few, the canvas draws them with smooth edges.
 
 mod base64;
 mod path_form;

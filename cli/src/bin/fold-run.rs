@@ -19,7 +19,7 @@ use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
     is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
-    MAX_FRAMES,
+    MAX_FRAMES, MAX_VIEWER_TILES,
 };
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
@@ -434,6 +434,12 @@ fn write_files(
         }
     };
     write_run_files(source, s, out_dir, files, &mut progress)?;
+    if s.tiles > MAX_VIEWER_TILES {
+        eprintln!(
+            "fold-run: note: no index.html: the viewer takes at most {MAX_VIEWER_TILES} tiles ({} here)",
+            s.tiles
+        );
+    }
     let d = s.duration_s;
     if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
         eprintln!(
