@@ -59,6 +59,7 @@ pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
+pub mod viewer;
 mod word;
 
 pub use bom::BillOfMaterials;

@@ -1,6 +1,7 @@
-//! A run's files: step frames, `final.svg`, `transition.svg`, `energy.svg`, `timeline.json`
-//! and `summary.json`, written into an output directory from either the event engine's
-//! timeline or the reference integrator's recorded states ([`RunSource`]).
+//! A run's files: step frames, `final.svg`, `transition.svg`, `energy.svg`, the animated
+//! viewer `index.html`, `timeline.json` and `summary.json`, written into an output directory
+//! from either the event engine's timeline or the reference integrator's recorded states
+//! ([`RunSource`]); and the page that plays both side by side ([`write_compare_page`]).
 //!
 //! Frames are drawn and written one at a time, so memory does not grow with their number.
 //! Every file is written atomically into the directory, which is shared with whatever else a
@@ -12,8 +13,10 @@ use std::path::Path;
 
 use foldchain::engine::Summary;
 use foldchain::render::{
-    energy_svg, frame_svg, transition_svg, FrameOptions, FrameView, RunSource, DETAIL_TILES,
+    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, RunSource,
+    DETAIL_TILES,
 };
+use foldchain::viewer::{viewer_html, RunView};
 
 use crate::output::{OutputDir, WriteError};
 
@@ -30,6 +33,75 @@ pub struct RunFilesOptions {
     pub frames: Option<usize>,
     /// Tiles shown in the transition diagram (inclusive); `None` for the first six.
     pub transition_tiles: Option<(usize, usize)>,
+    /// The target outline the chain was planned for, drawn by the viewer: rings in the
+    /// chain's own frame (tile 0 at the origin heading +x, y up) in tile widths; empty when
+    /// there is none.
+    pub target: Vec<Vec<(f64, f64)>>,
+    /// How step frames are framed.
+    pub frames_view: FramesView,
+}
+
+/// How step frames (and `final.svg`) are framed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FramesView {
+    /// Each frame on the chain as it stands; when its tiles would be drawn less than
+    /// [`MIN_TILE_PIXELS`] wide (a long chain seen whole is a hairline), on the part that
+    /// moves instead: [`FOCUS_CONTEXT`] tiles either side of the moving and turning ones,
+    /// the rest clipped.
+    #[default]
+    Auto,
+    /// Every frame in one view: the box holding the chain in all of them.
+    Fixed,
+}
+
+/// Tiles narrower than this in a frame of the whole chain send [`FramesView::Auto`] to the
+/// part that moves.
+pub const MIN_TILE_PIXELS: f64 = 8.0;
+
+/// Tiles shown either side of the part that moves, in [`FramesView::Auto`].
+pub const FOCUS_CONTEXT: usize = 24;
+
+/// The most tiles a run's `index.html` is written for: the page carries about 28 bytes per
+/// tile (28 MB at a million tiles), more than a browser opens comfortably beyond this.
+pub const MAX_VIEWER_TILES: usize = 200_000;
+
+/// The viewer's view of a run: its title, outcome, first collision and target outline.
+pub fn run_view<'a>(
+    source: &'a dyn RunSource,
+    summary: &Summary,
+    opts: &RunFilesOptions,
+    label: &str,
+) -> RunView<'a> {
+    let w = source.geometry().w;
+    let mut view = RunView::new(source, opts.name.clone())
+        .with_label(label)
+        .with_note(final_note(summary))
+        .with_target(
+            opts.target
+                .iter()
+                .map(|ring| ring.iter().map(|&(x, y)| (x * w, y * w)).collect())
+                .collect(),
+        );
+    if let Some(c) = summary.first_collision {
+        view = view.with_collision(c.time, c.tiles);
+    }
+    view
+}
+
+/// Writes `index.html` into `dir` (created if needed): the page playing `views` side by
+/// side on one clock, titled `title`. Returns `false` (and writes nothing) for runs longer
+/// than [`MAX_VIEWER_TILES`].
+pub fn write_compare_page(
+    dir: &Path,
+    title: &str,
+    views: &[RunView<'_>],
+) -> Result<bool, WriteError> {
+    if views.iter().any(|v| v.tiles() > MAX_VIEWER_TILES) {
+        return Ok(false);
+    }
+    let mut out = OutputDir::create(dir)?;
+    out.write("index.html", viewer_html(title, views).as_bytes())?;
+    Ok(true)
 }
 
 /// The default number of step frames: 40 for short chains, fewer for long ones (a frame of
@@ -84,18 +156,25 @@ pub fn write_run_files(
     let duration = source.end_time();
     let times = frame_times(duration, frames, collision.and_then(|(ct, _)| ct));
     let frames = times.len();
-    // Each step is framed on the chain as it stands at that moment: one view holding every
-    // sweep would show a long straight tail and leave the folded part a speck.
+    let fixed = match opts.frames_view {
+        FramesView::Auto => None,
+        FramesView::Fixed => times
+            .iter()
+            .map(|&t| source.state_at(t))
+            .chain(std::iter::once(source.final_state()))
+            .map(|s| FrameView::around(s.poses.iter().copied(), w))
+            .reduce(FrameView::union),
+    };
     for (i, &t) in times.iter().enumerate() {
         progress("frames", i, frames);
         let hit = collision.and_then(|(ct, tiles)| ct.is_some_and(|ct| t >= ct).then_some(tiles));
+        let mut state = source.state_at(t);
+        let (view, note) = frame_view(source, &mut state, fixed, hit);
         let fo = FrameOptions {
             title: opts.name.clone(),
             collision: hit,
-            note: None,
+            note,
         };
-        let state = source.state_at(t);
-        let view = FrameView::around(state.poses.iter().copied(), w);
         let svg = frame_svg(source.geometry(), &state, &view, &fo);
         out.write(&format!("step-{i:04}.svg"), svg.as_bytes())?;
     }
@@ -105,8 +184,8 @@ pub fn write_run_files(
         collision: collision.map(|(_, tiles)| tiles),
         note: Some(final_note(summary)),
     };
-    let final_state = source.final_state();
-    let final_view = FrameView::around(final_state.poses.iter().copied(), w);
+    let mut final_state = source.final_state();
+    let (final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
     let tiles = source.tiles();
@@ -126,8 +205,15 @@ pub fn write_run_files(
     let svg = energy_svg(source.folds(), &source.energy(samples), &title);
     out.write("energy.svg", svg.as_bytes())?;
     progress("energy", 1, 1);
+    if tiles <= MAX_VIEWER_TILES {
+        progress("viewer", 0, 1);
+        let view = run_view(source, summary, opts, "");
+        out.write("index.html", viewer_html(&opts.name, &[view]).as_bytes())?;
+        progress("viewer", 1, 1);
+    }
     out.write("timeline.json", source.timeline_json().as_bytes())?;
-    out.remove_stale(&is_step_frame, &is_run_file)?;
+    // a page of an earlier, shorter run of this chain would show the wrong run
+    out.remove_stale(&|n| is_step_frame(n) || n == "index.html", &is_run_file)?;
     let mut summary_json = summary.to_json();
     summary_json.push('\n');
     out.write("summary.json", summary_json.as_bytes())?;
@@ -153,6 +239,48 @@ fn frame_times(duration: f64, frames: usize, collision: Option<f64>) -> Vec<f64>
         }
     }
     times
+}
+
+/// The view of a frame of `state` (see [`FramesView`]; `fixed` is the fixed view, if any),
+/// and a note saying when it shows only the part that moves. A long chain's state has no
+/// magnets: those of the tiles in a view of few tiles are placed from the run's tracks.
+fn frame_view(
+    source: &dyn RunSource,
+    state: &mut ChainState,
+    fixed: Option<FrameView>,
+    collision: Option<(usize, usize)>,
+) -> (FrameView, Option<String>) {
+    let w = source.geometry().w;
+    let (view, note) = match fixed {
+        Some(v) => (v, None),
+        None => {
+            let whole = FrameView::around(state.poses.iter().copied(), w);
+            match FrameView::focus(state, w, FOCUS_CONTEXT, collision) {
+                Some((v, (a, b))) if whole.tile_pixels(w) < MIN_TILE_PIXELS => {
+                    let note = format!(
+                        "the part that moves: tiles {a} to {b} of {} (--frames-view fixed shows the whole run)",
+                        state.tiles()
+                    );
+                    (v, Some(note))
+                }
+                _ => (whole, None),
+            }
+        }
+    };
+    if state.magnets.is_empty() {
+        let shown: Vec<usize> = (0..state.tiles())
+            .filter(|&i| view.shows(&state.poses[i], w))
+            .collect();
+        if shown.len() <= DETAIL_TILES {
+            let g = source.geometry();
+            state.magnets = vec![(f64::NAN, f64::NAN); g.magnets()];
+            for k in shown.into_iter().flat_map(|i| [2 * i, 2 * i + 1]) {
+                let u = source.magnet_travel(k).value_at(state.time);
+                state.magnets[k] = state.poses[k / 2].transform_point(g.path(k).point_at(u));
+            }
+        }
+    }
+    (view, note)
 }
 
 /// The final frame's note: the result and its reason, at most 150 characters.

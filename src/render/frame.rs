@@ -2,10 +2,12 @@
 //! parts and a collision highlighted and a time stamp. It draws a [`ChainState`], so the
 //! event engine and the reference integrator share it.
 //!
-//! Chains longer than [`DETAIL_TILES`] are drawn lean: the chain as one thick polyline
-//! through the tile centres (straight runs merged into one segment), the tiles near moving
-//! magnets over it, and no magnets or paths, so a frame of a 100,000-tile chain stays a few
-//! megabytes at most.
+//! A frame shows the tiles whose centres lie in its view: up to [`DETAIL_TILES`] of them are
+//! drawn in detail; more are drawn lean: the chain as one thick polyline through the tile
+//! centres (straight runs merged into one segment), the tiles near moving magnets over it,
+//! and no magnets or paths, so a frame of a 100,000-tile chain stays a few megabytes at most.
+//! A long chain seen whole is a hairline, so its frames can be framed on the part that
+//! moves instead ([`FrameView::focus`]), where its tiles are drawn in detail.
 
 use kurbo::{Point, Rect};
 use svg::node::element::{Circle, Group, Polygon, Polyline, Text};
@@ -20,6 +22,12 @@ pub const DETAIL_TILES: usize = 400;
 
 /// Tiles drawn over the lean polyline of a long chain, at most (moving or colliding ones).
 const LEAN_TILES_SHOWN: usize = 2000;
+
+/// The width of a frame in pixels for a view of `width` mm: 900 at most, 6 per mm for
+/// small chains, 300 at least.
+fn page_width(width: f64) -> f64 {
+    900.0_f64.min(width * 6.0).max(300.0)
+}
 
 /// The view box shared by all frames of a run, in world mm.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,6 +62,42 @@ impl FrameView {
         FrameView {
             bounds: self.bounds.union(o.bounds),
         }
+    }
+
+    /// Whether a frame of this view shows the tile at `pose` (its centre within a tile width
+    /// `w` of the view).
+    pub fn shows(&self, pose: &Pose, w: f64) -> bool {
+        self.bounds
+            .inflate(w, w)
+            .contains(Point::new(pose.x, pose.y))
+    }
+
+    /// How many pixels wide a tile of width `w` is drawn in a frame of this view.
+    pub fn tile_pixels(&self, w: f64) -> f64 {
+        w * page_width(self.bounds.width()) / self.bounds.width()
+    }
+
+    /// A view on the part of the chain that moves in `state`: the tiles from `context`
+    /// before the first to `context` after the last tile that is moving, turning or in
+    /// `collision`, with their range. `None` when nothing moves.
+    pub fn focus(
+        state: &ChainState,
+        w: f64,
+        context: usize,
+        collision: Option<(usize, usize)>,
+    ) -> Option<(FrameView, (usize, usize))> {
+        let n = state.tiles();
+        let active = |i: usize| {
+            state.tile_moving(i)
+                || (i > 0 && state.joint_folding(i - 1))
+                || state.joint_folding(i)
+                || collision.is_some_and(|(a, b)| a == i || b == i)
+        };
+        let first = (0..n).find(|&i| active(i))?;
+        let last = (0..n).rev().find(|&i| active(i))?;
+        let range = (first.saturating_sub(context), (last + context).min(n - 1));
+        let view = FrameView::around(state.poses[range.0..=range.1].iter().copied(), w);
+        Some((view, range))
     }
 }
 
@@ -97,8 +141,7 @@ pub fn frame_svg(
 ) -> String {
     let w = geometry.w;
     let b = view.bounds;
-    // pixel size: 900 px wide at most, at least 1 px per 0.05 mm for small chains
-    let px_w = 900.0_f64.min(b.width() * 6.0).max(300.0);
+    let px_w = page_width(b.width());
     let page = PageMap {
         view: b,
         scale: px_w / b.width(),
@@ -116,11 +159,15 @@ pub fn frame_svg(
     let outlines = Group::new()
         .set("stroke", "#55524c")
         .set("stroke-width", num((0.04 * w * page.scale).clamp(0.3, 1.5)));
-    if state.tiles() <= DETAIL_TILES {
+    let shown: Vec<usize> = (0..state.tiles())
+        .filter(|&i| view.shows(&state.poses[i], w))
+        .collect();
+    if shown.len() <= DETAIL_TILES {
         doc = draw_detail(
             doc,
             geometry,
             state,
+            &shown,
             &page,
             &in_collision,
             outlines,
@@ -181,12 +228,14 @@ pub fn frame_svg(
     to_text(&doc)
 }
 
-/// A chain of at most [`DETAIL_TILES`] tiles: outlines, paths, hinges of fold joints and
-/// magnets.
+/// The tiles `shown` (at most [`DETAIL_TILES`]): outlines, paths, hinges of fold joints and
+/// magnets (when the state has them).
+#[allow(clippy::too_many_arguments)]
 fn draw_detail(
     mut doc: Document,
     geometry: &Geometry,
     state: &ChainState,
+    shown: &[usize],
     page: &PageMap,
     in_collision: &impl Fn(usize) -> bool,
     mut outlines: Group,
@@ -194,7 +243,8 @@ fn draw_detail(
 ) -> Document {
     let w = geometry.w;
     let tiles = state.tiles();
-    for (i, p) in state.poses.iter().enumerate() {
+    for &i in shown {
+        let p = &state.poses[i];
         let fill = if in_collision(i) {
             "#f28b82"
         } else if (i > 0 && state.joint_folding(i - 1)) || (i + 1 < tiles && state.joint_folding(i))
@@ -215,7 +265,8 @@ fn draw_detail(
         .set("stroke", "#9c968a")
         .set("stroke-width", num((2.0 * r * page.scale).max(1.0) * 1.1))
         .set("stroke-linecap", "round");
-    for (i, p) in state.poses.iter().enumerate() {
+    for &i in shown {
+        let p = &state.poses[i];
         for k in [2 * i, 2 * i + 1] {
             let path = geometry.path(k).polyline(0.5);
             let pts = path.into_iter().map(|q| page.point(p.transform_point(q)));
@@ -224,7 +275,8 @@ fn draw_detail(
     }
     doc = doc.add(paths);
     // hinges of fold joints
-    for (j, pose) in state.poses.iter().enumerate().take(tiles.saturating_sub(1)) {
+    for &j in shown.iter().filter(|&&j| j + 1 < tiles) {
+        let pose = &state.poses[j];
         if let Some(Some(fold)) = state.folds.get(j) {
             let (x, y) = page.point(pose.transform_point(Octagon::new(w).hinge(*fold == Fold::L)));
             let colour = if state.joint_folding(j) {
@@ -241,7 +293,11 @@ fn draw_detail(
             );
         }
     }
-    for (k, &m) in state.magnets.iter().enumerate() {
+    let magnets = shown
+        .iter()
+        .flat_map(|&i| [2 * i, 2 * i + 1])
+        .filter_map(|k| state.magnets.get(k).map(|&m| (k, m)));
+    for (k, m) in magnets {
         let (x, y) = page.point(m);
         let fill = if k % 2 == 0 { "#d93025" } else { "#188038" };
         let moving = state.moving.get(k).copied().unwrap_or(false);

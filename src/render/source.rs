@@ -3,12 +3,15 @@
 //! data, the energy curve, the folds, the timeline's JSON), so every picture and the viewer
 //! are drawn once for both.
 
-use crate::engine::{energy_curve, EnergySample, FoldRecord, Geometry, Timeline};
+use std::f64::consts::FRAC_PI_2;
+
+use crate::engine::{energy_curve, fold_angle, EnergySample, FoldRecord, Geometry, Timeline};
 use crate::reference::{
     reference_energy, reference_final_state, reference_state_near, reference_transition,
     ReferenceRun,
 };
 use crate::render::{ChainState, TransitionData};
+use crate::viewer::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 
 /// What a run's pictures are drawn from.
 pub trait RunSource {
@@ -30,6 +33,12 @@ pub trait RunSource {
     fn folds(&self) -> &[FoldRecord];
     /// `timeline.json`.
     fn timeline_json(&self) -> String;
+    /// Magnet `k`'s travel along its path (mm of arc length from its rest point) against
+    /// time, within [`TRAVEL_TOLERANCE`]: what the viewer plays.
+    fn magnet_travel(&self, k: usize) -> Track;
+    /// Joint `j`'s signed angle (radians, positive = left) against time, within
+    /// [`ANGLE_TOLERANCE`]: what the viewer turns the tiles by.
+    fn joint_angle(&self, j: usize) -> Track;
 }
 
 impl RunSource for Timeline {
@@ -59,6 +68,23 @@ impl RunSource for Timeline {
     }
     fn timeline_json(&self) -> String {
         crate::timeline_json(self)
+    }
+    fn magnet_travel(&self, k: usize) -> Track {
+        match self.start_of(k) {
+            None => Track::constant(0.0),
+            Some(s) => {
+                let m = self.motion(k);
+                Track::sample(s, m.duration(), TRAVEL_TOLERANCE, |dt| m.distance_at(dt))
+            }
+        }
+    }
+    fn joint_angle(&self, j: usize) -> Track {
+        match self.fold_at(j) {
+            None => Track::constant(0.0),
+            Some(f) => Track::sample(f.start, f.end - f.start, ANGLE_TOLERANCE, |dt| {
+                fold_angle(self, f, f.start + dt)
+            }),
+        }
     }
 }
 
@@ -90,4 +116,30 @@ impl RunSource for ReferenceRun {
     fn timeline_json(&self) -> String {
         ReferenceRun::timeline_json(self)
     }
+    fn magnet_travel(&self, k: usize) -> Track {
+        let (v, len) = (self.model.magnet_var(k), self.model.path_length(k));
+        reference_track(self, TRAVEL_TOLERANCE, |y| y[v].clamp(0.0, 1.0) * len)
+    }
+    fn joint_angle(&self, j: usize) -> Track {
+        match self.model.joint_var(j) {
+            None => Track::constant(0.0),
+            Some(v) => {
+                let sign = self.model.joint_sign(j);
+                reference_track(self, ANGLE_TOLERANCE, |y| {
+                    sign * y[v].clamp(0.0, 1.0) * FRAC_PI_2
+                })
+            }
+        }
+    }
+}
+
+/// One quantity of the reference's recorded states (the final state alone when none were
+/// recorded), thinned within `tolerance`.
+fn reference_track(run: &ReferenceRun, tolerance: f64, value: impl Fn(&[f64]) -> f64) -> Track {
+    let samples: Vec<(f64, f64)> = if run.states.is_empty() {
+        vec![(run.end_time, value(&run.final_state))]
+    } else {
+        run.states.iter().map(|(t, y)| (*t, value(y))).collect()
+    };
+    Track::from_samples(&samples, tolerance)
 }

@@ -119,27 +119,26 @@ fn parse_shard(s: &str) -> anyhow::Result<Shard> {
     })
 }
 
-/// The rough cost of counting up to `max` tiles, from a calibration run up to 15 tiles:
-/// search nodes grow by the ratio of its last two rows per tile. `None` when the run is short
+/// The rough cost of counting up to `max` tiles: a calibration run to 22 tiles is timed,
+/// and the work grows per tile by the ratio of its last two rows' valid counts (about 2).
+/// Returns the expected valid words at `max` and the seconds; `None` when the run is short
 /// anyway.
 fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f64, f64)>> {
-    const CALIBRATE: usize = 15;
-    if max <= 22 {
+    const CALIBRATE: usize = 22;
+    if max <= 24 {
         return Ok(None);
     }
     let start = Instant::now();
     let rows = count_valid(&opts.with_tiles(2, CALIBRATE), &|_, _| {})?;
     let secs = start.elapsed().as_secs_f64();
-    let searched: Vec<f64> = rows.iter().map(|r| r.searched as f64).collect();
-    let nodes: f64 = searched.iter().sum();
-    let (last, before) = (searched[searched.len() - 1], searched[searched.len() - 2]);
-    let ratio = (last / before).max(1.0);
-    let more: f64 = (1..=max - CALIBRATE)
-        .map(|k| last * ratio.powi(k as i32))
-        .sum();
+    let valid: Vec<f64> = rows.iter().map(|r| r.valid as f64).collect();
+    let (last, before) = (valid[valid.len() - 1], valid[valid.len() - 2]);
+    let ratio = (last / before.max(1.0)).max(1.0);
+    // every length up to max is counted: the time is a geometric sum over the lengths
+    let growth: f64 = (1..=max - CALIBRATE).map(|k| ratio.powi(k as i32)).sum();
     let share = opts.shard.map_or(1.0, |(_, m)| 1.0 / m as f64);
-    let total = nodes + more * share;
-    Ok(Some((total, secs * total / nodes.max(1.0))))
+    let words = last * ratio.powi((max - CALIBRATE) as i32);
+    Ok(Some((words, secs * growth * share)))
 }
 
 /// `--merge`: the whole count from the parts' reports.
@@ -202,7 +201,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         if let Some((nodes, secs)) = estimate_seconds(&opts, max_tiles)? {
             if secs > WARN_SECONDS {
                 eprintln!(
-                    "fold-enum: counting up to {} tiles visits about {nodes:.1e} search nodes: roughly {} on this machine (from a calibration run to 15 tiles); --shard K/M splits the work",
+                    "fold-enum: counting up to {} tiles finds about {nodes:.1e} valid words: roughly {} on this machine (from a timed calibration run to 22 tiles); --shard K/M splits the work",
                     max_tiles,
                     duration_words(secs)
                 );

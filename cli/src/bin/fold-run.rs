@@ -12,13 +12,16 @@ use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
 use foldchain_cli::report::print_error;
-use foldchain_cli::run_files::{is_run_file, write_run_files, RunFilesOptions, MAX_FRAMES};
-use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
+use foldchain_cli::run_files::{
+    is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
+    MAX_FRAMES, MAX_VIEWER_TILES,
+};
+use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
@@ -33,9 +36,11 @@ use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Turns};
   fold-run --plan key-plan.json --design my-design.json
   fold-run LSLLSR --s e/3 --frames 60 --out out/lsllsr
   fold-run SLLS --reference             the force-integrated reference (up to 2,000 tiles)
+  fold-run LSLLSR --compare             engine and reference side by side in one page
 
 Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
-energy.svg, timeline.json and summary.json (written last). Nothing else in DIR is touched.
+energy.svg, index.html (the animated viewer: open it in a browser; #t=SECONDS opens it at
+that time), timeline.json and summary.json (written last). Nothing else in DIR is touched.
 Times are simulated seconds. The design JSON is described in README.md (see also
 docs/design-example.json).
 
@@ -62,6 +67,11 @@ struct Args {
     /// Number of step frames (default: 40, fewer for long chains; at most 100000).
     #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
     frames: Option<usize>,
+    /// How step frames are framed: auto (each on the chain as it stands, or on the part
+    /// that moves when a long chain seen whole would be a hairline) or fixed (every frame in
+    /// one view holding the whole run).
+    #[arg(long, value_name = "VIEW", default_value = "auto", value_parser = ["auto", "fixed"])]
+    frames_view: String,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -81,11 +91,16 @@ struct Args {
     transition: Option<String>,
     /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
     /// event engine: writes the same files (step frames, final.svg, transition.svg,
-    /// energy.svg, timeline.json, summary.json) drawn from the reference's recorded states
-    /// (default out/<name>-reference/; the reference has no collision check). For chains up
-    /// to 2,000 tiles.
-    #[arg(long)]
+    /// energy.svg, index.html, timeline.json, summary.json) drawn from the reference's
+    /// recorded states (default out/<name>-reference/; the reference has no collision
+    /// check). For chains up to 2,000 tiles.
+    #[arg(long, conflicts_with = "compare")]
     reference: bool,
+    /// Run both the event engine and the reference on the chain: both runs' files in
+    /// DIR/engine and DIR/reference, and DIR/index.html playing them side by side on one
+    /// clock (default out/<name>-compare/). For chains up to 2,000 tiles.
+    #[arg(long)]
+    compare: bool,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = count_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
@@ -170,12 +185,22 @@ fn stem(p: &Path) -> String {
 /// Bad input is an `Err` (exit 2); outcomes are exit codes.
 fn run(args: Args) -> anyhow::Result<u8> {
     let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
+    // the target outline, in tile widths, when the chain was planned from a shape
+    let mut target = Vec::new();
     let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
         (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
         (None, None) => bail!(
             "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
         ),
-        (None, Some(plan)) => (read_plan_file(plan)?, stem(plan)),
+        (None, Some(plan_path)) => {
+            let (chain, plan) = read_plan_file(plan_path)?;
+            // the plan names its shape file; drawn when it is still there
+            let shape = Path::new(&plan.source);
+            if shape.is_file() {
+                target = target_outline(&plan, shape).unwrap_or_default();
+            }
+            (chain, stem(plan_path))
+        }
         (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
             let path = Path::new(arg);
             let mut po = PlanOptions::default();
@@ -202,6 +227,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             let word = plan
                 .fold_word()
                 .with_context(|| format!("plan of {}", path.display()))?;
+            target = target_outline(&plan, path).unwrap_or_default();
             (word.to_chain(), stem(path))
         }
         (Some(arg), None) => {
@@ -255,22 +281,32 @@ fn run(args: Args) -> anyhow::Result<u8> {
             Some((a, b))
         }
     };
+    let mode = if args.compare {
+        Mode::Compare
+    } else if args.reference {
+        Mode::Reference
+    } else {
+        Mode::Engine
+    };
     let files = RunFilesOptions {
-        name: if args.reference {
-            format!("{name} (reference)")
-        } else {
-            name.clone()
+        name: match mode {
+            Mode::Reference => format!("{name} (reference)"),
+            _ => name.clone(),
         },
         frames: args.frames,
         transition_tiles,
+        target,
+        frames_view: match args.frames_view.as_str() {
+            "fixed" => FramesView::Fixed,
+            _ => FramesView::Auto,
+        },
     };
     let out_dir = args.out.clone().unwrap_or_else(|| {
-        let leaf = if args.reference {
-            format!("{name}-reference")
-        } else {
-            name.clone()
-        };
-        PathBuf::from("out").join(leaf)
+        PathBuf::from("out").join(match mode {
+            Mode::Engine => name.clone(),
+            Mode::Reference => format!("{name}-reference"),
+            Mode::Compare => format!("{name}-compare"),
+        })
     });
     let mut inputs: Vec<&Path> = Vec::new();
     if let Some(arg) = &args.chain {
@@ -281,28 +317,23 @@ fn run(args: Args) -> anyhow::Result<u8> {
     inputs.extend(args.plan.as_deref());
     inputs.extend(args.design.as_deref());
     refuse_overwrite_in(&inputs, &out_dir, &is_run_file, "--out")?;
-    if args.reference {
+    if mode == Mode::Compare {
+        for sub in ["engine", "reference"] {
+            refuse_overwrite_in(&inputs, &out_dir.join(sub), &is_run_file, "--out")?;
+        }
+    }
+    let reference = || -> anyhow::Result<ReferenceRun> {
         if chain.len() > MAX_REFERENCE_TILES {
             bail!(
-                "--reference: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
+                "--reference/--compare: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
                 chain.len()
             );
         }
         let ro = ReferenceOptions::default().with_record(Recording::Grid {
             max_states: state_budget(chain.len()),
         });
-        let run = run_reference(&chain, &designs, &ro)?;
-        let summary = run.to_summary();
-        return report(
-            &run,
-            &summary,
-            &out_dir,
-            &files,
-            &files.name,
-            args.json,
-            None,
-        );
-    }
+        Ok(run_reference(&chain, &designs, &ro)?)
+    };
     let engine = EngineOptions::default().with_speed(speed).with_start_rule(
         match args.start_rule.as_str() {
             "force" => StartRule::Force {
@@ -311,7 +342,6 @@ fn run(args: Args) -> anyhow::Result<u8> {
             _ => StartRule::Distance,
         },
     );
-    let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
     let bar = (chain.len() > 2000).then(|| {
         let b = indicatif::ProgressBar::new(1);
         b.set_style(
@@ -320,35 +350,82 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
-    let code = report(
-        &tl,
-        &summary,
-        &out_dir,
-        &files,
-        &name,
-        args.json,
-        bar.as_ref(),
-    );
+    let result = match mode {
+        Mode::Reference => {
+            let run = reference()?;
+            let summary = run.to_summary();
+            write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
+            print_summary(&files.name, &summary, &out_dir, args.json)?;
+            Ok(exit_code(&[&summary]))
+        }
+        Mode::Engine => {
+            let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+            write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
+            print_summary(&name, &summary, &out_dir, args.json)?;
+            Ok(exit_code(&[&summary]))
+        }
+        Mode::Compare => {
+            let run = reference()?;
+            let rs = run.to_summary();
+            let (tl, es) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+            let rfiles = RunFilesOptions {
+                name: format!("{name} (reference)"),
+                ..files.clone()
+            };
+            let (edir, rdir) = (out_dir.join("engine"), out_dir.join("reference"));
+            write_files(&tl, &es, &edir, &files, bar.as_ref())?;
+            write_files(&run, &rs, &rdir, &rfiles, bar.as_ref())?;
+            let views = [
+                run_view(&tl, &es, &files, "engine"),
+                run_view(&run, &rs, &rfiles, "reference"),
+            ];
+            let title = format!("{name}: event engine and reference");
+            write_compare_page(&out_dir, &title, &views)?;
+            if args.json {
+                let v = serde_json::json!({
+                    "engine": with_out_dir(&es, &edir)?,
+                    "reference": with_out_dir(&rs, &rdir)?,
+                    "out_dir": out_dir.display().to_string(),
+                });
+                println!("{}", serde_json::to_string_pretty(&v)?);
+            } else {
+                print_summary(&name, &es, &edir, false)?;
+                print_summary(&rfiles.name, &rs, &rdir, false)?;
+                println!("  side by side: {}", out_dir.join("index.html").display());
+            }
+            Ok(exit_code(&[&es, &rs]))
+        }
+    };
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    code
+    result
+}
+
+/// What `fold-run` runs.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// The event engine.
+    Engine,
+    /// The force-integrated reference (`--reference`).
+    Reference,
+    /// Both, side by side (`--compare`).
+    Compare,
 }
 
 /// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
 /// validation scenes go up to 107 tiles.
 const MAX_REFERENCE_TILES: usize = 2_000;
 
-/// Writes the run's files and prints its summary; the exit code (0 completed, 1 not).
-fn report(
+/// Writes the run's files, with a progress bar for long runs, and warns of a simulated
+/// time far from a physical chain's.
+fn write_files(
     source: &dyn RunSource,
     s: &Summary,
     out_dir: &Path,
     files: &RunFilesOptions,
-    name: &str,
-    json: bool,
     bar: Option<&indicatif::ProgressBar>,
-) -> anyhow::Result<u8> {
+) -> anyhow::Result<()> {
     let mut progress = |stage: &str, done: usize, total: usize| {
         if let Some(b) = bar {
             b.set_message(stage.to_string());
@@ -357,39 +434,67 @@ fn report(
         }
     };
     write_run_files(source, s, out_dir, files, &mut progress)?;
+    if s.tiles > MAX_VIEWER_TILES {
+        eprintln!(
+            "fold-run: note: no index.html: the viewer takes at most {MAX_VIEWER_TILES} tiles ({} here)",
+            s.tiles
+        );
+    }
     let d = s.duration_s;
     if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
         eprintln!(
             "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
         );
     }
-    if json {
-        let mut v = serde_json::to_value(s)?;
-        if let Some(m) = v.as_object_mut() {
-            m.insert("out_dir".into(), out_dir.display().to_string().into());
-        }
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        println!(
-            "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
-            name,
-            s.tiles,
-            s.result,
-            s.duration_s,
-            s.events,
-            s.folds.len(),
-            s.max_moving_magnets,
-            out_dir.display()
-        );
-        if let Some(r) = &s.reason {
-            println!("  {r}");
-        }
-    }
-    Ok(if s.completed { 0 } else { 1 })
+    Ok(())
 }
 
-/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`).
-fn read_plan_file(path: &Path) -> anyhow::Result<Chain> {
+/// The summary as JSON with the directory its files went to.
+fn with_out_dir(s: &Summary, out_dir: &Path) -> anyhow::Result<serde_json::Value> {
+    let mut v = serde_json::to_value(s)?;
+    if let Some(m) = v.as_object_mut() {
+        m.insert("out_dir".into(), out_dir.display().to_string().into());
+    }
+    Ok(v)
+}
+
+/// Prints a run's summary: one line (and the reason), or JSON with `out_dir`.
+fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow::Result<()> {
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&with_out_dir(s, out_dir)?)?
+        );
+        return Ok(());
+    }
+    println!(
+        "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
+        name,
+        s.tiles,
+        s.result,
+        s.duration_s,
+        s.events,
+        s.folds.len(),
+        s.max_moving_magnets,
+        out_dir.display()
+    );
+    if let Some(r) = &s.reason {
+        println!("  {r}");
+    }
+    Ok(())
+}
+
+/// 0 when every run completed, 1 otherwise.
+fn exit_code(summaries: &[&Summary]) -> u8 {
+    if summaries.iter().all(|s| s.completed) {
+        0
+    } else {
+        1
+    }
+}
+
+/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
+fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read plan file {}", path.display()))?;
     let plan = Plan::from_json(&text).map_err(|e| {
@@ -410,5 +515,29 @@ fn read_plan_file(path: &Path) -> anyhow::Result<Chain> {
             plan.tiles
         );
     }
-    Ok(chain)
+    Ok((chain, plan))
+}
+
+/// The outline of the shape in `shape_path` in the chain's own frame, in tile widths (tile
+/// 0 at the origin heading +x, y up): the plan's `chain_to_svg` map inverted. `None` when
+/// the file cannot be read again or the map is singular.
+fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>> {
+    let data = std::fs::read(shape_path).ok()?;
+    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string()).ok()?;
+    let [a, b, c, d, e, f] = plan.chain_to_svg;
+    let det = a * d - b * c;
+    if !det.is_finite() || det.abs() < 1e-300 {
+        return None;
+    }
+    // the shape's rings are y up; SVG user units are y down
+    let to_chain = |(x, y): (f64, f64)| {
+        let (sx, sy) = (x - e, -y - f);
+        ((d * sx - c * sy) / det, (a * sy - b * sx) / det)
+    };
+    Some(
+        shape
+            .rings()
+            .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
+            .collect(),
+    )
 }

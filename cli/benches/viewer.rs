@@ -1,0 +1,99 @@
+//! The viewer's size and drawing time: `cargo bench -p foldchain-cli --bench viewer [-- MAX]`.
+//!
+//! For serpentines of 10^3, 10^4 and 10^5 tiles (up to MAX, default 100000): the time to
+//! build `index.html` and its size (bytes per tile), then the page in headless Chromium
+//! drawing 30 frames at times spread over the run, each flushed to pixels (`#bench=30`):
+//! the median and slowest frame, for the whole run in view, with every part of every tile
+//! drawn (`detail=all`), and, for 10^4 tiles, the same drawn by the browser's canvas alone
+//! (`renderer=2d`). Prints the machine's load average too: the figures are wall times.
+
+#![allow(clippy::unwrap_used)] // a benchmark may unwrap, like a test
+
+#[path = "../tests/browser/mod.rs"]
+mod browser;
+
+use std::time::Instant;
+
+use browser::{attr, attributes, chromium, tmp, url};
+use foldchain::collision::CheckOptions;
+use foldchain::engine::{EngineOptions, TileDesigns};
+use foldchain::viewer::{viewer_html, RunView};
+use foldchain::{simulate, Chain};
+
+/// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
+/// fold word (`S*k L L S*k R R ...`).
+fn serpentine(tiles: usize, row: usize) -> String {
+    let mut parts = Vec::new();
+    let (mut letters, mut left) = (0, true);
+    while letters + 1 < tiles {
+        let straight = (row - 1).min(tiles - 1 - letters);
+        parts.push(format!("S*{straight}"));
+        letters += straight;
+        for _ in 0..2 {
+            if letters + 1 < tiles {
+                parts.push(if left { "L" } else { "R" }.to_string());
+                letters += 1;
+            }
+        }
+        left = !left;
+    }
+    parts.join(" ")
+}
+
+fn main() {
+    let max: usize = std::env::args()
+        .skip(1)
+        .find_map(|a| a.parse().ok())
+        .unwrap_or(100_000);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!("load average: {}", load.trim());
+    let Some(exe) = browser::browser() else {
+        return;
+    };
+    let dir = tmp("bench");
+    for (tiles, row) in [(1_000, 32), (10_000, 100), (100_000, 316)] {
+        if tiles > max {
+            break;
+        }
+        let chain = Chain::parse(&serpentine(tiles, row)).unwrap();
+        let (tl, summary) = simulate(
+            &chain,
+            &TileDesigns::default(),
+            &EngineOptions::default(),
+            &CheckOptions::default(),
+        )
+        .unwrap();
+        let t0 = Instant::now();
+        let html = viewer_html("serpentine", &[RunView::new(&tl, "serpentine")]);
+        let build = t0.elapsed().as_secs_f64();
+        let page = dir.join(format!("serpentine-{tiles}.html"));
+        std::fs::write(&page, &html).unwrap();
+        println!(
+            "{tiles} tiles ({} events): index.html {} bytes ({:.1} per tile, {:.1} per event), built in {build:.3} s",
+            summary.events,
+            html.len(),
+            html.len() as f64 / tiles as f64,
+            html.len() as f64 / summary.events as f64
+        );
+        let mut cases = vec![("whole run", ""), ("detail=all", "&detail=all")];
+        if tiles == 10_000 {
+            cases.push(("canvas only, detail=all", "&detail=all&renderer=2d"));
+        }
+        for (what, opts) in cases {
+            let dom = chromium(
+                &exe,
+                &url(&page, &format!("t=end&bench=30{opts}")),
+                &["--dump-dom".into()],
+            );
+            let b = attributes(&dom, "body", "data-time");
+            println!(
+                "  {what:<24} renderer {:<8} median {:>7} ms, slowest {:>7} ms over {} frames",
+                attr(&b, "data-renderer"),
+                attr(&b, "data-render-ms-median"),
+                attr(&b, "data-render-ms-max"),
+                attr(&b, "data-render-frames")
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,89 @@
+//! Typed arrays as base64 text (standard alphabet, padded), little-endian, as the page's
+//! `Float64Array`, `Float32Array` and `Uint8/16/32Array` read them back.
+
+const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+/// Bytes as base64.
+pub fn encode(bytes: &[u8]) -> String {
+    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            chunk.get(1).copied().unwrap_or(0),
+            chunk.get(2).copied().unwrap_or(0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                s.push(char::from(ALPHABET[((n >> (18 - 6 * i)) & 63) as usize]));
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// f64 values, little-endian, as base64.
+pub fn encode_f64(values: &[f64]) -> String {
+    encode(
+        &values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
+}
+
+/// f32 values, little-endian, as base64.
+pub fn encode_f32(values: &[f32]) -> String {
+    encode(
+        &values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
+}
+
+/// Unsigned integers in the fewest bytes that hold the largest (1, 2 or 4), little-endian:
+/// `(bytes per value, base64)`.
+pub fn encode_uint(values: &[u32]) -> (u8, String) {
+    let max = values.iter().copied().max().unwrap_or(0);
+    let width: u8 = if max <= u32::from(u8::MAX) {
+        1
+    } else if max <= u32::from(u16::MAX) {
+        2
+    } else {
+        4
+    };
+    let bytes: Vec<u8> = values
+        .iter()
+        .flat_map(|v| v.to_le_bytes().into_iter().take(usize::from(width)))
+        .collect();
+    (width, encode(&bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn known_vectors() {
+        // RFC 4648 section 10
+        let cases = [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ];
+        for (plain, coded) in cases {
+            assert_eq!(encode(plain.as_bytes()), coded);
+        }
+        assert_eq!(encode_uint(&[1, 255]), (1, encode(&[1, 255])));
+        assert_eq!(encode_uint(&[1, 256]), (2, encode(&[1, 0, 0, 1])));
+        assert_eq!(encode_uint(&[70_000]).0, 4);
+        assert_eq!(encode_f64(&[1.0]), encode(&1.0f64.to_le_bytes()));
+    }
+}

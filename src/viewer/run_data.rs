@@ -1,0 +1,202 @@
+//! A run as the page receives it: the chain's fixed geometry (tile width, the RI, the magnet
+//! paths in closed form) and what moves (every magnet's travel and every folding joint's
+//! angle as [`Track`]s), packed small. Tracks of the same shape are stored once and shared
+//! (on the event engine's serpentines nearly all are), so the page carries per magnet a
+//! start time (f64), a shape and a path number, and per folding joint the same; the typed
+//! arrays travel as base64 ([`crate::viewer::base64`]).
+
+use std::collections::HashMap;
+
+use crate::kinematics::poses_at_angles;
+use crate::render::RunSource;
+use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
+use crate::viewer::{PathForm, RunView, Track};
+
+/// A packed integer array: bytes per value (1, 2 or 4) and the little-endian bytes in base64.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PackedInts {
+    /// Bytes per value.
+    pub width: u8,
+    /// The values, base64.
+    pub data: String,
+}
+
+impl PackedInts {
+    fn new(values: &[u32]) -> PackedInts {
+        let (width, data) = encode_uint(values);
+        PackedInts { width, data }
+    }
+}
+
+/// Everything the page draws of one run.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RunData {
+    /// Short label (`engine`, `reference`).
+    pub label: String,
+    /// Title line.
+    pub title: String,
+    /// The outcome in words.
+    pub note: String,
+    /// Tiles.
+    pub tiles: usize,
+    /// Tile width (across flats), mm.
+    pub w: f64,
+    /// The RI's position in tile 0's frame, mm.
+    pub ri: (f64, f64),
+    /// Magnet radius, mm.
+    pub magnet_r: f64,
+    /// When the run ends, s.
+    pub end: f64,
+    /// The first collision: `(time s or None for the final shape only, (tile, tile))`.
+    pub collision: Option<(Option<f64>, (usize, usize))>,
+    /// The box holding the whole run, world mm: `[min x, min y, max x, max y]`.
+    pub view: [f64; 4],
+    /// Target outline rings, world mm (empty when the chain was not planned from a shape).
+    pub target: Vec<Vec<(f64, f64)>>,
+    /// The distinct magnet paths.
+    pub paths: Vec<PathForm>,
+    /// Each magnet's path (an index into `paths`).
+    pub magnet_path: PackedInts,
+    /// Each magnet's track shape (an index into the shapes).
+    pub magnet_shape: PackedInts,
+    /// Each magnet's start time, s (f64, base64).
+    pub magnet_start: String,
+    /// The joints that turn at some time.
+    pub joint: PackedInts,
+    /// Their track shapes.
+    pub joint_shape: PackedInts,
+    /// Their start times, s (f64, base64).
+    pub joint_start: String,
+    /// Shape `i` has points `shape_offset[i]..shape_offset[i + 1]`.
+    pub shape_offset: PackedInts,
+    /// Seconds after the start of each shape point (f32, base64).
+    pub shape_dt: String,
+    /// Value of each shape point (f32, base64): mm of travel or radians.
+    pub shape_value: String,
+}
+
+/// Tracks stored once per distinct shape (points rounded to f32, as the page reads them).
+#[derive(Default)]
+struct Shapes {
+    index: HashMap<Vec<(u32, u32)>, u32>,
+    offset: Vec<u32>,
+    dt: Vec<f32>,
+    value: Vec<f32>,
+}
+
+impl Shapes {
+    fn add(&mut self, track: &Track) -> u32 {
+        let key: Vec<(u32, u32)> = track
+            .points
+            .iter()
+            .map(|&(t, v)| ((t as f32).to_bits(), (v as f32).to_bits()))
+            .collect();
+        let next = self.index.len() as u32;
+        *self.index.entry(key).or_insert_with(|| {
+            self.offset.push(self.dt.len() as u32);
+            for &(t, v) in &track.points {
+                self.dt.push(t as f32);
+                self.value.push(v as f32);
+            }
+            next
+        })
+    }
+}
+
+impl RunData {
+    /// The page's data for `view`.
+    pub fn from_view(view: &RunView<'_>) -> RunData {
+        let src = view.source;
+        let g = src.geometry();
+        let tiles = src.tiles();
+        let mut shapes = Shapes::default();
+        shapes.add(&Track::constant(0.0));
+        let (mut m_shape, mut m_start) = (Vec::new(), Vec::new());
+        for k in 0..g.magnets() {
+            let tr = src.magnet_travel(k);
+            m_shape.push(shapes.add(&tr));
+            m_start.push(tr.start);
+        }
+        let (mut joints, mut j_shape, mut j_start) = (Vec::new(), Vec::new(), Vec::new());
+        let mut j_tracks = Vec::new();
+        for j in 0..tiles.saturating_sub(1) {
+            let tr = src.joint_angle(j);
+            if tr.is_constant() && tr.value_at(0.0) == 0.0 {
+                continue;
+            }
+            joints.push(j as u32);
+            j_shape.push(shapes.add(&tr));
+            j_start.push(tr.start);
+            j_tracks.push((j, tr));
+        }
+        let paths: Vec<PathForm> = g.path_table().iter().map(PathForm::from_path).collect();
+        let m_path: Vec<u32> = (0..g.magnets()).map(|k| g.path_id(k)).collect();
+        let mut offset = shapes.offset.clone();
+        offset.push(shapes.dt.len() as u32);
+        let bounds = run_box(src, &j_tracks, &view.target);
+        RunData {
+            label: view.label.clone(),
+            title: view.title.clone(),
+            note: view.note.clone(),
+            tiles,
+            w: g.w,
+            ri: g.ri_position(),
+            magnet_r: 0.5 * g.design(0).magnet_diameter,
+            end: src.end_time(),
+            collision: view.collision,
+            view: bounds,
+            target: view.target.clone(),
+            paths,
+            magnet_path: PackedInts::new(&m_path),
+            magnet_shape: PackedInts::new(&m_shape),
+            magnet_start: encode_f64(&m_start),
+            joint: PackedInts::new(&joints),
+            joint_shape: PackedInts::new(&j_shape),
+            joint_start: encode_f64(&j_start),
+            shape_offset: PackedInts::new(&offset),
+            shape_dt: encode_f32(&shapes.dt),
+            shape_value: encode_f32(&shapes.value),
+        }
+    }
+}
+
+/// The box holding the chain over the whole run (tile centres padded by a tile width) and
+/// the target: the chain at 129 evenly spaced times, and at the middle and end of each of the
+/// first 64 folds, whose long tails sweep the widest arcs.
+fn run_box(src: &dyn RunSource, joints: &[(usize, Track)], target: &[Vec<(f64, f64)>]) -> [f64; 4] {
+    let end = src.end_time();
+    let w = src.geometry().w;
+    let mut times: Vec<f64> = (0..=128).map(|i| end * i as f64 / 128.0).collect();
+    let mut by_start: Vec<&Track> = joints.iter().map(|(_, t)| t).collect();
+    by_start.sort_by(|a, b| a.start.total_cmp(&b.start));
+    for tr in by_start.iter().take(64) {
+        times.push(0.5 * (tr.start + tr.end()));
+        times.push(tr.end());
+    }
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    let mut grow = |x: f64, y: f64| {
+        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    };
+    let mut angles = vec![0.0; src.tiles().saturating_sub(1)];
+    for t in times {
+        for (j, tr) in joints {
+            angles[*j] = tr.value_at(t);
+        }
+        for p in poses_at_angles(&angles, w) {
+            grow(p.x, p.y);
+        }
+    }
+    for &(x, y) in target.iter().flatten() {
+        grow(x, y);
+    }
+    if !b[0].is_finite() {
+        b = [0.0; 4];
+    }
+    let pad = 1.2 * w;
+    [b[0] - 2.0 * pad, b[1] - pad, b[2] + pad, b[3] + pad]
+}
