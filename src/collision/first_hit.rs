@@ -22,7 +22,7 @@ use crate::{Fold, Octagon};
 use super::sweep::quarter_contact_within;
 
 /// No tail tile meets the offset.
-pub(super) const NEVER: u32 = u32::MAX;
+pub(crate) const NEVER: u32 = u32::MAX;
 
 /// Slack, in tile widths, on the distance tests that choose which tail tiles get the exact
 /// test: far above the rounding of `f64` coordinates up to `2e7 w` (the longest chain, about
@@ -58,9 +58,10 @@ pub(super) struct TailWindow {
     pub min_y: f64,
 }
 
-/// First hits by canonical offset, for one touching tolerance.
+/// First hits by canonical offset, for one touching tolerance (also the counting search's
+/// exact test, through [`TailHits::first_hit`]).
 #[derive(Clone, Debug)]
-pub(super) struct TailHits {
+pub(crate) struct TailHits {
     outline: [Point; 8],
     radius: f64,
     window: TailWindow,
@@ -69,7 +70,7 @@ pub(super) struct TailHits {
 
 impl TailHits {
     /// An empty memo for outlines inset by `tolerance` (see [`super::CheckOptions::tolerance`]).
-    pub fn new(tolerance: f64) -> TailHits {
+    pub(crate) fn new(tolerance: f64) -> TailHits {
         let o = Octagon::new(1.0);
         let radius = o.circumradius();
         let half_side = 0.5 * o.side();
@@ -91,7 +92,7 @@ impl TailHits {
     }
 
     /// The window of the tail.
-    pub fn window(&self) -> TailWindow {
+    pub(super) fn window(&self) -> TailWindow {
         self.window
     }
 
@@ -102,18 +103,18 @@ impl TailHits {
     }
 
     /// How far from the hinge a placed centre met by one of the first `m` tail tiles can lie.
-    pub fn reach(&self, m: usize) -> f64 {
+    pub(super) fn reach(&self, m: usize) -> f64 {
         self.tail_distance(m as f64) + 2.0 * self.radius + SLACK
     }
 
     /// The first tail index `m >= 1` whose tile meets a placed tile at canonical offset
     /// `offset` while the fold turns, or [`NEVER`]. The folding tile itself (offset zero) is
     /// never tested against tile `k + 1`, its hinged neighbour.
-    pub fn get(&mut self, offset: ExactPoint) -> u32 {
+    pub(super) fn get(&mut self, offset: ExactPoint) -> u32 {
         if let Some(&m) = self.memo.get(&offset) {
             return m;
         }
-        let m = self.compute(offset);
+        let m = self.first_hit(offset);
         self.memo.insert(offset, m);
         m
     }
@@ -122,9 +123,10 @@ impl TailHits {
         self.outline.map(|v| v + c.to_vec2())
     }
 
-    /// The exact sweep test along the tail, nearest tile first, over the tail tiles whose
-    /// centres pass within two circumradii (and the slack) of the placed centre.
-    fn compute(&self, offset: ExactPoint) -> u32 {
+    /// The first tail index met at `offset`, or [`NEVER`], without the memo: the exact sweep
+    /// test along the tail, nearest tile first, over the tail tiles whose centres pass within
+    /// two circumradii (and the slack) of the placed centre.
+    pub(crate) fn first_hit(&self, offset: ExactPoint) -> u32 {
         let p = Point::from(offset.to_f64(1.0));
         let h = self.window.hinge;
         let dp = p.distance(h);

@@ -28,6 +28,7 @@ mod advancement;
 mod blocks;
 mod chain_tree;
 mod first_hit;
+pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
 mod schedule;
@@ -41,7 +42,6 @@ pub use sequential::{check_chain, check_word, Verdict};
 
 // for the counting search (`crate::count`), which grows words with the same exact tests
 pub(crate) use lattice::lattice_overlap;
-pub(crate) use sweep::quarter_contact_within;
 
 use std::fmt;
 

@@ -8,7 +8,7 @@
 //! fold moves its tail the same way. Whether tail tile `k` meets a placed tile is therefore a
 //! function of that tile's offset alone ([`super::lattice::canonical_offset`], an exact
 //! lattice point), and so is the first `k` that meets it. [`FirstHits`] computes it with the
-//! collision module's closed-form sweep test (`quarter_contact_within`, the one
+//! collision module's tail test (the closed-form sweep `quarter_contact_within`, the one
 //! [`crate::collision::check_word`] uses: the first contact is a vertex's circular arc crossing
 //! an edge, solved exactly, no sampling) and remembers it; a few thousand offsets serve a
 //! whole search.
@@ -19,7 +19,7 @@
 use kurbo::Point;
 use rustc_hash::FxHashMap;
 
-use crate::collision::quarter_contact_within;
+use crate::collision::{TailHits, NO_TAIL_HIT};
 use crate::exact::ExactPoint;
 use crate::{Fold, Octagon};
 
@@ -28,11 +28,6 @@ use super::MAX_COUNT_TILES;
 
 /// No tail tile meets the offset.
 pub(super) const NEVER: u8 = u8::MAX;
-
-/// Slack, in tile widths, on the distance tests that skip pairs before the exact test: far
-/// above the rounding of the `f64` centres (1e-14 w at 40 tiles), so a skipped pair is one the
-/// exact test would have rejected too.
-const SLACK: f64 = 1e-9;
 
 /// Where a tail's tiles can reach, in the canonical frame relative to the hinge, for screening
 /// placed tiles before their offsets are looked up. In `f32` with a slack of [`SCREEN_SLACK`]:
@@ -66,16 +61,12 @@ impl TailWindow {
     }
 }
 
-/// First hits by canonical offset, for one touching tolerance.
+/// First hits by canonical offset, for one touching tolerance: the collision check's exact
+/// tail test ([`TailHits`]), remembered under the search's packed keys.
 #[derive(Clone, Debug)]
 pub(super) struct FirstHits {
-    outline: [Point; 8],
-    radius: f64,
-    /// The hinge in tile `d`'s frame (left fold).
-    hinge: Point,
+    tail: TailHits,
     window: TailWindow,
-    /// Distance of tail centre `k` from the hinge.
-    tail_distance: [f64; MAX_COUNT_TILES + 1],
     memo: FxHashMap<u64, u8>,
 }
 
@@ -91,24 +82,19 @@ impl FirstHits {
                 .unwrap_or(ExactPoint::ORIGIN)
                 .to_f64(1.0),
         );
-        let mut tail_distance = [0.0; MAX_COUNT_TILES + 1];
         let mut reach2 = [0.0; MAX_COUNT_TILES + 1];
-        for k in 0..=MAX_COUNT_TILES {
-            let (x, y) = (k as f64 - hinge.x, -hinge.y);
-            tail_distance[k] = (x * x + y * y).sqrt();
-            reach2[k] = (tail_distance[k] + 2.0 * radius + SCREEN_SLACK).powi(2) as f32;
+        for (k, r) in reach2.iter_mut().enumerate() {
+            let tail_distance = (k as f64 - hinge.x).hypot(hinge.y);
+            *r = (tail_distance + 2.0 * radius + SCREEN_SLACK).powi(2) as f32;
         }
         FirstHits {
-            outline: o.inset_vertices(tolerance).map(Point::from),
-            radius,
+            tail: TailHits::new(tolerance),
             window: TailWindow {
                 hinge: (hinge.x as f32, hinge.y as f32),
                 min_x: (half_side - 2.0 * radius - SCREEN_SLACK) as f32,
                 min_y: (-half_side - 2.0 * radius - SCREEN_SLACK) as f32,
                 reach2,
             },
-            hinge,
-            tail_distance,
             memo: FxHashMap::default(),
         }
     }
@@ -132,31 +118,14 @@ impl FirstHits {
         k
     }
 
-    fn at(&self, c: Point) -> [Point; 8] {
-        self.outline.map(|v| v + c.to_vec2())
-    }
-
-    /// The exact sweep test along the tail, nearest tile first.
+    /// The exact sweep test along the tail (the collision check's), within the search's
+    /// longest chain.
     fn compute(&self, offset: ExactPoint) -> u8 {
-        let p = Point::from(offset.to_f64(1.0));
-        let h = self.hinge;
-        let dp = p.distance(h);
-        let fixed = self.at(p);
-        let apart = 2.0 * self.radius + SLACK;
-        for k in 1..=MAX_COUNT_TILES {
-            let dk = self.tail_distance[k];
-            if dk - dp > apart {
-                break; // this tail centre and every later one pass beyond the tile
-            }
-            if dp - dk > apart || (k == 1 && offset == ExactPoint::ORIGIN) {
-                continue;
-            }
-            let c = Point::new(k as f64, 0.0);
-            if quarter_contact_within(&self.at(c), c, &fixed, p, self.radius, h, true) {
-                return k as u8;
-            }
+        match self.tail.first_hit(offset) {
+            NO_TAIL_HIT => NEVER,
+            k if k as usize <= MAX_COUNT_TILES => k as u8,
+            _ => NEVER,
         }
-        NEVER
     }
 }
 
