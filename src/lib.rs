@@ -50,6 +50,7 @@ pub mod input;
 mod joint;
 pub mod kinematics;
 pub mod magnet_path;
+pub mod margins;
 mod octagon;
 mod path_kind;
 pub mod physics;
