@@ -60,6 +60,7 @@ pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
+pub mod tolerance;
 pub mod viewer;
 mod word;
 

@@ -30,7 +30,7 @@ pub use model::{ChainModel, MarginError};
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF};
 
 /// How the margins are computed. Default: the point-dipole law, the physics' default
-/// chain-index cutoff (3), 48 samples along a mover's path and 16 over a fold's turn.
+/// chain-index cutoff (3), 32 samples along a mover's path and 16 over a fold's turn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MarginOptions {
     /// The pair law.
@@ -48,7 +48,7 @@ impl Default for MarginOptions {
         MarginOptions {
             force_law: ForceLaw::default(),
             cutoff: DEFAULT_CUTOFF,
-            path_samples: 48,
+            path_samples: 32,
             fold_samples: 16,
         }
     }

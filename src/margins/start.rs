@@ -26,6 +26,11 @@ use crate::physics::ForceLaw;
 use crate::timeline::joint_of_magnet;
 use crate::Fold;
 
+/// Bisection steps locating a start or a stall: 2^-32 of the movers' way (about 2 pm).
+const BISECTIONS: usize = 32;
+/// Golden-section steps refining an interior maximum: 0.618^24 of two samples' spacing.
+const GOLDEN_STEPS: usize = 24;
+
 /// A quasi-static state: magnets before `ends_below` at their ends, joints before
 /// `folded_below` folded, up to two magnets at given travels and one joint at a given angle.
 #[derive(Clone, Copy)]
@@ -141,7 +146,7 @@ pub(crate) fn start_margin(
         if i > 0 && i < n && dv <= threshold && !sweep.fold_takes_over(x) {
             // the movers stop between the last sample and this one: find where
             let (mut a, mut b) = (prev.0, x);
-            for _ in 0..50 {
+            for _ in 0..BISECTIONS {
                 let mid = 0.5 * (a + b);
                 if sweep.at(mid).1 > threshold {
                     a = mid;
@@ -166,7 +171,7 @@ pub(crate) fn start_margin(
         let h = 1.0 / n as f64;
         let (mut a, mut b) = ((best.1 - h).max(0.0), (best.1 + h).min(1.0));
         let g = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..30 {
+        for _ in 0..GOLDEN_STEPS {
             let (x1, x2) = (b - g * (b - a), a + g * (b - a));
             if sweep.at(x1).0 > sweep.at(x2).0 {
                 b = x2;
@@ -281,7 +286,7 @@ impl Sweep<'_, '_> {
     /// The first fraction in `(a, b]` where the drive on `m` exceeds `threshold`, knowing it
     /// does at `b` and not at `a`.
     fn first_positive(&mut self, mut a: f64, mut b: f64, threshold: f64) -> f64 {
-        for _ in 0..50 {
+        for _ in 0..BISECTIONS {
             let mid = 0.5 * (a + b);
             if self.at(mid).0 > threshold {
                 b = mid;
