@@ -29,7 +29,7 @@ mod study;
 mod tolerances;
 mod wilson;
 
-pub use optimize::{evaluate, optimize, Candidate, Search, SearchOptions};
+pub use optimize::{candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions};
 pub use plot::tradeoff_svg;
 pub use rng::SplitMix64;
 pub use sample::{draw_designs, nudged};

@@ -6,9 +6,10 @@
 //! simultaneously where it runs straight and sequentially where it turns. For each candidate
 //! it checks every tile's design against the inequalities ([`Design::check`]), runs the event
 //! engine with its fold schedule's collision check ([`crate::simulate`]) for the assembly
-//! time, and estimates the folding probability by a tolerance study. Candidates are a grid:
-//! every `s` of the grid on both kinds of tile, for every wall; the grid's diagonal (one `s`
-//! for every tile) is the trade-off of probability against assembly time over `s`.
+//! time, and estimates the folding probability by a tolerance study (the same seed for every
+//! candidate: common random numbers, so candidates differ by their design and not by their
+//! draws). The grid's diagonal (one `s` for every tile) is the trade-off of probability
+//! against assembly time over `s`.
 
 use crate::collision::CheckOptions;
 use crate::engine::EngineOptions;
@@ -42,10 +43,10 @@ impl Default for SearchOptions {
     fn default() -> SearchOptions {
         SearchOptions {
             target: 0.99,
-            s_grid: vec![0.05, 0.1, 0.15, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0, 1.2, 1.5],
+            s_grid: vec![0.05, 0.1, 0.15, 0.2, 0.3, 0.45, 0.7, 1.0, 1.4],
             wall_steps: vec![-0.2, 0.0, 0.2],
             study: StudyOptions {
-                samples: 1000,
+                samples: 500,
                 ..StudyOptions::default()
             },
             engine: EngineOptions::default(),
@@ -102,6 +103,10 @@ fn is_turn(tile: &crate::Tile) -> bool {
 }
 
 /// The per-tile designs of a candidate: the base with the wall moved, `s` set per kind.
+pub fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Design> {
+    designs_of(chain, base, c.s_straight, c.s_turn, c.wall_step)
+}
+
 fn designs_of(
     chain: &Chain,
     base: &Design,
@@ -169,24 +174,31 @@ pub fn evaluate(
     })
 }
 
-/// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of tile).
+/// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of tile):
+/// first one `s` for every tile, for every wall step (the trade-off); then, at the wall step
+/// whose best probability is highest, every pair of `s` on straight runs and on turns.
 pub fn optimize(chain: &Chain, base: &Design, opts: &SearchOptions) -> Result<Search, MarginError> {
     let base_candidate = evaluate(chain, base, (base.s, base.s, 0.0), opts)?;
-    let mut points = Vec::new();
+    let mut candidates = Vec::new();
     for &w in &opts.wall_steps {
+        for &s in &opts.s_grid {
+            candidates.push(evaluate(chain, base, (s, s, w), opts)?);
+        }
+    }
+    let best_wall = candidates
+        .iter()
+        .filter(|c| c.infeasible.is_none() && c.assembly_s.is_some())
+        .max_by(|a, b| a.probability.total_cmp(&b.probability))
+        .map(|c| c.wall_step);
+    if let (true, Some(w)) = (opts.per_tile_s, best_wall) {
         for &a in &opts.s_grid {
             for &b in &opts.s_grid {
-                if a == b || opts.per_tile_s {
-                    points.push((a, b, w));
+                if a != b {
+                    candidates.push(evaluate(chain, base, (a, b, w), opts)?);
                 }
             }
         }
     }
-    // candidates one after another: each study is parallel already
-    let candidates: Vec<Candidate> = points
-        .into_iter()
-        .map(|p| evaluate(chain, base, p, opts))
-        .collect::<Result<_, _>>()?;
     let best = candidates
         .iter()
         .filter(|c| c.meets(opts.target))

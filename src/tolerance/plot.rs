@@ -106,7 +106,10 @@ pub fn tradeoff_svg(search: &Search, target: f64, title: &str) -> String {
         doc = doc.add(
             Text::new(format!("wall {w:+.2} mm (labels: s, mm)"))
                 .set("x", num(axes.left + 10.0))
-                .set("y", num(axes.top + 18.0 + 16.0 * i as f64))
+                .set(
+                    "y",
+                    num(axes.top + axes.height - 10.0 - 16.0 * (walls.len() - 1 - i) as f64),
+                )
                 .set("fill", colour),
         );
     }
@@ -122,10 +125,12 @@ pub fn tradeoff_svg(search: &Search, target: f64, title: &str) -> String {
                     .set("stroke", colour)
                     .set("stroke-width", "2"),
             );
+            let right = x > axes.left + 0.6 * axes.width;
             doc = doc.clone().add(
                 Text::new(label.to_string())
-                    .set("x", num(x + 9.0))
-                    .set("y", num(y + 14.0))
+                    .set("x", num(if right { x - 9.0 } else { x + 9.0 }))
+                    .set("y", num(y + 20.0))
+                    .set("text-anchor", if right { "end" } else { "start" })
                     .set("font-size", "11")
                     .set("fill", colour),
             );

@@ -13,8 +13,8 @@ use foldchain::count::Shard;
 use foldchain::margins::{ChainModel, Margins};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    optimize, sensitivities, study, tradeoff_svg, Candidate, Parameter, Printer, SearchOptions,
-    Sensitivity, Study, StudyOptions, Tolerances,
+    candidate_designs, optimize, sensitivities, study, tradeoff_svg, Candidate, Parameter, Printer,
+    SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::inputs::read_chain;
@@ -79,7 +79,7 @@ struct Args {
     #[arg(long, default_value_t = 0.99)]
     target: f64,
     /// Samples per candidate of the search.
-    #[arg(long, default_value_t = 1000, value_name = "N")]
+    #[arg(long, default_value_t = 500, value_name = "N")]
     search_samples: u64,
     /// Where the search draws its trade-off (default out/<name>-tradeoff.svg).
     #[arg(long, value_name = "FILE.svg")]
@@ -371,6 +371,22 @@ fn search(
                 m.s_turn,
                 m.wall_step,
                 row(m)
+            );
+        }
+        // the base and the chosen design again, with the study's full sample count
+        let confirm = |c: &Candidate| -> anyhow::Result<Study> {
+            Ok(study(chain, &candidate_designs(chain, base, c), opts)?)
+        };
+        let b = confirm(&result.base)?;
+        println!(
+            "with {} samples: base design P = {:.4} ({:.4} to {:.4})",
+            b.samples, b.probability, b.interval.0, b.interval.1
+        );
+        if let Some(best) = &result.best {
+            let c = confirm(best)?;
+            println!(
+                "with {} samples: chosen design P = {:.4} ({:.4} to {:.4})",
+                c.samples, c.probability, c.interval.0, c.interval.1
             );
         }
         println!("wrote {}", plot.display());
