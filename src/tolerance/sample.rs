@@ -6,19 +6,15 @@ use crate::Design;
 
 /// `design` with parameter `p` moved by `delta` (mm, or relative for the remanence).
 ///
-/// The wall moves the paths' final points; the width moves
-/// `d = w/2` with it; `s` is kept `>= 0`.
+/// The wall moves the curved paths' final point only ([`Design::wall`]; a design that
+/// gives `c` keeps its final points there); the width moves
+/// `d = w/2` with it; `s` and the wall are kept `>= 0`.
 pub fn nudged(design: &Design, p: Parameter, delta: f64) -> Design {
     let mut d = *design;
     match p {
         Parameter::S => d.s = (d.s + delta).max(0.0),
         Parameter::E => d.e += delta,
-        Parameter::Wall => {
-            // this build's design has no wall: the final points move through `c` (the end
-            // distance of every path) with `e` keeping the rest points where they were
-            d.c = Some(d.c() + delta);
-            d.e -= delta;
-        }
+        Parameter::Wall => d.wall = (d.wall + delta).max(0.0),
         Parameter::Width => {
             d.tile_width += delta;
             d.d += 0.5 * delta;

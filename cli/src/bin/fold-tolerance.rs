@@ -10,7 +10,9 @@ use std::time::Instant;
 use anyhow::{anyhow, bail, Context};
 use clap::Parser;
 use foldchain::count::Shard;
-use foldchain::margins::{ChainModel, Margins};
+use foldchain::engine::EngineOptions;
+use foldchain::margins::{ChainModel, MarginOptions, Margins};
+use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
     candidate_designs, optimize, sensitivities, study, tradeoff_svg, Candidate, Parameter, Printer,
@@ -71,6 +73,9 @@ struct Args {
     /// s for every tile: millimetres (0.3) or a fraction of e (e/3).
     #[arg(long, value_name = "MM")]
     s: Option<String>,
+    /// The pair law: dipole (point dipoles, thesis 6.12) or cylinder (finite cylinders).
+    #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
+    force_law: String,
     /// Search the design (s on straight runs and on turns, the wall) for the fastest
     /// assembly whose folding probability stays at or above --target.
     #[arg(long)]
@@ -168,12 +173,21 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     } else {
         index.iter().map(|&i| list[i as usize]).collect()
     };
+    let force_law = ForceLaw::named(&args.force_law, &nominal[0]).ok_or_else(|| {
+        anyhow!(
+            "--force-law {}: expected one of {FORCE_LAW_NAMES:?}",
+            args.force_law
+        )
+    })?;
     let opts = StudyOptions {
         samples: args.samples,
         seed: args.seed,
         shard,
         tolerances,
-        ..StudyOptions::default()
+        margins: MarginOptions {
+            force_law,
+            ..MarginOptions::default()
+        },
     };
     if args.optimize {
         if !(args.target > 0.0 && args.target <= 1.0) {
@@ -320,6 +334,7 @@ fn search(
             samples: args.search_samples.max(1),
             ..*opts
         },
+        engine: EngineOptions::default().with_force_law(opts.margins.force_law),
         ..SearchOptions::default()
     };
     let started = Instant::now();
