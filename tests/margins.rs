@@ -128,3 +128,73 @@ fn every_tile_may_differ() {
     let e = ChainModel::new(&chain, &designs).unwrap_err();
     assert!(e.to_string().starts_with("tile 2:"), "{e}");
 }
+
+/// The largest `x` in `[lo, hi]` at which `f` is positive, by bisection (f(lo) > 0 >= f(hi)).
+fn edge(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    assert!(
+        f(lo) > 0.0 && f(hi) <= 0.0,
+        "no sign change in [{lo}, {hi}]"
+    );
+    let (mut a, mut b) = (lo, hi);
+    for _ in 0..30 {
+        let m = 0.5 * (a + b);
+        if f(m) > 0.0 {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    a
+}
+
+#[test]
+fn the_margins_edge_is_the_references_edge() {
+    // the wall (and s) at which the last fold of SL and LS stops starting, found on the
+    // margins alone; the reference completes just inside it and stalls just outside
+    let smallest = |word: &str, d: Design| {
+        let chain = Chain::parse(word).unwrap();
+        margins(
+            &ChainModel::new(&chain, &[d]).unwrap(),
+            &MarginOptions::default(),
+        )
+        .weakest()
+        .unwrap()
+        .margin()
+    };
+    let completes = |word: &str, d: Design| {
+        let run = run_reference(
+            &Chain::parse(word).unwrap(),
+            &TileDesigns::global(d),
+            &ReferenceOptions::default(),
+        )
+        .unwrap();
+        run.outcome == Outcome::Completed
+    };
+    let d = Design::thesis();
+    for word in ["SL", "LS"] {
+        let wall = edge(|w| smallest(word, Design { wall: w, ..d }), 0.5, 2.5);
+        assert!(
+            completes(
+                word,
+                Design {
+                    wall: wall - 0.003,
+                    ..d
+                }
+            ),
+            "{word} wall {wall}"
+        );
+        assert!(
+            !completes(
+                word,
+                Design {
+                    wall: wall + 0.003,
+                    ..d
+                }
+            ),
+            "{word} wall {wall}"
+        );
+        let s = edge(|s| smallest(word, d.with_s(s)), 0.2, 1.0);
+        assert!(completes(word, d.with_s(s - 0.003)), "{word} s {s}");
+        assert!(!completes(word, d.with_s(s + 0.003)), "{word} s {s}");
+    }
+}
