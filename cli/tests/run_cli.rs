@@ -154,6 +154,12 @@ fn reads_a_plan_and_a_design() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert_eq!(summary(&d.join("o"))["tiles"], planned["tiles"]);
+    // final.svg draws the chain over the outline it was planned to fill (issue 14); step
+    // frames do not
+    let fin = std::fs::read_to_string(d.join("o/final.svg")).unwrap();
+    assert_eq!(fin.matches("stroke-dasharray").count(), 1, "{fin}");
+    let step = std::fs::read_to_string(d.join("o/step-0000.svg")).unwrap();
+    assert!(!step.contains("stroke-dasharray"));
 }
 
 #[test]

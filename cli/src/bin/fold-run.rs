@@ -148,11 +148,7 @@ fn count_arg(s: &str) -> Result<usize, String> {
 /// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
 /// [`SValue::parse`] reads (`0.3mm`, `e/3`, `0.25e`).
 fn s_value(text: &str) -> anyhow::Result<SValue> {
-    match text.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
-        Ok(_) => bail!("--s '{text}': expected a finite length >= 0 in mm"),
-        Err(_) => Ok(SValue::parse(text)?),
-    }
+    Ok(SValue::parse(text)?)
 }
 
 /// The name of a run given inline: the text itself when it is short and plain, else a name
