@@ -19,6 +19,7 @@ use foldchain::reference::{
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
+use foldchain_cli::margins_file::run_margins;
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
     is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
@@ -43,7 +44,8 @@ use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
 Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
 energy.svg, index.html (the animated viewer: open it in a browser; #t=SECONDS opens it at
-that time), timeline.json and summary.json (written last). Nothing else in DIR is touched.
+that time), timeline.json, margins.json (the margin of every start and fold, chains up to
+20,000 tiles) and summary.json (written last). Nothing else in DIR is touched.
 Times are simulated seconds. The design JSON is described in README.md (see also
 docs/design-example.json).
 
@@ -309,7 +311,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         Mode::Engine
     };
+    let run_margins = run_margins(&chain, &designs, force_law);
     let files = RunFilesOptions {
+        margins_json: run_margins.as_ref().map(|(_, text)| text.clone()),
         name: match mode {
             Mode::Reference => format!("{name} (reference)"),
             _ => name.clone(),
@@ -378,18 +382,30 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
+    let say_margins = |dir: &Path| {
+        if let (false, Some((m, _))) = (args.json, &run_margins) {
+            if let Some(w) = m.weakest() {
+                println!(
+                    "  smallest margin {w} ({})",
+                    dir.join("margins.json").display()
+                );
+            }
+        }
+    };
     let result = match mode {
         Mode::Reference => {
             let run = reference()?;
             let summary = run.to_summary();
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
+            say_margins(&out_dir);
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
             let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
             write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&name, &summary, &out_dir, args.json)?;
+            say_margins(&out_dir);
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
@@ -419,6 +435,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
+                say_margins(&edir);
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
