@@ -137,6 +137,7 @@ pub(crate) fn plan_by_cells(
         },
         nudges: &[],
         tolerance: ((CELL_COUNT_TOLERANCE * target as f64) as usize).max(1),
+        explore: false,
         shrink_when_empty: None,
     };
     let found = search.run(target, w0, |w| {

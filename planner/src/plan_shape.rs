@@ -16,6 +16,7 @@ use crate::rows::{Style, LOOSE, TIGHT};
 use crate::serpentine::{pick_directions, size_style, Sized};
 use crate::shape::Shape;
 use crate::sizing::{tiles_for, width_for};
+use crate::Progress;
 
 /// A shape monotone in no direction is planned as one serpentine that bridges its gaps
 /// only while at most this share of the chain lies outside it; beyond, it is unplannable.
@@ -24,17 +25,33 @@ const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
 const MAX_CELL_TILES: usize = 20_000;
 
 /// Plans a shape (physical frame); `name` names it in errors and in the plan.
-pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Result<Plan, PlanError> {
+pub(crate) fn plan_shape(
+    shape: &Shape,
+    opts: &PlanOptions,
+    name: &str,
+    progress: Progress<'_>,
+) -> Result<Plan, PlanError> {
     opts.check(shape)?;
     let styles: Vec<Style> = match opts.turns {
         Turns::Tight => vec![TIGHT],
         Turns::Loose => vec![LOOSE],
         Turns::Auto => vec![TIGHT, LOOSE],
-    };
+    }
+    .into_iter()
+    .map(|s| s.priced(opts.turn_cost))
+    .collect();
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
     let mut failures: Vec<String> = Vec::new();
-    let mut best = best_serpentine(shape, opts, &styles, &directions, name, &mut failures);
+    let mut best = best_serpentine(
+        shape,
+        opts,
+        &styles,
+        &directions,
+        name,
+        &mut failures,
+        progress,
+    );
     // the size a tight serpentine would have, for the questions below
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tiles_est = opts
@@ -59,10 +76,12 @@ pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Resul
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
+        progress("planning by cells", 0, 1);
         let by_cells: Vec<Result<Plan, String>> = styles
             .par_iter()
             .map(|&style| plan_by_cells(shape, opts, style, name))
             .collect();
+        progress("planning by cells", 1, 1);
         for r in by_cells {
             match r {
                 Ok(p) => {
@@ -94,10 +113,11 @@ fn best_serpentine(
     directions: &[f64],
     name: &str,
     failures: &mut Vec<String>,
+    progress: Progress<'_>,
 ) -> Option<Plan> {
     let sized: Vec<Result<Sized, String>> = styles
         .par_iter()
-        .map(|&style| size_style(shape, opts, style, directions))
+        .map(|&style| size_style(shape, opts, style, directions, progress))
         .collect();
     let mut scored: Vec<(f64, Plan, Sized)> = Vec::new();
     for r in sized {
@@ -111,6 +131,7 @@ fn best_serpentine(
         }
     }
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    progress("checking the folds", 0, 1);
     for (_, plan, sz) in scored {
         match sz.best_checked(shape, plan, name) {
             Ok(p) => return Some(p),

@@ -13,8 +13,8 @@
 //!   next cell continues the stacking with parallel rows;
 //! - a straight tile: the row runs on into the next cell.
 //!
-//! A beam search keeps the cheapest partial routes (row cost of [`crate::rows`] in every
-//! cell so far, plus the part of each cell behind its first row); a route whose tile centres
+//! A beam search keeps the cheapest partial routes (the area-true cost of [`crate::rows`]
+//! in every cell so far); a route whose tile centres
 //! come closer than one tile width (octagons of width 1 then overlap) is dropped.
 
 use std::f64::consts::FRAC_1_SQRT_2;
@@ -26,7 +26,7 @@ use kurbo::{Affine, Point, Vec2};
 use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
 use crate::options::Turns;
-use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style, ROW_SAMPLES};
+use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
@@ -128,26 +128,6 @@ pub(crate) struct Routed {
     pub quarter_turns: usize,
     pub u_turns: usize,
     pub cost: f64,
-}
-
-/// The shape length of the rows of the cell behind its first row (never reached).
-fn behind(work: &Shape, pitch: f64) -> f64 {
-    let ymin = work.bbox().y0;
-    let ns = ROW_SAMPLES.len() as f64;
-    let mut total = 0.0;
-    let mut m = 1.0;
-    while -m * pitch > ymin - 1.0 {
-        for d in ROW_SAMPLES {
-            total += work
-                .intervals_at(-m * pitch + d)
-                .iter()
-                .map(|(a, b)| b - a)
-                .sum::<f64>()
-                / ns;
-        }
-        m += 1.0;
-    }
-    total
 }
 
 /// The best ends of a solved programme: one whose last row runs +d, one -d.
@@ -278,7 +258,6 @@ fn next_legs(prev: &Leg, shape: &Shape, style: Style) -> Vec<(f64, Leg, Vec<Poin
             let work = frame.work(shape);
             let (lat, c0) = Lattice::from_origin(work.bbox(), p);
             let sol = solve_rows(&work, style, lat, Some(c0));
-            let back = behind(&work, p);
             for (cost, k, end) in ends(&sol) {
                 let leg = Leg {
                     frame,
@@ -286,7 +265,7 @@ fn next_legs(prev: &Leg, shape: &Shape, style: Style) -> Vec<(f64, Leg, Vec<Poin
                     join: join.folds.clone(),
                     quarter: join.quarter,
                 };
-                out.push((cost + back, leg, join.tiles.clone()));
+                out.push((cost, leg, join.tiles.clone()));
             }
         }
     }
