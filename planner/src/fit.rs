@@ -8,7 +8,7 @@ use kurbo::Point;
 use rayon::prelude::*;
 
 use crate::centre_grid::CentreGrid;
-use crate::plan::Metrics;
+use crate::plan::{Metrics, Plan};
 use crate::rows::{tile_area, Style};
 use crate::shape::Shape;
 
@@ -62,6 +62,20 @@ pub(crate) fn estimate(area: f64, tiles: usize, u_turns: usize, cost: f64, style
         0.0
     };
     uncovered + outside + if area > 0.0 { price / area } else { 0.0 }
+}
+
+/// The rank of a finished plan (lower is better): its measured fit error plus its turns
+/// (U-turns and quarter turns) priced at `turn_cost` tile areas each, as a share of the
+/// shape's area.
+pub(crate) fn plan_score(plan: &Plan, turn_cost: f64) -> f64 {
+    let area_tiles = plan.metrics.shape_area / (plan.tile_size * plan.tile_size);
+    let turns = (plan.u_turns + plan.quarter_turns) as f64;
+    plan.metrics.fit_error()
+        + if area_tiles > 0.0 {
+            turn_cost * turns / area_tiles
+        } else {
+            0.0
+        }
 }
 
 /// Samples over the tiles: 25 per tile (a 5 x 5 grid over its square, kept where inside the

@@ -62,12 +62,12 @@ pub const MAX_OUTLINE_POINTS: usize = 10_000_000;
 /// of a row step are both within reach).
 pub const DEFAULT_TILES_TOLERANCE: f64 = 0.03;
 
-/// Default of [`PlanOptions::turn_cost`]: a U-turn or a quarter turn is worth a quarter of
-/// a tile's area of misfit. An estimate, not a measurement: a turn tile folds a joint
-/// where a straight tile does not, and folding time and the risk of a failed fold grow
-/// with the number of folds (thesis section 7.2); the price keeps the planner from
-/// buying a sliver of fit with an extra pair of turns.
-pub const DEFAULT_TURN_COST: f64 = 0.25;
+/// Default of [`PlanOptions::turn_cost`]: a U-turn or a quarter turn is worth one tile's
+/// area of misfit. An estimate, not a measurement: a turn folds joints where a straight
+/// run does not, and folding time and the risk of a failed fold grow with the number of
+/// folds (thesis section 7.2); the price keeps the planner from buying a sliver of fit
+/// with extra turns (the key's shaft in two long rows, not in 2-tile columns).
+pub const DEFAULT_TURN_COST: f64 = 1.0;
 
 /// Options of a plan. Default: about [`DEFAULT_TILES`] tiles within
 /// [`DEFAULT_TILES_TOLERANCE`], [`Turns::Auto`], turns priced at [`DEFAULT_TURN_COST`].

@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use crate::cell_plan::{axes, plan_by_cells};
 use crate::cells::cells_of;
 use crate::error::PlanError;
+use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
 use crate::rows::{Style, LOOSE, TIGHT};
@@ -85,10 +86,9 @@ pub(crate) fn plan_shape(
         for r in by_cells {
             match r {
                 Ok(p) => {
-                    if best
-                        .as_ref()
-                        .is_none_or(|b| p.metrics.fit_error() < b.metrics.fit_error())
-                    {
+                    if best.as_ref().is_none_or(|b| {
+                        plan_score(&p, opts.turn_cost) < plan_score(b, opts.turn_cost)
+                    }) {
                         best = Some(p);
                     }
                 }

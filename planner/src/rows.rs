@@ -11,9 +11,8 @@
 //! shape between and beyond the rows counts as uncovered. The cost of a row from column
 //! `s` to `e` splits into a term of `s` and a term of `e`, so the best predecessor of every
 //! end column is a running minimum: the programme takes O(rows x columns) and is exact over
-//! all row-length choices. Row tables are built in one merge pass per line (the column
-//! boundaries and the shape's intervals are both sorted), into flat buffers allocated once
-//! per programme.
+//! all row-length choices. Row tables cost O(intervals) per line (a difference array for
+//! the columns wholly inside an interval), into flat buffers allocated once per programme.
 //!
 //! A solved programme is read back as a [`Serpentine`]: its rows in chain order, their tile
 //! centres and their folds (rows of straight joints, U-turns between them).
@@ -159,26 +158,6 @@ pub(crate) struct Solved {
     back: Vec<(u32, bool)>,
 }
 
-/// Adds `sign * measure(iv on (-inf, b_m])` for the increasing boundaries `b_m = b0 + m`,
-/// `m = 0..out.len()`, in one merge pass.
-fn add_measures(iv: &[(f64, f64)], b0: f64, sign: f64, out: &mut [f64]) {
-    let mut i = 0;
-    let mut done = 0.0; // measure of the intervals wholly left of the boundary
-    for (m, o) in out.iter_mut().enumerate() {
-        let b = b0 + m as f64;
-        while i < iv.len() && iv[i].1 <= b {
-            done += iv[i].1 - iv[i].0;
-            i += 1;
-        }
-        let part = if i < iv.len() && iv[i].0 < b {
-            b - iv[i].0
-        } else {
-            0.0
-        };
-        *o += sign * (done + part);
-    }
-}
-
 /// Keeps `(v, at)` in `min` if `v` is less than its value.
 #[inline]
 fn lower(min: &mut (f64, usize), v: f64, at: usize) {
@@ -198,20 +177,63 @@ fn relax(cur: &mut f64, back: &mut (u32, bool), cost: f64, (start, first): (usiz
 }
 
 /// Adds, for every column `j` of `out`, `weight` times the measure of the intervals `iv`
-/// on `[x0 + j - hw, x0 + j + hw]` (two merge passes).
-fn add_tile_measures(iv: &[(f64, f64)], x0: f64, hw: f64, weight: f64, out: &mut [f64]) {
-    add_measures(iv, x0 + hw, weight, out);
-    add_measures(iv, x0 - hw, -weight, out);
+/// on `[x0 + j - hw, x0 + j + hw]` (`hw <= 1/2`): the columns wholly inside an interval get
+/// `2 hw` through the difference array `diff` (`out.len() + 1` long, summed by the caller),
+/// the at most two partial columns at either end their overlap, so a line costs
+/// O(intervals), not O(columns).
+fn add_tile_measures(
+    iv: &[(f64, f64)],
+    x0: f64,
+    hw: f64,
+    weight: f64,
+    out: &mut [f64],
+    diff: &mut [f64],
+) {
+    let cols = out.len() as i64;
+    if cols == 0 {
+        return;
+    }
+    let clamp = |j: i64| j.clamp(0, cols);
+    for &(a, b) in iv {
+        // columns whose whole span lies in [a, b]
+        let f0 = clamp(((a + hw) - x0).ceil() as i64);
+        let f1 = clamp(((b - hw) - x0).floor() as i64 + 1); // exclusive
+                                                            // columns that touch [a, b] at all
+        let t0 = clamp(((a - hw) - x0).floor() as i64);
+        let t1 = clamp(((b + hw) - x0).ceil() as i64 + 1);
+        let overlap = |j: i64| {
+            let x = x0 + j as f64;
+            (b.min(x + hw) - a.max(x - hw)).max(0.0)
+        };
+        if f0 < f1 {
+            diff[f0 as usize] += weight * 2.0 * hw;
+            diff[f1 as usize] -= weight * 2.0 * hw;
+            for j in (t0..f0).chain(f1..t1) {
+                out[j as usize] += weight * overlap(j);
+            }
+        } else {
+            for j in t0..t1 {
+                out[j as usize] += weight * overlap(j);
+            }
+        }
+    }
 }
 
-/// Adds to `out[j]` the area of the shape under the tile centred at `(x0 + j, y)`, for
-/// every column `j` (the quadrature of [`AREA_LINES`]).
-fn add_tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64]) {
+/// Sets `out[j]` to the area of the shape under the tile centred at `(x0 + j, y)`, for
+/// every column `j` (the quadrature of [`AREA_LINES`]); `diff` is scratch of
+/// `out.len() + 1`.
+fn tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64], diff: &mut [f64]) {
+    out.iter_mut().for_each(|v| *v = 0.0);
+    diff.iter_mut().for_each(|v| *v = 0.0);
+    let weight = 1.0 / AREA_LINES.len() as f64;
     for dy in AREA_LINES {
         let iv = work.intervals_at(y + dy);
-        if !iv.is_empty() {
-            add_tile_measures(&iv, x0, half_chord(dy), 1.0 / AREA_LINES.len() as f64, out);
-        }
+        add_tile_measures(&iv, x0, half_chord(dy), weight, out, diff);
+    }
+    let mut run = 0.0;
+    for (o, d) in out.iter_mut().zip(diff.iter()) {
+        run += d;
+        *o += run;
     }
 }
 
@@ -245,10 +267,10 @@ pub(crate) fn solve_rows(
     let mut pre = vec![0.0; nrows * w1];
     let mut turn = vec![0.0; nrows * cols];
     let mut cover = vec![0.0; cols];
+    let mut diff = vec![0.0; w1];
     for k in 0..nrows {
         let y = y0 + k as f64 * p;
-        cover.iter_mut().for_each(|v| *v = 0.0);
-        add_tile_cover(work, x0, y, &mut cover);
+        tile_cover(work, x0, y, &mut cover, &mut diff);
         let pr = &mut pre[k * w1..(k + 1) * w1];
         for j in 0..cols {
             pr[j + 1] = pr[j] + tile_cost(cover[j]);
@@ -257,8 +279,7 @@ pub(crate) fn solve_rows(
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
         for h in style.turn_heights {
-            cover.iter_mut().for_each(|v| *v = 0.0);
-            add_tile_cover(work, x0 + dir * FRAC_1_SQRT_2, y + h, &mut cover);
+            tile_cover(work, x0 + dir * FRAC_1_SQRT_2, y + h, &mut cover, &mut diff);
             for (tj, c) in t.iter_mut().zip(&cover) {
                 *tj += tile_cost(*c);
             }
@@ -344,6 +365,29 @@ impl Solved {
             }
         }
         best
+    }
+
+    /// The end `(cost, row, column)` among rows that `row_ok` accepts that minimises its
+    /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out).
+    pub(crate) fn best_end_with(
+        &self,
+        row_ok: impl Fn(usize) -> bool,
+        penalty: impl Fn(usize, usize) -> f64,
+    ) -> Option<(f64, usize, usize)> {
+        let mut best: Option<(f64, f64, usize, usize)> = None;
+        for k in (0..self.nrows).filter(|&k| row_ok(k)) {
+            let row = &self.dp[k * self.cols..(k + 1) * self.cols];
+            for (e, &c) in row.iter().enumerate() {
+                if !c.is_finite() {
+                    continue;
+                }
+                let t = c + penalty(k, e);
+                if best.is_none_or(|b| t < b.0) {
+                    best = Some((t, c, k, e));
+                }
+            }
+        }
+        best.map(|(_, c, k, e)| (c, k, e))
     }
 
     /// The serpentine on `lat` that ends in row `k` at column `e`.
@@ -496,15 +540,28 @@ mod tests {
         }])
     }
 
+    /// The per-column tile measures match the overlap computed column by column.
     #[test]
-    fn merge_pass_matches_direct_measure() {
-        let iv = [(0.3, 1.7), (2.5, 2.6), (4.0, 9.2)];
-        let mut out = vec![0.0; 12];
-        add_measures(&iv, -0.5, 1.0, &mut out);
-        for (m, &v) in out.iter().enumerate() {
-            let b = -0.5 + m as f64;
-            let direct: f64 = iv.iter().map(|&(a, c)| (c.min(b) - a).max(0.0)).sum();
-            assert!((v - direct).abs() < 1e-12, "{m}: {v} vs {direct}");
+    fn tile_measures_match_direct_overlaps() {
+        let iv = [(0.3, 1.7), (2.5, 2.6), (4.0, 9.2), (9.9, 10.05)];
+        for hw in [0.5, 0.3, 0.07] {
+            let mut out = vec![0.0; 14];
+            let mut diff = vec![0.0; 15];
+            add_tile_measures(&iv, -0.25, hw, 1.0, &mut out, &mut diff);
+            let mut run = 0.0;
+            for (j, v) in out.iter().enumerate() {
+                run += diff[j];
+                let x = -0.25 + j as f64;
+                let direct: f64 = iv
+                    .iter()
+                    .map(|&(a, b)| (b.min(x + hw) - a.max(x - hw)).max(0.0))
+                    .sum();
+                assert!(
+                    (v + run - direct).abs() < 1e-12,
+                    "{hw} {j}: {} vs {direct}",
+                    v + run
+                );
+            }
         }
     }
 
@@ -526,7 +583,10 @@ mod tests {
         // the rectangle spans columns 3..=12 (x = 0..=9): rows fill it, a row coming back
         // stops one column short of the edge so that its U-turn tile lies inside
         assert!((3..=4).contains(&rows[1].2), "{rows:?}");
-        assert!(rows.iter().all(|r| (3..=12).contains(&r.1.min(r.2))), "{rows:?}");
+        assert!(
+            rows.iter().all(|r| (3..=12).contains(&r.1.min(r.2))),
+            "{rows:?}"
+        );
         assert!(rows.len() >= 4, "{rows:?}");
     }
 }

@@ -176,9 +176,12 @@ pub(crate) fn size_style(
     let coarse_over = |tiles: usize| {
         if tiles > COARSE_TILES {
             let w = width_for(area, COARSE_TILES, style.pitch);
-            coarse_direction(shape, style, directions, w)
+            coarse_orientation(shape, style, directions, w)
         } else {
-            directions.to_vec()
+            directions
+                .iter()
+                .flat_map(|&angle| Orientation::corners(angle))
+                .collect()
         }
     };
     if let Some(w) = opts.tile_size {
@@ -228,22 +231,23 @@ pub(crate) fn size_style(
     }
 }
 
-/// The best direction on a coarse plan, for large plans.
-fn coarse_direction(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<f64> {
-    match solve_all(shape, style, directions, w).first() {
-        Some(c) => vec![c.orient.angle],
-        None => directions.to_vec(),
-    }
-}
-
-/// Every serpentine over directions, corners and phases at tile width `w`, lowest cost
-/// first (solved in parallel; the order is deterministic).
-fn solve_all(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Candidate> {
-    let area = shape.area() / (w * w);
-    let tasks: Vec<Orientation> = directions
+/// The best direction and start corner on a coarse plan, for large plans (the lattice
+/// phases are still compared at full size).
+fn coarse_orientation(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Orientation> {
+    let all: Vec<Orientation> = directions
         .iter()
         .flat_map(|&angle| Orientation::corners(angle))
         .collect();
+    match solve_all(shape, style, &all, w).first() {
+        Some(c) => vec![c.orient],
+        None => all,
+    }
+}
+
+/// Every serpentine over the orientations (directions and corners) and phases at tile
+/// width `w`, lowest cost first (solved in parallel; the order is deterministic).
+fn solve_all(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<Candidate> {
+    let area = shape.area() / (w * w);
     let mut out: Vec<Candidate> = tasks
         .par_iter()
         .flat_map_iter(|&orient| {
@@ -310,7 +314,11 @@ mod tests {
                 .collect(),
         }]);
         for style in [TIGHT, LOOSE] {
-            let all = solve_all(&disc, style, &[0.0, 0.7], 1.0);
+            let orients: Vec<Orientation> = [0.0, 0.7]
+                .iter()
+                .flat_map(|&a| Orientation::corners(a))
+                .collect();
+            let all = solve_all(&disc, style, &orients, 1.0);
             assert!(!all.is_empty());
             for c in &all {
                 assert_eq!(c.tiles(style), c.word(style).tiles());
