@@ -16,6 +16,7 @@ use crate::fit::plan_score;
 use crate::frame::{stacking_axis_deg, Orientation};
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
+use crate::plan_shape::empty_part;
 use crate::route::{route_order, Route, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
@@ -209,6 +210,7 @@ pub(crate) fn plan_by_cells(
     let w = found.w;
     let mut plans: Vec<Plan> = Vec::new();
     let mut collide = String::new();
+    let mut empty = String::new();
     for (a, r) in found.plans.iter().take(CHECKED_ROUTES) {
         if let Err(e) = check_folds(&r.word) {
             collide = e;
@@ -232,7 +234,15 @@ pub(crate) fn plan_by_cells(
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
-        plans.push(asm.to_plan(&r.word, name));
+        let plan = asm.to_plan(&r.word, name);
+        if let Some(why) = empty_part(shape, &plan) {
+            empty = format!(
+                "the best route ({} cells, {} tiles) {why}",
+                plan.cells, plan.tiles
+            );
+            continue;
+        }
+        plans.push(plan);
     }
     // counts within the tolerance first (routes at one width differ in count), then the
     // best score
@@ -247,7 +257,13 @@ pub(crate) fn plan_by_cells(
                 .cmp(&miss(y))
                 .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
         })
-        .ok_or_else(|| format!("every cell route collides when folded (first: {collide})"))
+        .ok_or_else(|| {
+            if empty.is_empty() {
+                format!("every cell route collides when folded (first: {collide})")
+            } else {
+                empty
+            }
+        })
 }
 
 /// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest

@@ -37,6 +37,7 @@ mod cells;
 mod centre_grid;
 mod check;
 mod drawing;
+mod empty;
 mod error;
 mod fit;
 mod frame;

@@ -5,10 +5,12 @@
 
 use std::f64::consts::PI;
 
+use kurbo::Point;
 use rayon::prelude::*;
 
 use crate::cell_plan::{axes, plan_by_cells};
 use crate::cells::cells_of;
+use crate::empty::largest_empty_part;
 use crate::error::PlanError;
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
@@ -58,6 +60,12 @@ pub(crate) fn plan_shape(
     let tiles_est = opts
         .tile_size
         .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    if let Some(p) = best.take() {
+        match empty_part(shape, &p) {
+            None => best = Some(p),
+            Some(why) => failures.push(format!("one serpentine {why}")),
+        }
+    }
     let parts = separate_parts(shape, tiles_est);
     if monotone.is_empty() || parts > 1 {
         // one serpentine over a shape that is monotone in no direction (or in separate
@@ -139,6 +147,24 @@ fn best_serpentine(
         }
     }
     None
+}
+
+/// Why `plan` may not be returned: it leaves a part of the shape empty (see
+/// [`crate::empty`]), said with where, in SVG user units.
+pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
+    let w = plan.tile_size;
+    let work = shape.scaled(1.0 / w);
+    let centres: Vec<Point> = plan
+        .poses
+        .iter()
+        .map(|p| Point::new(p.x / w, -p.y / w))
+        .collect();
+    let (area, at) = largest_empty_part(&work, &centres)?;
+    Some(format!(
+        "leaves a part of the shape empty: about {area:.0} tile areas without a tile, around ({:.0}, {:.0})",
+        at.x * w,
+        -at.y * w
+    ))
 }
 
 /// Why no plan was found: what is wrong with the shape, then what each planner said.

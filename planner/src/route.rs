@@ -14,8 +14,10 @@
 //! - a straight tile: the row runs on into the next cell.
 //!
 //! A beam search keeps the cheapest partial routes (the area-true cost of [`crate::rows`]
-//! in every cell so far); a route whose tile centres
-//! come closer than one tile width (octagons of width 1 then overlap) is dropped.
+//! in every cell so far, turns priced, ranked with a look-ahead: how far each cell's exit
+//! lies from the next cell); a route whose tile centres come closer than one tile width
+//! (octagons of width 1 then overlap), or whose prefix collides when folded in sequence
+//! from tile 0, is dropped as it grows.
 
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
@@ -25,6 +27,7 @@ use kurbo::{Affine, Point, Rect, Vec2};
 
 use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
+use crate::check::check_folds;
 use crate::options::Turns;
 use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
@@ -357,6 +360,11 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
             }
             let mut legs = r.legs.clone();
             legs.push(Arc::new(leg));
+            // folding is sequential from tile 0: a prefix that collides stays colliding,
+            // so routes are checked as they grow, not only when complete
+            if check_folds(&FoldWord::from_folds(route_folds(&legs, style))).is_err() {
+                continue;
+            }
             let mut centres = r.centres.clone();
             centres.push(Arc::new(c));
             next.push(Route {
@@ -373,15 +381,21 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
     beam
 }
 
+/// The folds of a route's legs, joins included.
+fn route_folds(legs: &[Arc<Leg>], style: Style) -> Vec<Fold> {
+    let mut folds = Vec::new();
+    for leg in legs {
+        folds.extend(leg.join.iter().copied());
+        leg.serp.folds(style, leg.frame.ccw(), &mut folds);
+    }
+    folds
+}
+
 impl Route {
     /// The route as a fold word with its frame and counts.
     pub(crate) fn to_routed(&self, style: Style) -> Option<Routed> {
         let first = self.legs.first()?;
-        let mut folds = Vec::new();
-        for leg in &self.legs {
-            folds.extend(leg.join.iter().copied());
-            leg.serp.folds(style, leg.frame.ccw(), &mut folds);
-        }
+        let folds = route_folds(&self.legs, style);
         let (k, s) = first.serp.first();
         let start = first.frame.to_axis() * first.serp.centre(k, s);
         let h = first.heading(k);
