@@ -17,6 +17,7 @@ use foldchain::render::{
     DETAIL_TILES,
 };
 use foldchain::viewer::{viewer_html, RunView};
+use kurbo::Point;
 
 use crate::output::{OutputDir, WriteError};
 
@@ -174,18 +175,34 @@ pub fn write_run_files(
             title: opts.name.clone(),
             collision: hit,
             note,
+            target: Vec::new(),
         };
         let svg = frame_svg(source.geometry(), &state, &view, &fo);
         out.write(&format!("step-{i:04}.svg"), svg.as_bytes())?;
     }
     progress("frames", frames, frames);
+    // the final frame shows the chain in the target's frame, over the outline it was planned
+    // to fill
+    let target: Vec<Vec<Point>> = opts
+        .target
+        .iter()
+        .map(|ring| {
+            ring.iter()
+                .map(|&(x, y)| Point::new(x * w, y * w))
+                .collect()
+        })
+        .collect();
     let fo = FrameOptions {
         title: opts.name.clone(),
         collision: collision.map(|(_, tiles)| tiles),
         note: Some(final_note(summary)),
+        target,
     };
     let mut final_state = source.final_state();
-    let (final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
+    let (mut final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
+    if let Some(around) = FrameView::around_outline(&fo.target, w) {
+        final_view = final_view.union(around);
+    }
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
     let tiles = source.tiles();

@@ -24,6 +24,7 @@
 //! assert!(along_path(f, Vec2::new(-1.0, 0.0)) > 0.0);
 //! ```
 
+mod cylinder;
 mod dipole;
 mod drag;
 mod drive;
@@ -35,6 +36,6 @@ mod ri;
 pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 pub use drive::{along_path, joints_between, torque_about};
 pub use energy::EnergyUnit;
-pub use force_law::ForceLaw;
+pub use force_law::{ForceLaw, FORCE_LAW_NAMES};
 pub use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
 pub use ri::ReactionInitiator;

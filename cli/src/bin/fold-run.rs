@@ -11,8 +11,11 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
+use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
+use foldchain::reference::{
+    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
+};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
@@ -83,6 +86,11 @@ struct Args {
     /// integrator weighs them; about 40 us per tile).
     #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
     start_rule: String,
+    /// The pair law of the reference and of the force start rule (and the energy plot):
+    /// dipole (point dipoles, thesis 6.11/6.12) or cylinder (the design's magnets as
+    /// uniformly magnetised cylinders, tabulated).
+    #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
+    force_law: String,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
@@ -134,11 +142,7 @@ fn count_arg(s: &str) -> Result<usize, String> {
 /// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
 /// [`SValue::parse`] reads (`0.3mm`, `e/3`, `0.25e`).
 fn s_value(text: &str) -> anyhow::Result<SValue> {
-    match text.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(SValue::Millimetres(v)),
-        Ok(_) => bail!("--s '{text}': expected a finite length >= 0 in mm"),
-        Err(_) => Ok(SValue::parse(text)?),
-    }
+    Ok(SValue::parse(text)?)
 }
 
 /// The name of a run given inline: the text itself when it is short and plain, else a name
@@ -251,6 +255,13 @@ fn run(args: Args) -> anyhow::Result<u8> {
         designs = designs.with_s(s_value(s)?);
         designs.validate("--s")?;
     }
+    let force_law =
+        ForceLaw::named(&args.force_law, &designs.global_design()).ok_or_else(|| {
+            anyhow!(
+                "--force-law {}: expected one of {FORCE_LAW_NAMES:?}",
+                args.force_law
+            )
+        })?;
     let speed = match args.speed.as_str() {
         "unit" => SpeedLaw::Unit,
         _ => {
@@ -329,19 +340,22 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 chain.len()
             );
         }
-        let ro = ReferenceOptions::default().with_record(Recording::Grid {
-            max_states: state_budget(chain.len()),
-        });
+        let ro = ReferenceOptions::default()
+            .with_record(Recording::Grid {
+                max_states: state_budget(chain.len()),
+            })
+            .with_model(ModelOptions::default().with_force_law(force_law));
         Ok(run_reference(&chain, &designs, &ro)?)
     };
-    let engine = EngineOptions::default().with_speed(speed).with_start_rule(
-        match args.start_rule.as_str() {
+    let engine = EngineOptions::default()
+        .with_speed(speed)
+        .with_force_law(force_law)
+        .with_start_rule(match args.start_rule.as_str() {
             "force" => StartRule::Force {
                 cutoff: foldchain::physics::DEFAULT_CUTOFF,
             },
             _ => StartRule::Distance,
-        },
-    );
+        });
     let bar = (chain.len() > 2000).then(|| {
         let b = indicatif::ProgressBar::new(1);
         b.set_style(

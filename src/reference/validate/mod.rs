@@ -18,6 +18,7 @@ use std::time::Instant;
 use crate::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
 use crate::kinematics::poses_at_angles;
 use crate::reference::driver::run_reference;
+use crate::reference::dynamics::ModelOptions;
 use crate::reference::integrators::Method;
 use crate::reference::options::{ReferenceError, ReferenceOptions};
 use crate::reference::run_result::ReferenceRun;
@@ -38,6 +39,9 @@ pub struct ValidateOptions {
     pub dopri5: Vec<f64>,
     /// Tolerances for ROS2.
     pub ros2: Vec<f64>,
+    /// The model of every reference run, and the pair law of the engine's force rule
+    /// (default [`ModelOptions::default`]).
+    pub model: ModelOptions,
 }
 
 impl Default for ValidateOptions {
@@ -47,6 +51,7 @@ impl Default for ValidateOptions {
             reference_tolerance: 1e-10,
             dopri5: vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
             ros2: vec![1e-2, 1e-3, 1e-4, 1e-5],
+            model: ModelOptions::default(),
         }
     }
 }
@@ -148,7 +153,9 @@ pub fn validate(
         let reference = run_reference(
             &sc.chain,
             &sc.designs,
-            &ReferenceOptions::default().with_tolerance(opts.reference_tolerance),
+            &ReferenceOptions::default()
+                .with_tolerance(opts.reference_tolerance)
+                .with_model(opts.model),
         )
         .map_err(ref_err)?;
         let reference_wall = t0.elapsed().as_secs_f64();
@@ -174,7 +181,9 @@ pub fn validate(
             let tl = run(
                 &sc.chain,
                 &sc.designs,
-                &EngineOptions::default().with_start_rule(rule),
+                &EngineOptions::default()
+                    .with_start_rule(rule)
+                    .with_force_law(opts.model.force_law),
             )
             .map_err(|source| ValidateError::Engine {
                 scene: name.clone(),
@@ -225,7 +234,8 @@ pub fn validate(
                     &sc.designs,
                     &ReferenceOptions::default()
                         .with_method(method)
-                        .with_tolerance(tol),
+                        .with_tolerance(tol)
+                        .with_model(opts.model),
                 )
                 .map_err(ref_err)?;
                 let wall = t0.elapsed().as_secs_f64();
