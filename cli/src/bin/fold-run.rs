@@ -11,10 +11,10 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
-    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions, ReferenceRun,
 };
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
@@ -93,6 +93,12 @@ struct Args {
     /// uniformly magnetised cylinders, tabulated).
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
+    /// The reference's dynamics (--reference, --compare): inertial (magnets of 0.265 g with a
+    /// drag of 0.05 N s/m, tiles with rotational inertia, bouncing at path ends; README,
+    /// "Physical parameters") or overdamped (first order, drag 5 N s/m: the stiff limit of
+    /// negligible mass, the one the event engine's speed law and fold-validate use).
+    #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
+    dynamics: String,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
@@ -264,6 +270,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 args.force_law
             )
         })?;
+    let dynamics = match args.dynamics.as_str() {
+        "inertial" => Dynamics::Inertial(Inertia::default()),
+        _ => Dynamics::Overdamped,
+    };
     let speed = match args.speed.as_str() {
         "unit" => SpeedLaw::Unit,
         _ => {
@@ -348,7 +358,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_record(Recording::Grid {
                 max_states: state_budget(chain.len()),
             })
-            .with_model(ModelOptions::default().with_force_law(force_law));
+            .with_model(
+                ModelOptions::default()
+                    .with_force_law(force_law)
+                    .with_dynamics(dynamics),
+            );
         Ok(run_reference(&chain, &designs, &ro)?)
     };
     let engine = EngineOptions::default()
