@@ -139,6 +139,19 @@ fn the_search_writes_its_plot() {
         text.contains("fastest design with P >= 0.99"),
         "{text}"
     );
+    if o.status.code() == Some(0) {
+        // the chosen design's file is a design the tools read
+        let design = d.join("t-chosen.json");
+        let v = json(&tolerance(&[
+            "SLS",
+            "--samples",
+            "10",
+            "--json",
+            "--design",
+            design.to_str().unwrap(),
+        ]));
+        assert_eq!(v["study"]["samples"], 10);
+    }
     let svg = std::fs::read_to_string(&plot).unwrap();
     usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
     assert!(svg.contains("folding probability"));

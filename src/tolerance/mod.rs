@@ -29,7 +29,9 @@ mod study;
 mod tolerances;
 mod wilson;
 
-pub use optimize::{candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions};
+pub use optimize::{
+    candidate_design_json, candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions,
+};
 pub use plot::tradeoff_svg;
 pub use rng::SplitMix64;
 pub use sample::{draw_designs, nudged};

@@ -107,6 +107,29 @@ pub fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Des
     designs_of(chain, base, c.s_straight, c.s_turn, c.wall_step)
 }
 
+/// A candidate as a design file (`{"global": ..., "tiles": [...]}`, the form
+/// [`TileDesigns::from_json`] reads): the base with the wall moved and the straight runs'
+/// `s`, the turn tiles' `s` as overrides, runs of turn tiles in one entry.
+pub fn candidate_design_json(chain: &Chain, base: &Design, c: &Candidate) -> serde_json::Value {
+    let mut global = nudged(base, Parameter::Wall, c.wall_step).with_s(c.s_straight);
+    // the grid's steps are decimal: keep the file free of binary rounding
+    global.wall = (global.wall * 1e9).round() / 1e9;
+    let mut tiles: Vec<serde_json::Value> = Vec::new();
+    let turns: Vec<bool> = chain.tiles().iter().map(is_turn).collect();
+    let mut i = 0;
+    while i < turns.len() {
+        if turns[i] && c.s_turn != c.s_straight {
+            let from = i;
+            while i + 1 < turns.len() && turns[i + 1] {
+                i += 1;
+            }
+            tiles.push(serde_json::json!({"from": from, "to": i, "s": c.s_turn}));
+        }
+        i += 1;
+    }
+    serde_json::json!({"global": global, "tiles": tiles})
+}
+
 fn designs_of(
     chain: &Chain,
     base: &Design,

@@ -106,10 +106,7 @@ pub fn tradeoff_svg(search: &Search, target: f64, title: &str) -> String {
         doc = doc.add(
             Text::new(format!("wall {w:+.2} mm (labels: s, mm)"))
                 .set("x", num(axes.left + 10.0))
-                .set(
-                    "y",
-                    num(axes.top + axes.height - 10.0 - 16.0 * (walls.len() - 1 - i) as f64),
-                )
+                .set("y", num(axes.top + 0.45 * axes.height + 16.0 * i as f64))
                 .set("fill", colour),
         );
     }

@@ -15,8 +15,8 @@ use foldchain::margins::{ChainModel, MarginOptions, Margins};
 use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_designs, optimize, sensitivities, study, tradeoff_svg, Candidate, Parameter, Printer,
-    SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    candidate_design_json, candidate_designs, optimize, sensitivities, study, tradeoff_svg,
+    Candidate, Parameter, Printer, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::inputs::read_chain;
@@ -388,7 +388,8 @@ fn search(
                 row(m)
             );
         }
-        // the base and the chosen design again, with the study's full sample count
+        // the base, the chosen and the most probable design again, with the study's full
+        // sample count, and the last two as design files
         let confirm = |c: &Candidate| -> anyhow::Result<Study> {
             Ok(study(chain, &candidate_designs(chain, base, c), opts)?)
         };
@@ -397,11 +398,25 @@ fn search(
             "with {} samples: base design P = {:.4} ({:.4} to {:.4})",
             b.samples, b.probability, b.interval.0, b.interval.1
         );
-        if let Some(best) = &result.best {
-            let c = confirm(best)?;
+        let stem = plot.with_extension("");
+        for (label, file, c) in [
+            ("chosen", "chosen", &result.best),
+            ("most probable", "most-probable", &result.most_probable),
+        ] {
+            let Some(c) = c else { continue };
+            let s = confirm(c)?;
+            let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
+            let mut text = serde_json::to_string_pretty(&candidate_design_json(chain, base, c))?;
+            text.push('\n');
+            std::fs::write(&path, text)
+                .with_context(|| format!("cannot write {}", path.display()))?;
             println!(
-                "with {} samples: chosen design P = {:.4} ({:.4} to {:.4})",
-                c.samples, c.probability, c.interval.0, c.interval.1
+                "with {} samples: {label} design P = {:.4} ({:.4} to {:.4}); design file {}",
+                s.samples,
+                s.probability,
+                s.interval.0,
+                s.interval.1,
+                path.display()
             );
         }
         println!("wrote {}", plot.display());
