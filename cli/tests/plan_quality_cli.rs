@@ -201,3 +201,28 @@ fn bad_physical_options_exit_2() {
         assert!(!String::from_utf8_lossy(&o.stderr).is_empty());
     }
 }
+
+/// Off a terminal, `fold-plan` prints plain progress lines on stderr (here every update:
+/// `FOLDCHAIN_PROGRESS_SECONDS=0`), and `--quiet` silences them (issue 14).
+#[test]
+fn progress_lines_off_a_terminal_and_quiet() {
+    let disc = shape("disc.svg");
+    let run = |quiet: bool| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_fold-plan"));
+        c.arg(&disc)
+            .args(["--tiles", "100"])
+            .env("FOLDCHAIN_PROGRESS_SECONDS", "0");
+        if quiet {
+            c.arg("--quiet");
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success());
+        String::from_utf8(o.stderr).unwrap()
+    };
+    let loud = run(false);
+    assert!(
+        loud.contains("fold-plan: sizing the tight serpentine"),
+        "{loud}"
+    );
+    assert!(run(true).is_empty());
+}
