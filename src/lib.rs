@@ -50,6 +50,7 @@ pub mod input;
 mod joint;
 pub mod kinematics;
 pub mod magnet_path;
+pub mod margins;
 mod octagon;
 mod path_kind;
 pub mod physics;
@@ -59,6 +60,7 @@ pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
+pub mod tolerance;
 pub mod viewer;
 mod word;
 

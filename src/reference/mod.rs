@@ -34,6 +34,7 @@ mod banded;
 mod driver;
 mod dynamics;
 mod event_log;
+mod inertial;
 mod integrators;
 mod locate;
 mod options;
@@ -47,6 +48,7 @@ mod verdict;
 
 pub use driver::run_reference;
 pub use dynamics::{Model, ModelError, ModelOptions, BALANCE_TOLERANCE};
+pub use inertial::Dynamics;
 pub use integrators::{Method, StepStats};
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{

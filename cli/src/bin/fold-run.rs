@@ -11,14 +11,15 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
-    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions, ReferenceRun,
 };
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
+use foldchain_cli::margins_file::run_margins;
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
     is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
@@ -43,7 +44,8 @@ use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
 Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
 energy.svg, index.html (the animated viewer: open it in a browser; #t=SECONDS opens it at
-that time), timeline.json and summary.json (written last). Nothing else in DIR is touched.
+that time), timeline.json, margins.json (the margin of every start and fold, chains up to
+20,000 tiles) and summary.json (written last). Nothing else in DIR is touched.
 Times are simulated seconds. The design JSON is described in README.md (see also
 docs/design-example.json).
 
@@ -91,6 +93,12 @@ struct Args {
     /// uniformly magnetised cylinders, tabulated).
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
+    /// The reference's dynamics (--reference, --compare): inertial (magnets of 0.265 g with a
+    /// drag of 0.05 N s/m, tiles with rotational inertia, bouncing at path ends; README,
+    /// "Physical parameters") or overdamped (first order, drag 5 N s/m: the stiff limit of
+    /// negligible mass, the one the event engine's speed law and fold-validate use).
+    #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
+    dynamics: String,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
@@ -262,6 +270,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 args.force_law
             )
         })?;
+    let dynamics = match args.dynamics.as_str() {
+        "inertial" => Dynamics::Inertial(Inertia::default()),
+        _ => Dynamics::Overdamped,
+    };
     let speed = match args.speed.as_str() {
         "unit" => SpeedLaw::Unit,
         _ => {
@@ -299,7 +311,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         Mode::Engine
     };
+    let run_margins = run_margins(&chain, &designs, force_law);
     let files = RunFilesOptions {
+        margins_json: run_margins.as_ref().map(|(_, text)| text.clone()),
         name: match mode {
             Mode::Reference => format!("{name} (reference)"),
             _ => name.clone(),
@@ -344,7 +358,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_record(Recording::Grid {
                 max_states: state_budget(chain.len()),
             })
-            .with_model(ModelOptions::default().with_force_law(force_law));
+            .with_model(
+                ModelOptions::default()
+                    .with_force_law(force_law)
+                    .with_dynamics(dynamics),
+            );
         Ok(run_reference(&chain, &designs, &ro)?)
     };
     let engine = EngineOptions::default()
@@ -364,18 +382,30 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
+    let say_margins = |dir: &Path| {
+        if let (false, Some((m, _))) = (args.json, &run_margins) {
+            if let Some(w) = m.weakest() {
+                println!(
+                    "  smallest margin {w} ({})",
+                    dir.join("margins.json").display()
+                );
+            }
+        }
+    };
     let result = match mode {
         Mode::Reference => {
             let run = reference()?;
             let summary = run.to_summary();
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
+            say_margins(&out_dir);
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
             let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
             write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&name, &summary, &out_dir, args.json)?;
+            say_margins(&out_dir);
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
@@ -405,6 +435,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
+                say_margins(&edir);
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
