@@ -34,6 +34,7 @@ mod banded;
 mod driver;
 mod dynamics;
 mod event_log;
+pub mod experiments;
 mod inertial;
 mod integrators;
 mod locate;
