@@ -135,7 +135,11 @@ mod tests {
         let svg = pair_energy_svg(&e, "SL & test");
         assert_eq!(svg.matches("<polyline").count(), 3);
         assert_eq!(svg.matches("stroke-dasharray").count(), 4);
-        assert_eq!(svg.matches("<svg").count(), 3, "one picture holding two panels");
+        assert_eq!(
+            svg.matches("<svg").count(),
+            3,
+            "one picture holding two panels"
+        );
         assert!(svg.contains("SL &amp; test"));
     }
 }
