@@ -181,12 +181,39 @@ fn the_old_stall_is_a_balance_that_misses_by_a_fraction_of_a_percent() {
 fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
     // the known limit of the cutoff (pairs at most 3 apart in chain index): in the LLL ring
     // the first and last tiles touch, and the pairs left out change a magnet's drive along its
-    // path by 31% of the bonded rest force at the end (measured; under 2% at rest). A distance
-    // cutoff would keep them; not built yet
+    // path by 31% of the bonded rest force at the end (measured; under 2% at rest). The
+    // distance cutoff (90 mm, three tile widths) keeps them: what it leaves out is small
     let r = run("LLL", Design::thesis(), inertial());
     assert_eq!(r.outcome, Outcome::Completed);
     let e = r.model.cutoff_error(&r.final_state);
     assert!(e > 0.2 && e < 0.5, "{e}");
     let e0 = r.model.cutoff_error(&vec![0.0; r.model.len()]);
     assert!(e0 < 0.02, "{e0}");
+    let d = run(
+        "LLL",
+        Design::thesis(),
+        inertial().with_distance_cutoff(90.0),
+    );
+    assert_eq!(d.outcome, Outcome::Completed);
+    assert_eq!(d.folded_joints(), r.folded_joints());
+    let ed = d.model.cutoff_error(&d.final_state);
+    assert!(ed < 1e-3, "{ed}");
+    // a straight chain: the same events, times within a fraction of a percent
+    let (a, b) = (
+        run("S*9", Design::thesis(), inertial()),
+        run(
+            "S*9",
+            Design::thesis(),
+            inertial().with_distance_cutoff(90.0),
+        ),
+    );
+    assert_eq!(a.events.len(), b.events.len());
+    let rel = (a.duration() - b.duration()).abs() / a.duration();
+    assert!(rel < 0.01, "{rel}");
+    let bad = run_reference(
+        &Chain::parse("SS").unwrap(),
+        &TileDesigns::default(),
+        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(-1.0)),
+    );
+    assert!(bad.is_err());
 }

@@ -38,6 +38,7 @@ pub mod experiments;
 mod inertial;
 mod integrators;
 mod locate;
+mod model_options;
 mod options;
 mod pictures;
 mod recorder;
