@@ -168,23 +168,28 @@ pub fn validate(
         let mut engine_outcome = String::new();
         let mut engine_duration = 0.0;
         let mut engine_scaled = (1.0, 0.0);
-        for (method, rule) in [("event", force), ("event-dist", StartRule::Distance)] {
+        for (method, rule) in [
+            ("event", None),
+            ("event-force", Some(force)),
+            ("event-dist", Some(StartRule::Distance)),
+        ] {
             progress(sc.name, method, None);
             let t0 = Instant::now();
-            let tl = run(
-                &sc.chain,
-                &sc.designs,
-                &EngineOptions::default().with_start_rule(rule),
-            )
-            .map_err(|source| ValidateError::Engine {
+            let eo = match rule {
+                None => EngineOptions::default(),
+                Some(rule) => EngineOptions::default().with_start_rule(rule),
+            };
+            let tl = run(&sc.chain, &sc.designs, &eo).map_err(|source| ValidateError::Engine {
                 scene: name.clone(),
                 source: Box::new(source),
             })?;
             let wall = t0.elapsed().as_secs_f64();
             let c = compare_events(&reference.events, &tl.events, duration);
-            if rule == force {
+            if rule.is_none() {
                 engine_outcome = tl.outcome.name().into();
                 engine_duration = tl.duration();
+            }
+            if rule == Some(force) {
                 engine_scaled = (c.time_factor, c.error_time_scaled);
             }
             rows.push(Row {
