@@ -16,19 +16,27 @@ use std::sync::Arc;
 use rustc_hash::FxHashMap;
 
 use crate::engine::local::solve::{solve, Solution, SolveOptions};
-use crate::engine::local::trajectory::{Shapes, Track};
+use crate::engine::local::trajectory::{Shapes, Track, REST};
 use crate::engine::local::window::{Inputs, Var, Window};
 use crate::reference::Model;
 use crate::timeline::{Event, EventKind};
+
+/// A unit's time origin is when the magnet before it has travelled this fraction of its
+/// path: 0.5.
+const ANCHOR_FRACTION: f64 = 0.5;
 
 /// Most sweeps over the chain.
 pub const MAX_SWEEPS: usize = 8;
 /// Sweeps stop when no event moved by more than this fraction of the run's duration: 1e-6.
 pub const SWEEP_TOLERANCE: f64 = 1e-6;
-/// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-8.
-pub const OFFSET_QUANTUM: f64 = 1e-8;
-/// Shapes closer than this (fraction of a path or fold) are stored once: 1e-9.
-pub const SHAPE_TOLERANCE: f64 = 1e-9;
+/// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-7.
+pub const OFFSET_QUANTUM: f64 = 1e-7;
+/// A new shape within this (fraction of a path or fold, and fraction of its duration for
+/// its end) of the same unknown's one unit back, shifted by the difference of the two
+/// units' origins, is stored as that one: 1e-4, 0.5 um on a 5 mm path. Two solves of the
+/// same steady motion on different steps differ by some 1e-5: a magnet that creeps off a
+/// near balance amplifies the interpolation error of its inputs.
+pub const SHAPE_TOLERANCE: f64 = 1e-4;
 
 /// A unit's solution as the cache keeps it: shape ids instead of shapes.
 #[derive(Debug)]
@@ -121,38 +129,78 @@ pub(crate) fn solve_chain(model: &Model, opts: SolveOptions) -> ChainSolution {
                 .iter()
                 .filter_map(|&t| shapes.first_move(t))
                 .fold(f64::INFINITY, f64::min);
-            let t_ref = if w.lo == 0 || !first.is_finite() {
+            let t_start = if w.lo == 0 || !first.is_finite() {
                 0.0
             } else {
                 first
             };
+            // the unit's time origin: when the magnet before it is half way (a crossing the
+            // step sizes hardly move), else when its inputs first move
+            let t_ref = match w.vars.first() {
+                Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => shapes
+                    .crossing(magnets[a - 1], ANCHOR_FRACTION)
+                    .unwrap_or(t_start),
+                _ => t_start,
+            };
             window_key(&w, &tracks, t_ref, quantum, &mut key);
+            if std::env::var_os("KEY_DEBUG").is_some() {
+                eprintln!("sweep {sweeps} u {u} t_ref {t_ref:.9} hit {} key {:?}", cache.contains_key(&key), key);
+            }
             let entry = match cache.get(&key) {
                 Some(e) => e.clone(),
                 None => {
                     let (t0, mut sol) = solve(&w, inputs, opts);
-                    debug_assert_eq!(t0, t_ref);
+                    debug_assert_eq!(t0, t_start);
+                    // local times from the unit's origin
+                    let d = t0 - t_ref;
+                    for e in &mut sol.events {
+                        e.time += d;
+                    }
+                    for (_, start) in sol.shapes.iter_mut().flatten() {
+                        *start += d;
+                    }
                     solves += 1;
                     rhs += sol.rhs;
+                    // the unit one back, if it is the same kind of unit: its time origin
+                    let prev_ref = (u >= 1).then(|| units.get(u - 1).map(|p| p.1)).flatten();
                     let mut ids = Vec::with_capacity(sol.shapes.len());
                     for (i, sh) in sol.shapes.iter_mut().enumerate() {
                         ids.push(sh.take().map(|(shape, start)| {
-                            // the same role one unit back
+                            // the same role one unit back, compared in absolute time shifted
+                            // by the difference of the two units' origins
                             let prev = match w.vars[i] {
                                 Var::Magnet(k) if k >= 2 => Some(magnets[k - 2]),
                                 Var::Joint(jj) if jj >= 1 => Some(joints[jj - 1]),
                                 _ => None,
                             };
-                            let same = prev.filter(|p| {
-                                p.shape != crate::engine::local::trajectory::REST
-                                    && shapes.get(p.shape).close_to(
-                                        &shape,
-                                        SHAPE_TOLERANCE,
-                                        10.0 * quantum,
-                                    )
-                            });
+                            let same = match (prev, prev_ref) {
+                                (Some(p), Some(r0)) if p.shape != REST => {
+                                    let shift = p.offset + (t_ref - r0);
+                                    let new_offset = t_ref + start;
+                                    shapes
+                                        .get(p.shape)
+                                        .close_shifted(
+                                            &shape,
+                                            new_offset - shift,
+                                            SHAPE_TOLERANCE,
+                                            0.1 * SHAPE_TOLERANCE * shape.end() + quantum,
+                                        )
+                                        .then_some((p.shape, shift - t_ref))
+                                }
+                                _ => None,
+                            };
+                            if std::env::var_os("LOCAL_DEBUG").is_some() {
+                                if let (Some(p), Some(r0)) = (prev, prev_ref) {
+                                    if p.shape != REST {
+                                        let o = shapes.get(p.shape);
+                                        let lag = t_ref + start - (p.offset + t_ref - r0);
+                                        let md = o.t.iter().map(|&t| (o.at(t) - shape.at(t - lag)).abs()).fold(0.0, f64::max);
+                                        eprintln!("u {u} var {i} same {} maxdiff {md:.3e} ends {:.9} {:.9} t_ref {t_ref:.6} r0 {r0:.6}", same.is_some(), o.end(), lag + shape.end());
+                                    }
+                                }
+                            }
                             match same {
-                                Some(p) => (p.shape, start),
+                                Some(found) => found,
                                 None => (shapes.add(shape), start),
                             }
                         }));
@@ -247,7 +295,7 @@ fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut 
     }
     for t in tracks {
         key.push(t.shape as i64);
-        if t.shape != crate::engine::local::trajectory::REST {
+        if t.shape != REST {
             key.push(((t.offset - t_ref) / quantum).round() as i64);
         }
     }

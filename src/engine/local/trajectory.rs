@@ -52,18 +52,19 @@ impl Shape {
         self.t.get(i).copied()
     }
 
-    /// Whether two shapes agree within `tol` at every node of either, and end within `dt`.
-    pub(crate) fn close_to(&self, other: &Shape, tol: f64, dt: f64) -> bool {
-        if (self.end() - other.end()).abs() > dt {
+    /// Whether `other`, placed `lag` later than this shape, agrees with it within `tol` at
+    /// every node of either, and ends within `dt` of it.
+    pub(crate) fn close_shifted(&self, other: &Shape, lag: f64, tol: f64, dt: f64) -> bool {
+        if (self.end() - (lag + other.end())).abs() > dt {
             return false;
         }
         self.t
             .iter()
-            .all(|&t| (self.at(t) - other.at(t)).abs() <= tol)
+            .all(|&t| (self.at(t) - other.at(t - lag)).abs() <= tol)
             && other
                 .t
                 .iter()
-                .all(|&t| (self.at(t) - other.at(t)).abs() <= tol)
+                .all(|&t| (self.at(t + lag) - other.at(t)).abs() <= tol)
     }
 }
 
@@ -135,6 +136,31 @@ impl Shapes {
         (track.shape != REST).then(|| track.offset + self.get(track.shape).end())
     }
 
+    /// When `track` first reaches `x` (bisection on its interpolant), if it does.
+    pub(crate) fn crossing(&self, track: Track, x: f64) -> Option<f64> {
+        if track.shape == REST {
+            return None;
+        }
+        let sh = self.get(track.shape);
+        let i = sh.y.iter().position(|&y| y >= x)?;
+        if i == 0 {
+            return Some(track.offset + sh.t[0]);
+        }
+        let (mut lo, mut hi) = (sh.t[i - 1], sh.t[i]);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if sh.at(mid) >= x {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(track.offset + hi)
+    }
+
     /// The first node of `track` after `t`, if any.
     pub(crate) fn next_node(&self, track: Track, t: f64) -> Option<f64> {
         if track.shape == REST {
@@ -165,7 +191,7 @@ mod tests {
         assert_eq!(s.at(-1.0), f(0.0));
         assert_eq!(s.at(5.0), f(3.0));
         assert_eq!(s.next_node_after(1.0), Some(3.0));
-        assert!(s.close_to(&s.clone(), 0.0, 0.0));
+        assert!(s.close_shifted(&s.clone(), 0.0, 0.0, 0.0));
         let mut shapes = Shapes::default();
         let id = shapes.add(s);
         let tr = Track {
