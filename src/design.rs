@@ -11,11 +11,22 @@ use std::f64::consts::PI;
 /// Permeability of free space, H/m (the thesis' value, 4 pi 1e-7).
 pub const MU0: f64 = 4.0 * PI * 1e-7;
 
+/// Default wall thickness of a curved path's final point, mm ([`Design::wall`]).
+pub const DEFAULT_WALL: f64 = 0.8;
+
+/// Density of sintered NdFeB, g/cm^3 (manufacturers quote 7.4 to 7.6).
+pub const NDFEB_DENSITY: f64 = 7.5;
+
 /// Tile and magnet design. Lengths in millimetres, mass in grams, remanence in tesla.
 ///
 /// Defaults are the thesis design (SPEC section 4): 30 mm tiles (`d` = 15 mm), `s` = 0.3 mm,
 /// path length `a` = 5 mm (so `e` = 4.7 mm), `c = d/2 - e`, 3 mm x 5 mm NdFeB magnets of
-/// 0.625 g with a remanence of 1.3 T (grade N42, a typical value; the thesis gives no grade).
+/// 0.625 g with a remanence of 1.3 T (grade N42, a typical value; the thesis gives no grade),
+/// a 0.8 mm wall between a curved path's final point and the tile's diagonal face.
+///
+/// The thesis' 0.625 g per magnet does not fit a 3 mm x 5 mm NdFeB cylinder: at the alloy's
+/// density of about 7.5 g/cm^3 it weighs 0.265 g ([`Design::cylinder_mass`]). The field keeps
+/// the thesis' figure; the inertial reference model takes its mass from its own options.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Design {
@@ -36,8 +47,15 @@ pub struct Design {
     pub magnet_height: f64,
     /// Magnet remanence, T. Default 1.3.
     pub remanence: f64,
-    /// Magnet mass, g. Default 0.625.
+    /// Magnet mass, g. Default 0.625 (the thesis' figure; see the type's documentation).
     pub magnet_mass: f64,
+    /// Wall thickness between a curved path's final point and the tile's diagonal face
+    /// that closes the fold, mm. Default 0.8: a wall that FDM printing (two 0.4 mm
+    /// perimeters) and resin printing (about 0.5 mm minimum) both make reliably. The magnet
+    /// centre ends `r + wall` from the face ([`Design::fold_clearance`]), unless `c` is given,
+    /// which then sets that distance as before (the thesis' layout `c` = 2.8 mm amounts to a
+    /// 1.3 mm wall).
+    pub wall: f64,
 }
 
 impl Default for Design {
@@ -52,6 +70,7 @@ impl Default for Design {
             magnet_height: 5.0,
             remanence: 1.3,
             magnet_mass: 0.625,
+            wall: DEFAULT_WALL,
         }
     }
 }
@@ -163,6 +182,20 @@ impl Design {
         self.c.unwrap_or(0.5 * self.d - self.e)
     }
 
+    /// The distance from a curved path's final point (the magnet centre) to the diagonal
+    /// face of the tile that closes the fold, mm: `c` when it is given, else the magnet
+    /// radius plus [`Design::wall`] (2.3 mm for the thesis design). The two magnets of a
+    /// folded pair end twice this apart.
+    pub fn fold_clearance(&self) -> f64 {
+        self.c.unwrap_or(0.5 * self.magnet_diameter + self.wall)
+    }
+
+    /// The mass of one magnet as a cylinder of NdFeB ([`NDFEB_DENSITY`]), g: 0.265 g for the
+    /// thesis' 3 mm x 5 mm magnets.
+    pub fn cylinder_mass(&self) -> f64 {
+        self.magnet_volume_m3() * 1e6 * NDFEB_DENSITY
+    }
+
     /// The rest distance between a tile's two magnets, `b = 2d - 2c - 2a`, mm
     /// (`d - 2s` in the thesis' layout).
     pub fn b(&self) -> f64 {
@@ -221,6 +254,13 @@ impl Design {
                     expected: "a finite number >= 0",
                 });
             }
+        }
+        if !self.wall.is_finite() || self.wall < 0.0 {
+            return Err(DesignError::BadParameter {
+                name: "wall",
+                value: self.wall,
+                expected: "a finite number >= 0",
+            });
         }
         if 2.0 * self.d > self.tile_width * (1.0 + EQUALITY_TOLERANCE) {
             return Err(DesignError::BadParameter {
@@ -463,6 +503,25 @@ mod tests {
         .check()
         .unwrap_err();
         assert!(e.to_string().contains("remanence"), "{e}");
+    }
+
+    #[test]
+    fn fold_clearance_from_the_wall_or_c() {
+        let d = Design::thesis();
+        assert!((d.fold_clearance() - 2.3).abs() < 1e-12);
+        let thin = Design { wall: 0.5, ..d };
+        assert!((thin.fold_clearance() - 2.0).abs() < 1e-12);
+        // an explicit c keeps its old meaning
+        let old = Design { c: Some(2.8), ..d };
+        assert!((old.fold_clearance() - 2.8).abs() < 1e-12);
+        let e = Design { wall: -0.1, ..d }.check().unwrap_err();
+        assert!(e.to_string().contains("`wall` = -0.1"), "{e}");
+        // 3 mm x 5 mm NdFeB: about 0.265 g, well under the thesis' 0.625 g
+        assert!(
+            (d.cylinder_mass() - 0.265).abs() < 0.001,
+            "{}",
+            d.cylinder_mass()
+        );
     }
 
     #[test]

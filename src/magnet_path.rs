@@ -8,9 +8,13 @@
 //!
 //! **Curved paths.** The final point `F` lies `r` (the magnet radius, 1.5 mm) past the hinge
 //! laterally, `y_F = side/2 + r` on the fold side, and as near the shared face as the walls
-//! allow: the magnet centre keeps the straight path's end distance `c` from the diagonal face
-//! that closes the fold, so `x_F = w/2 - r - c sqrt2`. After the fold the two magnets of the
-//! pair then sit `2c` apart, as on straight paths. The arc runs from `Q` (the rest point moved
+//! allow: the magnet rests against a wall of thickness [`Design::wall`] in front of the
+//! diagonal face that closes the fold, its centre `k = r + wall` from the face
+//! ([`Design::fold_clearance`]; `c` instead when a design gives it), so
+//! `x_F = w/2 - r - k sqrt2`. After the fold the two magnets of the pair sit `2k` apart
+//! (4.6 mm for the thesis design with its 0.8 mm wall). The thesis' layout `c` = 2.8 mm (a
+//! 1.3 mm wall) leaves the last fold of a chain stalled short of its end: see README,
+//! "The end-of-chain stall". The arc runs from `Q` (the rest point moved
 //! `s` towards the next magnet) to `F` and is tangent at `F` to the tile's cross axis (the
 //! thesis' "horizontal" line through the final point: its figures draw the chain vertically):
 //! the two paths of a folding pair then end parallel, the angle between them closing
@@ -60,7 +64,7 @@ struct Arc {
 #[non_exhaustive]
 pub enum PathError {
     /// The final point of a curved path does not lie beyond the end of its straight part.
-    #[error("curved path cannot be built: its final point x = {x_final:.4} mm (w/2 - r - c sqrt2) does not lie beyond the end of its straight part at x = {x_straight:.4} mm (b/2 + s); use a smaller c or s, or wider tiles")]
+    #[error("curved path cannot be built: its final point x = {x_final:.4} mm (w/2 - r - k sqrt2, k = r + wall or c) does not lie beyond the end of its straight part at x = {x_straight:.4} mm (b/2 + s); use a thinner wall, a smaller c or s, or wider tiles")]
     Degenerate {
         /// Final point x.
         x_final: f64,
@@ -94,7 +98,7 @@ impl MagnetPath {
         let r = 0.5 * design.magnet_diameter;
         let half_side = 0.5 * w * (SQRT_2 - 1.0);
         let y_f = half_side + r;
-        let x_f = 0.5 * w - r - design.c() * SQRT_2;
+        let x_f = 0.5 * w - r - design.fold_clearance() * SQRT_2;
         let x_q = 0.5 * design.b() + design.s;
         let dx = x_f - x_q;
         if dx.is_nan() || dx <= 0.0 {
@@ -252,7 +256,10 @@ mod tests {
                 let lateral = if kind == PathKind::L { 1.0 } else { -1.0 };
                 let half_side = 15.0 * (SQRT_2 - 1.0);
                 assert!((y * lateral - (half_side + 1.5)).abs() < 1e-9, "{y}");
-                assert!((x.abs() - (15.0 - 1.5 - 2.8 * SQRT_2)).abs() < 1e-9, "{x}");
+                assert!((x.abs() - (15.0 - 1.5 - 2.3 * SQRT_2)).abs() < 1e-9, "{x}");
+                // the magnet's edge touches the 0.8 mm wall in front of the diagonal face
+                let face = (15.0 + half_side - x.abs() - y * lateral) / SQRT_2;
+                assert!((face - 1.5 - 0.8).abs() < 1e-9, "{face}");
                 // monotone away from the tile centre and towards the fold side
                 let mut prev = p.point_at(0.0);
                 for i in 1..=n {
@@ -266,19 +273,32 @@ mod tests {
     }
 
     #[test]
-    fn folded_pair_ends_two_c_apart() {
+    fn folded_pair_ends_twice_the_clearance_apart() {
         // tile j's second path L and tile j+1's first path L, tile j+1 turned 90 degrees
-        // about the hinge: the two final points are 2c apart, as on straight paths.
-        let d = Design::thesis();
-        let a = MagnetPath::new(PathKind::L, PathEnd::Second, &d)
-            .unwrap()
-            .end_point();
-        let b = MagnetPath::new(PathKind::L, PathEnd::First, &d)
-            .unwrap()
-            .end_point();
-        let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);
-        let b = next.transform_point(b);
-        assert!((dist(a, b) - 2.0 * d.c()).abs() < 1e-9, "{}", dist(a, b));
+        // about the hinge: the two final points are 2k apart (k = r + wall, or c if given).
+        for d in [
+            Design::thesis(),
+            Design {
+                wall: 0.5,
+                ..Design::thesis()
+            },
+            Design {
+                c: Some(2.8),
+                ..Design::thesis()
+            },
+        ] {
+            let a = MagnetPath::new(PathKind::L, PathEnd::Second, &d)
+                .unwrap()
+                .end_point();
+            let b = MagnetPath::new(PathKind::L, PathEnd::First, &d)
+                .unwrap()
+                .end_point();
+            let next = crate::kinematics::joint_transform(std::f64::consts::FRAC_PI_2, 30.0);
+            let b = next.transform_point(b);
+            let k = d.fold_clearance();
+            assert!((dist(a, b) - 2.0 * k).abs() < 1e-9, "{}", dist(a, b));
+        }
+        assert!((2.0 * Design::thesis().fold_clearance() - 4.6).abs() < 1e-12);
     }
 
     #[test]

@@ -85,6 +85,7 @@ fn design_from(v: &[f64], c: Option<f64>) -> Design {
         magnet_height: v[5],
         remanence: v[6],
         magnet_mass: v[7],
+        wall: 0.8,
     }
 }
 

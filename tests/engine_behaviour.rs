@@ -171,13 +171,14 @@ fn s_above_e_over_3_stalls_where_the_geometry_says() {
 
 #[test]
 fn curved_path_must_start_the_next_magnet_before_its_closest_approach() {
-    // s = 0.5 mm is < e/3, so straight paths propagate, but the curve turns away before the
-    // next magnet is as near as its partner: propagation stalls at the first fold.
-    let tl = run_with(
-        "SSLSS",
-        TileDesigns::global(Design::thesis().with_s(0.5)),
-        SpeedLaw::default(),
-    );
+    // with the thesis' layout c = 2.8 mm at the final point (a 1.3 mm wall), s = 0.5 mm is
+    // < e/3, so straight paths propagate, but the curve turns away before the next magnet is
+    // as near as its partner: propagation stalls at the first fold.
+    let old = Design {
+        c: Some(2.8),
+        ..Design::thesis().with_s(0.5)
+    };
+    let tl = run_with("SSLSS", TileDesigns::global(old), SpeedLaw::default());
     match &tl.outcome {
         Outcome::Stalled { joint, reason, .. } => {
             assert_eq!(*joint, 2, "{reason}");
@@ -185,8 +186,15 @@ fn curved_path_must_start_the_next_magnet_before_its_closest_approach() {
         }
         o => panic!("{o:?}"),
     }
-    // and the thesis' s = 0.3 mm serves straight and curved paths alike
+    // and the thesis' s = 0.3 mm serves straight and curved paths alike; so does 0.5 mm with
+    // the final point against the default 0.8 mm wall (the curve reaches farther)
     let tl = run_with("SSLSS", TileDesigns::default(), SpeedLaw::default());
+    assert_eq!(tl.outcome, Outcome::Completed);
+    let tl = run_with(
+        "SSLSS",
+        TileDesigns::global(Design::thesis().with_s(0.5)),
+        SpeedLaw::default(),
+    );
     assert_eq!(tl.outcome, Outcome::Completed);
 }
 

@@ -99,9 +99,11 @@ fn engine_and_reference_agree_on_outcome_and_propagation_order() {
 
 #[test]
 fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
-    // the thesis' nearest-neighbour rule completes the three-tile fold and the sequential
-    // edge; the forces within the reference's cutoff stall both at the last tile
-    for name in ["3-tile SL", "20-tile s=e/3"] {
+    // the thesis' nearest-neighbour rule completes the sequential edge; the forces within the
+    // reference's cutoff stall it at the last tile. The three-tile fold completes under both
+    // rules since its final point sits against the 0.8 mm wall (with the thesis' layout
+    // c = 2.8 mm the force rule stalled it, as the reference did)
+    for (name, force_completes) in [("3-tile SL", true), ("20-tile s=e/3", false)] {
         let sc = all_scenes().into_iter().find(|s| s.name == name).unwrap();
         let tl = run(
             &sc.chain,
@@ -118,6 +120,14 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
             }),
         )
         .unwrap();
-        assert!(matches!(f.outcome, Outcome::Stalled { .. }), "{name}");
+        assert_eq!(
+            f.outcome == Outcome::Completed,
+            force_completes,
+            "{name}: {:?}",
+            f.outcome
+        );
+        if !force_completes {
+            assert!(matches!(f.outcome, Outcome::Stalled { .. }), "{name}");
+        }
     }
 }

@@ -17,6 +17,7 @@ use foldchain::render::{
     DETAIL_TILES,
 };
 use foldchain::viewer::{viewer_html, RunView};
+use kurbo::Point;
 
 use crate::output::{OutputDir, WriteError};
 
@@ -39,6 +40,9 @@ pub struct RunFilesOptions {
     pub target: Vec<Vec<(f64, f64)>>,
     /// How step frames are framed.
     pub frames_view: FramesView,
+    /// The text of `margins.json` ([`crate::margins_file`]); `None`: not written (and an
+    /// earlier run's removed).
+    pub margins_json: Option<String>,
 }
 
 /// How step frames (and `final.svg`) are framed.
@@ -117,8 +121,9 @@ pub fn default_frames(tiles: usize) -> usize {
 
 /// Is `name` one of the files [`write_run_files`] writes (a step frame by its own pattern)?
 pub fn is_run_file(name: &str) -> bool {
-    const FIXED: [&str; 6] = [
+    const FIXED: [&str; 7] = [
         "final.svg",
+        "margins.json",
         "transition.svg",
         "energy.svg",
         "timeline.json",
@@ -174,18 +179,34 @@ pub fn write_run_files(
             title: opts.name.clone(),
             collision: hit,
             note,
+            target: Vec::new(),
         };
         let svg = frame_svg(source.geometry(), &state, &view, &fo);
         out.write(&format!("step-{i:04}.svg"), svg.as_bytes())?;
     }
     progress("frames", frames, frames);
+    // the final frame shows the chain in the target's frame, over the outline it was planned
+    // to fill
+    let target: Vec<Vec<Point>> = opts
+        .target
+        .iter()
+        .map(|ring| {
+            ring.iter()
+                .map(|&(x, y)| Point::new(x * w, y * w))
+                .collect()
+        })
+        .collect();
     let fo = FrameOptions {
         title: opts.name.clone(),
         collision: collision.map(|(_, tiles)| tiles),
         note: Some(final_note(summary)),
+        target,
     };
     let mut final_state = source.final_state();
-    let (final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
+    let (mut final_view, _) = frame_view(source, &mut final_state, fixed, fo.collision);
+    if let Some(around) = FrameView::around_outline(&fo.target, w) {
+        final_view = final_view.union(around);
+    }
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
     let tiles = source.tiles();
@@ -212,8 +233,14 @@ pub fn write_run_files(
         progress("viewer", 1, 1);
     }
     out.write("timeline.json", source.timeline_json().as_bytes())?;
+    if let Some(m) = &opts.margins_json {
+        out.write("margins.json", m.as_bytes())?;
+    }
     // a page of an earlier, shorter run of this chain would show the wrong run
-    out.remove_stale(&|n| is_step_frame(n) || n == "index.html", &is_run_file)?;
+    out.remove_stale(
+        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
+        &is_run_file,
+    )?;
     let mut summary_json = summary.to_json();
     summary_json.push('\n');
     out.write("summary.json", summary_json.as_bytes())?;

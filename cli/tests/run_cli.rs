@@ -154,6 +154,12 @@ fn reads_a_plan_and_a_design() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert_eq!(summary(&d.join("o"))["tiles"], planned["tiles"]);
+    // final.svg draws the chain over the outline it was planned to fill (issue 14); step
+    // frames do not
+    let fin = std::fs::read_to_string(d.join("o/final.svg")).unwrap();
+    assert_eq!(fin.matches("stroke-dasharray").count(), 1, "{fin}");
+    let step = std::fs::read_to_string(d.join("o/step-0000.svg")).unwrap();
+    assert!(!step.contains("stroke-dasharray"));
 }
 
 #[test]
@@ -208,11 +214,18 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
 
 #[test]
 fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds() {
+    // with the thesis' layout c = 2.8 mm at the curved final point (a 1.3 mm wall); at the
+    // default 0.8 mm wall both rules fold it
     let d = tmp("start-rule");
+    std::fs::create_dir_all(&d).unwrap();
+    let design = d.join("c28.json");
+    std::fs::write(&design, r#"{"c": 2.8}"#).unwrap();
     for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
         let out = d.join(rule);
         let o = bin()
-            .args(["SL", "--start-rule", rule, "--frames", "2", "--out"])
+            .args(["SL", "--start-rule", rule, "--frames", "2", "--design"])
+            .arg(&design)
+            .arg("--out")
             .arg(&out)
             .output()
             .unwrap();
@@ -227,6 +240,14 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
                 .contains("magnet 4 never started"));
         }
     }
+    let out = d.join("wall");
+    let o = bin()
+        .args(["SL", "--start-rule", "force", "--frames", "2", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(summary(&out)["result"], "completed");
     let o = bin()
         .args(["SL", "--start-rule", "nearest"])
         .output()

@@ -19,7 +19,7 @@ use crate::engine::start_rule::{ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::physics::ForceLaw;
-use crate::reference::{Model, ModelError, ModelOptions};
+use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
@@ -130,6 +130,9 @@ pub enum EngineError {
     /// The reference's model refused the options.
     #[error(transparent)]
     Model(#[from] Box<ModelError>),
+    /// Model options the local solves do not follow yet.
+    #[error("engine: {0}")]
+    Unsupported(&'static str),
     /// A local-solve tolerance out of range.
     #[error("engine tolerance {0}: expected a number in (0, 0.1]")]
     BadTolerance(f64),
@@ -176,6 +179,11 @@ fn run_local_engine(
 ) -> Result<Timeline, EngineError> {
     if !(opts.tolerance > 0.0 && opts.tolerance <= 0.1) {
         return Err(EngineError::BadTolerance(opts.tolerance));
+    }
+    if opts.model.dynamics != Dynamics::Overdamped {
+        return Err(EngineError::Unsupported(
+            "the local solves follow the overdamped model only; run the inertial model with the reference (fold-run --reference)",
+        ));
     }
     let model = match Model::new(chain, designs, &opts.model) {
         Ok(m) => m,

@@ -22,11 +22,27 @@ pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
         .map(|f| {
             let mut times = vec![f.start];
             let mut angles = vec![0.0];
+            // the law bends where one of its two magnets arrives: a knot there, so that the
+            // midpoint test never straddles it
+            let progress = timeline.progress();
+            let mut knots = vec![f.start];
+            for k in [2 * f.joint + 1, 2 * f.joint + 2] {
+                if let Some(t) = progress.arrival_of(k) {
+                    if t > f.start && t < f.end {
+                        knots.push(t);
+                    }
+                }
+            }
+            knots.push(f.end);
+            knots.sort_by(f64::total_cmp);
             let n0 = 8;
-            for i in 0..n0 {
-                let t0 = f.start + (f.end - f.start) * i as f64 / n0 as f64;
-                let t1 = f.start + (f.end - f.start) * (i + 1) as f64 / n0 as f64;
-                refine(timeline, f, t0, t1, 0, &mut times, &mut angles);
+            for w in knots.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                for i in 0..n0 {
+                    let t0 = a + (b - a) * i as f64 / n0 as f64;
+                    let t1 = a + (b - a) * (i + 1) as f64 / n0 as f64;
+                    refine(timeline, f, t0, t1, 0, &mut times, &mut angles);
+                }
             }
             JointTrack {
                 joint: f.joint,

@@ -180,9 +180,13 @@ mod tests {
     use crate::{Chain, Design};
 
     fn run_with(word: &str, s: f64, rule: StartRule) -> crate::engine::Timeline {
+        run_design(word, Design::thesis().with_s(s), rule)
+    }
+
+    fn run_design(word: &str, design: Design, rule: StartRule) -> crate::engine::Timeline {
         run(
             &Chain::parse(word).unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(s)),
+            &TileDesigns::global(design),
             &EngineOptions::default()
                 .with_speed(SpeedLaw::Unit)
                 .with_start_rule(rule),
@@ -211,10 +215,17 @@ mod tests {
     fn the_last_tile_lacks_the_push_from_beyond() {
         // the same-pole magnet one tile ahead pushes each magnet off its balance; the last
         // tile has none, so where the nearest neighbours only just balance (a fold at the
-        // last joint, the sequential edge) its first magnet never starts
+        // last joint with the thesis' layout c = 2.8 mm at the curved final point, the
+        // sequential edge) its first magnet never starts
         let force = StartRule::Force { cutoff: 3 };
+        let old = Design {
+            c: Some(2.8),
+            ..Design::thesis()
+        };
         for word in ["SL", "LL", "SSL"] {
-            let t = run_with(word, 0.3, force);
+            // with the final point against the default 0.8 mm wall it folds
+            assert_eq!(run_with(word, 0.3, force).outcome, Outcome::Completed);
+            let t = run_design(word, old, force);
             let last = 2 * (word.len() + 1) - 2;
             match &t.outcome {
                 Outcome::Stalled { magnet, joint, .. } => {
@@ -223,11 +234,11 @@ mod tests {
                 o => panic!("{word}: {o:?}"),
             }
             // one more straight tile and it folds
-            let longer = run_with(&format!("{word}S"), 0.3, force);
+            let longer = run_design(&format!("{word}S"), old, force);
             assert_eq!(longer.outcome, Outcome::Completed, "{word}S");
             // the distance rule folds both
             assert_eq!(
-                run_with(word, 0.3, StartRule::Distance).outcome,
+                run_design(word, old, StartRule::Distance).outcome,
                 Outcome::Completed
             );
         }

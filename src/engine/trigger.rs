@@ -164,13 +164,21 @@ mod tests {
 
     #[test]
     fn curved_trigger_comes_before_closest_approach() {
-        // thesis design: a curved path starts the next magnet; a larger s (still < e/3)
-        // does not, because the curve turns away first.
+        // thesis design: a curved path starts the next magnet; with the thesis' layout
+        // c = 2.8 mm at the final point, a larger s (still < e/3) does not, because the curve
+        // turns away first. Against the default 0.8 mm wall the curve reaches farther.
         let g = geometry("SLS", Design::thesis());
         let m = 4; // magnet 3, on tile 1 second path (L), starts magnet 4
         let t = Triggers::default().trigger(&g, m);
         assert!(matches!(t, Trigger::At(_)), "{t:?}");
         let g = geometry("SLS", Design::thesis().with_s(0.5));
+        let t = Triggers::default().trigger(&g, m);
+        assert!(matches!(t, Trigger::At(_)), "{t:?}");
+        let old = Design {
+            c: Some(2.8),
+            ..Design::thesis().with_s(0.5)
+        };
+        let g = geometry("SLS", old);
         match Triggers::default().trigger(&g, m) {
             Trigger::Never { before_end, .. } => assert!(before_end),
             t => panic!("{t:?}"),

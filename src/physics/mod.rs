@@ -24,17 +24,23 @@
 //! assert!(along_path(f, Vec2::new(-1.0, 0.0)) > 0.0);
 //! ```
 
+mod cylinder;
 mod dipole;
 mod drag;
 mod drive;
 mod energy;
 mod force_law;
+mod inertia;
 mod poles;
 mod ri;
 
 pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 pub use drive::{along_path, joints_between, torque_about};
 pub use energy::EnergyUnit;
-pub use force_law::ForceLaw;
+pub use force_law::{ForceLaw, FORCE_LAW_NAMES};
+pub use inertia::{
+    Inertia, DEFAULT_INERTIAL_DRAG, DEFAULT_RESTITUTION, DEFAULT_TILE_INERTIA,
+    DEFAULT_TILE_ROTATIONAL_DRAG,
+};
 pub use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
 pub use ri::ReactionInitiator;

@@ -16,6 +16,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::reference::dynamics::{Forces, Mode, Model, Moving};
 use crate::reference::event_log::EventLog;
+use crate::reference::inertial::{run_inertial, Dynamics};
 use crate::reference::integrators::{StepStats, Stepper};
 use crate::reference::locate::{any_event, condition, StepFrom};
 use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
@@ -35,7 +36,10 @@ pub fn run_reference(
         return Err(ReferenceError::BadTolerance(opts.tolerance));
     }
     let model = Model::new(chain, designs, &opts.model)?;
-    Ok(Driver::new(model, opts).run())
+    Ok(match opts.model.dynamics {
+        Dynamics::Inertial(inertia) => run_inertial(model, inertia, opts),
+        _ => Driver::new(model, opts).run(),
+    })
 }
 
 struct Driver {

@@ -33,6 +33,7 @@ use crate::physics::{
     along_path, joints_between, torque_about, upstream, ForceLaw, Pole, ReactionInitiator,
     DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG,
 };
+use crate::reference::inertial::Dynamics;
 use crate::reference::integrators::System;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};
 use crate::{Chain, Octagon, Pose};
@@ -58,6 +59,9 @@ pub struct ModelOptions {
     pub cutoff: usize,
     /// The pair law.
     pub force_law: ForceLaw,
+    /// How the chain answers the forces (default [`Dynamics::Overdamped`], which uses
+    /// `drag` and `rotational_drag`; [`Dynamics::Inertial`] carries its own parameters).
+    pub dynamics: Dynamics,
 }
 
 impl Default for ModelOptions {
@@ -68,6 +72,7 @@ impl Default for ModelOptions {
             static_friction: 0.0,
             cutoff: DEFAULT_CUTOFF,
             force_law: ForceLaw::default(),
+            dynamics: Dynamics::default(),
         }
     }
 }
@@ -96,6 +101,11 @@ impl ModelOptions {
     /// Another pair law.
     pub fn with_force_law(mut self, force_law: ForceLaw) -> ModelOptions {
         self.force_law = force_law;
+        self
+    }
+    /// Other dynamics.
+    pub fn with_dynamics(mut self, dynamics: Dynamics) -> ModelOptions {
+        self.dynamics = dynamics;
         self
     }
 }
@@ -205,6 +215,28 @@ impl Model {
         }
         if opts.cutoff == 0 {
             return Err(bad("cutoff", 0.0, "at least 1"));
+        }
+        if let Dynamics::Inertial(i) = opts.dynamics {
+            for (name, v) in [
+                ("drag", i.drag),
+                ("tile_inertia", i.tile_inertia),
+                ("magnet_mass", i.magnet_mass_g.unwrap_or(1.0)),
+            ] {
+                if !v.is_finite() || v <= 0.0 {
+                    return Err(bad(name, v, "a finite number > 0"));
+                }
+            }
+            for (name, v) in [
+                ("coulomb", i.coulomb),
+                ("tile_rotational_drag", i.tile_rotational_drag),
+            ] {
+                if !v.is_finite() || v < 0.0 {
+                    return Err(bad(name, v, "a finite number >= 0"));
+                }
+            }
+            if !(0.0..1.0).contains(&i.restitution) {
+                return Err(bad("restitution", i.restitution, "a number in [0, 1)"));
+            }
         }
         let geometry = Geometry::from_designs(chain, designs)?;
         let tiles = geometry.tiles();

@@ -57,6 +57,18 @@ impl FrameView {
         }
     }
 
+    /// A view holding every point of `rings` (a target outline, world mm), padded by a
+    /// tile; `None` when there is no point.
+    pub fn around_outline(rings: &[Vec<Point>], w: f64) -> Option<FrameView> {
+        let mut pts = rings.iter().flatten();
+        let first = *pts.next()?;
+        let b = pts.fold(Rect::from_points(first, first), |b, &p| b.union_pt(p));
+        let pad = 1.2 * w;
+        Some(FrameView {
+            bounds: Rect::new(b.x0 - 2.0 * pad, b.y0 - pad, b.x1 + pad, b.y1 + pad),
+        })
+    }
+
     /// Grows the view to hold another.
     pub fn union(self, o: FrameView) -> FrameView {
         FrameView {
@@ -110,6 +122,9 @@ pub struct FrameOptions {
     pub collision: Option<(usize, usize)>,
     /// A note under the time stamp (e.g. the outcome on the final frame).
     pub note: Option<String>,
+    /// The target outline the chain was planned to fill, in world mm (rings), drawn dashed
+    /// under the tiles; empty when there is none.
+    pub target: Vec<Vec<Point>>,
 }
 
 /// World millimetres to the picture's pixels (y down).
@@ -150,6 +165,21 @@ pub fn frame_svg(
     let mut doc = document(px_w, px_h + 40.0, "#fbfbf8");
     let in_collision = |i: usize| opts.collision.is_some_and(|(a, b)| a == i || b == i);
     let oct = Octagon::new(w);
+    // the target outline, under everything else
+    if !opts.target.is_empty() {
+        let mut target = Group::new()
+            .set("fill", "none")
+            .set("stroke", "#2e7d32")
+            .set("stroke-width", "1.5")
+            .set("stroke-dasharray", "6 4");
+        for ring in &opts.target {
+            target = target.add(Polygon::new().set(
+                "points",
+                points(ring.iter().map(|p| page.point((p.x, p.y)))),
+            ));
+        }
+        doc = doc.add(target);
+    }
     // tile outlines: filled octagons in a group that strokes them all alike
     let outline = |p: &Pose, fill: &str| {
         Polygon::new()

@@ -9,7 +9,7 @@
 //! from their own results.
 
 mod frame;
-mod plot;
+pub(crate) mod plot;
 mod source;
 mod state;
 mod transition;

@@ -30,7 +30,8 @@ pub struct BadSValue {
 }
 
 impl SValue {
-    /// Reads `0.3`, `0.3mm`, `e/3`, `2e/9`, `0.25e`, `0.25*e` or `e`.
+    /// Reads `0.3`, `0.3mm`, `1e-3` (a number in any float notation is millimetres), `e/3`,
+    /// `2e/9`, `0.25e`, `0.25*e` or `e`.
     pub fn parse(text: &str) -> Result<SValue, BadSValue> {
         let bad = || BadSValue {
             text: text.to_string(),
@@ -44,7 +45,11 @@ impl SValue {
             let v: f64 = s.parse().map_err(|_| bad())?;
             Ok(v)
         };
-        let value = if let Some(pos) = t.find('e').filter(|_| !t.ends_with("mm")) {
+        let plain = t.strip_suffix("mm").unwrap_or(&t).parse::<f64>();
+        let value = if let Ok(v) = plain {
+            // a number first: `1e-3` is a millimetre value, not a fraction of e
+            SValue::Millimetres(v)
+        } else if let Some(pos) = t.find('e').filter(|_| !t.ends_with("mm")) {
             // a fraction of e: [k][*]e[/n]
             let (before, after) = t.split_at(pos);
             let k = num(before.strip_suffix('*').unwrap_or(before))?;
@@ -208,6 +213,16 @@ impl TileDesigns {
         TileDesigns::from_json(&text, &path.display().to_string())
     }
 
+    /// One global design with per-tile overrides (later entries win), as the file form
+    /// gives them.
+    pub fn with_overrides(global: Design, overrides: Vec<TileOverride>) -> TileDesigns {
+        TileDesigns {
+            global,
+            overrides,
+            s_for_all: None,
+        }
+    }
+
     /// The same designs with `s` set for every tile (a fraction of `e` uses each tile's `e`).
     pub fn with_s(mut self, s: SValue) -> TileDesigns {
         self.s_for_all = Some(s);
@@ -320,6 +335,10 @@ mod tests {
             SValue::FractionOfE(2.0 / 9.0)
         );
         assert_eq!(SValue::parse("0").unwrap(), SValue::Millimetres(0.0));
+        // float notation is a number of mm, not a fraction of e
+        assert_eq!(SValue::parse("1e-3").unwrap(), SValue::Millimetres(1e-3));
+        assert_eq!(SValue::parse("3E-1mm").unwrap(), SValue::Millimetres(0.3));
+        assert!(SValue::parse("inf").is_err() && SValue::parse("NaN").is_err());
         for bad in ["-0.1", "NaN", "inf", "e/0", "x", "", "e/-3", "0.3m", "1e/x"] {
             assert!(SValue::parse(bad).is_err(), "{bad}");
         }

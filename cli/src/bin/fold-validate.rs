@@ -13,10 +13,13 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::{CommandFactory, FromArgMatches, Parser};
+use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
 use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::stiff::{run_stiff_study, select_cases};
 use foldchain::reference::validate::{validate, ValidateOptions};
+use foldchain::reference::Dynamics;
 use foldchain::reference::STIFF_CASES;
+use foldchain::Design;
 use foldchain_cli::output::OutputDir;
 use foldchain_cli::report::print_error;
 
@@ -53,6 +56,15 @@ struct Args {
     /// With --stiff: run only this case (repeatable), e.g. "SLLS rot x1e7".
     #[arg(long = "case", requires = "stiff")]
     cases: Vec<String>,
+    /// The pair law of the reference and of the engine's force rule: dipole (point dipoles,
+    /// thesis 6.11/6.12) or cylinder (the thesis' 3 x 5 mm magnets as uniformly magnetised
+    /// cylinders, tabulated).
+    #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
+    force_law: String,
+    /// The reference's dynamics: overdamped (first order, the stiff limit) or inertial
+    /// (mass, drag, bouncing walls; README, "Physical parameters").
+    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "inertial"])]
+    dynamics: String,
 }
 
 fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
@@ -61,6 +73,10 @@ fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
         bail!("--reference-tolerance {t}: expected a number in (0, 1e-6]");
     }
     let mut o = ValidateOptions::default().with_scenes(args.scenes.clone());
+    o.model.force_law = force_law(&args.force_law)?;
+    if args.dynamics == "inertial" {
+        o.model.dynamics = Dynamics::Inertial(Inertia::default());
+    }
     o.reference_tolerance = t;
     if args.quick {
         o.dopri5 = vec![1e-3, 1e-4, 1e-5, 1e-6];
@@ -68,6 +84,14 @@ fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
         o.reference_tolerance = t.max(1e-9);
     }
     Ok(o)
+}
+
+/// The pair law named on the command line, for the thesis' magnets (every scene uses them).
+fn force_law(name: &str) -> anyhow::Result<ForceLaw> {
+    match ForceLaw::named(name, &Design::thesis()) {
+        Some(law) => Ok(law),
+        None => bail!("--force-law {name}: expected one of {FORCE_LAW_NAMES:?}"),
+    }
 }
 
 /// `--stiff`: the study's table or JSON.

@@ -143,9 +143,6 @@ pub(crate) fn solve_chain(model: &Model, opts: SolveOptions) -> ChainSolution {
                 _ => t_start,
             };
             window_key(&w, &tracks, t_ref, quantum, &mut key);
-            if std::env::var_os("KEY_DEBUG").is_some() {
-                eprintln!("sweep {sweeps} u {u} t_ref {t_ref:.9} hit {} key {:?}", cache.contains_key(&key), key);
-            }
             let entry = match cache.get(&key) {
                 Some(e) => e.clone(),
                 None => {
@@ -189,16 +186,6 @@ pub(crate) fn solve_chain(model: &Model, opts: SolveOptions) -> ChainSolution {
                                 }
                                 _ => None,
                             };
-                            if std::env::var_os("LOCAL_DEBUG").is_some() {
-                                if let (Some(p), Some(r0)) = (prev, prev_ref) {
-                                    if p.shape != REST {
-                                        let o = shapes.get(p.shape);
-                                        let lag = t_ref + start - (p.offset + t_ref - r0);
-                                        let md = o.t.iter().map(|&t| (o.at(t) - shape.at(t - lag)).abs()).fold(0.0, f64::max);
-                                        eprintln!("u {u} var {i} same {} maxdiff {md:.3e} ends {:.9} {:.9} t_ref {t_ref:.6} r0 {r0:.6}", same.is_some(), o.end(), lag + shape.end());
-                                    }
-                                }
-                            }
                             match same {
                                 Some(found) => found,
                                 None => (shapes.add(shape), start),

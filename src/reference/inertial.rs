@@ -1,0 +1,424 @@
+//! The inertial reference dynamics ([`Dynamics::Inertial`]): every magnet and folding joint
+//! of [`Model`] with mass, drag and a wall at each end of its range, integrated on
+//! positions and velocities (interleaved, so the Jacobian stays banded for ROS2) with the
+//! run's method.
+//!
+//! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
+//! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
+//! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
+//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
+//! drag of [`Inertia`] times the tiles downstream of the joint. The forces and torques are
+//! the overdamped model's ([`Model`]), so the two models differ only in how the chain
+//! answers them.
+//!
+//! **Walls.** An unknown reaching 0 or 1 bounces with the restitution of [`Inertia`]: the
+//! step is cut to end just past the wall (within 1e-9 of the range), the unknown is put on
+//! the wall and its velocity reversed and scaled. When the rebound would rise less than 1e-3
+//! of the range against the drive pressing it on (`v^2 < 2 a 1e-3`) or the restitution is 0,
+//! the unknown stays at the wall: that is its arrival (or a fold's end), and its start when
+//! its drive pulls it off again by more than the static threshold, as in the overdamped
+//! model. The run ends when every free unknown has come to rest (speed under 1e-7 of its
+//! range per inertial time, acceleration likewise) or nothing is free.
+
+use crate::physics::Inertia;
+use crate::reference::dynamics::{Forces, Mode, Model, Unknown};
+use crate::reference::event_log::EventLog;
+use crate::reference::integrators::{StepStats, Stepper, System};
+use crate::reference::options::{Recording, ReferenceOptions};
+use crate::reference::recorder::Recorder;
+use crate::reference::run_result::ReferenceRun;
+use crate::reference::verdict::RestState;
+use crate::timeline::{Event, EventKind, Outcome};
+use std::f64::consts::FRAC_PI_2;
+
+/// How the chain answers the forces.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[non_exhaustive]
+pub enum Dynamics {
+    /// First order: every velocity proportional to its drive (drag
+    /// [`crate::reference::ModelOptions::drag`] and
+    /// [`crate::reference::ModelOptions::rotational_drag`]); the limit of negligible mass,
+    /// and the stiff case. The default.
+    #[default]
+    Overdamped,
+    /// Second order, with mass, drag, friction and bouncing walls ([`Inertia`]).
+    Inertial(Inertia),
+}
+
+impl Dynamics {
+    /// The short name: `overdamped` or `inertial`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dynamics::Overdamped => "overdamped",
+            Dynamics::Inertial(_) => "inertial",
+        }
+    }
+}
+
+/// A rebound that would rise less than this fraction of the range ends the bouncing.
+const REST_HEIGHT: f64 = 1e-3;
+
+/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
+/// damping rate (1/s), and the Coulomb friction (in drive units).
+struct Coefficients {
+    inv_mass: Vec<f64>,
+    damping: Vec<f64>,
+    coulomb: Vec<f64>,
+}
+
+impl Coefficients {
+    fn new(model: &Model, inertia: &Inertia) -> Coefficients {
+        let tiles = model.geometry.tiles();
+        let n = model.len();
+        let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for (i, u) in model.unknowns.iter().enumerate() {
+            match *u {
+                Unknown::Magnet(k) => {
+                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
+                    let len = model.path_length(k) * 1e-3;
+                    inv_mass[i] = 1.0 / (m * len);
+                    damping[i] = inertia.drag / m;
+                    coulomb[i] = inertia.coulomb;
+                }
+                Unknown::Joint(j) => {
+                    let swung = (tiles - 1 - j) as f64;
+                    let inertia_j = inertia.tile_inertia * swung;
+                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
+                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
+                }
+            }
+        }
+        Coefficients {
+            inv_mass,
+            damping,
+            coulomb,
+        }
+    }
+}
+
+/// Scratch of one evaluation: the positions and the drives there.
+#[derive(Debug, Default)]
+pub(crate) struct Work {
+    y: Vec<f64>,
+    forces: Forces,
+}
+
+/// The inertial system with its modes: state `[x_0, v_0, x_1, v_1, ...]`.
+struct Inertial<'a> {
+    model: &'a Model,
+    modes: &'a [Mode],
+    c: &'a Coefficients,
+}
+
+impl System for Inertial<'_> {
+    type Work = Work;
+
+    fn bandwidth(&self) -> usize {
+        2 * self.model.bandwidth() + 1
+    }
+
+    fn counts(&self, i: usize) -> bool {
+        self.modes[i / 2] == Mode::Free
+    }
+
+    fn rhs(&self, z: &[f64], work: &mut Work, out: &mut [f64]) {
+        let n = self.model.len();
+        work.y.clear();
+        work.y.extend((0..n).map(|i| z[2 * i]));
+        self.model.forces(&work.y, &mut work.forces);
+        for i in 0..n {
+            if self.modes[i] != Mode::Free {
+                out[2 * i] = 0.0;
+                out[2 * i + 1] = 0.0;
+                continue;
+            }
+            let v = z[2 * i + 1];
+            let fc = self.c.coulomb[i];
+            let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
+            out[2 * i] = v;
+            out[2 * i + 1] =
+                (work.forces.drive[i] - friction) * self.c.inv_mass[i] - self.c.damping[i] * v;
+        }
+    }
+}
+
+/// Starts the clamped unknowns that their drive pulls off their wall (by more than the
+/// static threshold and the Coulomb friction), at rest; notes them at time `t`.
+fn release(
+    model: &Model,
+    c: &Coefficients,
+    modes: &mut [Mode],
+    z: &mut [f64],
+    t: f64,
+    log: &mut EventLog,
+    work: &mut Forces,
+) {
+    let n = model.len();
+    let y: Vec<f64> = (0..n).map(|i| z[2 * i]).collect();
+    model.forces(&y, work);
+    for i in 0..n {
+        let th = model.threshold(i).max(c.coulomb[i]);
+        let off = match modes[i] {
+            Mode::Free => false,
+            Mode::AtStart => work.drive[i] > th,
+            Mode::AtEnd => -work.drive[i] > th,
+        };
+        if off {
+            let prev = std::mem::replace(&mut modes[i], Mode::Free);
+            z[2 * i + 1] = 0.0;
+            log.note(model, i, prev, Mode::Free, t, modes, &y);
+        }
+    }
+    log.close(t);
+}
+
+/// Runs the inertial model (the driver of [`crate::reference::run_reference`] for
+/// [`Dynamics::Inertial`]).
+pub(crate) fn run_inertial(
+    model: Model,
+    inertia: Inertia,
+    opts: &ReferenceOptions,
+) -> ReferenceRun {
+    let n = model.len();
+    let c = Coefficients::new(&model, &inertia);
+    let joints = model.geometry.tiles().saturating_sub(1);
+    let mut log = EventLog::new(
+        joints,
+        model.geometry.magnets(),
+        crate::timeline::start_fraction(&model.geometry),
+    );
+    let mut stats = StepStats::default();
+    let mut modes = vec![Mode::AtStart; n];
+    let mut z = vec![0.0; 2 * n];
+    let mut work = Forces::default();
+    let tol = opts.tolerance;
+    // the inertial time of the slowest unknown, and a move's time at the bonded force
+    let tau = c
+        .damping
+        .iter()
+        .filter(|d| **d > 0.0)
+        .map(|d| 1.0 / d)
+        .fold(0.0, f64::max);
+    // and the time a path takes at the bonded force against the drag alone: the longest of
+    // the three is the scale the run's rest test and first step are measured on
+    let move_time = (2.0 / (model.force_scale * c.inv_mass[0])).sqrt();
+    let drag_time = c.damping[0] / (model.force_scale * c.inv_mass[0]);
+    let scale = tau.max(move_time).max(drag_time);
+    let mut stepper: Stepper<Work> = Stepper::new(opts.method, 2 * n, 2 * model.bandwidth() + 1);
+    let q = opts.method.error_order() as f64;
+    let mut t = 0.0;
+    let mut h = tau.min(move_time) * 1e-3;
+    let mut stopped = None;
+    let positions = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i]).collect() };
+    let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
+    let mut rec = match opts.record {
+        Recording::Off => None,
+        Recording::Grid { max_states } => {
+            Some(Recorder::new(max_states, scale * 1e-2, &positions(&z)))
+        }
+    };
+    let mut f = vec![0.0; 2 * n];
+    release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+    loop {
+        let free: Vec<usize> = (0..n).filter(|&i| modes[i] == Mode::Free).collect();
+        if free.is_empty() {
+            break;
+        }
+        {
+            let sys = Inertial {
+                model: &model,
+                modes: &modes,
+                c: &c,
+            };
+            stepper.rhs(&sys, &z, &mut f, &mut stats);
+        }
+        let quiet = free.iter().all(|&i| {
+            z[2 * i + 1].abs() * scale < 1e-7 && f[2 * i + 1].abs() * scale * scale < 1e-7
+        });
+        if quiet && t > log.last_event + scale {
+            break;
+        }
+        if stats.accepted + stats.rejected >= opts.max_steps {
+            stopped = Some(format!(
+                "step limit of {} reached at t = {t:.6e} s with {} unknowns moving",
+                opts.max_steps,
+                free.len()
+            ));
+            break;
+        }
+        if t - log.last_event > 1e4 * scale.max(log.last_event) {
+            stopped = Some(format!(
+                "no event for {:.3e} s after the last at {:.6e} s with {} unknowns still moving",
+                t - log.last_event,
+                log.last_event,
+                free.len()
+            ));
+            break;
+        }
+        let sys = Inertial {
+            model: &model,
+            modes: &modes,
+            c: &c,
+        };
+        let att = match stepper.attempt(&sys, &z, &f, h, tol, &mut stats) {
+            Ok(a) => a,
+            Err(_) => {
+                h *= 0.5;
+                continue;
+            }
+        };
+        let finite = att.error.is_finite() && att.y.iter().all(|v| v.is_finite());
+        if !finite || att.error > 1.0 {
+            stats.rejected += 1;
+            h *= if finite {
+                (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
+            } else {
+                0.1
+            };
+            if h < 1e-14 * t.max(scale) {
+                stopped = Some(format!(
+                    "step size underflow at t = {t:.6e} s (h = {h:.3e} s)"
+                ));
+                break;
+            }
+            continue;
+        }
+        // a wall crossed: cut the step to end just past the first crossing
+        let mut theta: f64 = 1.0;
+        for &i in &free {
+            let (a, b) = (z[2 * i], att.y[2 * i]);
+            for wall in [0.0, 1.0] {
+                let past = if wall == 0.0 { b < 0.0 } else { b > 1.0 };
+                if past && (b - wall).abs() > 1e-9 {
+                    theta = theta.min(((wall - a) / (b - a)).clamp(0.0, 1.0));
+                }
+            }
+        }
+        if theta < 1.0 {
+            let cut = h * (theta + 1e-9 * (1.0 - theta)).max(1e-6);
+            if cut < h * 0.999_999 && cut > 1e-14 * t.max(scale) {
+                h = cut;
+                continue;
+            }
+        }
+        stats.accepted += 1;
+        let grow = if att.error > 0.0 {
+            (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
+        } else {
+            5.0
+        };
+        let (t0, z0) = (t, std::mem::replace(&mut z, att.y));
+        t += h;
+        if log.reports_crossings() {
+            // starts at a fraction of the path: positions and velocities are the step's
+            // Hermite data
+            log.cross(
+                &model,
+                t0,
+                &positions(&z0),
+                Some(&velocities(&z0)),
+                t,
+                &positions(&z),
+                Some(&velocities(&z)),
+            );
+        }
+        // walls: bounce or stay
+        let y_now = positions(&z);
+        model.forces(&y_now, &mut work);
+        let mut switched = false;
+        for &i in &free {
+            let x = z[2 * i];
+            let wall = if x >= 1.0 {
+                1.0
+            } else if x <= 0.0 {
+                0.0
+            } else {
+                continue;
+            };
+            let v = z[2 * i + 1];
+            let inward = if wall == 1.0 { v > 0.0 } else { v < 0.0 };
+            z[2 * i] = wall;
+            if !inward {
+                continue;
+            }
+            let rebound = -inertia.restitution * v;
+            // the drive pressing it on against the wall, as an acceleration
+            let press = if wall == 1.0 {
+                work.drive[i]
+            } else {
+                -work.drive[i]
+            };
+            let a = press.max(0.0) * c.inv_mass[i];
+            if inertia.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
+                let next = if wall == 1.0 {
+                    Mode::AtEnd
+                } else {
+                    Mode::AtStart
+                };
+                let prev = std::mem::replace(&mut modes[i], next);
+                z[2 * i + 1] = 0.0;
+                let y = positions(&z);
+                log.note(&model, i, prev, next, t, &modes, &y);
+                switched = true;
+            } else {
+                z[2 * i + 1] = rebound;
+            }
+        }
+        if switched {
+            log.close(t);
+        }
+        let before = modes.clone();
+        release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+        if before != modes || switched {
+            stepper.invalidate();
+        }
+        if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= t) {
+            r.cover(
+                t0,
+                &positions(&z0),
+                &velocities(&z0),
+                t,
+                &positions(&z),
+                Some(&velocities(&z)),
+            );
+        }
+        h *= grow;
+    }
+    let y = positions(&z);
+    let time = log.last_event;
+    model.forces(&y, &mut work);
+    let outcome = RestState {
+        model: &model,
+        modes: &modes,
+        y: &y,
+        drive: &work.drive,
+    }
+    .outcome(time);
+    let mut events = log.events;
+    let stop = match &outcome {
+        Outcome::Inhibited { joint, .. } => Some((EventKind::Inhibited, *joint)),
+        Outcome::Stalled { joint, .. } => Some((EventKind::Stalled, *joint)),
+        Outcome::Completed => None,
+    };
+    if let Some((kind, joint)) = stop {
+        events.push(Event {
+            time,
+            index: joint as u32,
+            kind,
+        });
+    }
+    let states = rec.map(|r| r.finish(t, &y)).unwrap_or_default();
+    ReferenceRun {
+        end_time: t,
+        final_state: y,
+        states,
+        model,
+        options: *opts,
+        events,
+        folds: log.folds,
+        outcome,
+        stopped,
+        max_moving: log.max_moving,
+        stats,
+    }
+}
