@@ -50,6 +50,7 @@ pub mod input;
 mod joint;
 pub mod kinematics;
 pub mod magnet_path;
+pub mod margins;
 mod octagon;
 mod path_kind;
 pub mod physics;
@@ -59,6 +60,7 @@ pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
+pub mod tolerance;
 pub mod viewer;
 mod word;
 
@@ -71,6 +73,8 @@ pub use joint::{Fold, JointOutcome};
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
-pub use simulation::{folded_word, simulate, timeline_json, SimulateError, MAX_TIMELINE_EVENTS};
+pub use simulation::{
+    check_reference, folded_word, simulate, timeline_json, SimulateError, MAX_TIMELINE_EVENTS,
+};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

@@ -40,6 +40,9 @@ pub struct RunFilesOptions {
     pub target: Vec<Vec<(f64, f64)>>,
     /// How step frames are framed.
     pub frames_view: FramesView,
+    /// The text of `margins.json` ([`crate::margins_file`]); `None`: not written (and an
+    /// earlier run's removed).
+    pub margins_json: Option<String>,
 }
 
 /// How step frames (and `final.svg`) are framed.
@@ -118,8 +121,9 @@ pub fn default_frames(tiles: usize) -> usize {
 
 /// Is `name` one of the files [`write_run_files`] writes (a step frame by its own pattern)?
 pub fn is_run_file(name: &str) -> bool {
-    const FIXED: [&str; 6] = [
+    const FIXED: [&str; 7] = [
         "final.svg",
+        "margins.json",
         "transition.svg",
         "energy.svg",
         "timeline.json",
@@ -229,8 +233,14 @@ pub fn write_run_files(
         progress("viewer", 1, 1);
     }
     out.write("timeline.json", source.timeline_json().as_bytes())?;
+    if let Some(m) = &opts.margins_json {
+        out.write("margins.json", m.as_bytes())?;
+    }
     // a page of an earlier, shorter run of this chain would show the wrong run
-    out.remove_stale(&|n| is_step_frame(n) || n == "index.html", &is_run_file)?;
+    out.remove_stale(
+        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
+        &is_run_file,
+    )?;
     let mut summary_json = summary.to_json();
     summary_json.push('\n');
     out.write("summary.json", summary_json.as_bytes())?;

@@ -16,8 +16,9 @@ use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
+use foldchain::physics::Inertia;
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::reference::{run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
@@ -217,9 +218,12 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
     let tl = engine_run(word);
-    let ro = ReferenceOptions::default().with_record(Recording::Grid {
-        max_states: state_budget(chain.len()),
-    });
+    // fold-run's reference: the inertial dynamics at their defaults
+    let ro = ReferenceOptions::default()
+        .with_model(ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default())))
+        .with_record(Recording::Grid {
+            max_states: state_budget(chain.len()),
+        });
     let reference = run_reference(&chain, &TileDesigns::default(), &ro).unwrap();
     let w = tl.geometry().w;
     // the engine at any time (the fold law is sampled within its tolerance), the reference

@@ -10,23 +10,30 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::assembly::Assembly;
-use crate::cells::cells_of;
+use crate::cells::{decompose_merging, Cells};
 use crate::check::check_folds;
+use crate::fit::plan_score;
 use crate::frame::{stacking_axis_deg, Orientation};
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
+use crate::plan_shape::empty_part;
 use crate::route::{route_order, Route, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
 use crate::sizing::{width_for, SizeSearch};
 
+/// Cells are split where an end of the sweep interval jumps by more than a tile width. Up
+/// to this many such jumps, every way of merging the cells across some of them is routed
+/// too (2^jumps decompositions): a key's shaft and bits as one cell, its head another,
+/// which a row programme fills with fewer turns than five separate cells.
+const MAX_MERGED_JUMPS: usize = 4;
 /// Size steps of the tile width search.
-const SIZE_STEPS: usize = 5;
+const SIZE_STEPS: usize = 10;
 /// The size search stops once the count is within this share of the target (2%: a cell
 /// route changes by whole rows in several cells at once).
 const CELL_COUNT_TOLERANCE: f64 = 0.02;
 /// Routes (cheapest first, over all axes) checked and measured.
-const CHECKED_ROUTES: usize = 6;
+const CHECKED_ROUTES: usize = 10;
 /// Hamiltonian paths tried per axis, and the search steps spent finding them.
 const MAX_ORDERS: usize = 12;
 const MAX_ORDER_STEPS: usize = 20_000;
@@ -46,9 +53,49 @@ type Reasons = Vec<(Why, Vec<String>)>;
 fn plan_cells(
     axis_shape: &Shape,
     style: Style,
-    describe: &dyn Fn(&Shape) -> String,
+    describe: &(dyn Fn(&Shape) -> String + Sync),
 ) -> Result<Vec<Routed>, Why> {
-    let cells = cells_of(axis_shape);
+    let split = decompose_merging(axis_shape, 1.0, 1.0, 0);
+    let masks: Vec<u32> = if split.jumps <= MAX_MERGED_JUMPS {
+        (0..1u32 << split.jumps).collect()
+    } else {
+        vec![0]
+    };
+    let per_mask: Vec<Result<Vec<Routed>, Why>> = masks
+        .par_iter()
+        .map(|&m| {
+            let cells = if m == 0 {
+                None
+            } else {
+                Some(decompose_merging(axis_shape, 1.0, 1.0, m))
+            };
+            route_cells(cells.as_ref().unwrap_or(&split), style, describe)
+        })
+        .collect();
+    let mut routed: Vec<Routed> = Vec::new();
+    let mut why = None;
+    for r in per_mask {
+        match r {
+            Ok(v) => routed.extend(v),
+            Err(e) => {
+                why.get_or_insert(e);
+            }
+        }
+    }
+    if routed.is_empty() {
+        return Err(why.unwrap_or_else(|| "no route".into()));
+    }
+    routed.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+    routed.truncate(ROUTES_KEPT);
+    Ok(routed)
+}
+
+/// The best routes through `cells`, cheapest first, or why there is none.
+fn route_cells(
+    cells: &Cells,
+    style: Style,
+    describe: &(dyn Fn(&Shape) -> String + Sync),
+) -> Result<Vec<Routed>, Why> {
     let n = cells.cells.len();
     if n == 0 {
         return Err("no cell larger than a tile".into());
@@ -75,7 +122,7 @@ fn plan_cells(
     }
     let mut routes: Vec<Route> = orders
         .par_iter()
-        .flat_map_iter(|o| route_order(&cells, o, style).into_iter().take(2))
+        .flat_map_iter(|o| route_order(cells, o, style).into_iter().take(2))
         .collect();
     if routes.is_empty() {
         return Err(format!(
@@ -129,6 +176,7 @@ pub(crate) fn plan_by_cells(
     let axes = axes(shape);
     // why axes gave no route, at the last width tried
     let mut why: Reasons = Vec::new();
+    let tol = ((opts.tiles_tolerance.max(CELL_COUNT_TOLERANCE) * target as f64) as usize).max(1);
     let search = SizeSearch {
         secant_steps: if opts.tile_size.is_some() {
             1
@@ -136,12 +184,17 @@ pub(crate) fn plan_by_cells(
             SIZE_STEPS
         },
         nudges: &[],
-        tolerance: ((CELL_COUNT_TOLERANCE * target as f64) as usize).max(1),
+        tolerance: tol,
+        explore: false,
         shrink_when_empty: None,
     };
     let found = search.run(target, w0, |w| {
-        let (routes, reasons) = route_axes(shape, &axes, style, w);
+        let (mut routes, reasons) = route_axes(shape, &axes, style, w);
         why = reasons;
+        // routes whose count is within the tolerance first, each group cheapest first
+        if opts.tile_size.is_none() {
+            routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
+        }
         let n = routes.first()?.1.word.tiles();
         // routes at different widths are compared by their count only: an equal miss
         // keeps the width found first
@@ -157,6 +210,7 @@ pub(crate) fn plan_by_cells(
     let w = found.w;
     let mut plans: Vec<Plan> = Vec::new();
     let mut collide = String::new();
+    let mut empty = String::new();
     for (a, r) in found.plans.iter().take(CHECKED_ROUTES) {
         if let Err(e) = check_folds(&r.word) {
             collide = e;
@@ -180,12 +234,36 @@ pub(crate) fn plan_by_cells(
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
-        plans.push(asm.to_plan(&r.word, name));
+        let plan = asm.to_plan(&r.word, name);
+        if let Some(why) = empty_part(shape, &plan) {
+            empty = format!(
+                "the best route ({} cells, {} tiles) {why}",
+                plan.cells, plan.tiles
+            );
+            continue;
+        }
+        plans.push(plan);
     }
+    // counts within the tolerance first (routes at one width differ in count), then the
+    // best score
+    let miss = |p: &Plan| match opts.tile_size {
+        Some(_) => 0,
+        None => p.tiles.abs_diff(target).saturating_sub(tol),
+    };
     plans
         .into_iter()
-        .min_by(|x, y| x.metrics.fit_error().total_cmp(&y.metrics.fit_error()))
-        .ok_or_else(|| format!("every cell route collides when folded (first: {collide})"))
+        .min_by(|x, y| {
+            miss(x)
+                .cmp(&miss(y))
+                .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
+        })
+        .ok_or_else(|| {
+            if empty.is_empty() {
+                format!("every cell route collides when folded (first: {collide})")
+            } else {
+                empty
+            }
+        })
 }
 
 /// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest

@@ -27,6 +27,8 @@ pub(crate) struct Cell {
 pub(crate) struct Cells {
     pub cells: Vec<Cell>,
     pub graph: UnGraph<usize, ()>,
+    /// The number of jumps that split a cell (see [`decompose_merging`]).
+    pub jumps: usize,
 }
 
 /// A piece of one slab: the interval at the bottom and at the top of the slab.
@@ -47,6 +49,13 @@ pub(crate) fn cells_of(axis_shape: &Shape) -> Cells {
 /// Decomposes `shape` along y into monotone cells. Ends that jump by more than `jump` start a
 /// new cell; cells smaller than `min_area` are dropped (with their edges).
 pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
+    decompose_merging(shape, jump, min_area, 0)
+}
+
+/// [`decompose`], but the jumps whose bit is set in `merge` (the jumps numbered in sweep
+/// order, where one piece continues one other but an end jumps by more than `jump`) do not
+/// start a new cell: the cells either side are merged (a key's shaft with its bits).
+pub(crate) fn decompose_merging(shape: &Shape, jump: f64, min_area: f64, merge: u32) -> Cells {
     let size = shape.size();
     let mut ys = shape.vertex_heights();
     ys.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * size);
@@ -88,6 +97,7 @@ pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
     let mut cell_of: Vec<Vec<usize>> = Vec::with_capacity(slabs.len());
     let mut members: Vec<Vec<Piece>> = Vec::new();
     let mut touches: Vec<(usize, usize)> = Vec::new();
+    let mut jumps = 0usize;
     for (i, slab) in slabs.iter().enumerate() {
         let mut ids = Vec::with_capacity(slab.len());
         for p in slab {
@@ -111,7 +121,13 @@ pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
                     .iter()
                     .filter(|r| q.hi.0 < r.lo.1 && r.lo.0 < q.hi.1)
                     .count();
-                ups == 1 && (q.hi.0 - p.lo.0).abs() <= jump && (q.hi.1 - p.lo.1).abs() <= jump
+                ups == 1 && {
+                    let small = (q.hi.0 - p.lo.0).abs() <= jump && (q.hi.1 - p.lo.1).abs() <= jump;
+                    if !small {
+                        jumps += 1;
+                    }
+                    small || (jumps <= 32 && merge & (1 << (jumps - 1)) != 0)
+                }
             };
             let id = if continues {
                 cell_of[i - 1][below[0]]
@@ -168,7 +184,11 @@ pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
             graph.add_edge(NodeIndex::new(a), NodeIndex::new(b), ());
         }
     }
-    Cells { cells, graph }
+    Cells {
+        cells,
+        graph,
+        jumps,
+    }
 }
 
 impl Cells {

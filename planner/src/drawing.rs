@@ -6,7 +6,9 @@ use kurbo::{CubicBez, Line, ParamCurve, PathSeg, Point, QuadBez, Vec2};
 use usvg::tiny_skia_path::PathSegment;
 
 use crate::error::PlanError;
+use crate::options::MAX_OUTLINE_POINTS;
 use crate::shape::{FilledPath, Ring, Shape};
+use crate::simplify::{simplify, SIMPLIFY_ABOVE};
 
 /// Curve flattening tolerance, as a share of the larger side of the drawing's bounding box:
 /// every flattened curve lies within this distance of the true curve. 1e-3 of the drawing is
@@ -25,6 +27,14 @@ impl Shape {
     /// Reads an SVG document; `name` names it in errors. Checks that it has filled area and
     /// that no outline crosses itself.
     pub fn from_svg_data(data: &[u8], name: &str) -> Result<Shape, PlanError> {
+        read_drawing(data, name).map(|(shape, _)| shape)
+    }
+}
+
+/// Reads an SVG document (see [`Shape::from_svg_data`]) with its scale: millimetres per
+/// user unit ([`crate::units::mm_per_unit`]).
+pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), PlanError> {
+    {
         let no_area = |reason: &str| PlanError::NoFilledArea {
             name: name.to_string(),
             reason: reason.into(),
@@ -62,10 +72,19 @@ impl Shape {
         }
         let tol = FLATTEN_TOLERANCE * size;
         let mut paths = Vec::new();
+        let mut points = 0usize;
         for element in elements {
             let mut rings = Vec::new();
             for sp in &element.subpaths {
                 let ring = flatten(sp, tol);
+                points += ring.points.len();
+                if points > MAX_OUTLINE_POINTS {
+                    return Err(PlanError::TooManyPoints {
+                        name: name.to_string(),
+                        points,
+                        limit: MAX_OUTLINE_POINTS,
+                    });
+                }
                 if ring.points.len() < 3 {
                     continue;
                 }
@@ -79,6 +98,17 @@ impl Shape {
                         y: -p.y,
                     });
                 }
+                let ring = if ring.points.len() > SIMPLIFY_ABOVE {
+                    let thin = simplify(&ring, tol);
+                    // thinning may bring two close edges across each other: keep the ring
+                    if self_intersection(&thin).is_none() {
+                        thin
+                    } else {
+                        ring
+                    }
+                } else {
+                    ring
+                };
                 if ring.signed_area().abs() > 1e-12 * size * size {
                     rings.push(ring);
                 }
@@ -94,7 +124,7 @@ impl Shape {
         if shape.is_empty() || shape.area() <= 1e-9 * size * size {
             return Err(no_area("the filled elements enclose no area"));
         }
-        Ok(shape)
+        Ok((shape, crate::units::mm_per_unit(data, &tree)))
     }
 }
 

@@ -48,6 +48,16 @@ pub enum PlanError {
         /// Where, in user units.
         y: f64,
     },
+    /// The drawing holds more outline points than the planner reads.
+    #[error("{name}: the outlines have {points} points, more than the {limit} the planner reads; simplify the drawing (e.g. Inkscape: Path > Simplify)")]
+    TooManyPoints {
+        /// The file name (or `<string>`).
+        name: String,
+        /// Points found (so far).
+        points: usize,
+        /// The limit ([`crate::MAX_OUTLINE_POINTS`]).
+        limit: usize,
+    },
     /// An option value that cannot be used.
     #[error("bad {option} {value}: {reason}")]
     BadOption {
@@ -77,6 +87,12 @@ pub enum PlanOption {
     Tiles,
     /// [`crate::PlanOptions::tile_size`].
     TileSize,
+    /// [`crate::PlanOptions::tile_mm`].
+    TileMm,
+    /// [`crate::PlanOptions::tiles_tolerance`].
+    TilesTolerance,
+    /// [`crate::PlanOptions::turn_cost`].
+    TurnCost,
 }
 
 impl std::fmt::Display for PlanOption {
@@ -84,6 +100,9 @@ impl std::fmt::Display for PlanOption {
         f.write_str(match self {
             PlanOption::Tiles => "tile count",
             PlanOption::TileSize => "tile size",
+            PlanOption::TileMm => "tile width in mm",
+            PlanOption::TilesTolerance => "tile count tolerance",
+            PlanOption::TurnCost => "turn cost",
         })
     }
 }

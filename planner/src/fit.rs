@@ -8,7 +8,8 @@ use kurbo::Point;
 use rayon::prelude::*;
 
 use crate::centre_grid::CentreGrid;
-use crate::plan::Metrics;
+use crate::plan::{Metrics, Plan};
+use crate::rows::{tile_area, Style};
 use crate::shape::Shape;
 
 /// Octagon of across-flats width 1 centred at the origin: |x|, |y| <= 1/2 and
@@ -37,6 +38,44 @@ pub(crate) fn measure(work: &Shape, centres: &[Point], w: f64) -> Metrics {
         shape_area: work.area() * w * w,
         chain_area: centres.len() as f64 * oct_area * w * w,
     }
+}
+
+/// The rank of a chain from its row programme cost (see [`crate::rows::solve_rows`]):
+/// its estimated fit error (the share of the shape left uncovered plus the share of the
+/// chain outside it, [`Metrics::fit_error`]) plus the price of its U-turns as a share of the
+/// shape's area. `area` is the shape's area and `cost` the programme's cost, in tile units.
+pub(crate) fn estimate(area: f64, tiles: usize, u_turns: usize, cost: f64, style: Style) -> f64 {
+    let a = tile_area();
+    let k = style.outside_weight();
+    let price = style.turn_price * u_turns as f64;
+    // cost = sum over tiles of (k (a - covered) - covered) + price
+    let covered = (k * tiles as f64 * a - (cost - price)) / (1.0 + k);
+    let chain = tiles as f64 * a;
+    let uncovered = if area > 0.0 {
+        1.0 - covered / area
+    } else {
+        1.0
+    };
+    let outside = if chain > 0.0 {
+        1.0 - covered / chain
+    } else {
+        0.0
+    };
+    uncovered + outside + if area > 0.0 { price / area } else { 0.0 }
+}
+
+/// The rank of a finished plan (lower is better): its measured fit error plus its turns
+/// (U-turns and quarter turns) priced at `turn_cost` tile areas each, as a share of the
+/// shape's area.
+pub(crate) fn plan_score(plan: &Plan, turn_cost: f64) -> f64 {
+    let area_tiles = plan.metrics.shape_area / (plan.tile_size * plan.tile_size);
+    let turns = (plan.u_turns + plan.quarter_turns) as f64;
+    plan.metrics.fit_error()
+        + if area_tiles > 0.0 {
+            turn_cost * turns / area_tiles
+        } else {
+            0.0
+        }
 }
 
 /// Samples over the tiles: 25 per tile (a 5 x 5 grid over its square, kept where inside the

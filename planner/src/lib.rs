@@ -37,6 +37,7 @@ mod cells;
 mod centre_grid;
 mod check;
 mod drawing;
+mod empty;
 mod error;
 mod fit;
 mod frame;
@@ -48,7 +49,9 @@ mod route;
 mod rows;
 mod serpentine;
 mod shape;
+mod simplify;
 mod sizing;
+mod units;
 
 /// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
 /// takes and returns (re-exported so that callers use the same version).
@@ -56,27 +59,52 @@ pub use kurbo;
 
 pub use drawing::FLATTEN_TOLERANCE;
 pub use error::{PlanError, PlanOption};
-pub use options::{ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
+pub use options::{
+    ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
+    MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
+};
 pub use plan::{Metrics, Plan, PlanPose};
 pub use preview::{preview_svg, preview_svg_file};
 pub use shape::{Ring, Shape};
 
+/// A progress callback: `(stage, done, total)`, called now and then while a plan is made
+/// (from the planner's worker threads, hence `Sync`). The library never prints; a binary
+/// shows these as it likes.
+pub type Progress<'a> = &'a (dyn Fn(&str, u64, u64) + Sync);
+
 /// Plans the shape in an SVG file; the file's name (as given) names it in errors and in the
 /// plan's `source`.
 pub fn plan_svg_file(path: &std::path::Path, opts: &PlanOptions) -> Result<Plan, PlanError> {
+    plan_svg_file_reporting(path, opts, &|_, _, _| {})
+}
+
+/// [`plan_svg_file`], reporting progress to `progress`.
+pub fn plan_svg_file_reporting(
+    path: &std::path::Path,
+    opts: &PlanOptions,
+    progress: Progress<'_>,
+) -> Result<Plan, PlanError> {
     let text = std::fs::read(path).map_err(|source| PlanError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    plan_svg_data(&text, &path.display().to_string(), opts)
+    plan_svg_data(&text, &path.display().to_string(), opts, progress)
 }
 
 /// Plans the shape in SVG text; `name` names it in errors and in the plan's `source`.
 pub fn plan_svg_str(svg: &str, name: &str, opts: &PlanOptions) -> Result<Plan, PlanError> {
-    plan_svg_data(svg.as_bytes(), name, opts)
+    plan_svg_data(svg.as_bytes(), name, opts, &|_, _, _| {})
 }
 
-fn plan_svg_data(data: &[u8], name: &str, opts: &PlanOptions) -> Result<Plan, PlanError> {
-    let shape = Shape::from_svg_data(data, name)?;
-    plan_shape::plan_shape(&shape, opts, name)
+fn plan_svg_data(
+    data: &[u8],
+    name: &str,
+    opts: &PlanOptions,
+    progress: Progress<'_>,
+) -> Result<Plan, PlanError> {
+    progress("reading the drawing", 0, 1);
+    let (shape, mm_per_unit) = drawing::read_drawing(data, name)?;
+    let mut plan = plan_shape::plan_shape(&shape, &opts.resolved(mm_per_unit), name, progress)?;
+    plan.set_scale(mm_per_unit);
+    Ok(plan)
 }

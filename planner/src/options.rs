@@ -52,16 +52,57 @@ pub const DEFAULT_TILES: usize = 200;
 /// tiles in about 15 s); larger requests are refused up front instead of running for minutes.
 pub const MAX_PLAN_TILES: usize = 2_000_000;
 
-/// Options of a plan. Default: about [`DEFAULT_TILES`] tiles, [`Turns::Auto`].
-#[derive(Clone, Debug, PartialEq, Default)]
+/// The most outline points a drawing may hold (after curves are flattened): ten million,
+/// ten times the largest outline benchmarked (a million points read and simplified in
+/// about a second); larger drawings are refused up front.
+pub const MAX_OUTLINE_POINTS: usize = 10_000_000;
+
+/// Default of [`PlanOptions::tiles_tolerance`]: the count may float by 3% when that
+/// buys fit (a whole row of a 200-tile square is about 7%, so the nearest counts either side
+/// of a row step are both within reach).
+pub const DEFAULT_TILES_TOLERANCE: f64 = 0.03;
+
+/// Default of [`PlanOptions::turn_cost`]: a U-turn or a quarter turn is worth one tile's
+/// area of misfit. An estimate, not a measurement: a turn folds joints where a straight
+/// run does not, and folding time and the risk of a failed fold grow with the number of
+/// folds (thesis section 7.2); the price keeps the planner from buying a sliver of fit
+/// with extra turns (the key's shaft in two long rows, not in 2-tile columns).
+pub const DEFAULT_TURN_COST: f64 = 1.0;
+
+/// Options of a plan. Default: about [`DEFAULT_TILES`] tiles within
+/// [`DEFAULT_TILES_TOLERANCE`], [`Turns::Auto`], turns priced at [`DEFAULT_TURN_COST`].
+#[derive(Clone, Debug, PartialEq)]
 pub struct PlanOptions {
     /// About this many tiles (the tile size is searched to come near it). Ignored when
-    /// `tile_size` is set.
+    /// `tile_size` or `tile_mm` is set.
     pub tiles: Option<usize>,
     /// The tile width (across flats) in SVG user units.
     pub tile_size: Option<f64>,
+    /// The tile width (across flats) in millimetres: the drawing's size in physical units
+    /// (its `width` and `height` with their units, and its viewBox) sets the scale. A
+    /// drawing without physical units is taken at the CSS 96 user units per inch.
+    pub tile_mm: Option<f64>,
+    /// The share by which the tile count may miss `tiles` when that buys a better fit
+    /// (0: as near to `tiles` as the widths allow).
+    pub tiles_tolerance: f64,
+    /// The price of one U-turn or quarter turn, in tile areas of misfit (uncovered shape
+    /// or chain outside it), when plans are ranked.
+    pub turn_cost: f64,
     /// The turn style.
     pub turns: Turns,
+}
+
+impl Default for PlanOptions {
+    fn default() -> PlanOptions {
+        PlanOptions {
+            tiles: None,
+            tile_size: None,
+            tile_mm: None,
+            tiles_tolerance: DEFAULT_TILES_TOLERANCE,
+            turn_cost: DEFAULT_TURN_COST,
+            turns: Turns::Auto,
+        }
+    }
 }
 
 impl PlanOptions {
@@ -77,10 +118,38 @@ impl PlanOptions {
         self
     }
 
+    /// Tiles of width `mm` millimetres.
+    pub fn with_tile_mm(mut self, mm: f64) -> PlanOptions {
+        self.tile_mm = Some(mm);
+        self
+    }
+
+    /// The share by which the count may miss the asked one.
+    pub fn with_tiles_tolerance(mut self, share: f64) -> PlanOptions {
+        self.tiles_tolerance = share;
+        self
+    }
+
+    /// The price of a turn in tile areas.
+    pub fn with_turn_cost(mut self, cost: f64) -> PlanOptions {
+        self.turn_cost = cost;
+        self
+    }
+
     /// The turn style.
     pub fn with_turns(mut self, turns: Turns) -> PlanOptions {
         self.turns = turns;
         self
+    }
+
+    /// The options with the tile width in user units: `tile_mm` converted by the drawing's
+    /// millimetres per user unit.
+    pub(crate) fn resolved(&self, mm_per_unit: f64) -> PlanOptions {
+        let mut o = self.clone();
+        if let Some(mm) = self.tile_mm {
+            o.tile_size = Some(mm / mm_per_unit);
+        }
+        o
     }
 }
 
@@ -104,6 +173,29 @@ impl PlanOptions {
                     "expected a positive number of SVG user units".into(),
                 );
             }
+        }
+        if let Some(w) = self.tile_mm {
+            if !(w.is_finite() && w > 0.0) {
+                return bad(
+                    PlanOption::TileMm,
+                    w.to_string(),
+                    "expected a positive number of millimetres".into(),
+                );
+            }
+        }
+        if !(self.tiles_tolerance.is_finite() && (0.0..=0.5).contains(&self.tiles_tolerance)) {
+            return bad(
+                PlanOption::TilesTolerance,
+                self.tiles_tolerance.to_string(),
+                "expected a share from 0 to 0.5".into(),
+            );
+        }
+        if !(self.turn_cost.is_finite() && self.turn_cost >= 0.0) {
+            return bad(
+                PlanOption::TurnCost,
+                self.turn_cost.to_string(),
+                "expected a number of tile areas >= 0".into(),
+            );
         }
         match self.tiles {
             Some(0) => return bad(PlanOption::Tiles, "0".into(), "expected at least 1".into()),

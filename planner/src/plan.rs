@@ -58,6 +58,17 @@ pub struct Plan {
     pub axis_deg: f64,
     /// The tile width (across flats), SVG user units.
     pub tile_size: f64,
+    /// Millimetres per SVG user unit: from the drawing's width and height with their units
+    /// and its viewBox, or 96 user units per inch when it states no physical size.
+    #[serde(default)]
+    pub mm_per_unit: f64,
+    /// The tile width (across flats), millimetres.
+    #[serde(default)]
+    pub tile_mm: f64,
+    /// The folded chain's size in millimetres, `[width, height]` across the drawing: the
+    /// bounding box of the tile centres plus one tile width.
+    #[serde(default)]
+    pub extent_mm: [f64; 2],
     /// The turn style used (tight or loose).
     pub turns: Turns,
     /// Number of 180 degree U-turns.
@@ -80,6 +91,17 @@ pub struct Plan {
     pub poses: Vec<PlanPose>,
 }
 
+/// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
+fn mm(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
 impl Plan {
     /// The plan as pretty JSON.
     pub fn to_json(&self) -> String {
@@ -96,10 +118,33 @@ impl Plan {
         foldchain::FoldWord::parse(&self.word)
     }
 
+    /// Sets the physical scale (millimetres per user unit) and the sizes that follow.
+    pub(crate) fn set_scale(&mut self, mm_per_unit: f64) {
+        self.mm_per_unit = mm_per_unit;
+        self.tile_mm = self.tile_size * mm_per_unit;
+        let (mut x0, mut y0, mut x1, mut y1) = (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for p in &self.poses {
+            (x0, y0, x1, y1) = (x0.min(p.x), y0.min(p.y), x1.max(p.x), y1.max(p.y));
+        }
+        self.extent_mm = if self.poses.is_empty() {
+            [0.0, 0.0]
+        } else {
+            [
+                (x1 - x0 + self.tile_size) * mm_per_unit,
+                (y1 - y0 + self.tile_size) * mm_per_unit,
+            ]
+        };
+    }
+
     /// The one-line summary `fold-plan` prints.
     pub fn summary(&self) -> String {
         format!(
-            "{} tiles, {} {} U-turns, {} 90-degree turns, {} cell(s), axis {:.1} deg, tile {:.4} units; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
+            "{} tiles, {} {} U-turns, {} 90-degree turns, {} cell(s), axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
             self.tiles,
             self.u_turns,
             self.turns,
@@ -107,6 +152,9 @@ impl Plan {
             self.cells,
             self.axis_deg,
             self.tile_size,
+            mm(self.tile_mm),
+            mm(self.extent_mm[0]),
+            mm(self.extent_mm[1]),
             100.0 * self.metrics.covered_share,
             100.0 * self.metrics.outside_share
         )

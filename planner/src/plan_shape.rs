@@ -5,17 +5,21 @@
 
 use std::f64::consts::PI;
 
+use kurbo::Point;
 use rayon::prelude::*;
 
 use crate::cell_plan::{axes, plan_by_cells};
 use crate::cells::cells_of;
+use crate::empty::largest_empty_part;
 use crate::error::PlanError;
+use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
 use crate::rows::{Style, LOOSE, TIGHT};
 use crate::serpentine::{pick_directions, size_style, Sized};
 use crate::shape::Shape;
 use crate::sizing::{tiles_for, width_for};
+use crate::Progress;
 
 /// A shape monotone in no direction is planned as one serpentine that bridges its gaps
 /// only while at most this share of the chain lies outside it; beyond, it is unplannable.
@@ -24,22 +28,44 @@ const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
 const MAX_CELL_TILES: usize = 20_000;
 
 /// Plans a shape (physical frame); `name` names it in errors and in the plan.
-pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Result<Plan, PlanError> {
+pub(crate) fn plan_shape(
+    shape: &Shape,
+    opts: &PlanOptions,
+    name: &str,
+    progress: Progress<'_>,
+) -> Result<Plan, PlanError> {
     opts.check(shape)?;
     let styles: Vec<Style> = match opts.turns {
         Turns::Tight => vec![TIGHT],
         Turns::Loose => vec![LOOSE],
         Turns::Auto => vec![TIGHT, LOOSE],
-    };
+    }
+    .into_iter()
+    .map(|s| s.priced(opts.turn_cost))
+    .collect();
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
     let mut failures: Vec<String> = Vec::new();
-    let mut best = best_serpentine(shape, opts, &styles, &directions, name, &mut failures);
+    let mut best = best_serpentine(
+        shape,
+        opts,
+        &styles,
+        &directions,
+        name,
+        &mut failures,
+        progress,
+    );
     // the size a tight serpentine would have, for the questions below
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tiles_est = opts
         .tile_size
         .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    if let Some(p) = best.take() {
+        match empty_part(shape, &p) {
+            None => best = Some(p),
+            Some(why) => failures.push(format!("one serpentine {why}")),
+        }
+    }
     let parts = separate_parts(shape, tiles_est);
     if monotone.is_empty() || parts > 1 {
         // one serpentine over a shape that is monotone in no direction (or in separate
@@ -59,17 +85,18 @@ pub(crate) fn plan_shape(shape: &Shape, opts: &PlanOptions, name: &str) -> Resul
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
+        progress("planning by cells", 0, 1);
         let by_cells: Vec<Result<Plan, String>> = styles
             .par_iter()
             .map(|&style| plan_by_cells(shape, opts, style, name))
             .collect();
+        progress("planning by cells", 1, 1);
         for r in by_cells {
             match r {
                 Ok(p) => {
-                    if best
-                        .as_ref()
-                        .is_none_or(|b| p.metrics.fit_error() < b.metrics.fit_error())
-                    {
+                    if best.as_ref().is_none_or(|b| {
+                        plan_score(&p, opts.turn_cost) < plan_score(b, opts.turn_cost)
+                    }) {
                         best = Some(p);
                     }
                 }
@@ -94,10 +121,11 @@ fn best_serpentine(
     directions: &[f64],
     name: &str,
     failures: &mut Vec<String>,
+    progress: Progress<'_>,
 ) -> Option<Plan> {
     let sized: Vec<Result<Sized, String>> = styles
         .par_iter()
-        .map(|&style| size_style(shape, opts, style, directions))
+        .map(|&style| size_style(shape, opts, style, directions, progress))
         .collect();
     let mut scored: Vec<(f64, Plan, Sized)> = Vec::new();
     for r in sized {
@@ -111,6 +139,7 @@ fn best_serpentine(
         }
     }
     scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    progress("checking the folds", 0, 1);
     for (_, plan, sz) in scored {
         match sz.best_checked(shape, plan, name) {
             Ok(p) => return Some(p),
@@ -118,6 +147,24 @@ fn best_serpentine(
         }
     }
     None
+}
+
+/// Why `plan` may not be returned: it leaves a part of the shape empty (see
+/// [`crate::empty`]), said with where, in SVG user units.
+pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
+    let w = plan.tile_size;
+    let work = shape.scaled(1.0 / w);
+    let centres: Vec<Point> = plan
+        .poses
+        .iter()
+        .map(|p| Point::new(p.x / w, -p.y / w))
+        .collect();
+    let (area, at) = largest_empty_part(&work, &centres)?;
+    Some(format!(
+        "leaves a part of the shape empty: about {area:.0} tile areas without a tile, around ({:.0}, {:.0})",
+        at.x * w,
+        -at.y * w
+    ))
 }
 
 /// Why no plan was found: what is wrong with the shape, then what each planner said.

@@ -13,24 +13,27 @@
 //!   next cell continues the stacking with parallel rows;
 //! - a straight tile: the row runs on into the next cell.
 //!
-//! A beam search keeps the cheapest partial routes (row cost of [`crate::rows`] in every
-//! cell so far, plus the part of each cell behind its first row); a route whose tile centres
-//! come closer than one tile width (octagons of width 1 then overlap) is dropped.
+//! A beam search keeps the cheapest partial routes (the area-true cost of [`crate::rows`]
+//! in every cell so far, turns priced, ranked with a look-ahead: how far each cell's exit
+//! lies from the next cell); a route whose tile centres come closer than one tile width
+//! (octagons of width 1 then overlap), or whose prefix collides when folded in sequence
+//! from tile 0, is dropped as it grows.
 
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
 use foldchain::{Fold, FoldWord};
-use kurbo::{Affine, Point, Vec2};
+use kurbo::{Affine, Point, Rect, Vec2};
 
 use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
+use crate::check::check_folds;
 use crate::options::Turns;
-use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style, ROW_SAMPLES};
+use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
-const BEAM: usize = 8;
+const BEAM: usize = 24;
 /// Centres closer than this (tile widths) belong to overlapping tiles: every face of the
 /// octagon is 1/2 from its centre, so two tiles closer than 1 overlap; the margin absorbs
 /// rounding only (touching tiles are exactly 1 apart).
@@ -130,32 +133,45 @@ pub(crate) struct Routed {
     pub cost: f64,
 }
 
-/// The shape length of the rows of the cell behind its first row (never reached).
-fn behind(work: &Shape, pitch: f64) -> f64 {
-    let ymin = work.bbox().y0;
-    let ns = ROW_SAMPLES.len() as f64;
-    let mut total = 0.0;
-    let mut m = 1.0;
-    while -m * pitch > ymin - 1.0 {
-        for d in ROW_SAMPLES {
-            total += work
-                .intervals_at(-m * pitch + d)
-                .iter()
-                .map(|(a, b)| b - a)
-                .sum::<f64>()
-                / ns;
-        }
-        m += 1.0;
-    }
-    total
-}
+/// How much an end's distance (tile widths) from the next cell's bounding box counts when
+/// ends are picked to lead there, in tile areas per tile width: an end a few tiles away
+/// from the next cell costs that cell a few partial rows.
+const TOWARD_WEIGHT: f64 = 1.0;
 
-/// The best ends of a solved programme: one whose last row runs +d, one -d.
-fn ends(sol: &Solved) -> Vec<(f64, usize, usize)> {
-    [0, 1]
-        .iter()
-        .filter_map(|&par| sol.best_end(|k| k % 2 == par))
-        .collect()
+/// The ends of a solved programme (on `lat`, cell frame `frame`) the route tries: the best
+/// one whose last row runs +d and the best one running -d, and, when there is a next cell
+/// (its bounding box `toward`, axis frame), for each parity the best end counting its
+/// distance from that box: the exit of a cell is chosen with the entry of the next (the head of
+/// a key ends its last column where the shaft begins, not at a corner).
+fn ends(
+    sol: &Solved,
+    lat: Lattice,
+    pitch: f64,
+    frame: Frame,
+    toward: Option<Rect>,
+) -> Vec<(f64, f64, usize, usize)> {
+    let to_axis = frame.to_axis();
+    // the distance penalty of an end: a look-ahead for ranking, not part of the cost
+    let look = |k: usize, e: usize| match toward {
+        Some(t) => {
+            let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
+            let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
+            let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
+            TOWARD_WEIGHT * dx.hypot(dy)
+        }
+        None => 0.0,
+    };
+    let mut out: Vec<(f64, f64, usize, usize)> = Vec::new();
+    for par in [0, 1] {
+        let plain = sol.best_end(|k| k % 2 == par);
+        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look));
+        for (c, k, e) in plain.into_iter().chain(near) {
+            if !out.iter().any(|o| o.2 == k && o.3 == e) {
+                out.push((c, look(k, e), k, e));
+            }
+        }
+    }
+    out
 }
 
 /// True if some centre of `new` comes closer than [`MIN_GAP`] to a centre in `old`.
@@ -168,7 +184,7 @@ fn overlaps(old: &[Arc<Vec<Point>>], new: &[Point]) -> bool {
 
 /// The first leg: a free serpentine over the cell, rows along either axis, any corner and
 /// phase; the best few by cost.
-fn first_legs(shape: &Shape, style: Style) -> Vec<(f64, Leg)> {
+fn first_legs(shape: &Shape, style: Style, toward: Option<Rect>) -> Vec<(f64, f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
     for d in [
@@ -186,10 +202,11 @@ fn first_legs(shape: &Shape, style: Style) -> Vec<(f64, Leg)> {
             let work = frame.work(shape);
             for lat in Lattice::phased(work.bbox(), p) {
                 let sol = solve_rows(&work, style, lat, None);
-                for (cost, k, e) in ends(&sol) {
+                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
                         cost,
+                        look,
                         Leg {
                             frame,
                             serp,
@@ -201,7 +218,7 @@ fn first_legs(shape: &Shape, style: Style) -> Vec<(f64, Leg)> {
             }
         }
     }
-    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out.sort_by(|a, b| (a.0 + a.1).total_cmp(&(b.0 + b.1)));
     out.truncate(BEAM);
     out
 }
@@ -264,7 +281,12 @@ fn joins(e: Point, h: Vec2, side: Vec2, style: Style) -> Vec<Join> {
 
 /// The legs that can follow `prev` into the cell `shape`: every join and stacking side, each
 /// with the best end of either parity, with the tiles the join lays.
-fn next_legs(prev: &Leg, shape: &Shape, style: Style) -> Vec<(f64, Leg, Vec<Point>)> {
+fn next_legs(
+    prev: &Leg,
+    shape: &Shape,
+    style: Style,
+    toward: Option<Rect>,
+) -> Vec<(f64, f64, Leg, Vec<Point>)> {
     let p = style.pitch;
     let (e, h, side) = prev.end();
     let mut out = Vec::new();
@@ -278,15 +300,19 @@ fn next_legs(prev: &Leg, shape: &Shape, style: Style) -> Vec<(f64, Leg, Vec<Poin
             let work = frame.work(shape);
             let (lat, c0) = Lattice::from_origin(work.bbox(), p);
             let sol = solve_rows(&work, style, lat, Some(c0));
-            let back = behind(&work, p);
-            for (cost, k, end) in ends(&sol) {
+            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
                 let leg = Leg {
                     frame,
                     serp: sol.serpentine(lat, p, k, end),
                     join: join.folds.clone(),
                     quarter: join.quarter,
                 };
-                out.push((cost + back, leg, join.tiles.clone()));
+                let price = if join.quarter || join.folds.len() > 1 {
+                    style.turn_price
+                } else {
+                    0.0
+                };
+                out.push((cost + price, look, leg, join.tiles.clone()));
             }
         }
     }
@@ -295,9 +321,10 @@ fn next_legs(prev: &Leg, shape: &Shape, style: Style) -> Vec<(f64, Leg, Vec<Poin
 
 /// The best routes through the cells in `order`, cheapest first.
 pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<Route> {
-    let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style)
+    let centre = |i: usize| order.get(i).map(|&c| cells.cells[c].shape.bbox());
+    let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style, centre(1))
         .into_iter()
-        .map(|(cost, leg)| {
+        .map(|(cost, _, leg)| {
             let c = leg.centres(style);
             Route {
                 cost,
@@ -306,20 +333,22 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
             }
         })
         .collect();
-    for &cell in &order[1..] {
+    for (at, &cell) in order.iter().enumerate().skip(1) {
         let shape = &cells.cells[cell].shape;
+        let toward = centre(at + 1);
         // every extension, cheapest first; the overlap test (the costly part) runs only
         // until the beam is full
-        let mut cands: Vec<(f64, usize, Leg, Vec<Point>)> = Vec::new();
+        let mut cands: Vec<(f64, f64, usize, Leg, Vec<Point>)> = Vec::new();
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
-            for (cost, leg, join_tiles) in next_legs(prev, shape, style) {
-                cands.push((r.cost + cost, i, leg, join_tiles));
+            for (cost, look, leg, join_tiles) in next_legs(prev, shape, style, toward) {
+                cands.push((r.cost + cost, look, i, leg, join_tiles));
             }
         }
-        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // ranked with the look-ahead to the next cell; the route keeps the cost alone
+        cands.sort_by(|a, b| (a.0 + a.1).total_cmp(&(b.0 + b.1)));
         let mut next: Vec<Route> = Vec::new();
-        for (cost, i, leg, join_tiles) in cands {
+        for (cost, _, i, leg, join_tiles) in cands {
             if next.len() >= BEAM {
                 break;
             }
@@ -331,6 +360,11 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
             }
             let mut legs = r.legs.clone();
             legs.push(Arc::new(leg));
+            // folding is sequential from tile 0: a prefix that collides stays colliding,
+            // so routes are checked as they grow, not only when complete
+            if check_folds(&FoldWord::from_folds(route_folds(&legs, style))).is_err() {
+                continue;
+            }
             let mut centres = r.centres.clone();
             centres.push(Arc::new(c));
             next.push(Route {
@@ -347,15 +381,21 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
     beam
 }
 
+/// The folds of a route's legs, joins included.
+fn route_folds(legs: &[Arc<Leg>], style: Style) -> Vec<Fold> {
+    let mut folds = Vec::new();
+    for leg in legs {
+        folds.extend(leg.join.iter().copied());
+        leg.serp.folds(style, leg.frame.ccw(), &mut folds);
+    }
+    folds
+}
+
 impl Route {
     /// The route as a fold word with its frame and counts.
     pub(crate) fn to_routed(&self, style: Style) -> Option<Routed> {
         let first = self.legs.first()?;
-        let mut folds = Vec::new();
-        for leg in &self.legs {
-            folds.extend(leg.join.iter().copied());
-            leg.serp.folds(style, leg.frame.ccw(), &mut folds);
-        }
+        let folds = route_folds(&self.legs, style);
         let (k, s) = first.serp.first();
         let start = first.frame.to_axis() * first.serp.centre(k, s);
         let h = first.heading(k);

@@ -15,12 +15,14 @@ use rayon::prelude::*;
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
+use crate::fit::estimate;
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
 use crate::rows::{solve_rows, Lattice, Serpentine, Style};
 use crate::shape::Shape;
 use crate::sizing::{tiles_for, width_for, SizeSearch};
+use crate::Progress;
 
 /// At most this many row directions are compared by full planning.
 const MAX_DIRECTIONS: usize = 16;
@@ -34,14 +36,18 @@ const MAX_CHECKED: usize = 8;
 const COUNT_TOLERANCE: f64 = 1e-3;
 /// Secant steps of the size search, then these nudges around the best width: the count
 /// jumps by whole rows, so the nearest count may lie between two steps.
-const SECANT_STEPS: usize = 8;
+const SECANT_STEPS: usize = 12;
+/// Up to this many tiles, every nudge is tried even once the count is within the
+/// tolerance, for a better fit (a programme at this size takes milliseconds).
+const EXPLORE_TILES: usize = 20_000;
 const NUDGES: [f64; 8] = [0.98, 1.02, 0.96, 1.04, 0.99, 1.01, 0.97, 1.03];
 
 /// A solved serpentine over the whole shape, in the work frame of its orientation.
 #[derive(Clone, Debug)]
 pub(crate) struct Candidate {
     orient: Orientation,
-    /// The row programme's cost, tile widths.
+    /// The rank of the candidate (lower is better): its estimated fit error plus the price
+    /// of its turns ([`crate::fit::estimate`]).
     cost: f64,
     serp: Serpentine,
 }
@@ -164,14 +170,18 @@ pub(crate) fn size_style(
     opts: &PlanOptions,
     style: Style,
     directions: &[f64],
+    progress: Progress<'_>,
 ) -> Result<Sized, String> {
     let area = shape.area();
     let coarse_over = |tiles: usize| {
         if tiles > COARSE_TILES {
             let w = width_for(area, COARSE_TILES, style.pitch);
-            coarse_direction(shape, style, directions, w)
+            coarse_orientation(shape, style, directions, w)
         } else {
-            directions.to_vec()
+            directions
+                .iter()
+                .flat_map(|&angle| Orientation::corners(angle))
+                .collect()
         }
     };
     if let Some(w) = opts.tile_size {
@@ -181,18 +191,35 @@ pub(crate) fn size_style(
     }
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let dirs = coarse_over(target);
+    // small plans may float within the asked tolerance for fit; large ones gain nothing
+    // measurable by it and aim at the count
+    let explore = target <= EXPLORE_TILES;
+    let share = if explore {
+        opts.tiles_tolerance.max(COUNT_TOLERANCE)
+    } else {
+        COUNT_TOLERANCE.min(opts.tiles_tolerance.max(COUNT_TOLERANCE))
+    };
     let search = SizeSearch {
         secant_steps: SECANT_STEPS,
         nudges: &NUDGES,
-        tolerance: (COUNT_TOLERANCE * target as f64) as usize,
+        tolerance: (share * target as f64) as usize,
+        explore,
         shrink_when_empty: Some(0.97),
     };
+    let stage = format!("sizing the {} serpentine", style.turns);
+    let total = (SECANT_STEPS + NUDGES.len()) as u64;
+    let mut step = 0u64;
     // the size is settled on unchecked plans (the check is the costly part on long chains);
     // the caller checks the plans at that size, best first
     let found = search.run(target, width_for(area, target, style.pitch), |w| {
-        let all = solve_all(shape, style, &dirs, w);
+        progress(&stage, step, total);
+        step += 1;
+        let mut all = solve_all(shape, style, &dirs, w);
+        // candidates whose count is within the tolerance come first, each group best first
+        let tol = search.tolerance;
+        all.sort_by_key(|c| c.tiles(style).abs_diff(target).saturating_sub(tol));
         let first = all.first()?;
-        Some((first.tiles(style), first.cost * w, all))
+        Some((first.tiles(style), first.cost, all))
     });
     match found {
         Some(f) => Ok(Sized {
@@ -204,21 +231,23 @@ pub(crate) fn size_style(
     }
 }
 
-/// The best direction on a coarse plan, for large plans.
-fn coarse_direction(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<f64> {
-    match solve_all(shape, style, directions, w).first() {
-        Some(c) => vec![c.orient.angle],
-        None => directions.to_vec(),
-    }
-}
-
-/// Every serpentine over directions, corners and phases at tile width `w`, lowest cost
-/// first (solved in parallel; the order is deterministic).
-fn solve_all(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Candidate> {
-    let tasks: Vec<Orientation> = directions
+/// The best direction and start corner on a coarse plan, for large plans (the lattice
+/// phases are still compared at full size).
+fn coarse_orientation(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Orientation> {
+    let all: Vec<Orientation> = directions
         .iter()
         .flat_map(|&angle| Orientation::corners(angle))
         .collect();
+    match solve_all(shape, style, &all, w).first() {
+        Some(c) => vec![c.orient],
+        None => all,
+    }
+}
+
+/// Every serpentine over the orientations (directions and corners) and phases at tile
+/// width `w`, lowest cost first (solved in parallel; the order is deterministic).
+fn solve_all(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<Candidate> {
+    let area = shape.area() / (w * w);
     let mut out: Vec<Candidate> = tasks
         .par_iter()
         .flat_map_iter(|&orient| {
@@ -227,10 +256,12 @@ fn solve_all(shape: &Shape, style: Style, directions: &[f64], w: f64) -> Vec<Can
                 .filter_map(|lat| {
                     let sol = solve_rows(&work, style, lat, None);
                     let (cost, k, e) = sol.best_end(|_| true)?;
+                    let serp = sol.serpentine(lat, style.pitch, k, e);
+                    let rank = estimate(area, serp.tiles(style), serp.u_turns(), cost, style);
                     Some(Candidate {
                         orient,
-                        cost,
-                        serp: sol.serpentine(lat, style.pitch, k, e),
+                        cost: rank,
+                        serp,
                     })
                 })
                 .collect::<Vec<_>>()
@@ -283,7 +314,11 @@ mod tests {
                 .collect(),
         }]);
         for style in [TIGHT, LOOSE] {
-            let all = solve_all(&disc, style, &[0.0, 0.7], 1.0);
+            let orients: Vec<Orientation> = [0.0, 0.7]
+                .iter()
+                .flat_map(|&a| Orientation::corners(a))
+                .collect();
+            let all = solve_all(&disc, style, &orients, 1.0);
             assert!(!all.is_empty());
             for c in &all {
                 assert_eq!(c.tiles(style), c.word(style).tiles());

@@ -17,13 +17,17 @@ pub(crate) fn tiles_for(area: f64, w: f64, pitch: f64) -> usize {
 
 /// How one planner searches.
 pub(crate) struct SizeSearch {
-    /// Secant steps from the first width.
+    /// Steps (secant, or bisection once two widths bracket the target) from the first width.
     pub secant_steps: usize,
-    /// Factors tried on the best width after the secant steps, in order, while its count
-    /// still misses by more than the tolerance.
+    /// Factors tried on the best width after the steps, in order: while its count still
+    /// misses by more than the tolerance, or always when `explore` is set (a count within
+    /// the tolerance with a better cost then wins).
     pub nudges: &'static [f64],
-    /// The search stops once the count is within this many tiles of the target.
+    /// Counts within this many tiles of the target are equally good: among them the
+    /// cheaper wins. The steps stop once the count is within it.
     pub tolerance: usize,
+    /// Try every nudge even once a count is within the tolerance, for a better cost.
+    pub explore: bool,
     /// When a width gives no plan: `Some(f)` tries `f` times that width next, `None` stops.
     pub shrink_when_empty: Option<f64>,
 }
@@ -36,51 +40,74 @@ pub(crate) struct Found<T> {
 
 impl SizeSearch {
     /// Searches from width `w` for `target` tiles. `solve(w)` returns, for the best plan at
-    /// `w`, its tile count and its cost (in user units: equal misses keep the cheaper), with
-    /// the planner's answer; or `None` when there is no plan at `w`. A width tried before
-    /// (to 1e-12) is not solved again: the answer would be the same.
+    /// `w`, its tile count and its cost (lower is better: equal misses beyond the tolerance,
+    /// or misses within it, keep the cheaper), with the planner's answer; or `None` when
+    /// there is no plan at `w`. A width tried before (to 1e-12) is not solved again.
+    ///
+    /// The count falls as the width grows, in whole rows: once one width gives more tiles
+    /// than the target and another fewer, the next width is their geometric mean
+    /// (bisection), so a count between two row steps is found when some width gives it.
     pub(crate) fn run<T>(
         &self,
         target: usize,
         mut w: f64,
         mut solve: impl FnMut(f64) -> Option<(usize, f64, T)>,
     ) -> Option<Found<T>> {
-        // (miss, cost, width, answer)
+        // (miss beyond the tolerance, cost, width, answer)
         let mut best: Option<(usize, f64, f64, T)> = None;
         let mut tried: Vec<f64> = Vec::new();
+        // widths known to give more tiles than the target (largest) and fewer (smallest)
+        let (mut too_many, mut too_few): (Option<f64>, Option<f64>) = (None, None);
+        let better = |best: &Option<(usize, f64, f64, T)>, m: usize, c: f64| {
+            best.as_ref()
+                .is_none_or(|(bm, bc, ..)| m < *bm || (m == *bm && c < *bc))
+        };
+        // once a count is within the tolerance the steps stop (exploring: the nudges follow)
+        let mut settled = false;
         for step in 0..self.secant_steps + self.nudges.len() {
+            if step < self.secant_steps && settled {
+                continue;
+            }
             if step >= self.secant_steps {
                 match &best {
                     None => break,
-                    Some((m, ..)) if *m <= self.tolerance => break,
+                    Some((0, ..)) if !self.explore => break,
                     Some((_, _, bw, _)) => w = bw * self.nudges[step - self.secant_steps],
                 }
-            } else if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
+            }
+            if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
                 continue;
             }
             tried.push(w);
             let Some((n, cost, plans)) = solve(w) else {
                 match self.shrink_when_empty {
-                    Some(f) => {
+                    Some(f) if step < self.secant_steps => {
                         w *= f;
                         continue;
                     }
+                    Some(_) => continue,
                     None => break,
                 }
             };
-            let miss = n.abs_diff(target);
+            let miss = n.abs_diff(target).saturating_sub(self.tolerance);
             let at = w;
-            if step < self.secant_steps {
-                w *= (n as f64 / target as f64).sqrt();
+            if n > target {
+                too_many = Some(too_many.map_or(at, |t: f64| t.max(at)));
+            } else if n < target {
+                too_few = Some(too_few.map_or(at, |t: f64| t.min(at)));
             }
-            if best
-                .as_ref()
-                .is_none_or(|(m, c, ..)| miss < *m || (miss == *m && cost < *c))
-            {
+            if better(&best, miss, cost) {
                 best = Some((miss, cost, at, plans));
             }
-            if miss <= self.tolerance {
-                break;
+            if step < self.secant_steps {
+                if miss == 0 && !self.explore {
+                    break;
+                }
+                settled |= miss == 0;
+                w = match (too_many, too_few) {
+                    (Some(a), Some(b)) if a < b => (a * b).sqrt(),
+                    _ => w * (n.max(1) as f64 / target as f64).sqrt(),
+                };
             }
         }
         best.map(|(_, _, w, plans)| Found { w, plans })
@@ -101,6 +128,7 @@ mod tests {
             secant_steps: 8,
             nudges: &[0.98, 1.02],
             tolerance: 2,
+            explore: false,
             shrink_when_empty: Some(0.97),
         };
         let f = s
@@ -110,6 +138,52 @@ mod tests {
         assert_eq!(count(f.w), f.plans);
     }
 
+    /// Counts in steps of 11 tiles (whole rows) but for a narrow band of widths giving the
+    /// target: the bisection between a width above and one below finds it.
+    #[test]
+    fn bisection_finds_a_count_between_row_steps() {
+        let count = |w: f64| {
+            if (9.99..10.0).contains(&w) {
+                107
+            } else {
+                11 * (1000.0 / (w * w)).floor() as usize
+            }
+        };
+        let s = SizeSearch {
+            secant_steps: 16,
+            nudges: &[],
+            tolerance: 0,
+            explore: false,
+            shrink_when_empty: None,
+        };
+        let f = s
+            .run(107, 9.5, |w| Some((count(w), 0.0, count(w))))
+            .unwrap();
+        assert_eq!(f.plans, 107, "width {}", f.w);
+    }
+
+    /// Within the tolerance the cheaper count wins when exploring.
+    #[test]
+    fn exploring_buys_fit_within_the_tolerance() {
+        let count = |w: f64| (10_000.0 / (w * w)).round() as usize;
+        let cost = |n: usize| if n % 7 == 0 { 0.0 } else { 1.0 };
+        let s = SizeSearch {
+            secant_steps: 6,
+            nudges: &[0.99, 1.01, 0.995, 1.005, 0.998, 1.002],
+            tolerance: 5,
+            explore: true,
+            shrink_when_empty: None,
+        };
+        let f = s
+            .run(100, 10.0, |w| Some((count(w), cost(count(w)), count(w))))
+            .unwrap();
+        assert!(
+            f.plans.abs_diff(100) <= 5 && f.plans % 7 == 0,
+            "{}",
+            f.plans
+        );
+    }
+
     #[test]
     fn no_plan_anywhere_is_none_and_stops_when_told() {
         let mut calls = 0;
@@ -117,6 +191,7 @@ mod tests {
             secant_steps: 5,
             nudges: &[],
             tolerance: 1,
+            explore: false,
             shrink_when_empty: None,
         };
         let f = s.run(10, 1.0, |_| {

@@ -50,6 +50,8 @@ mod verdict;
 
 pub use driver::run_reference;
 pub use dynamics::{Model, ModelError, ModelOptions, BALANCE_TOLERANCE};
+// the unknowns' modes, for the event engine's local solves (which switch them as here)
+pub(crate) use dynamics::Mode;
 pub use inertial::Dynamics;
 pub use integrators::{Method, StepStats};
 pub use options::{Recording, ReferenceError, ReferenceOptions};

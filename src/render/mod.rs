@@ -10,7 +10,7 @@
 
 mod frame;
 mod pair_energy;
-mod plot;
+pub(crate) mod plot;
 mod source;
 mod state;
 mod transition;

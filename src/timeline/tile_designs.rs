@@ -213,6 +213,16 @@ impl TileDesigns {
         TileDesigns::from_json(&text, &path.display().to_string())
     }
 
+    /// One global design with per-tile overrides (later entries win), as the file form
+    /// gives them.
+    pub fn with_overrides(global: Design, overrides: Vec<TileOverride>) -> TileDesigns {
+        TileDesigns {
+            global,
+            overrides,
+            s_for_all: None,
+        }
+    }
+
     /// The same designs with `s` set for every tile (a fraction of `e` uses each tile's `e`).
     pub fn with_s(mut self, s: SValue) -> TileDesigns {
         self.s_for_all = Some(s);

@@ -9,8 +9,12 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::inputs::refuse_overwrite;
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::message;
-use foldchain_planner::{plan_svg_file, preview_svg_file, PlanError, PlanOptions, Turns};
+use foldchain_planner::{
+    plan_svg_file_reporting, preview_svg_file, PlanError, PlanOptions, Turns,
+    DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
+};
 
 /// Plan a self-folding tile chain that fills the shape drawn in an SVG file.
 #[derive(Parser, Debug)]
@@ -25,17 +29,29 @@ use foldchain_planner::{plan_svg_file, preview_svg_file, PlanError, PlanOptions,
   fold-run --plan key-plan.json     fold the planned chain
 
 Prints the run-length tile list and a summary line (or the plan JSON with --json).
+Progress goes to stderr (plain lines every few seconds when stderr is not a terminal;
+--quiet silences). Limits: at most 2,000,000 tiles and 10,000,000 outline points; outlines of many points are simplified to 1/1000 of the drawing first.
 Exit codes: 0 planned, 1 the shape cannot be planned (the reason is given), 2 bad input."
 )]
 struct Args {
     /// The target shape: an SVG file; its filled areas are the shape.
     shape: PathBuf,
-    /// About this many tiles (default 200 when --tile-size is not given).
-    #[arg(long, conflicts_with = "tile_size", value_parser = tiles_arg, allow_hyphen_values = true)]
+    /// About this many tiles (default 200 when no tile width is given).
+    #[arg(long, conflicts_with_all = ["tile_size", "tile_mm"], value_parser = tiles_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
+    /// The share by which the tile count may miss --tiles when that buys a better fit.
+    #[arg(long, default_value_t = DEFAULT_TILES_TOLERANCE, allow_hyphen_values = true)]
+    tiles_tolerance: f64,
     /// Tile width (across flats) in SVG user units.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, conflicts_with = "tile_mm", allow_hyphen_values = true)]
     tile_size: Option<f64>,
+    /// Tile width (across flats) in millimetres, by the drawing's width/height units and
+    /// viewBox (96 user units per inch when it states none); the thesis' tiles are 30 mm.
+    #[arg(long, allow_hyphen_values = true)]
+    tile_mm: Option<f64>,
+    /// The price of a U-turn or quarter turn, in tile areas of misfit.
+    #[arg(long, default_value_t = DEFAULT_TURN_COST, allow_hyphen_values = true)]
+    turn_cost: f64,
     /// U-turn style: tight (LL/RR tiles), loose (no LL/RR tiles) or auto (better fit).
     #[arg(long, default_value = "auto")]
     turns: Turns,
@@ -48,6 +64,9 @@ struct Args {
     /// Print the plan JSON instead of the tile list and summary.
     #[arg(long)]
     json: bool,
+    /// No progress lines on stderr.
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// A tile count on the command line: a whole number >= 1.
@@ -91,9 +110,17 @@ fn run(args: &Args) -> anyhow::Result<()> {
     let opts = PlanOptions {
         tiles: args.tiles,
         tile_size: args.tile_size,
+        tile_mm: args.tile_mm,
+        tiles_tolerance: args.tiles_tolerance,
+        turn_cost: args.turn_cost,
         turns: args.turns,
     };
-    let plan = plan_svg_file(&args.shape, &opts)?;
+    let progress = Progress::new("fold-plan", "steps", ProgressMode::detect(args.quiet));
+    let plan = plan_svg_file_reporting(&args.shape, &opts, &|stage, done, total| {
+        progress.update(stage, done, total)
+    });
+    progress.finish();
+    let plan = plan?;
     if let Some(out) = &args.out {
         foldchain_cli::output::write_atomic(out, plan.to_json().as_bytes())
             .context("writing the plan")?;

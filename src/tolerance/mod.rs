@@ -1,0 +1,39 @@
+//! Will it fold when printed? The chance that a chain folds when every tile is printed and
+//! every magnet bought within stated tolerances, the joints where failures begin, how the
+//! smallest margin moves with each parameter, and a search of the design for the fastest
+//! assembly that still folds often enough.
+//!
+//! A sample draws each tile's parameters independently ([`Tolerances`], seeded per sample:
+//! [`SplitMix64`]) and decides by the margins ([`crate::margins`]): the chain folds when
+//! every start and every fold margin is positive. That is a quasi-static criterion, checked
+//! against the force-integrated reference on short chains in the test suite; it is what makes
+//! ten thousand samples of a hundred tiles cost seconds.
+//!
+//! ```
+//! use foldchain::tolerance::{study, StudyOptions, Tolerances};
+//! use foldchain::{Chain, Design};
+//!
+//! let chain = Chain::parse("SSS").unwrap();
+//! let opts = StudyOptions { samples: 200, ..StudyOptions::default() };
+//! let s = study(&chain, &[Design::thesis()], &opts).unwrap();
+//! assert_eq!(s.samples, 200);
+//! assert!(s.interval.0 <= s.probability && s.probability <= s.interval.1);
+//! ```
+
+mod optimize;
+mod plot;
+mod rng;
+mod sample;
+mod sensitivity;
+mod study;
+mod tolerances;
+mod wilson;
+
+pub use optimize::{candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions};
+pub use plot::tradeoff_svg;
+pub use rng::SplitMix64;
+pub use sample::{draw_designs, nudged};
+pub use sensitivity::{sensitivities, Sensitivity};
+pub use study::{study, FailureCount, MarginSpread, Study, StudyOptions};
+pub use tolerances::{Parameter, Printer, ToleranceError, Tolerances};
+pub use wilson::{wilson_interval, Z95};
