@@ -2,9 +2,15 @@
 //! checked for self-intersection, and the summary of both ([`simulate`]); the timeline as
 //! JSON ([`timeline_json`]).
 
-use crate::collision::{check_schedule, CheckOptions, Collision, ScheduleError};
+use crate::collision::{
+    check_schedule, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError,
+};
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
-use crate::timeline::{CollisionReport, Summary, TileDesigns, TimelineJson, EVENT_INDEX};
+use crate::reference::ReferenceRun;
+use crate::render::RunSource;
+use crate::timeline::{
+    CollisionReport, FoldRecord, Summary, TileDesigns, TimelineJson, EVENT_INDEX,
+};
 use crate::{Chain, Fold, FoldWord};
 
 /// Why a simulation could not be made.
@@ -21,24 +27,60 @@ pub enum SimulateError {
 
 /// The fold word of what actually folds: each joint's fold if it turned, else S.
 pub fn folded_word(tl: &Timeline) -> FoldWord {
-    let mut folds = vec![Fold::S; tl.tiles().saturating_sub(1)];
-    for f in &tl.folds {
+    word_of_folds(tl.tiles(), &tl.folds)
+}
+
+fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
+    let mut folds = vec![Fold::S; tiles.saturating_sub(1)];
+    for f in records {
         folds[f.joint] = f.fold;
     }
     FoldWord::from_folds(folds)
 }
 
-/// Runs the engine and checks its fold schedule for collisions: the timeline and its summary
-/// (`result` is `undecided` when the check could not decide within its work budget).
-pub fn simulate(
-    chain: &Chain,
-    designs: &TileDesigns,
-    engine: &EngineOptions,
-    check: &CheckOptions,
-) -> Result<(Timeline, Summary), SimulateError> {
-    let tl = run(chain, designs, engine)?;
-    let (collision, undecided) = check_timeline(&tl, check)?;
-    let mut summary = tl.summary();
+/// Checks a reference run's fold schedule for collisions with the engine's checker
+/// ([`check_schedule`]): each fold's track from the run's recorded states (linear between
+/// them, thinned within [`crate::engine::ANGLE_TOLERANCE`]; a run that recorded none has
+/// its final angles only), the word of the joints that turned. Its summary, overruled
+/// (`collided`, `first_collision`) or `undecided` as [`simulate`]'s.
+pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, SimulateError> {
+    let mut summary = run.to_summary();
+    if run.tiles() < 2 || run.folds.is_empty() {
+        return Ok(summary);
+    }
+    let word = word_of_folds(run.tiles(), &run.folds);
+    let tracks = run
+        .folds
+        .iter()
+        .map(|f| {
+            let tr = RunSource::joint_angle(run, f.joint);
+            let (times, angles) = tr.points.iter().map(|&(dt, a)| (tr.start + dt, a)).unzip();
+            JointTrack {
+                joint: f.joint,
+                times,
+                angles,
+            }
+        })
+        .collect();
+    let schedule = FoldSchedule { tracks };
+    let (collision, undecided) = match check_schedule(&word, &schedule, check) {
+        Ok(()) => (None, None),
+        Err(ScheduleError::Collision(c)) => (Some(c), None),
+        Err(e @ ScheduleError::Undecided { .. }) => {
+            (None, Some(format!("collision check undecided: {e}")))
+        }
+        Err(e) => return Err(SimulateError::Schedule(e)),
+    };
+    summary = overrule(summary, collision, undecided);
+    Ok(summary)
+}
+
+/// A run's summary with the collision check's verdict.
+fn overrule(
+    mut summary: Summary,
+    collision: Option<Collision>,
+    undecided: Option<String>,
+) -> Summary {
     if let Some(c) = collision {
         summary = summary.overruled("collided", c.to_string());
         summary.first_collision = Some(CollisionReport {
@@ -52,6 +94,20 @@ pub fn simulate(
         summary.result = "undecided";
         summary.reason = Some(msg);
     }
+    summary
+}
+
+/// Runs the engine and checks its fold schedule for collisions: the timeline and its summary
+/// (`result` is `undecided` when the check could not decide within its work budget).
+pub fn simulate(
+    chain: &Chain,
+    designs: &TileDesigns,
+    engine: &EngineOptions,
+    check: &CheckOptions,
+) -> Result<(Timeline, Summary), SimulateError> {
+    let tl = run(chain, designs, engine)?;
+    let (collision, undecided) = check_timeline(&tl, check)?;
+    let summary = overrule(tl.summary(), collision, undecided);
     Ok((tl, summary))
 }
 

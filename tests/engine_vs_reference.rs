@@ -1,10 +1,12 @@
-//! The event engine against the force-integrated reference on `fold-validate`'s scenes
-//! (issue 6): with the force rule for starting magnets both decide the same outcome (the
-//! same stall, at the same joint and magnet) and propagate in the same order.
+//! The event engine against the force-integrated reference on `fold-validate`'s scenes:
+//! the engine's local solves (issue 12) give the reference's events, in the same order and
+//! at the same times; the kinematic baseline with the force rule for starting magnets
+//! (issue 6) decides the same outcome (the same stall, at the same joint and magnet) and
+//! propagates in the same order.
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{run, EngineOptions, StartRule};
+use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::physics::DEFAULT_CUTOFF;
 use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::validate::compare_events;
@@ -24,6 +26,35 @@ fn key(o: &Outcome) -> (&'static str, Option<(usize, usize)>) {
         Outcome::Completed => ("completed", None),
         Outcome::Inhibited { joint, .. } => ("inhibited", Some((*joint, 0))),
         Outcome::Stalled { joint, magnet, .. } => ("stalled", Some((*joint, *magnet))),
+    }
+}
+
+#[test]
+fn local_solves_time_every_event_as_the_reference_does() {
+    for sc in all_scenes() {
+        let r = run_reference(
+            &sc.chain,
+            &sc.designs,
+            &ReferenceOptions::default().with_tolerance(1e-9),
+        )
+        .unwrap();
+        let tl = run(&sc.chain, &sc.designs, &EngineOptions::default()).unwrap();
+        assert_eq!(key(&tl.outcome), key(&r.outcome), "{}", sc.name);
+        let c = compare_events(&r.events, &tl.events, r.duration());
+        assert_eq!(
+            (c.missing, c.inversions, c.interleavings),
+            (0, 0, 0),
+            "{}",
+            sc.name
+        );
+        // issue 12: 0.5% of the duration for s >= 0.05 mm, 5% at s = 0
+        let bound = if sc.designs.global_design().s == 0.0 {
+            0.05
+        } else {
+            0.005
+        };
+        assert!(c.error_time <= bound, "{}: {}", sc.name, c.error_time);
+        assert!((tl.duration() - r.duration()).abs() <= bound * r.duration());
     }
 }
 
@@ -74,7 +105,12 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
     // c = 2.8 mm the force rule stalled it, as the reference did)
     for (name, force_completes) in [("3-tile SL", true), ("20-tile s=e/3", false)] {
         let sc = all_scenes().into_iter().find(|s| s.name == name).unwrap();
-        let tl = run(&sc.chain, &sc.designs, &EngineOptions::default()).unwrap();
+        let tl = run(
+            &sc.chain,
+            &sc.designs,
+            &EngineOptions::default().with_method(EngineMethod::Kinematic),
+        )
+        .unwrap();
         assert_eq!(tl.outcome, Outcome::Completed, "{name}");
         let f = run(
             &sc.chain,

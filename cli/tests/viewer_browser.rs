@@ -199,9 +199,12 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     let d = tmp("poses");
     // curved paths (L and R folds), a collision and a fold angle law to follow
     let word = "LSLLSR";
+    // the library's default dynamics (overdamped) on both sides
     let o = fold_run(&[
         word,
         "--compare",
+        "--dynamics",
+        "overdamped",
         "--out",
         d.to_str().unwrap(),
         "--frames",

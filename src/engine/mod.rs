@@ -23,6 +23,7 @@
 
 mod energy;
 mod fold_law;
+mod local;
 mod progress;
 mod queue;
 mod result;
@@ -33,8 +34,11 @@ mod start_rule;
 mod trigger;
 
 pub use energy::energy_curve;
+pub use local::{
+    DEFAULT_LOCAL_TOLERANCE, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE,
+};
 pub use result::{fold_angle, joint_angles_at, Timeline};
-pub use run::{run, EngineError, EngineOptions};
+pub use run::{run, EngineError, EngineMethod, EngineOptions};
 pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
 pub use speed::Motion;
 pub use start_rule::{StartRule, DRIVE_TOLERANCE};

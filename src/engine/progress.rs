@@ -4,6 +4,7 @@
 //! its result ([`crate::engine::Timeline`]) reads it afterwards.
 
 use crate::engine::fold_law::fold_angle_from;
+use crate::engine::local::{solved_fold_angle, Solved};
 use crate::engine::speed::{Motion, MotionTable};
 use crate::timeline::FoldRecord;
 
@@ -18,6 +19,8 @@ pub(crate) struct Progress<'a> {
     pub(crate) folds: &'a [FoldRecord],
     /// Index into `folds` of each joint's fold (`u32::MAX`: none).
     pub(crate) fold_of_joint: &'a [u32],
+    /// The local solves' tracks, when the run made them.
+    pub(crate) solved: Option<&'a Solved>,
 }
 
 impl<'a> Progress<'a> {
@@ -34,11 +37,18 @@ impl<'a> Progress<'a> {
 
     /// When magnet `k` arrives, or `None` if it has not started.
     pub(crate) fn arrival_of(&self, k: usize) -> Option<f64> {
+        if let Some(s) = self.solved {
+            let t = s.arrival[k];
+            return (!t.is_nan() && self.start_of(k).is_some()).then_some(t);
+        }
         self.start_of(k).map(|s| s + self.motion(k).duration())
     }
 
     /// The arc length magnet `k` has travelled at time `t`, mm.
     pub(crate) fn travel_at(&self, k: usize, t: f64) -> f64 {
+        if let Some(s) = self.solved {
+            return s.fraction(k, t) * self.motion(k).length;
+        }
         match self.start_of(k) {
             Some(s) if t > s => self.motion(k).distance_at(t - s),
             _ => 0.0,
@@ -54,6 +64,9 @@ impl<'a> Progress<'a> {
 
     /// The signed angle (radians, positive = left) of `fold` at time `t`.
     pub(crate) fn fold_angle(&self, fold: &FoldRecord, t: f64) -> f64 {
+        if let Some(s) = self.solved {
+            return solved_fold_angle(s, fold, t);
+        }
         let (a, b) = (2 * fold.joint + 1, 2 * fold.joint + 2);
         let frac = |k: usize| self.travel_at(k, t) / self.motion(k).length;
         if t <= fold.start || t >= fold.end {

@@ -1,6 +1,7 @@
 //! The result of an engine run: every event, each magnet's start and motion, the folds and
 //! the outcome ([`Timeline`]); where every magnet is and every joint's angle at any time.
 
+use crate::engine::local::Solved;
 use crate::engine::progress::Progress;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
@@ -26,6 +27,8 @@ pub struct Timeline {
     /// The most magnets moving at one instant, and the first time it happens.
     pub max_moving: (usize, f64),
     pub(crate) fold_of_joint: Vec<u32>,
+    /// The local solves' tracks (`None` for the kinematic baseline).
+    pub(crate) solved: Option<Box<Solved>>,
 }
 
 /// What decides an inhibition in the engine, for its reason.
@@ -38,7 +41,15 @@ impl Timeline {
             motions: &self.motions,
             folds: &self.folds,
             fold_of_joint: &self.fold_of_joint,
+            solved: self.solved.as_deref(),
         }
+    }
+
+    /// Local solves made and sweeps over the chain (`None` for the kinematic baseline).
+    pub fn solve_counts(&self) -> Option<(usize, usize, u64)> {
+        self.solved
+            .as_ref()
+            .map(|s| (s.chain.solves, s.chain.sweeps, s.chain.rhs))
     }
 
     /// Number of tiles.
@@ -56,7 +67,8 @@ impl Timeline {
         self.progress().start_of(k)
     }
 
-    /// Magnet `k`'s motion law.
+    /// Magnet `k`'s closed-form motion law (the kinematic baseline's; a local-solve run
+    /// keeps it for comparison only: its times are [`Timeline::travel_at`]'s).
     pub fn motion(&self, k: usize) -> &Motion {
         self.motions.of(k)
     }

@@ -10,47 +10,106 @@
 //! arrivals first, then stops, triggers and starts, so a magnet that starts its successor
 //! exactly on arrival (`s = e/3`) never counts as moving together with it.
 
+use crate::engine::local::run_local;
 use crate::engine::progress::Progress;
 use crate::engine::queue::Queue;
 use crate::engine::result::Timeline;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
+use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::physics::ForceLaw;
+use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
 };
 use crate::{Chain, Fold};
 
-/// Engine options. Default: the overdamped speed law with the default drag, the distance
-/// rule for starting magnets (the thesis' inequalities), and the point-dipole pair law.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+/// How the engine times its events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum EngineMethod {
+    /// Local solves of the reference's physics, one joint at a time from the RI end
+    /// ([`crate::engine`]'s local solve; the default).
+    #[default]
+    Local,
+    /// The kinematic baseline: a start rule ([`StartRule`]) and a closed-form speed law
+    /// ([`SpeedLaw`]); with [`SpeedLaw::Unit`] the thesis' transition diagram.
+    Kinematic,
+}
+
+/// Engine options. Default: local solves ([`EngineMethod::Local`]) of the reference's
+/// default model ([`ModelOptions::default`]) at tolerance
+/// [`crate::engine::DEFAULT_LOCAL_TOLERANCE`]. The kinematic baseline's defaults: the
+/// overdamped speed law with the default drag, the distance rule (the thesis'
+/// inequalities), the point-dipole pair law.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EngineOptions {
-    /// The speed law.
+    /// How events are timed.
+    pub method: EngineMethod,
+    /// The physics of the local solves (the reference's model options).
+    pub model: ModelOptions,
+    /// Tolerance of the local solves (fraction of a path or fold).
+    pub tolerance: f64,
+    /// The kinematic baseline's speed law.
     pub speed: SpeedLaw,
-    /// The rule that starts each magnet.
+    /// The kinematic baseline's rule that starts each magnet.
     pub start: StartRule,
-    /// The pair law of the force start rule and the energy curve.
+    /// The pair law of the kinematic force start rule and the energy curve.
     pub force_law: ForceLaw,
 }
 
+impl Default for EngineOptions {
+    fn default() -> EngineOptions {
+        EngineOptions {
+            method: EngineMethod::default(),
+            model: ModelOptions::default(),
+            tolerance: DEFAULT_LOCAL_TOLERANCE,
+            speed: SpeedLaw::default(),
+            start: StartRule::default(),
+            force_law: ForceLaw::default(),
+        }
+    }
+}
+
 impl EngineOptions {
-    /// Another start rule.
+    /// The kinematic baseline with another start rule.
     pub fn with_start_rule(mut self, start: StartRule) -> EngineOptions {
         self.start = start;
+        self.method = EngineMethod::Kinematic;
         self
     }
 
-    /// Another speed law.
+    /// The kinematic baseline with another speed law.
     pub fn with_speed(mut self, speed: SpeedLaw) -> EngineOptions {
         self.speed = speed;
+        self.method = EngineMethod::Kinematic;
         self
     }
 
-    /// Another pair law.
+    /// Another pair law (of the local solves' model too).
     pub fn with_force_law(mut self, force_law: ForceLaw) -> EngineOptions {
         self.force_law = force_law;
+        self.model.force_law = force_law;
+        self
+    }
+
+    /// Another method.
+    pub fn with_method(mut self, method: EngineMethod) -> EngineOptions {
+        self.method = method;
+        self
+    }
+
+    /// Other model options for the local solves.
+    pub fn with_model(mut self, model: ModelOptions) -> EngineOptions {
+        self.model = model;
+        self.force_law = model.force_law;
+        self
+    }
+
+    /// Another tolerance for the local solves.
+    pub fn with_tolerance(mut self, tolerance: f64) -> EngineOptions {
+        self.tolerance = tolerance;
         self
     }
 }
@@ -68,6 +127,15 @@ pub enum EngineError {
     /// A force-rule cutoff of 0.
     #[error("start rule cutoff 0: expected at least 1 (pairs this many apart in chain index)")]
     BadCutoff,
+    /// The reference's model refused the options.
+    #[error(transparent)]
+    Model(#[from] Box<ModelError>),
+    /// Model options the local solves do not follow yet.
+    #[error("engine: {0}")]
+    Unsupported(&'static str),
+    /// A local-solve tolerance out of range.
+    #[error("engine tolerance {0}: expected a number in (0, 0.1]")]
+    BadTolerance(f64),
     /// More magnets than the compact event index holds.
     #[error("chain of {0} tiles: the engine handles at most 2^31 - 1 magnets")]
     TooLong(usize),
@@ -90,6 +158,9 @@ pub fn run(
     if chain.len() >= (u32::MAX / 4) as usize {
         return Err(EngineError::TooLong(chain.len()));
     }
+    if opts.method == EngineMethod::Local {
+        return run_local_engine(chain, designs, opts);
+    }
     let geometry = Geometry::from_designs(chain, designs)?;
     let mut runner = Runner::new(geometry, *opts);
     runner.queue.push(0.0, EventKind::RiContact, 0);
@@ -98,6 +169,45 @@ pub fn run(
         runner.take(event);
     }
     Ok(runner.finish())
+}
+
+/// The engine by local solves.
+fn run_local_engine(
+    chain: &Chain,
+    designs: &TileDesigns,
+    opts: &EngineOptions,
+) -> Result<Timeline, EngineError> {
+    if !(opts.tolerance > 0.0 && opts.tolerance <= 0.1) {
+        return Err(EngineError::BadTolerance(opts.tolerance));
+    }
+    if opts.model.dynamics != Dynamics::Overdamped {
+        return Err(EngineError::Unsupported(
+            "the local solves follow the overdamped model only; run the inertial model with the reference (fold-run --reference)",
+        ));
+    }
+    let model = match Model::new(chain, designs, &opts.model) {
+        Ok(m) => m,
+        Err(ModelError::Geometry(g)) => return Err(EngineError::Geometry(g)),
+        Err(e) => return Err(EngineError::Model(Box::new(e))),
+    };
+    let local = run_local(&model, opts.tolerance);
+    let speed = SpeedLaw::Overdamped {
+        drag: opts.model.drag,
+    };
+    let motions = MotionTable::new(&model.geometry, speed);
+    Ok(Timeline {
+        speed,
+        force_law: opts.model.force_law,
+        motions,
+        start: local.solved.start.clone(),
+        events: local.events,
+        folds: local.folds,
+        outcome: local.outcome,
+        max_moving: local.max_moving,
+        fold_of_joint: local.fold_of_joint,
+        solved: Some(Box::new(local.solved)),
+        geometry: Geometry::from_designs(chain, designs)?,
+    })
 }
 
 /// A run in the making.
@@ -142,6 +252,7 @@ impl Runner {
             motions: &self.motions,
             folds: &self.folds,
             fold_of_joint: &self.fold_of_joint,
+            solved: None,
         }
     }
 
@@ -313,6 +424,7 @@ impl Runner {
             outcome: self.outcome,
             max_moving: self.max_moving,
             fold_of_joint: self.fold_of_joint,
+            solved: None,
         }
     }
 }

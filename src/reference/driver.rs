@@ -23,7 +23,7 @@ use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::verdict::RestState;
-use crate::timeline::{Event, EventKind, Outcome, TileDesigns};
+use crate::timeline::{start_fraction, Event, EventKind, Outcome, TileDesigns};
 use crate::Chain;
 
 /// Runs the reference model on `chain` with `designs`.
@@ -61,7 +61,11 @@ impl Driver {
             modes: vec![Mode::AtStart; n],
             y: vec![0.0; n],
             t: 0.0,
-            log: EventLog::new(joints),
+            log: EventLog::new(
+                joints,
+                model.geometry.magnets(),
+                start_fraction(&model.geometry),
+            ),
             stats: StepStats::default(),
             work: Forces::default(),
             model,
@@ -210,6 +214,8 @@ impl Driver {
                 self.t += hi;
                 let y0 = std::mem::replace(&mut self.y, y_hi);
                 self.clamp_free();
+                self.log
+                    .cross(&self.model, t0, &y0, None, self.t, &self.y, None);
                 self.switch();
                 if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
                     r.cover(t0, &y0, &f, self.t, &self.y, None);
@@ -226,10 +232,15 @@ impl Driver {
                 .as_ref()
                 .filter(|r| r.next_time() <= self.t)
                 .map(|_| f.clone());
+            let f_prev = self.log.reports_crossings().then(|| f.clone());
             stepper.invalidate();
             match stepper.last_derivative() {
                 Some(d) => f.copy_from_slice(d),
                 None => self.rates(&mut stepper, &mut f),
+            }
+            if let Some(fp) = &f_prev {
+                self.log
+                    .cross(&self.model, t0, &y0, Some(fp), self.t, &self.y, Some(&f));
             }
             if let (Some(r), Some(f0)) = (rec.as_mut(), f0) {
                 r.cover(t0, &y0, &f0, self.t, &self.y, Some(&f));

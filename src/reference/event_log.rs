@@ -21,11 +21,17 @@ pub(crate) struct EventLog {
     pub(crate) last_event: f64,
     /// The events of the switches at the current time.
     batch: Vec<Event>,
+    /// Starts are reported at this fraction of the path (0: at the switch; see
+    /// [`crate::timeline::S0_START_FRACTION`]).
+    start_fraction: f64,
+    /// Whether each magnet's start has been reported.
+    reported: Vec<bool>,
 }
 
 impl EventLog {
-    /// The log of a chain with `joints` joints: RI contact at 0.
-    pub(crate) fn new(joints: usize) -> EventLog {
+    /// The log of a chain with `joints` joints and `magnets` magnets, starts reported at
+    /// `start_fraction` of the path: RI contact at 0.
+    pub(crate) fn new(joints: usize, magnets: usize, start_fraction: f64) -> EventLog {
         EventLog {
             events: vec![Event {
                 time: 0.0,
@@ -38,6 +44,8 @@ impl EventLog {
             max_moving: (0, 0.0),
             last_event: 0.0,
             batch: Vec::new(),
+            start_fraction,
+            reported: vec![false; magnets],
         }
     }
 
@@ -66,6 +74,10 @@ impl EventLog {
         match (unknown, prev, next) {
             (Unknown::Magnet(k), Mode::AtStart, Mode::Free) => {
                 self.moving += 1;
+                if self.start_fraction > 0.0 || self.reported[k] {
+                    return;
+                }
+                self.reported[k] = true;
                 // the magnet before it, moving, reached the point that starts it
                 let before_moves = k >= 1
                     && modes
@@ -114,6 +126,74 @@ impl EventLog {
                 }
             }
             _ => {}
+        }
+    }
+
+    /// Whether starts are reported at a fraction of the path ([`EventLog::cross`]).
+    pub(crate) fn reports_crossings(&self) -> bool {
+        self.start_fraction > 0.0
+    }
+
+    /// Reports the starts of the magnets that passed the start fraction in a step from
+    /// `(t0, y0)` to `(t1, y1)` (rates `f0`, `f1` at the ends: cubic Hermite; linear
+    /// without them), before the switches at `t1`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn cross(
+        &mut self,
+        model: &Model,
+        t0: f64,
+        y0: &[f64],
+        f0: Option<&[f64]>,
+        t1: f64,
+        y1: &[f64],
+        f1: Option<&[f64]>,
+    ) {
+        let x = self.start_fraction;
+        if x <= 0.0 {
+            return;
+        }
+        let mut found = Vec::new();
+        for k in 0..self.reported.len() {
+            let v = model.magnet_var(k);
+            if self.reported[k] || y1[v] < x {
+                continue;
+            }
+            self.reported[k] = true;
+            let at = |t: f64| match (f0, f1) {
+                (Some(a), Some(b)) => {
+                    crate::timeline::hermite(t0, t1, (y0[v], a[v]), (y1[v], b[v]), t)
+                }
+                _ => y0[v] + (y1[v] - y0[v]) * (t - t0) / (t1 - t0).max(f64::MIN_POSITIVE),
+            };
+            let (mut lo, mut hi) = (t0, t1);
+            if y0[v] < x {
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if at(mid) >= x {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+            }
+            found.push((hi, k));
+        }
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for (t, k) in found {
+            let before_moved = k >= 1 && self.reported[k - 1];
+            if before_moved {
+                self.events.push(Event {
+                    time: t,
+                    index: (k - 1) as u32,
+                    kind: EventKind::TriggerReached,
+                });
+            }
+            self.events.push(Event {
+                time: t,
+                index: k as u32,
+                kind: EventKind::MagnetStarts,
+            });
+            self.last_event = self.last_event.max(t);
         }
     }
 

@@ -182,7 +182,11 @@ pub(crate) fn run_inertial(
     let n = model.len();
     let c = Coefficients::new(&model, &inertia);
     let joints = model.geometry.tiles().saturating_sub(1);
-    let mut log = EventLog::new(joints);
+    let mut log = EventLog::new(
+        joints,
+        model.geometry.magnets(),
+        crate::timeline::start_fraction(&model.geometry),
+    );
     let mut stats = StepStats::default();
     let mut modes = vec![Mode::AtStart; n];
     let mut z = vec![0.0; 2 * n];
@@ -209,9 +213,11 @@ pub(crate) fn run_inertial(
     let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
     let mut rec = match opts.record {
         Recording::Off => None,
-        Recording::Grid { max_states } => {
-            Some(Recorder::new(max_states, scale * 1e-2, &positions(&z)))
-        }
+        Recording::Grid { max_states } => Some(Recorder::new(
+            max_states,
+            move_time.min(drag_time) * 1e-2,
+            &positions(&z),
+        )),
     };
     let mut f = vec![0.0; 2 * n];
     release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
@@ -305,6 +311,19 @@ pub(crate) fn run_inertial(
         };
         let (t0, z0) = (t, std::mem::replace(&mut z, att.y));
         t += h;
+        if log.reports_crossings() {
+            // starts at a fraction of the path: positions and velocities are the step's
+            // Hermite data
+            log.cross(
+                &model,
+                t0,
+                &positions(&z0),
+                Some(&velocities(&z0)),
+                t,
+                &positions(&z),
+                Some(&velocities(&z)),
+            );
+        }
         // walls: bounce or stay
         let y_now = positions(&z);
         model.forces(&y_now, &mut work);

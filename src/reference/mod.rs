@@ -34,9 +34,11 @@ mod banded;
 mod driver;
 mod dynamics;
 mod event_log;
+pub mod experiments;
 mod inertial;
 mod integrators;
 mod locate;
+mod model_options;
 mod options;
 mod pictures;
 mod recorder;
@@ -48,6 +50,8 @@ mod verdict;
 
 pub use driver::run_reference;
 pub use dynamics::{Model, ModelError, ModelOptions, BALANCE_TOLERANCE};
+// the unknowns' modes, for the event engine's local solves (which switch them as here)
+pub(crate) use dynamics::Mode;
 pub use inertial::Dynamics;
 pub use integrators::{Method, StepStats};
 pub use options::{Recording, ReferenceError, ReferenceOptions};

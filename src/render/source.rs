@@ -73,8 +73,8 @@ impl RunSource for Timeline {
         match self.start_of(k) {
             None => Track::constant(0.0),
             Some(s) => {
-                let m = self.motion(k);
-                Track::sample(s, m.duration(), TRAVEL_TOLERANCE, |dt| m.distance_at(dt))
+                let a = self.arrival_of(k).unwrap_or(s).max(s);
+                Track::sample(s, a - s, TRAVEL_TOLERANCE, |dt| self.travel_at(k, s + dt))
             }
         }
     }

@@ -74,6 +74,23 @@ impl serde::Serialize for Event {
     }
 }
 
+/// Where the chain has `s = 0` every interior magnet rests exactly balanced and is driven off
+/// its rest point by a rounding-sized force, so the moment its drive first turns positive
+/// is no physical start (a 10 nm change of `s` moves it by several percent of the run). Both
+/// simulations then report a magnet's start when it has travelled this fraction of its path:
+/// 0.01.
+pub const S0_START_FRACTION: f64 = 0.01;
+
+/// The start fraction of a chain: [`S0_START_FRACTION`] when any of its tiles has `s = 0`,
+/// else 0 (a start is reported when the magnet is first driven off its rest point).
+pub fn start_fraction(geometry: &crate::timeline::Geometry) -> f64 {
+    if (0..geometry.tiles()).any(|t| geometry.design(t).s == 0.0) {
+        S0_START_FRACTION
+    } else {
+        0.0
+    }
+}
+
 /// The joint whose closing a magnet takes part in: odd magnet `2j + 1` and even magnet
 /// `2j + 2` close joint `j` (magnet 0 belongs to the RI contact: joint 0).
 pub fn joint_of_magnet(k: usize) -> usize {

@@ -17,7 +17,7 @@ use foldchain::reference::{
     run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions, ReferenceRun,
 };
 use foldchain::render::RunSource;
-use foldchain::{simulate, Chain};
+use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
 use foldchain_cli::margins_file::run_margins;
 use foldchain_cli::report::print_error;
@@ -80,12 +80,19 @@ struct Args {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
-    /// Speed law: overdamped (seconds) or unit (1 mm/s, the transition diagram's timeline).
+    /// How the engine times its events: local (solves of the reference's overdamped physics,
+    /// one joint at a time from the RI end: the reference's events within 0.5% of the run)
+    /// or kinematic (the baseline: a start rule and a closed-form speed law, --speed and
+    /// --start-rule).
+    #[arg(long, default_value = "local", value_parser = ["local", "kinematic"])]
+    engine: String,
+    /// The kinematic baseline's speed law: overdamped (seconds) or unit (1 mm/s, the
+    /// transition diagram's timeline; implies --engine kinematic).
     #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
     speed: String,
-    /// When a magnet starts: distance (the thesis' inequalities, nearest neighbours) or
-    /// force (the pair forces of every magnet within 3 in chain index, as the reference
-    /// integrator weighs them; about 40 us per tile).
+    /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
+    /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
+    /// reference integrator weighs them; about 40 us per tile).
     #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
     start_rule: String,
     /// The pair law of the reference and of the force start rule (and the energy plot):
@@ -99,6 +106,11 @@ struct Args {
     /// negligible mass, the one the event engine's speed law and fold-validate use).
     #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
     dynamics: String,
+    /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
+    /// apart in chain index (a ring's first and last tiles); default: none, pairs up to 3
+    /// apart in chain index only.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    distance_cutoff: Option<f64>,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
@@ -108,8 +120,9 @@ struct Args {
     /// Run the force-integrated reference (Dormand-Prince 5(4), tolerance 1e-8) instead of the
     /// event engine: writes the same files (step frames, final.svg, transition.svg,
     /// energy.svg, index.html, timeline.json, summary.json) drawn from the reference's
-    /// recorded states (default out/<name>-reference/; the reference has no collision
-    /// check). For chains up to 2,000 tiles.
+    /// recorded states (default out/<name>-reference/), its fold schedule (the recorded
+    /// states' joint angles) checked for collisions by the engine's checker, with
+    /// first_collision and exit code as the engine's. For chains up to 2,000 tiles.
     #[arg(long, conflicts_with = "compare")]
     reference: bool,
     /// Run both the event engine and the reference on the chain: both runs' files in
@@ -358,22 +371,33 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_record(Recording::Grid {
                 max_states: state_budget(chain.len()),
             })
-            .with_model(
-                ModelOptions::default()
+            .with_model(ModelOptions {
+                distance_cutoff: args.distance_cutoff,
+                ..ModelOptions::default()
                     .with_force_law(force_law)
-                    .with_dynamics(dynamics),
-            );
+                    .with_dynamics(dynamics)
+            });
         Ok(run_reference(&chain, &designs, &ro)?)
     };
-    let engine = EngineOptions::default()
-        .with_speed(speed)
-        .with_force_law(force_law)
-        .with_start_rule(match args.start_rule.as_str() {
-            "force" => StartRule::Force {
-                cutoff: foldchain::physics::DEFAULT_CUTOFF,
-            },
-            _ => StartRule::Distance,
-        });
+    let engine = if args.engine == "kinematic" || speed == SpeedLaw::Unit {
+        EngineOptions::default()
+            .with_speed(speed)
+            .with_force_law(force_law)
+            .with_start_rule(match args.start_rule.as_str() {
+                "force" => StartRule::Force {
+                    cutoff: foldchain::physics::DEFAULT_CUTOFF,
+                },
+                _ => StartRule::Distance,
+            })
+    } else {
+        // the local solves follow the overdamped model (the inertial one is not built in
+        // them yet): the drag is --drag's
+        EngineOptions::default().with_model(
+            ModelOptions::default()
+                .with_force_law(force_law)
+                .with_drag(args.drag),
+        )
+    };
     let bar = (chain.len() > 2000).then(|| {
         let b = indicatif::ProgressBar::new(1);
         b.set_style(
@@ -395,7 +419,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let result = match mode {
         Mode::Reference => {
             let run = reference()?;
-            let summary = run.to_summary();
+            let summary = check_reference(&run, &CheckOptions::default())?;
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
             say_margins(&out_dir);
@@ -410,7 +434,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
         }
         Mode::Compare => {
             let run = reference()?;
-            let rs = run.to_summary();
+            let rs = check_reference(&run, &CheckOptions::default())?;
             let (tl, es) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
             let rfiles = RunFilesOptions {
                 name: format!("{name} (reference)"),

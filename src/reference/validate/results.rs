@@ -51,11 +51,13 @@ pub struct SceneReport {
     pub engine_duration_s: f64,
     /// Reference wall time, s.
     pub reference_wall_s: f64,
-    /// The factor that best maps the engine's (force rule) event times onto the
-    /// reference's, and the time error left after it (see [`super::EventComparison`]).
-    pub engine_time_factor: f64,
-    /// The engine's time error after that factor.
-    pub engine_error_time_scaled: f64,
+    /// The factor that best maps the kinematic baseline's (force rule, `event-force`) event
+    /// times onto the reference's, and the time error left after it (see
+    /// [`super::EventComparison`]). Reported for the baseline only: the engine (`event`)
+    /// has no fitted factor.
+    pub baseline_time_factor: f64,
+    /// The kinematic baseline's time error after that factor.
+    pub baseline_error_time_scaled: f64,
     /// Largest drive change the cutoff makes at rest and at the end, over the bonded rest
     /// force.
     pub cutoff_error: f64,
@@ -115,7 +117,7 @@ impl Validation {
         s.push('\n');
         for sc in &self.scenes {
             s.push_str(&format!(
-                "{}: {} tiles; reference {} in {:.4} s ({:.2} s wall), engine {} in {:.4} s; engine times x{:.3} best fit the reference's, leaving err_time {:.3e}; cutoff error {:.2e} of the bonded rest force\n",
+                "{}: {} tiles; reference {} in {:.4} s ({:.2} s wall), engine {} in {:.4} s; the kinematic baseline's (event-force) times x{:.3} best fit the reference's, leaving err_time {:.3e}; cutoff error {:.2e} of the bonded rest force\n",
                 sc.scene,
                 sc.tiles,
                 sc.reference_outcome,
@@ -123,8 +125,8 @@ impl Validation {
                 sc.reference_wall_s,
                 sc.engine_outcome,
                 sc.engine_duration_s,
-                sc.engine_time_factor,
-                sc.engine_error_time_scaled,
+                sc.baseline_time_factor,
+                sc.baseline_error_time_scaled,
                 sc.cutoff_error
             ));
             if let Some(r) = &sc.reference_reason {

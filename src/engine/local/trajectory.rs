@@ -1,0 +1,205 @@
+//! A solved unknown over time: the states of a local solve's accepted steps, joined by cubic
+//! Hermite pieces (value and rate at both ends of every step), so that a later solve can ask
+//! where an upstream magnet is at any instant (the dense output).
+//!
+//! A [`Shape`] is stored once and placed in time by a [`Track`] (its offset): a run of tiles
+//! that repeat the same local solution shares one shape, shifted.
+
+pub(crate) use crate::timeline::hermite;
+
+/// One unknown over time, from its own time origin (`t[0] = 0`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Shape {
+    /// Node times, s, increasing from 0.
+    pub(crate) t: Vec<f64>,
+    /// Values at the nodes.
+    pub(crate) y: Vec<f64>,
+    /// Rates at the nodes, per s.
+    pub(crate) dy: Vec<f64>,
+}
+
+impl Shape {
+    /// The value at `t` (before the first node: the first value; after the last: the last).
+    pub(crate) fn at(&self, t: f64) -> f64 {
+        let n = self.t.len();
+        if n == 0 {
+            return 0.0;
+        }
+        if t <= self.t[0] {
+            return self.y[0];
+        }
+        if t >= self.t[n - 1] {
+            return self.y[n - 1];
+        }
+        let i = self.t.partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
+        hermite(
+            self.t[i],
+            self.t[i + 1],
+            (self.y[i], self.dy[i]),
+            (self.y[i + 1], self.dy[i + 1]),
+            t,
+        )
+    }
+
+    /// The time of the last node (the shape is constant after it).
+    pub(crate) fn end(&self) -> f64 {
+        self.t.last().copied().unwrap_or(0.0)
+    }
+
+    /// The first node after `t`, if any.
+    pub(crate) fn next_node_after(&self, t: f64) -> Option<f64> {
+        let i = self.t.partition_point(|&x| x <= t);
+        self.t.get(i).copied()
+    }
+
+    /// Whether `other`, placed `lag` later than this shape, agrees with it within `tol` at
+    /// every node of either, and ends within `dt` of it.
+    pub(crate) fn close_shifted(&self, other: &Shape, lag: f64, tol: f64, dt: f64) -> bool {
+        if (self.end() - (lag + other.end())).abs() > dt {
+            return false;
+        }
+        self.t
+            .iter()
+            .all(|&t| (self.at(t) - other.at(t - lag)).abs() <= tol)
+            && other
+                .t
+                .iter()
+                .all(|&t| (self.at(t + lag) - other.at(t)).abs() <= tol)
+    }
+}
+
+/// Id of the shape that is 0 at all times (a magnet at rest, a straight joint).
+pub(crate) const REST: u32 = 0;
+
+/// A shape placed in time: the unknown's value at `t` is `shape.at(t - offset)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Track {
+    /// The shape's id in [`Shapes`].
+    pub(crate) shape: u32,
+    /// When the shape's time origin falls, s.
+    pub(crate) offset: f64,
+}
+
+impl Track {
+    /// At rest for ever.
+    pub(crate) const REST: Track = Track {
+        shape: REST,
+        offset: 0.0,
+    };
+}
+
+/// Every shape of a run, by id ([`REST`] first).
+#[derive(Clone, Debug)]
+pub(crate) struct Shapes {
+    list: Vec<Shape>,
+}
+
+impl Default for Shapes {
+    fn default() -> Shapes {
+        Shapes {
+            list: vec![Shape {
+                t: vec![0.0],
+                y: vec![0.0],
+                dy: vec![0.0],
+            }],
+        }
+    }
+}
+
+impl Shapes {
+    /// Stores `shape`; its id.
+    pub(crate) fn add(&mut self, shape: Shape) -> u32 {
+        self.list.push(shape);
+        (self.list.len() - 1) as u32
+    }
+
+    /// The shape of id `id`.
+    pub(crate) fn get(&self, id: u32) -> &Shape {
+        &self.list[id as usize]
+    }
+
+    /// The value of `track` at `t`.
+    pub(crate) fn value(&self, track: Track, t: f64) -> f64 {
+        if track.shape == REST {
+            return 0.0;
+        }
+        self.get(track.shape).at(t - track.offset)
+    }
+
+    /// When `track` starts changing (`None` for the rest track).
+    pub(crate) fn first_move(&self, track: Track) -> Option<f64> {
+        (track.shape != REST).then_some(track.offset)
+    }
+
+    /// When `track` stops changing (`None` for the rest track).
+    pub(crate) fn last_move(&self, track: Track) -> Option<f64> {
+        (track.shape != REST).then(|| track.offset + self.get(track.shape).end())
+    }
+
+    /// When `track` first reaches `x` (bisection on its interpolant), if it does.
+    pub(crate) fn crossing(&self, track: Track, x: f64) -> Option<f64> {
+        if track.shape == REST {
+            return None;
+        }
+        let sh = self.get(track.shape);
+        let i = sh.y.iter().position(|&y| y >= x)?;
+        if i == 0 {
+            return Some(track.offset + sh.t[0]);
+        }
+        let (mut lo, mut hi) = (sh.t[i - 1], sh.t[i]);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if sh.at(mid) >= x {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(track.offset + hi)
+    }
+
+    /// The first node of `track` after `t`, if any.
+    pub(crate) fn next_node(&self, track: Track, t: f64) -> Option<f64> {
+        if track.shape == REST {
+            return None;
+        }
+        self.get(track.shape)
+            .next_node_after(t - track.offset)
+            .map(|x| x + track.offset)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_reproduces_a_cubic() {
+        let f = |t: f64| 1.0 + 2.0 * t - t * t + 0.5 * t * t * t;
+        let df = |t: f64| 2.0 - 2.0 * t + 1.5 * t * t;
+        let s = Shape {
+            t: vec![0.0, 1.0, 3.0],
+            y: vec![f(0.0), f(1.0), f(3.0)],
+            dy: vec![df(0.0), df(1.0), df(3.0)],
+        };
+        for t in [0.2, 0.7, 1.5, 2.9] {
+            assert!((s.at(t) - f(t)).abs() < 1e-12, "{t}");
+        }
+        assert_eq!(s.at(-1.0), f(0.0));
+        assert_eq!(s.at(5.0), f(3.0));
+        assert_eq!(s.next_node_after(1.0), Some(3.0));
+        assert!(s.close_shifted(&s.clone(), 0.0, 0.0, 0.0));
+        let mut shapes = Shapes::default();
+        let id = shapes.add(s);
+        let tr = Track {
+            shape: id,
+            offset: 10.0,
+        };
+        assert!((shapes.value(tr, 10.7) - f(0.7)).abs() < 1e-12);
+        assert_eq!(shapes.value(Track::REST, 3.0), 0.0);
+        assert_eq!(shapes.last_move(tr), Some(13.0));
+    }
+}

@@ -1,0 +1,235 @@
+//! The forces on one unit of the local solve: a joint's two magnets (and its angle if it
+//! folds), with every magnet within the cutoff placed where its track has it. The pair law,
+//! the polarity, the cutoff's neighbour sets, the drive along a path and the torque about a
+//! hinge are [`crate::physics`]'s, asked exactly as the reference ([`crate::reference`])
+//! asks them, but only for the unit's few unknowns: the cost of a drive does not grow with
+//! the chain.
+//!
+//! Unit `j` (`-1 <= j < tiles`) is joint `j`'s pair: magnets `A = 2j + 1` and `B = 2j + 2`
+//! where they exist (unit `-1` is magnet 0, pulled by the RI; the last unit is the chain's
+//! last magnet) and the joint's fold when it folds. Positions are taken in the frame of the
+//! first tile the window reaches (tile 0's, where the RI is, for the first units); drives
+//! and torques do not depend on the frame.
+
+use std::f64::consts::FRAC_PI_2;
+
+use kurbo::{Point, Vec2};
+
+use crate::engine::local::trajectory::{Shapes, Track};
+use crate::kinematics::joint_transform;
+use crate::physics::{along_path, neighbours, torque_about, upstream, Pole};
+use crate::reference::Model;
+use crate::{Octagon, Pose};
+
+/// One unknown of a unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Var {
+    /// Magnet `k`'s fraction of path travelled.
+    Magnet(usize),
+    /// Joint `j`'s fraction of fold made.
+    Joint(usize),
+}
+
+/// Where every unknown outside the unit is: its track.
+#[derive(Clone, Copy)]
+pub(crate) struct Inputs<'a> {
+    /// The shapes the tracks point into.
+    pub(crate) shapes: &'a Shapes,
+    /// Each magnet's track.
+    pub(crate) magnets: &'a [Track],
+    /// Each joint's track (rigid joints at rest).
+    pub(crate) joints: &'a [Track],
+}
+
+/// Scratch space of a drive evaluation.
+#[derive(Default)]
+pub(crate) struct Scratch {
+    poses: Vec<Pose>,
+    positions: Vec<Point>,
+}
+
+/// One unit's window on the chain.
+pub(crate) struct Window<'a> {
+    /// The chain's model (the reference's: geometry, rates, thresholds).
+    pub(crate) model: &'a Model,
+    /// The unit's joint (`-1`: magnet 0 alone).
+    pub(crate) j: isize,
+    /// The unit's unknowns: its magnets in chain order, then its joint.
+    pub(crate) vars: Vec<Var>,
+    /// First and last magnet within reach.
+    pub(crate) lo: usize,
+    /// Last magnet within reach.
+    pub(crate) hi: usize,
+    cutoff: usize,
+    hinge_left: Point,
+    hinge_right: Point,
+}
+
+impl<'a> Window<'a> {
+    /// The window of unit `j` of `model` with pair cutoff `cutoff`.
+    pub(crate) fn new(model: &'a Model, j: isize, cutoff: usize) -> Window<'a> {
+        let n = model.geometry.magnets();
+        let mut vars = Vec::with_capacity(3);
+        for k in [2 * j + 1, 2 * j + 2] {
+            if k >= 0 && (k as usize) < n {
+                vars.push(Var::Magnet(k as usize));
+            }
+        }
+        if j >= 0
+            && (j as usize) + 1 < model.geometry.tiles()
+            && model.joint_var(j as usize).is_some()
+        {
+            vars.push(Var::Joint(j as usize));
+        }
+        let (first, last) = match (
+            vars.first(),
+            vars.iter().rev().find(|v| matches!(v, Var::Magnet(_))),
+        ) {
+            (Some(Var::Magnet(a)), Some(Var::Magnet(b))) => (*a, *b),
+            _ => (0, 0),
+        };
+        let oct = Octagon::new(model.geometry.w);
+        Window {
+            model,
+            j,
+            lo: first.saturating_sub(cutoff),
+            hi: (last + cutoff).min(n - 1),
+            vars,
+            cutoff,
+            hinge_left: oct.hinge(true).into(),
+            hinge_right: oct.hinge(false).into(),
+        }
+    }
+
+    /// The reference's state index of unknown `v`.
+    pub(crate) fn global(&self, v: usize) -> usize {
+        match self.vars[v] {
+            Var::Magnet(k) => self.model.magnet_var(k),
+            // a unit's joint is there only if it folds
+            Var::Joint(j) => self.model.joint_var(j).unwrap_or(usize::MAX),
+        }
+    }
+
+    /// The window's tiles.
+    fn tiles(&self) -> (usize, usize) {
+        (self.lo / 2, self.hi / 2)
+    }
+
+    /// Every track the unit reads (magnets and joints in the window, its own excluded).
+    pub(crate) fn input_tracks(&self, inputs: &Inputs) -> Vec<Track> {
+        let mut out = Vec::new();
+        for k in self.lo..=self.hi {
+            if !self.vars.contains(&Var::Magnet(k)) {
+                out.push(inputs.magnets[k]);
+            }
+        }
+        let (t0, t1) = self.tiles();
+        for jj in t0..t1 {
+            if !self.vars.contains(&Var::Joint(jj)) {
+                out.push(inputs.joints[jj]);
+            }
+        }
+        out
+    }
+
+    fn value(&self, var: Var, y: &[f64], t: f64, inputs: &Inputs) -> f64 {
+        if let Some(i) = self.vars.iter().position(|&v| v == var) {
+            return y[i];
+        }
+        match var {
+            Var::Magnet(k) => inputs.shapes.value(inputs.magnets[k], t),
+            Var::Joint(j) => inputs.shapes.value(inputs.joints[j], t),
+        }
+    }
+
+    /// The drive of each unknown (N along a magnet's path, N m towards the fold) at time `t`
+    /// with the unit's unknowns at `y`.
+    pub(crate) fn drives(
+        &self,
+        t: f64,
+        y: &[f64],
+        inputs: &Inputs,
+        s: &mut Scratch,
+        out: &mut [f64],
+    ) {
+        let m = self.model;
+        let g = &m.geometry;
+        let (t0, t1) = self.tiles();
+        s.poses.clear();
+        let mut pose = Pose::IDENTITY;
+        for tile in t0..=t1 {
+            s.poses.push(pose);
+            if tile < t1 {
+                let sign = m.joint_sign(tile);
+                let angle = if sign != 0.0 {
+                    sign * self.value(Var::Joint(tile), y, t, inputs).clamp(0.0, 1.0) * FRAC_PI_2
+                } else {
+                    0.0
+                };
+                pose = pose.then(&joint_transform(angle, g.w));
+            }
+        }
+        s.positions.clear();
+        for k in self.lo..=self.hi {
+            let len = m.path_length(k);
+            let x = self.value(Var::Magnet(k), y, t, inputs);
+            let p = g.path(k).point_at((x * len).clamp(0.0, len));
+            s.positions
+                .push(s.poses[k / 2 - t0].transform_point(p).into());
+        }
+        let n = g.magnets();
+        let law = m.options().force_law;
+        let ri = g.ri();
+        let pole = |p: Pole, s: &Scratch| -> (Point, f64) {
+            match p {
+                // the RI is fixed in tile 0's frame, which is the window's when it is in reach
+                Pole::Ri => (ri.position, ri.moment),
+                Pole::Magnet(a) => (s.positions[a - self.lo], g.design(a / 2).moment()),
+            }
+        };
+        for (i, var) in self.vars.iter().enumerate() {
+            out[i] = match *var {
+                Var::Magnet(k) => {
+                    let on = s.positions[k - self.lo];
+                    let mk = g.design(k / 2).moment();
+                    let mut f = Vec2::ZERO;
+                    for p in neighbours(k, self.cutoff, n) {
+                        let (pa, ma) = pole(p, s);
+                        f += law.force(pa, on, ma, mk, p.attracts(Pole::Magnet(k)));
+                    }
+                    let len = m.path_length(k);
+                    let x = y[i];
+                    let tan = g.path(k).tangent_at((x * len).clamp(0.0, len));
+                    let tan = Vec2::from(s.poses[k / 2 - t0].transform_vector(tan));
+                    along_path(f, tan)
+                }
+                Var::Joint(j) => {
+                    let sign = m.joint_sign(j);
+                    let h = if sign >= 0.0 {
+                        self.hinge_left
+                    } else {
+                        self.hinge_right
+                    };
+                    let hinge: Point = s.poses[j - t0].transform_point(h.into()).into();
+                    let mut tau = 0.0;
+                    let last = (2 * j + 1 + self.cutoff).min(n - 1);
+                    for b in 2 * j + 2..=last {
+                        let on = s.positions[b - self.lo];
+                        let mb = g.design(b / 2).moment();
+                        for a in upstream(b, self.cutoff) {
+                            if let Pole::Magnet(ai) = a {
+                                if ai > 2 * j + 1 {
+                                    continue;
+                                }
+                            }
+                            let (pa, ma) = pole(a, s);
+                            let f = law.force(pa, on, ma, mb, a.attracts(Pole::Magnet(b)));
+                            tau += sign * torque_about(hinge, on, f);
+                        }
+                    }
+                    tau
+                }
+            };
+        }
+    }
+}
