@@ -223,7 +223,16 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
     for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
         let out = d.join(rule);
         let o = bin()
-            .args(["SL", "--start-rule", rule, "--frames", "2", "--design"])
+            .args([
+                "SL",
+                "--engine",
+                "kinematic",
+                "--start-rule",
+                rule,
+                "--frames",
+                "2",
+                "--design",
+            ])
             .arg(&design)
             .arg("--out")
             .arg(&out)
@@ -242,7 +251,16 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
     }
     let out = d.join("wall");
     let o = bin()
-        .args(["SL", "--start-rule", "force", "--frames", "2", "--out"])
+        .args([
+            "SL",
+            "--engine",
+            "kinematic",
+            "--start-rule",
+            "force",
+            "--frames",
+            "2",
+            "--out",
+        ])
         .arg(&out)
         .output()
         .unwrap();
