@@ -45,7 +45,7 @@ fn json_rows_for_one_scene() {
     );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let rows = v["rows"].as_array().unwrap();
-    // the engine with both start rules, then the quick ladders
+    // the engine, the kinematic baseline with both start rules, then the quick ladders
     let ladder: Vec<(String, Option<f64>)> = rows
         .iter()
         .map(|r| {
@@ -57,6 +57,7 @@ fn json_rows_for_one_scene() {
         .collect();
     let want: Vec<(String, Option<f64>)> = [
         ("event", None),
+        ("event-force", None),
         ("event-dist", None),
         ("dopri5", Some(1e-3)),
         ("dopri5", Some(1e-4)),
@@ -80,7 +81,17 @@ fn json_rows_for_one_scene() {
     let outcome = |r: &serde_json::Value| r["outcome"].as_str().unwrap().to_string();
     assert_eq!(outcome(&rows[0]), "completed");
     assert_eq!(outcome(&rows[1]), "completed");
-    for r in &rows[2..] {
+    assert_eq!(outcome(&rows[2]), "completed");
+    // the engine: the reference's events, in order, within 0.5% of the run (issue 12)
+    assert_eq!(rows[0]["missing"].as_u64(), Some(0), "{}", rows[0]);
+    assert_eq!(rows[0]["inversions"].as_u64(), Some(0), "{}", rows[0]);
+    assert_eq!(rows[0]["interleavings"].as_u64(), Some(0), "{}", rows[0]);
+    assert!(
+        rows[0]["error_time"].as_f64().unwrap() <= 0.005,
+        "{}",
+        rows[0]
+    );
+    for r in &rows[3..] {
         assert_eq!(outcome(r), "completed", "{r}");
         // the same events as the reference, in the same order, their times within a
         // hundred times the tolerance of the reference's: magnet 3 passes close to a
@@ -98,7 +109,7 @@ fn json_rows_for_one_scene() {
         assert!(r["error_pose"].as_f64().unwrap() < 1e-2, "{r}");
     }
     // tighter tolerances: smaller errors, more steps
-    for w in rows[2..6].windows(2).chain(rows[6..].windows(2)) {
+    for w in rows[3..7].windows(2).chain(rows[7..].windows(2)) {
         assert!(
             w[1]["error_time"].as_f64() < w[0]["error_time"].as_f64(),
             "{w:?}"
