@@ -143,3 +143,77 @@ fn inertia_does_not_rescue_the_old_final_point() {
     .unwrap_err();
     assert!(e.to_string().contains("restitution"), "{e}");
 }
+
+#[test]
+fn the_old_stall_is_a_balance_that_misses_by_a_fraction_of_a_percent() {
+    // README, "The end-of-chain stall": with c = 2.8 mm, SL (overdamped) stops with magnet 3
+    // mid-path; magnet 4, at rest, is pulled on by magnet 3 and held back by its partner 5,
+    // and the two nearly cancel (net about -0.07 mN against a 9.4 mN pull)
+    let old = Design {
+        c: Some(2.8),
+        ..Design::thesis()
+    };
+    let r = run("SL", old, ModelOptions::default());
+    assert!(matches!(r.outcome, Outcome::Stalled { joint: 1, .. }));
+    let m = &r.model;
+    let y = &r.final_state;
+    let p: Vec<kurbo::Point> = m.positions(y).into_iter().map(kurbo::Point::from).collect();
+    let poses = m.poses(y);
+    let t = m.geometry.path(4).tangent_at(0.0);
+    let t = kurbo::Vec2::from(poses[2].transform_vector(t));
+    let moment = old.moment();
+    let law = ForceLaw::PointDipole;
+    let drive = |from: usize| {
+        let attract = (from % 2) != 0;
+        law.force(p[from], p[4], moment, moment, attract).dot(t) * 1e3
+    };
+    let (d3, d5, d2, d1) = (drive(3), drive(5), drive(2), drive(1));
+    assert!((d3 - 9.374).abs() < 0.01, "{d3}");
+    assert!((d5 + 9.327).abs() < 0.01, "{d5}");
+    assert!((d2 + 0.267).abs() < 0.01, "{d2}");
+    assert!((d1 - 0.148).abs() < 0.01, "{d1}");
+    let net = d3 + d5 + d2 + d1;
+    assert!(net < 0.0 && net > -0.1, "{net}");
+    assert!((p[3].distance(p[4]) - 14.29).abs() < 0.01);
+}
+
+#[test]
+fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
+    // the known limit of the cutoff (pairs at most 3 apart in chain index): in the LLL ring
+    // the first and last tiles touch, and the pairs left out change a magnet's drive along its
+    // path by 31% of the bonded rest force at the end (measured; under 2% at rest). The
+    // distance cutoff (90 mm, three tile widths) keeps them: what it leaves out is small
+    let r = run("LLL", Design::thesis(), inertial());
+    assert_eq!(r.outcome, Outcome::Completed);
+    let e = r.model.cutoff_error(&r.final_state);
+    assert!(e > 0.2 && e < 0.5, "{e}");
+    let e0 = r.model.cutoff_error(&vec![0.0; r.model.len()]);
+    assert!(e0 < 0.02, "{e0}");
+    let d = run(
+        "LLL",
+        Design::thesis(),
+        inertial().with_distance_cutoff(90.0),
+    );
+    assert_eq!(d.outcome, Outcome::Completed);
+    assert_eq!(d.folded_joints(), r.folded_joints());
+    let ed = d.model.cutoff_error(&d.final_state);
+    assert!(ed < 1e-3, "{ed}");
+    // a straight chain: the same events, times within a fraction of a percent
+    let (a, b) = (
+        run("S*9", Design::thesis(), inertial()),
+        run(
+            "S*9",
+            Design::thesis(),
+            inertial().with_distance_cutoff(90.0),
+        ),
+    );
+    assert_eq!(a.events.len(), b.events.len());
+    let rel = (a.duration() - b.duration()).abs() / a.duration();
+    assert!(rel < 0.01, "{rel}");
+    let bad = run_reference(
+        &Chain::parse("SS").unwrap(),
+        &TileDesigns::default(),
+        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(-1.0)),
+    );
+    assert!(bad.is_err());
+}

@@ -4,11 +4,13 @@
 //! and `fold-validate` (in `src/bin/`), and the pieces they share: writing outputs without
 //! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
 //! into its output directory ([`run_files`]), reading chains and guarding input files
-//! ([`inputs`]), progress on stderr ([`progress`]), a run's margins ([`margins_file`]) and error messages ([`report`]). The libraries `foldchain` and
+//! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
+//! a run's margins ([`margins_file`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all five tools with `cargo install --path cli` from the repository root.
 
+pub mod experiments;
 pub mod inputs;
 pub mod margins_file;
 pub mod output;

@@ -100,3 +100,47 @@ fn fold_validate_takes_the_force_law() {
     assert_eq!(bad.status.code(), Some(2));
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn experiments_agree_with_the_thesis() {
+    let out = tmp("experiments");
+    let o = Command::new(env!("CARGO_BIN_EXE_fold-validate"))
+        .args(["--experiments", "--json", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let v = summary(&o.stdout);
+    let rows = v.as_array().unwrap();
+    // five experiments, each with two laws and two dynamics
+    assert_eq!(rows.len(), 20);
+    for r in rows {
+        assert_eq!(r["agrees"], true, "{r}");
+        assert_eq!(r["outcome"], "completed", "{r}");
+        assert_eq!(r["folds"], r["observed_folds"], "{r}");
+    }
+    // inertial runs take a fraction of a second, overdamped ones seconds
+    let dur = |dynamics: &str| {
+        rows.iter()
+            .filter(|r| r["dynamics"] == dynamics)
+            .map(|r| r["duration_s"].as_f64().unwrap())
+            .fold(0.0, f64::max)
+    };
+    assert!(dur("inertial") < 1.0 && dur("overdamped") > 1.0);
+    // the energy pictures of the four three-tile scenes: two panels, six pair curves and
+    // the total
+    for name in ["7-3-ss", "7-3-sl", "7-3-ls", "7-3-ll"] {
+        let svg = std::fs::read_to_string(out.join(format!("experiment-{name}.svg"))).unwrap();
+        let doc = usvg::roxmltree::Document::parse(&svg).unwrap();
+        let lines = doc
+            .descendants()
+            .filter(|n| n.tag_name().name() == "polyline")
+            .count();
+        assert_eq!(lines, 7, "{name}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}

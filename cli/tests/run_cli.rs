@@ -214,8 +214,8 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
 
 #[test]
 fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds() {
-    // the kinematic baseline's start rules, with the thesis' layout c = 2.8 mm at the curved
-    // final point (a 1.3 mm wall); at the default 0.8 mm wall both rules fold it
+    // with the thesis' layout c = 2.8 mm at the curved final point (a 1.3 mm wall); at the
+    // default 0.8 mm wall both rules fold it
     let d = tmp("start-rule");
     std::fs::create_dir_all(&d).unwrap();
     let design = d.join("c28.json");
@@ -223,8 +223,16 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
     for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
         let out = d.join(rule);
         let o = bin()
-            .args(["SL", "--engine", "kinematic", "--start-rule", rule])
-            .args(["--frames", "2", "--design"])
+            .args([
+                "SL",
+                "--engine",
+                "kinematic",
+                "--start-rule",
+                rule,
+                "--frames",
+                "2",
+                "--design",
+            ])
             .arg(&design)
             .arg("--out")
             .arg(&out)
@@ -243,8 +251,16 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
     }
     let out = d.join("wall");
     let o = bin()
-        .args(["SL", "--engine", "kinematic", "--start-rule", "force"])
-        .args(["--frames", "2", "--out"])
+        .args([
+            "SL",
+            "--engine",
+            "kinematic",
+            "--start-rule",
+            "force",
+            "--frames",
+            "2",
+            "--out",
+        ])
         .arg(&out)
         .output()
         .unwrap();

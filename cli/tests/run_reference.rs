@@ -135,13 +135,13 @@ fn reference_writes_the_engine_files_and_pictures() {
 #[test]
 fn reference_pictures_show_where_a_stalled_chain_stopped() {
     // the fold word LL (3 tiles, one tight U-turn) with the thesis' layout c = 2.8 mm at the
-    // curved final point (a 1.3 mm wall): the kinematic baseline's distance rule folds it,
-    // the reference stalls
+    // curved final point (a 1.3 mm wall): the engine folds it, the reference stalls
     let (eng, refr) = (tmp("stall-engine"), tmp("stall-reference"));
     let design =
         std::env::temp_dir().join(format!("foldchain-run-ref-{}-c28.json", std::process::id()));
     std::fs::write(&design, r#"{"c": 2.8}"#).unwrap();
     let design = design.to_str().unwrap();
+    // (the kinematic engine: the local engine follows the reference and stalls too)
     let out = fold_run(&["LL", "--engine", "kinematic", "--design", design], &eng);
     assert_eq!(out.status.code(), Some(0));
     let out = fold_run(&["LL", "--reference", "--design", design], &refr);

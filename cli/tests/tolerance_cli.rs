@@ -107,6 +107,7 @@ fn no_tolerance_means_the_nominal_verdict() {
         .unwrap()
         .iter()
         .chain(v["nominal_margins"]["folds"].as_array().unwrap())
+        .chain(v["nominal_margins"]["holds"].as_array().unwrap())
         .all(|m| m["margin"].as_f64().unwrap() > 0.0);
     let folded = v["study"]["folded"].as_u64().unwrap();
     assert_eq!(folded, if nominal_ok { 50 } else { 0 });
@@ -159,11 +160,13 @@ fn fold_run_writes_margins() {
     assert_eq!(m["starts"].as_array().unwrap().len(), 9);
     assert_eq!(m["folds"].as_array().unwrap().len(), 2);
     let smallest = m["smallest"]["margin"].as_f64().unwrap();
+    assert_eq!(m["holds"].as_array().unwrap().len(), 10);
     let all = m["starts"]
         .as_array()
         .unwrap()
         .iter()
         .chain(m["folds"].as_array().unwrap())
+        .chain(m["holds"].as_array().unwrap())
         .map(|x| x["margin"].as_f64().unwrap())
         .fold(f64::INFINITY, f64::min);
     assert_eq!(smallest, all);

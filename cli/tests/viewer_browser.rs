@@ -16,7 +16,6 @@ use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
-use foldchain::physics::Inertia;
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions};
 use foldchain::render::RunSource;
@@ -199,9 +198,12 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     let d = tmp("poses");
     // curved paths (L and R folds), a collision and a fold angle law to follow
     let word = "LSLLSR";
+    // the library's default dynamics (overdamped) on both sides
     let o = fold_run(&[
         word,
         "--compare",
+        "--dynamics",
+        "overdamped",
         "--out",
         d.to_str().unwrap(),
         "--frames",
@@ -215,9 +217,9 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
     let tl = engine_run(word);
-    // fold-run's reference: the inertial dynamics at their defaults
+    // the reference as fold-run ran it above (--dynamics overdamped, the library's default)
     let ro = ReferenceOptions::default()
-        .with_model(ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default())))
+        .with_model(ModelOptions::default().with_dynamics(Dynamics::Overdamped))
         .with_record(Recording::Grid {
             max_states: state_budget(chain.len()),
         });

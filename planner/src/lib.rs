@@ -6,8 +6,9 @@
 //! straight tiles joined by U-turns that alternate in direction, along a direction in which
 //! the shape is monotone, or, where it splits into monotone cells, with one serpentine per
 //! cell joined by turns. Row lengths, orientation and start corner are chosen by dynamic
-//! programming to minimise the fit error, the tile size so that the chain holds about the
-//! asked number of tiles. Every plan is checked by sequential folding with the
+//! programming to minimise an area-true fit error plus a price per turn, the tile size so
+//! that the chain holds about the asked number of tiles (or is a width in mm). No plan
+//! leaves a part of the shape empty. Every plan is checked by sequential folding with the
 //! self-intersection check before it is returned.
 //!
 //! ```

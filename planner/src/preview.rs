@@ -15,6 +15,7 @@ use svg::node::element::{Circle, Group, Line, Path as SvgPath, Polygon, Rectangl
 use svg::Document;
 
 use crate::error::PlanError;
+use crate::options::Turns;
 use crate::plan::Plan;
 use crate::shape::Shape;
 
@@ -44,6 +45,17 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
     }
     let m = 0.05 * view.width().max(view.height());
     let view = view.inflate(m, m);
+    // text is sized in pixels of the 800-pixel picture, whatever the drawing's units
+    // (13 and 12 pixels, smaller in a narrow picture so that a line of about 75 characters
+    // fits its width)
+    let px = view.width().max(view.height()) / 800.0;
+    let (title_size, legend_size) = (
+        (13.0 * px).min(view.width() / 42.0),
+        (12.0 * px).min(view.width() / 40.0),
+    );
+    let header = 3.0 * 1.5 * title_size;
+    let footer = 8.0 * 1.5 * legend_size + 0.5 * m;
+    let view = Rect::new(view.x0, view.y0 - header, view.x1, view.y1 + footer);
     let scale = 800.0 / view.width().max(view.height());
     let lw = w * 0.06;
     let mut doc = Document::new()
@@ -64,6 +76,11 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
         doc = doc.add(line);
     }
     if let Some(p) = plan.poses.first() {
+        // the label: at most the text size of the legend, at least readable next to small
+        // tiles, on the side of the start that faces the middle of the picture
+        let size = (0.8 * w).min(legend_size).max(0.6 * legend_size);
+        let right = p.x < 0.5 * (view.x0 + view.x1);
+        let x = if right { p.x + 0.5 * w } else { p.x - 0.5 * w };
         doc = doc
             .add(
                 Circle::new()
@@ -72,29 +89,135 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
                     .set("r", r4(0.3 * w))
                     .set("fill", "#10a040"),
             )
-            .add(label("start (RI)", p.x + 0.4 * w, p.y - 0.6 * w, 0.8 * w).set("fill", "#10a040"));
+            .add(
+                label("start (RI)", x, p.y - 0.6 * w, size)
+                    .set("fill", "#10a040")
+                    .set("font-weight", "bold")
+                    .set("text-anchor", if right { "start" } else { "end" }),
+            );
     }
     let n = plan.poses.len();
     let step = (n / 10).max(10);
+    let number = (0.55 * w).min(legend_size);
     for i in (step..n).step_by(step) {
         let p = plan.poses[i];
         doc = doc.add(
-            label(&i.to_string(), p.x, p.y + 0.2 * w, 0.55 * w)
+            label(&i.to_string(), p.x, p.y + 0.2 * w, number)
                 .set("text-anchor", "middle")
                 .set("fill", "#000"),
         );
     }
-    let title = format!("{}: {}", plan.source, plan.summary());
-    doc = doc.add(
-        label(
-            &title,
-            view.x0 + 0.5 * m,
-            view.y0 + 0.7 * m,
-            0.6 * view.width() / 110.0,
-        )
-        .set("fill", "#333"),
-    );
+    let x0 = view.x0 + 0.5 * m;
+    // short lines: a tall drawing makes a narrow picture
+    let lines = [
+        format!(
+            "{}: {} tiles, {} {} U-turns, {} quarter turns, {} cell(s)",
+            plan.source, plan.tiles, plan.u_turns, plan.turns, plan.quarter_turns, plan.cells
+        ),
+        format!(
+            "tile {} mm, folded {:.0} x {:.0} mm",
+            round_mm(plan.tile_mm),
+            plan.extent_mm[0],
+            plan.extent_mm[1]
+        ),
+        format!(
+            "fit: {:.1}% of the shape covered (at most {:.1}%), {:.1}% of the chain outside it",
+            100.0 * plan.metrics.covered_share,
+            100.0 * row_band_share(plan),
+            100.0 * plan.metrics.outside_share
+        ),
+    ];
+    for (i, t) in lines.iter().enumerate() {
+        doc = doc.add(
+            label(
+                t,
+                x0,
+                view.y0 + (1.2 + 1.5 * i as f64) * title_size,
+                title_size,
+            )
+            .set("fill", "#333"),
+        );
+    }
+    doc = legend(doc, x0, view.y1 - footer + 0.5 * m, legend_size);
     format!("{doc}\n")
+}
+
+/// Millimetres for the title: three significant digits.
+fn round_mm(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
+    }
+}
+
+/// The share of a band of rows that octagons can cover: a tile's area `2 (sqrt2 - 1) w^2`
+/// over the row's share of the band, `w` times the row pitch (`sqrt2 w` for tight turns,
+/// `(1 + sqrt2) w` for loose): 58.6% and 34.3%.
+fn row_band_share(plan: &Plan) -> f64 {
+    let oct = 2.0 * (2f64.sqrt() - 1.0);
+    let pitch = match plan.turns {
+        Turns::Loose => 1.0 + 2f64.sqrt(),
+        _ => 2f64.sqrt(),
+    };
+    oct / pitch
+}
+
+/// The legend under the drawing, one item a line: what the colours and the line mean, and
+/// what rows of octagons can cover.
+fn legend(mut doc: Document, x0: f64, y0: f64, size: f64) -> Document {
+    let items = [
+        ("#c8c8c8", "straight tile (SS)"),
+        ("#7aa6e0", "tile next to a turn (RS, SR)"),
+        ("#e06060", "U-turn tile (RR, LL)"),
+        ("#f0a030", "other fold tiles"),
+    ];
+    let line = |i: usize| y0 + 1.5 * size * i as f64;
+    for (i, (fill, text)) in items.iter().enumerate() {
+        doc = doc
+            .add(
+                Rectangle::new()
+                    .set("x", r4(x0))
+                    .set("y", r4(line(i) - 0.8 * size))
+                    .set("width", r4(0.9 * size))
+                    .set("height", r4(0.9 * size))
+                    .set("fill", *fill)
+                    .set("stroke", "#333")
+                    .set("stroke-width", r4(0.05 * size)),
+            )
+            .add(label(text, x0 + 1.3 * size, line(i), size).set("fill", "#333"));
+    }
+    doc = doc
+        .add(
+            Line::new()
+                .set("x1", r4(x0))
+                .set("y1", r4(line(4) - 0.35 * size))
+                .set("x2", r4(x0 + 0.9 * size))
+                .set("y2", r4(line(4) - 0.35 * size))
+                .set("stroke", "#10a040")
+                .set("stroke-width", r4(0.3 * size)),
+        )
+        .add(
+            label(
+                "fold order, from the start (green) to the end (purple)",
+                x0 + 1.3 * size,
+                line(4),
+                size,
+            )
+            .set("fill", "#333"),
+        );
+    for (i, t) in [
+        "Rows of octagons sqrt2 w apart cover at most 58.6% of a band",
+        "((1 + sqrt2) w apart, loose turns: 34.3%); near that is a full plan.",
+    ]
+    .iter()
+    .enumerate()
+    {
+        doc = doc.add(label(t, x0, line(5 + i), size).set("fill", "#555"));
+    }
+    doc
 }
 
 /// A sans-serif text at `(x, y)` of size `size`.
@@ -224,6 +347,14 @@ mod tests {
             .unwrap()
             .trim();
         assert!(title.starts_with("a<b>&\"c\".svg: "), "{title}");
+        // a legend and the note on what rows of octagons can cover
+        let texts: Vec<&str> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("text"))
+            .filter_map(|n| n.text())
+            .collect();
+        assert!(texts.iter().any(|t| t.contains("U-turn tile")), "{texts:?}");
+        assert!(texts.iter().any(|t| t.contains("58.6%")), "{texts:?}");
         assert!(usvg::Tree::from_str(&out, &usvg::Options::default()).is_ok());
     }
 }

@@ -33,7 +33,7 @@ use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
-const BEAM: usize = 8;
+const BEAM: usize = 24;
 /// Centres closer than this (tile widths) belong to overlapping tiles: every face of the
 /// octagon is 1/2 from its centre, so two tiles closer than 1 overlap; the margin absorbs
 /// rounding only (touching tiles are exactly 1 apart).
@@ -136,7 +136,7 @@ pub(crate) struct Routed {
 /// How much an end's distance (tile widths) from the next cell's bounding box counts when
 /// ends are picked to lead there, in tile areas per tile width: an end a few tiles away
 /// from the next cell costs that cell a few partial rows.
-const TOWARD_WEIGHT: f64 = 2.0;
+const TOWARD_WEIGHT: f64 = 1.0;
 
 /// The ends of a solved programme (on `lat`, cell frame `frame`) the route tries: the best
 /// one whose last row runs +d and the best one running -d, and, when there is a next cell

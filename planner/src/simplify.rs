@@ -10,7 +10,7 @@ use crate::shape::Ring;
 
 /// Rings with more points than this are simplified; smaller ones are kept as they are (a
 /// flattened curve already has about as many points as its tolerance needs).
-pub(crate) const SIMPLIFY_ABOVE: usize = 2_000;
+pub(crate) const SIMPLIFY_ABOVE: usize = 256;
 
 /// Distance from `p` to the segment `ab`.
 fn distance_to_segment(p: Point, a: Point, b: Point) -> f64 {

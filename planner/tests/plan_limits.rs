@@ -44,3 +44,47 @@ fn tiny_tile_size_is_bad_input() {
         assert!(m.contains("positive"), "{w}: {m}");
     }
 }
+
+/// The planner reports its progress through the callback (stages, done of total), and a
+/// drawing of 200,000 outline points is simplified before planning: it plans like the same
+/// circle drawn with 200.
+#[test]
+fn progress_is_reported_and_dense_outlines_are_simplified() {
+    let circle = |n: usize| {
+        let pts: Vec<String> = (0..n)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / n as f64;
+                format!("{:.6},{:.6}", 50.0 + 45.0 * a.cos(), 50.0 + 45.0 * a.sin())
+            })
+            .collect();
+        format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><path d="M {} Z"/></svg>"#,
+            pts.join(" ")
+        )
+    };
+    let dir = std::env::temp_dir().join(format!("plan-progress-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("dense.svg");
+    std::fs::write(&path, circle(200_000)).unwrap();
+    let stages = std::sync::Mutex::new(Vec::<String>::new());
+    let opts = foldchain_planner::PlanOptions::default().with_tiles(150);
+    let dense = foldchain_planner::plan_svg_file_reporting(&path, &opts, &|s, done, total| {
+        assert!(done <= total);
+        stages.lock().unwrap().push(s.to_string());
+    })
+    .unwrap();
+    let stages = stages.into_inner().unwrap();
+    assert!(stages.iter().any(|s| s.starts_with("sizing")), "{stages:?}");
+    assert!(
+        stages.iter().any(|s| s.starts_with("checking")),
+        "{stages:?}"
+    );
+    let sparse = foldchain_planner::plan_svg_str(&circle(2_000), "sparse.svg", &opts).unwrap();
+    assert!(
+        dense.tiles.abs_diff(sparse.tiles) <= 8,
+        "{} vs {}",
+        dense.tiles,
+        sparse.tiles
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -78,22 +78,29 @@ fn every_sample_plans_and_folds() {
         "ring.svg",
     ] {
         for turns in [Turns::Tight, Turns::Loose] {
-            let p = plan(
-                name,
-                &PlanOptions::default().with_tiles(120).with_turns(turns),
-            );
+            let opts = PlanOptions::default().with_tiles(120).with_turns(turns);
+            let p = match plan_svg_file(&shape(name), &opts) {
+                Ok(p) => p,
+                // the ring may be refused: every plan found leaves a part of it empty
+                Err(e) if name == "ring.svg" => {
+                    assert!(e.to_string().contains("empty"), "{e}");
+                    continue;
+                }
+                Err(e) => panic!("{name}: {e}"),
+            };
             assert_sound(&p);
-            // rows cover at most row_density of the shape; today's plans reach 91% of that
-            // or more (crescent, tight: 0.915) with at most 10.4% of the chain outside
-            // (key, tight)
+            // rows cover at most row_density of the shape; the plans of the area-true fit
+            // (issue 13) reach 85% of that or more (key, tight: 0.890, its bits left empty
+            // for two long shaft rows) with less than 6% of the chain outside (before issue
+            // 13: 91% and up to 10.4% outside)
             let reach = p.metrics.covered_share / row_density(turns == Turns::Loose);
             assert!(
-                reach > 0.9,
+                reach > 0.85,
                 "{name} {turns}: {reach:.3} of the rows' cover, {:?}",
                 p.metrics
             );
             assert!(
-                p.metrics.outside_share < 0.11,
+                p.metrics.outside_share < 0.06,
                 "{name} {turns}: {:?}",
                 p.metrics
             );

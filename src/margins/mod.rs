@@ -1,5 +1,6 @@
-//! How much room a chain has to fold: the drive margin of every magnet's start and the torque
-//! margin of every fold, from the shared physics ([`crate::physics`]) on quasi-static
+//! How much room a chain has to fold: how firmly each magnet is held at rest before the
+//! reaction initiator comes, the drive margin of every magnet's start and the torque margin
+//! of every fold, from the shared physics ([`crate::physics`]) on quasi-static
 //! configurations of the chain (see [`start`](self) and [`fold`](self) below, in
 //! [`margins`]'s documentation). A chain whose every margin is positive folds as designed in
 //! this model; the smallest margin says how near it is to stalling, and where.
@@ -21,6 +22,7 @@
 //! ```
 
 mod fold;
+mod hold;
 mod model;
 mod start;
 mod window;
@@ -73,6 +75,16 @@ pub struct StartMargin {
     pub mover_stall: Option<f64>,
 }
 
+/// How firmly one magnet is held at rest before the reaction initiator comes.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct HoldMargin {
+    /// The magnet.
+    pub magnet: usize,
+    /// The force holding it at its rest point (against its path's direction), over its
+    /// tile's bond force; negative: the chain actuates itself there (inequality (6.1)).
+    pub margin: f64,
+}
+
 /// The torque margin of one fold.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FoldMargin {
@@ -104,20 +116,33 @@ pub enum Weakest {
         /// The margin.
         margin: f64,
     },
+    /// A magnet held at rest.
+    Hold {
+        /// The magnet.
+        magnet: usize,
+        /// Its joint.
+        joint: usize,
+        /// The margin.
+        margin: f64,
+    },
 }
 
 impl Weakest {
     /// The margin.
     pub fn margin(&self) -> f64 {
         match *self {
-            Weakest::Start { margin, .. } | Weakest::Fold { margin, .. } => margin,
+            Weakest::Start { margin, .. }
+            | Weakest::Fold { margin, .. }
+            | Weakest::Hold { margin, .. } => margin,
         }
     }
 
     /// The joint.
     pub fn joint(&self) -> usize {
         match *self {
-            Weakest::Start { joint, .. } | Weakest::Fold { joint, .. } => joint,
+            Weakest::Start { joint, .. }
+            | Weakest::Fold { joint, .. }
+            | Weakest::Hold { joint, .. } => joint,
         }
     }
 }
@@ -137,6 +162,15 @@ impl std::fmt::Display for Weakest {
             Weakest::Fold { joint, margin } => {
                 write!(f, "{:+.2}% at joint {joint}'s fold", 100.0 * margin)
             }
+            Weakest::Hold {
+                magnet,
+                joint,
+                margin,
+            } => write!(
+                f,
+                "{:+.2}% holding magnet {magnet} at rest (joint {joint})",
+                100.0 * margin
+            ),
         }
     }
 }
@@ -144,6 +178,8 @@ impl std::fmt::Display for Weakest {
 /// Every margin of a chain.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Margins {
+    /// One per magnet, in chain order: how firmly the resting chain holds it.
+    pub holds: Vec<HoldMargin>,
     /// One per magnet the design means to start, in chain order.
     pub starts: Vec<StartMargin>,
     /// One per joint the design means to fold, in chain order.
@@ -162,14 +198,33 @@ impl Margins {
             joint: f.joint,
             margin: f.margin,
         });
-        starts
+        let holds = self.holds.iter().map(|h| Weakest::Hold {
+            magnet: h.magnet,
+            joint: crate::timeline::joint_of_magnet(h.magnet),
+            margin: h.margin,
+        });
+        holds
+            .chain(starts)
             .chain(folds)
             .min_by(|a, b| a.margin().total_cmp(&b.margin()))
     }
 
-    /// The first failure along the chain (a start or fold with a margin <= 0), in the order
-    /// propagation meets them: where a failing chain stops.
+    /// The first failure (a margin <= 0): the weakest hold that fails, since a chain that
+    /// actuates itself fails before the reaction initiator comes; else the first start or
+    /// fold in the order propagation meets them, where a failing chain stops.
     pub fn first_failure(&self) -> Option<Weakest> {
+        if let Some(h) = self
+            .holds
+            .iter()
+            .filter(|h| h.margin <= 0.0)
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+        {
+            return Some(Weakest::Hold {
+                magnet: h.magnet,
+                joint: crate::timeline::joint_of_magnet(h.magnet),
+                margin: h.margin,
+            });
+        }
         let start = self.starts.iter().find(|s| s.margin <= 0.0);
         let fold = self.folds.iter().find(|f| f.margin <= 0.0);
         // a fold of joint j comes after the start of magnet 2j + 2 (its pair's second magnet)
@@ -201,7 +256,9 @@ impl Margins {
 
 /// Every margin of the chain (see the module documentation and [`ChainModel`]).
 ///
-/// **Criterion, stated.** Each start is judged with everything before the mover arrived and
+/// **Criterion, stated.** Every magnet must be held at rest before the reaction initiator
+/// comes (the chain at rest, the RI absent: inequality (6.1) with every pair within the
+/// cutoff). Each start is judged with everything before the mover arrived and
 /// folded and everything after the waiting magnet at rest; each fold with its pair and
 /// everything before it arrived and everything after it at rest. Where assembly overlaps
 /// (`s < e/3`) the real chain is somewhere between these poses; the test suite checks the
@@ -212,6 +269,7 @@ pub fn margins(model: &ChainModel, opts: &MarginOptions) -> Margins {
         ..*opts
     };
     Margins {
+        holds: hold::hold_margins(model, &opts),
         starts: {
             let mut starts: Vec<StartMargin> = Vec::new();
             for m in model.starting_magnets() {

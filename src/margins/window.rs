@@ -89,6 +89,19 @@ impl Window {
         m: usize,
         u: f64,
     ) -> f64 {
+        self.drive_from(model, law, cutoff, m, u, true)
+    }
+
+    /// [`Window::drive`], the reaction initiator left out unless `with_ri`.
+    pub(crate) fn drive_from(
+        &self,
+        model: &ChainModel,
+        law: ForceLaw,
+        cutoff: usize,
+        m: usize,
+        u: f64,
+        with_ri: bool,
+    ) -> f64 {
         let on = Pole::Magnet(m);
         let pm = self.point(m);
         let tangent = Vec2::from(
@@ -97,6 +110,7 @@ impl Window {
         );
         let mm = model.moment(m);
         neighbours(m, cutoff, model.magnets())
+            .filter(|p| with_ri || *p != Pole::Ri)
             .map(|source| {
                 let (p, moment) = self.source(model, source);
                 along_path(law.force(p, pm, moment, mm, source.attracts(on)), tangent)

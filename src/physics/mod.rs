@@ -30,6 +30,7 @@ mod drag;
 mod drive;
 mod energy;
 mod force_law;
+mod grid;
 mod inertia;
 mod poles;
 mod ri;
@@ -38,6 +39,7 @@ pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 pub use drive::{along_path, joints_between, torque_about};
 pub use energy::EnergyUnit;
 pub use force_law::{ForceLaw, FORCE_LAW_NAMES};
+pub use grid::pairs_within;
 pub use inertia::{
     Inertia, DEFAULT_INERTIAL_DRAG, DEFAULT_RESTITUTION, DEFAULT_TILE_INERTIA,
     DEFAULT_TILE_ROTATIONAL_DRAG,

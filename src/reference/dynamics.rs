@@ -30,11 +30,11 @@ use kurbo::{Point, Vec2};
 
 use crate::magnet_path::MagnetPath;
 use crate::physics::{
-    along_path, joints_between, torque_about, upstream, ForceLaw, Pole, ReactionInitiator,
-    DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG,
+    along_path, joints_between, pairs_within, torque_about, upstream, Pole, ReactionInitiator,
 };
 use crate::reference::inertial::Dynamics;
 use crate::reference::integrators::System;
+pub use crate::reference::model_options::ModelOptions;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};
 use crate::{Chain, Octagon, Pose};
 
@@ -42,73 +42,6 @@ use crate::{Chain, Octagon, Pose};
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
 /// on a rounding error: 1e-12.
 pub const BALANCE_TOLERANCE: f64 = 1e-12;
-
-/// Options of the reference model. Defaults: drag [`DEFAULT_DRAG`], rotational drag
-/// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`], the
-/// point-dipole law.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ModelOptions {
-    /// Drag of a magnet in its channel, N s/m.
-    pub drag: f64,
-    /// Drag of a joint turning, N m s.
-    pub rotational_drag: f64,
-    /// Static friction threshold, N: a magnet starts (and keeps moving) only while the force
-    /// along its path exceeds it; it also slows a moving magnet (Coulomb friction).
-    pub static_friction: f64,
-    /// Pairs at most this many apart in chain index interact (at least 1).
-    pub cutoff: usize,
-    /// The pair law.
-    pub force_law: ForceLaw,
-    /// How the chain answers the forces (default [`Dynamics::Overdamped`], which uses
-    /// `drag` and `rotational_drag`; [`Dynamics::Inertial`] carries its own parameters).
-    pub dynamics: Dynamics,
-}
-
-impl Default for ModelOptions {
-    fn default() -> ModelOptions {
-        ModelOptions {
-            drag: DEFAULT_DRAG,
-            rotational_drag: DEFAULT_ROTATIONAL_DRAG,
-            static_friction: 0.0,
-            cutoff: DEFAULT_CUTOFF,
-            force_law: ForceLaw::default(),
-            dynamics: Dynamics::default(),
-        }
-    }
-}
-
-impl ModelOptions {
-    /// Another magnet drag, N s/m.
-    pub fn with_drag(mut self, drag: f64) -> ModelOptions {
-        self.drag = drag;
-        self
-    }
-    /// Another rotational drag, N m s.
-    pub fn with_rotational_drag(mut self, drag: f64) -> ModelOptions {
-        self.rotational_drag = drag;
-        self
-    }
-    /// A static friction threshold, N.
-    pub fn with_static_friction(mut self, f: f64) -> ModelOptions {
-        self.static_friction = f;
-        self
-    }
-    /// Another chain-index cutoff.
-    pub fn with_cutoff(mut self, cutoff: usize) -> ModelOptions {
-        self.cutoff = cutoff;
-        self
-    }
-    /// Another pair law.
-    pub fn with_force_law(mut self, force_law: ForceLaw) -> ModelOptions {
-        self.force_law = force_law;
-        self
-    }
-    /// Other dynamics.
-    pub fn with_dynamics(mut self, dynamics: Dynamics) -> ModelOptions {
-        self.dynamics = dynamics;
-        self
-    }
-}
 
 /// What one unknown is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -215,6 +148,12 @@ impl Model {
         }
         if opts.cutoff == 0 {
             return Err(bad("cutoff", 0.0, "at least 1"));
+        }
+        if let Some(r) = opts
+            .distance_cutoff
+            .filter(|r| !(r.is_finite() && *r > 0.0))
+        {
+            return Err(bad("distance_cutoff", r, "a finite number > 0 (mm)"));
         }
         if let Dynamics::Inertial(i) = opts.dynamics {
             for (name, v) in [
@@ -433,6 +372,43 @@ impl Model {
                     if v != usize::MAX {
                         out.drive[v] += self.joint_sign[j] * torque_about(hinges[j], on, f);
                     }
+                }
+            }
+        }
+        // pairs near in space but beyond the chain-index cutoff (the RI is point n)
+        let far = match self.opts.distance_cutoff {
+            Some(r) if cutoff < n => {
+                let mut pts = out.positions.clone();
+                pts.push(self.ri.position);
+                pairs_within(&pts, r)
+            }
+            _ => Vec::new(),
+        };
+        for (a, b) in far {
+            // the RI is magnet -1: its pair with b is beyond the cutoff when b >= cutoff
+            let (from, on) = if b == n {
+                (Pole::Ri, a)
+            } else {
+                (Pole::Magnet(a), b)
+            };
+            if (on as isize) - from.index() <= cutoff as isize {
+                continue;
+            }
+            let (pa, ma) = match from {
+                Pole::Ri => (self.ri.position, self.ri.moment),
+                Pole::Magnet(a) => (out.positions[a], self.moments[a]),
+            };
+            let pb = out.positions[on];
+            let attract = from.attracts(Pole::Magnet(on));
+            let f = law.force(pa, pb, ma, self.moments[on], attract);
+            force[on] += f;
+            if let Pole::Magnet(a) = from {
+                force[a] -= f;
+            }
+            for j in joints_between(from, on) {
+                let v = self.joint_var[j];
+                if v != usize::MAX {
+                    out.drive[v] += self.joint_sign[j] * torque_about(hinges[j], pb, f);
                 }
             }
         }

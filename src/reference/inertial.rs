@@ -213,9 +213,11 @@ pub(crate) fn run_inertial(
     let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
     let mut rec = match opts.record {
         Recording::Off => None,
-        Recording::Grid { max_states } => {
-            Some(Recorder::new(max_states, scale * 1e-2, &positions(&z)))
-        }
+        Recording::Grid { max_states } => Some(Recorder::new(
+            max_states,
+            move_time.min(drag_time) * 1e-2,
+            &positions(&z),
+        )),
     };
     let mut f = vec![0.0; 2 * n];
     release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);

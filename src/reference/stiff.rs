@@ -96,7 +96,7 @@ pub const STIFF_CASES: &[StiffCase] = &[
         rotational_drag_factor: 1e6,
         tolerance: 1e-4,
         stiff: true,
-        why: "heavy tiles fold about 1e5 times slower than the magnets move; the magnets of the folding pair follow their slowly moving balances, so the explicit method's steps are held to its stability bound (the chain stalls at joint 1, as with the default drags)",
+        why: "heavy tiles fold about 1e5 times slower than the magnets move; the magnets of the folding pair follow their slowly moving balances, so the explicit method's steps are held to its stability bound",
     },
     StiffCase {
         name: "SLLS rot x1e7",

@@ -1,5 +1,9 @@
 //! How a reference run ended, from the modes and state it came to rest in. Completed when
-//! every magnet but the last arrived and every folding joint closed. Otherwise the first
+//! every magnet but the last arrived or was passed by propagation, and every folding joint
+//! closed. A magnet is passed when it came to rest mid-path at a rigid joint while its
+//! partner across the joint arrived: a curved path paired with a straight one (thesis 7.3.2,
+//! SL-SR-SL) ends at its point of closest approach to the straight partner, not at its path
+//! end, and propagation goes on through the partner. Otherwise the first
 //! joint left open (or holding a magnet that never arrived) is named: inhibited when its
 //! pair's path ends lie farther apart than the pair at rest (the geometry of Table 7.1's LR
 //! and RL), stalled otherwise, with what the dynamics left.
@@ -20,8 +24,8 @@ impl RestState<'_> {
     pub(crate) fn outcome(&self, time: f64) -> Outcome {
         let m = self.model;
         let n = m.geometry.magnets();
-        let unarrived =
-            (0..n.saturating_sub(1)).find(|&k| self.modes[m.magnet_var(k)] != Mode::AtEnd);
+        let unarrived = (0..n.saturating_sub(1))
+            .find(|&k| self.modes[m.magnet_var(k)] != Mode::AtEnd && !self.passed(k));
         let open = (0..m.geometry.tiles().saturating_sub(1))
             .find(|&j| m.joint_var(j).is_some_and(|v| self.modes[v] != Mode::AtEnd));
         let joint = match (unarrived.map(joint_of_magnet), open) {
@@ -53,6 +57,21 @@ impl RestState<'_> {
             magnet: never,
             reason: self.stall_reason(unarrived, open, j),
         }
+    }
+
+    /// Whether magnet `k` rests mid-path at a rigid joint while its partner across the
+    /// joint (magnet `k + 1` for odd `k`, `k - 1` for even) arrived.
+    fn passed(&self, k: usize) -> bool {
+        let m = self.model;
+        let n = m.geometry.magnets();
+        let j = joint_of_magnet(k);
+        let rigid = j + 1 >= m.geometry.tiles() || m.joint_var(j).is_none();
+        let partner = if k % 2 == 1 { k + 1 } else { k.wrapping_sub(1) };
+        rigid
+            && k > 0
+            && partner < n
+            && self.modes[m.magnet_var(k)] == Mode::Free
+            && self.modes[m.magnet_var(partner)] == Mode::AtEnd
     }
 
     fn stall_reason(&self, unarrived: Option<usize>, open: Option<usize>, j: usize) -> String {

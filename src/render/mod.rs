@@ -9,12 +9,14 @@
 //! from their own results.
 
 mod frame;
+mod pair_energy;
 pub(crate) mod plot;
 mod source;
 mod state;
 mod transition;
 
 pub use frame::{frame_svg, FrameOptions, FrameView, DETAIL_TILES};
+pub use pair_energy::pair_energy_svg;
 pub use plot::energy_svg;
 pub use source::RunSource;
 pub use state::ChainState;

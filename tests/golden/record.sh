@@ -17,10 +17,13 @@ while read -r w; do
 done < "$G/check-words.txt"
 for s in shapes/*.svg; do
   n=$(basename "$s" .svg)
-  "$B/fold-plan" "$s" --json > "$G/plan-$n.json" || true
+  # an unplannable shape is recorded as its exit code (issue 13: exit 1 with the reason)
+  code=0
+  "$B/fold-plan" "$s" --json --quiet > "$G/plan-$n.json" || code=$?
+  if [ "$code" -ne 0 ]; then echo "{\"exit\": $code}" > "$G/plan-$n.json"; fi
 done
-"$B/fold-plan" shapes/square.svg --tiles 107 --turns tight --json > "$G/plan-square-107-tight.json"
-"$B/fold-plan" shapes/square.svg --tiles 82 --turns loose --json > "$G/plan-square-82-loose.json"
+"$B/fold-plan" shapes/square.svg --tiles 107 --turns tight --tiles-tolerance 0 --json > "$G/plan-square-107-tight.json"
+"$B/fold-plan" shapes/square.svg --tiles 82 --turns loose --tiles-tolerance 0 --json > "$G/plan-square-82-loose.json"
 i=0
 while IFS='|' read -r chain opts; do
   i=$((i+1))

@@ -106,6 +106,11 @@ struct Args {
     /// negligible mass, the one the event engine's speed law and fold-validate use).
     #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
     dynamics: String,
+    /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
+    /// apart in chain index (a ring's first and last tiles); default: none, pairs up to 3
+    /// apart in chain index only.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    distance_cutoff: Option<f64>,
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
@@ -366,11 +371,12 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_record(Recording::Grid {
                 max_states: state_budget(chain.len()),
             })
-            .with_model(
-                ModelOptions::default()
+            .with_model(ModelOptions {
+                distance_cutoff: args.distance_cutoff,
+                ..ModelOptions::default()
                     .with_force_law(force_law)
-                    .with_dynamics(dynamics),
-            );
+                    .with_dynamics(dynamics)
+            });
         Ok(run_reference(&chain, &designs, &ro)?)
     };
     let engine = if args.engine == "kinematic" || speed == SpeedLaw::Unit {

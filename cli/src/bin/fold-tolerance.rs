@@ -224,7 +224,7 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     Ok(0)
 }
 
-const CRITERION: &str = "a sample folds when every start and every fold margin is positive (quasi-static poses, README \"Margins\")";
+const CRITERION: &str = "a sample folds when every hold, start and fold margin is positive (quasi-static poses, README \"Margins\")";
 
 #[derive(serde::Serialize)]
 struct Report<'a> {

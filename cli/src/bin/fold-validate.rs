@@ -20,6 +20,7 @@ use foldchain::reference::validate::{validate, ValidateOptions};
 use foldchain::reference::Dynamics;
 use foldchain::reference::STIFF_CASES;
 use foldchain::Design;
+use foldchain_cli::experiments::experiments;
 use foldchain_cli::output::OutputDir;
 use foldchain_cli::report::print_error;
 
@@ -53,6 +54,12 @@ struct Args {
     /// stiffest case).
     #[arg(long, conflicts_with_all = ["scenes", "quick", "reference_tolerance", "out"])]
     stiff: bool,
+    /// Run the thesis' experiments instead (section 7.3: the four three-tile configurations
+    /// and SL-SR-SL) in the reference with both pair laws and both dynamics, against what the
+    /// thesis observed; writes their energy pictures (figures 7.7, 7.8) into --out. Exit 1 if
+    /// any model disagrees with an observation.
+    #[arg(long, conflicts_with_all = ["scenes", "quick", "reference_tolerance", "stiff"])]
+    experiments: bool,
     /// With --stiff: run only this case (repeatable), e.g. "SLLS rot x1e7".
     #[arg(long = "case", requires = "stiff")]
     cases: Vec<String>,
@@ -125,6 +132,7 @@ fn after_help() -> String {
   fold-validate --quick                  every scene, shorter ladders (about 30 s)
   fold-validate --scene \"3-tile SL\" --json
   fold-validate --stiff --case \"SLLS rot x1e7\"
+  fold-validate --experiments --out out/experiments
 
 Scenes (--scene):
 {}
@@ -132,8 +140,10 @@ Scenes (--scene):
 Stiff cases (--stiff --case):
 {}
 
-Writes work-precision.svg and work-precision.json into --out (not with --stiff).
-Exit codes: 0 done, 2 bad input.",
+Writes work-precision.svg and work-precision.json into --out (not with --stiff), or with
+--experiments the energy pictures experiment-7-3-sl.svg etc.
+Exit codes: 0 done (with --experiments: every model agrees with the thesis' observations),
+1 a model disagrees with an observed experiment (--experiments), 2 bad input.",
         scenes.join("\n"),
         cases.join("\n")
     )
@@ -145,6 +155,28 @@ fn main() -> ExitCode {
         Ok(a) => a,
         Err(e) => e.exit(),
     };
+    if args.experiments {
+        return match experiments(&args.out, args.json) {
+            Ok(report) => {
+                print!("{}", report.text);
+                if !args.json {
+                    for f in &report.files {
+                        println!("wrote {}", f.display());
+                    }
+                }
+                if report.all_agree() {
+                    ExitCode::SUCCESS
+                } else {
+                    eprintln!("fold-validate: the model disagrees with an observed experiment");
+                    ExitCode::from(1)
+                }
+            }
+            Err(e) => {
+                print_error("fold-validate", &e);
+                ExitCode::from(2)
+            }
+        };
+    }
     if args.stiff {
         return match stiff(&args) {
             Ok(text) => {

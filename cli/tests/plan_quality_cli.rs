@@ -1,0 +1,228 @@
+//! Issue 13's must-shows on the real `fold-plan` binary: the thesis' square layouts, the
+//! key with a quarter turn, the ring without an empty part (or exit 1 saying where), the
+//! same count for the same drawing in mm and in cm with `--tile-mm`, and every plan folding
+//! (`fold-check` on the word).
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use foldchain_planner::Plan;
+
+fn shape(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shapes")
+        .join(name)
+}
+
+fn fold_plan(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+        .args(args)
+        .arg("--quiet")
+        .output()
+        .unwrap()
+}
+
+/// The plan JSON of a successful run.
+fn plan(args: &[&str]) -> Plan {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let o = fold_plan(&a);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Plan::from_json(&String::from_utf8(o.stdout).unwrap()).unwrap()
+}
+
+/// The lengths of the straight runs between U-turns (rows), in tiles, from the word.
+fn rows(p: &Plan) -> Vec<usize> {
+    let word = p.fold_word().unwrap().to_compact_string();
+    let folds: Vec<char> = expand(&word);
+    // a row is a run of S joints; U-turn joints (L L, R R, or L S L, R S R) separate rows
+    let mut out = Vec::new();
+    let mut run = 1usize; // the first tile
+    let mut i = 0;
+    while i < folds.len() {
+        if folds[i] == 'S' {
+            run += 1;
+            i += 1;
+        } else {
+            out.push(run);
+            // skip the U-turn: its folds and the turn tiles between them
+            let f = folds[i];
+            let loose = folds.get(i + 1) == Some(&'S') && folds.get(i + 2) == Some(&f);
+            i += if loose { 3 } else { 2 };
+            run = 1;
+        }
+    }
+    out.push(run);
+    out
+}
+
+/// The fold letters of a compact word (`S*11LSL...`: a letter, optionally `*count`).
+fn expand(word: &str) -> Vec<char> {
+    let chars: Vec<char> = word.chars().filter(|c| !c.is_whitespace()).collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let l = chars[i];
+        i += 1;
+        let mut n = 1;
+        if chars.get(i) == Some(&'*') {
+            let digits: String = chars[i + 1..]
+                .iter()
+                .take_while(|c| c.is_ascii_digit())
+                .collect();
+            i += 1 + digits.len();
+            n = digits.parse().unwrap();
+        }
+        out.extend(std::iter::repeat_n(l, n));
+    }
+    out
+}
+
+/// `fold-check` accepts the plan's word (exit 0).
+fn assert_folds(p: &Plan) {
+    let o = Command::new(env!("CARGO_BIN_EXE_fold-check"))
+        .arg(&p.word)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "fold-check: {}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn the_thesis_squares() {
+    let sq = shape("square.svg");
+    let t = plan(&[
+        sq.to_str().unwrap(),
+        "--tiles",
+        "107",
+        "--turns",
+        "tight",
+        "--tiles-tolerance",
+        "0",
+    ]);
+    assert_eq!(t.tiles, 107);
+    assert_eq!(rows(&t), vec![11; 9], "{}", t.word);
+    assert_folds(&t);
+    let l = plan(&[
+        sq.to_str().unwrap(),
+        "--tiles",
+        "82",
+        "--turns",
+        "loose",
+        "--tiles-tolerance",
+        "0",
+    ]);
+    assert_eq!(l.tiles, 82);
+    assert_eq!(rows(&l), vec![12; 6], "{}", l.word);
+    assert_folds(&l);
+}
+
+#[test]
+fn the_key_turns_a_quarter_once_and_stays_inside() {
+    let p = plan(&[shape("key.svg").to_str().unwrap(), "--tiles", "171"]);
+    assert!(p.quarter_turns >= 1, "{}", p.summary());
+    assert!(p.u_turns <= 12, "{}", p.summary());
+    assert!(p.metrics.outside_share < 0.05, "{}", p.summary());
+    assert_folds(&p);
+}
+
+#[test]
+fn the_ring_has_no_empty_part_or_says_where() {
+    for n in ["250", "300"] {
+        let o = fold_plan(&[shape("ring.svg").to_str().unwrap(), "--tiles", n, "--json"]);
+        match o.status.code() {
+            Some(0) => {
+                let p = Plan::from_json(&String::from_utf8(o.stdout).unwrap()).unwrap();
+                assert_folds(&p);
+            }
+            Some(1) => {
+                let e = String::from_utf8_lossy(&o.stderr);
+                assert!(
+                    e.contains("cannot plan") && e.contains("empty") && e.contains("around ("),
+                    "{e}"
+                );
+            }
+            c => panic!("exit {c:?}: {}", String::from_utf8_lossy(&o.stderr)),
+        }
+    }
+}
+
+#[test]
+fn tile_mm_reads_the_drawings_units() {
+    let dir = std::env::temp_dir().join(format!("fold-plan-mm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mm = dir.join("mm.svg");
+    let cm = dir.join("cm.svg");
+    std::fs::write(
+        &mm,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="120mm" height="90mm" viewBox="0 0 120 90"><rect x="0" y="0" width="120" height="90"/></svg>"#,
+    )
+    .unwrap();
+    std::fs::write(
+        &cm,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="12cm" height="9cm" viewBox="0 0 1200 900"><rect x="0" y="0" width="1200" height="900"/></svg>"#,
+    )
+    .unwrap();
+    let a = plan(&[mm.to_str().unwrap(), "--tile-mm", "5"]);
+    let b = plan(&[cm.to_str().unwrap(), "--tile-mm", "5"]);
+    assert_eq!(a.tiles, b.tiles);
+    assert!(a.tiles > 100, "{}", a.summary());
+    // (usvg holds the drawing's size in f32)
+    assert!((a.tile_mm - 5.0).abs() < 1e-9 && (b.tile_mm - 5.0).abs() < 1e-9);
+    assert!((a.tile_size - 5.0).abs() < 1e-5 && (b.tile_size - 50.0).abs() < 1e-4);
+    // the folded chain fits the 120 x 90 mm drawing
+    assert!(
+        a.extent_mm[0] <= 125.0 && a.extent_mm[1] <= 95.0,
+        "{:?}",
+        a.extent_mm
+    );
+    let s =
+        String::from_utf8(fold_plan(&[mm.to_str().unwrap(), "--tile-mm", "30"]).stdout).unwrap();
+    assert!(s.contains("= 30.0 mm"), "{s}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_physical_options_exit_2() {
+    let sq = shape("square.svg");
+    for (flag, v) in [
+        ("--tile-mm", "0"),
+        ("--tiles-tolerance", "-0.1"),
+        ("--turn-cost", "nan"),
+    ] {
+        let o = fold_plan(&[sq.to_str().unwrap(), flag, v]);
+        assert_eq!(o.status.code(), Some(2), "{flag} {v}");
+        assert!(!String::from_utf8_lossy(&o.stderr).is_empty());
+    }
+}
+
+/// Off a terminal, `fold-plan` prints plain progress lines on stderr (here every update:
+/// `FOLDCHAIN_PROGRESS_SECONDS=0`), and `--quiet` silences them (issue 14).
+#[test]
+fn progress_lines_off_a_terminal_and_quiet() {
+    let disc = shape("disc.svg");
+    let run = |quiet: bool| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_fold-plan"));
+        c.arg(&disc)
+            .args(["--tiles", "100"])
+            .env("FOLDCHAIN_PROGRESS_SECONDS", "0");
+        if quiet {
+            c.arg("--quiet");
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success());
+        String::from_utf8(o.stderr).unwrap()
+    };
+    let loud = run(false);
+    assert!(
+        loud.contains("fold-plan: sizing the tight serpentine"),
+        "{loud}"
+    );
+    assert!(run(true).is_empty());
+}
