@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions};
-use foldchain::engine::{fold_schedule, run, EngineOptions, SValue, TileDesigns};
+use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::{folded_word, kinematics, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
@@ -110,7 +110,11 @@ fn main() {
     let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
     for (tiles, row) in [(1_022usize, 32usize), (10_000, 100), (100_000, 316)] {
         let chain = serpentine(tiles, row).to_chain();
-        let Ok(tl) = run(&chain, &designs, &EngineOptions::default()) else {
+        let Ok(tl) = run(
+            &chain,
+            &designs,
+            &EngineOptions::default().with_method(EngineMethod::Kinematic),
+        ) else {
             println!("| {tiles} | {row} | - | engine refused the chain | - |");
             continue;
         };

@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use foldchain::engine::{run, EngineOptions};
+use foldchain::engine::{run, EngineMethod, EngineOptions};
 use foldchain::timeline::TileDesigns;
 use foldchain::{Fold, FoldWord};
 
@@ -49,7 +49,12 @@ fn main() {
         let mut outcome = String::new();
         for _ in 0..reps {
             let t0 = Instant::now();
-            let tl = run(&chain, &designs, &EngineOptions::default()).expect("runs");
+            let tl = run(
+                &chain,
+                &designs,
+                &EngineOptions::default().with_method(EngineMethod::Kinematic),
+            )
+            .expect("runs");
             times.push(t0.elapsed().as_secs_f64());
             events = tl.events.len();
             outcome = format!("{:?}", tl.outcome);

@@ -196,7 +196,19 @@ fn outcome(model: &Model, chain: &ChainSolution, time: f64) -> Outcome {
         chain.units[u].0.solution.modes.get(i).copied()
     };
     let joint_mode = |j: usize| chain.units[j + 1].0.solution.modes.get(2).copied();
-    let unarrived = (0..n.saturating_sub(1)).find(|&k| mode(k) != Some(Mode::AtEnd));
+    // passed, as the reference's verdict says: at rest mid-path at a rigid joint while its
+    // partner across the joint arrived (a curved path paired with a straight one)
+    let passed = |k: usize| {
+        let j = joint_of_magnet(k);
+        let rigid = j + 1 >= g.tiles() || model.joint_var(j).is_none();
+        let partner = if k % 2 == 1 { k + 1 } else { k.wrapping_sub(1) };
+        rigid
+            && k > 0
+            && partner < n
+            && mode(k) == Some(Mode::Free)
+            && mode(partner) == Some(Mode::AtEnd)
+    };
+    let unarrived = (0..n.saturating_sub(1)).find(|&k| mode(k) != Some(Mode::AtEnd) && !passed(k));
     let open = (0..g.tiles().saturating_sub(1))
         .find(|&j| model.joint_var(j).is_some() && joint_mode(j) != Some(Mode::AtEnd));
     let joint = match (unarrived.map(joint_of_magnet), open) {

@@ -176,7 +176,8 @@ fn panel(sc: &SceneReport, rows: &[&Row], origin: (f64, f64)) -> Group {
             g = g.add(at(Circle::new(), &[("cx", x), ("cy", y), ("r", 3.0)]).set("fill", colour));
         }
     }
-    // the event engine: filled diamond (force rule), open diamond (distance rule)
+    // the event engine: filled diamond (local solves), open diamond (kinematic baseline,
+    // distance rule)
     for r in rows
         .iter()
         .filter(|r| r.method == "event" || r.method == "event-dist")
@@ -226,7 +227,7 @@ impl Validation {
                 width / 2.0,
                 height - 12.0,
                 "middle",
-                "event-time error (over the duration) against wall time; blue: dopri5, red: ros2 (tolerance ladder), diamonds: event engine (filled: force rule, open: distance rule)",
+                "event-time error (over the duration) against wall time; blue: dopri5, red: ros2 (tolerance ladder), diamonds: event engine (filled: local solves, open: kinematic baseline with the distance rule)",
             ).set("font-size", 12));
         for (i, sc) in self.scenes.iter().enumerate() {
             let origin = (
