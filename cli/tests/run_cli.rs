@@ -394,3 +394,25 @@ fn a_run_killed_while_writing_leaves_no_torn_file_and_every_foreign_file() {
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(without_run_files(tree(&out)), before);
 }
+
+#[test]
+fn long_chains_use_the_kinematic_engine_and_say_so() {
+    // --engine auto (the default): the local solves up to 2,000 tiles, the kinematic
+    // baseline beyond, named on stderr; --engine local is never overridden
+    let d = tmp("auto-engine");
+    let long = bin()
+        .args(["S*2500", "--frames", "2", "--out"])
+        .arg(d.join("long"))
+        .output()
+        .unwrap();
+    assert_eq!(long.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&long.stderr);
+    assert!(err.contains("2501 tiles: the kinematic engine"), "{err}");
+    let short = bin()
+        .args(["S*20", "--frames", "2", "--out"])
+        .arg(d.join("short"))
+        .output()
+        .unwrap();
+    assert_eq!(short.status.code(), Some(0));
+    assert!(!String::from_utf8_lossy(&short.stderr).contains("kinematic"));
+}

@@ -81,10 +81,12 @@ struct Args {
     #[arg(long)]
     json: bool,
     /// How the engine times its events: local (solves of the reference's overdamped physics,
-    /// one joint at a time from the RI end: the reference's events within 0.5% of the run)
-    /// or kinematic (the baseline: a start rule and a closed-form speed law, --speed and
-    /// --start-rule).
-    #[arg(long, default_value = "local", value_parser = ["local", "kinematic"])]
+    /// one joint at a time from the RI end: the reference's events within 0.5% of the run;
+    /// about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
+    /// law, --speed and --start-rule; microseconds per tile, its times 7-9x early and folds
+    /// that overlap in time), or auto (local up to 2,000 tiles, kinematic beyond, said on
+    /// stderr).
+    #[arg(long, default_value = "auto", value_parser = ["auto", "local", "kinematic"])]
     engine: String,
     /// The kinematic baseline's speed law: overdamped (seconds) or unit (1 mm/s, the
     /// transition diagram's timeline; implies --engine kinematic).
@@ -165,6 +167,10 @@ fn count_arg(s: &str) -> Result<usize, String> {
 fn s_value(text: &str) -> anyhow::Result<SValue> {
     Ok(SValue::parse(text)?)
 }
+
+/// `--engine auto` uses the local solves up to this many tiles (about 3 s of solves on 2
+/// cores), the kinematic baseline beyond.
+const LOCAL_ENGINE_MAX_TILES: usize = 2_000;
 
 /// The name of a run given inline: the text itself when it is short and plain, else a name
 /// made from its fold word or its length.
@@ -379,7 +385,18 @@ fn run(args: Args) -> anyhow::Result<u8> {
             });
         Ok(run_reference(&chain, &designs, &ro)?)
     };
-    let engine = if args.engine == "kinematic" || speed == SpeedLaw::Unit {
+    let kinematic = match args.engine.as_str() {
+        "kinematic" => true,
+        "auto" if chain.len() > LOCAL_ENGINE_MAX_TILES && speed != SpeedLaw::Unit => {
+            eprintln!(
+                "fold-run: {} tiles: the kinematic engine (the local solves take about 1.4 ms a joint; --engine local to use them anyway)",
+                chain.len()
+            );
+            true
+        }
+        _ => speed == SpeedLaw::Unit,
+    };
+    let engine = if kinematic {
         EngineOptions::default()
             .with_speed(speed)
             .with_force_law(force_law)
