@@ -23,7 +23,7 @@ use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::verdict::RestState;
-use crate::timeline::{start_fraction, Event, EventKind, Outcome, TileDesigns};
+use crate::timeline::{start_fraction, TileDesigns};
 use crate::Chain;
 
 /// Runs the reference model on `chain` with `designs`.
@@ -300,18 +300,7 @@ impl Driver {
         }
         .outcome(time);
         let mut events = self.log.events;
-        let stop = match &outcome {
-            Outcome::Inhibited { joint, .. } => Some((EventKind::Inhibited, *joint)),
-            Outcome::Stalled { joint, .. } => Some((EventKind::Stalled, *joint)),
-            Outcome::Completed => None,
-        };
-        if let Some((kind, joint)) = stop {
-            events.push(Event {
-                time,
-                index: joint as u32,
-                kind,
-            });
-        }
+        events.extend(outcome.stop_event(time));
         ReferenceRun {
             end_time: self.t,
             final_state: self.y,

@@ -28,7 +28,6 @@ use crate::reference::options::{Recording, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::verdict::RestState;
-use crate::timeline::{Event, EventKind, Outcome};
 use std::f64::consts::FRAC_PI_2;
 
 /// How the chain answers the forces.
@@ -397,18 +396,7 @@ pub(crate) fn run_inertial(
     }
     .outcome(time);
     let mut events = log.events;
-    let stop = match &outcome {
-        Outcome::Inhibited { joint, .. } => Some((EventKind::Inhibited, *joint)),
-        Outcome::Stalled { joint, .. } => Some((EventKind::Stalled, *joint)),
-        Outcome::Completed => None,
-    };
-    if let Some((kind, joint)) = stop {
-        events.push(Event {
-            time,
-            index: joint as u32,
-            kind,
-        });
-    }
+    events.extend(outcome.stop_event(time));
     let states = rec.map(|r| r.finish(t, &y)).unwrap_or_default();
     ReferenceRun {
         end_time: t,

@@ -63,7 +63,8 @@ pub struct StepStats {
     pub event_steps: u64,
 }
 
-const A: [[f64; 6]; 6] = [
+/// Dormand-Prince 5(4): the stage coefficients (also the engine's local solves').
+pub(crate) const A: [[f64; 6]; 6] = [
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
     [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
@@ -92,7 +93,8 @@ const A: [[f64; 6]; 6] = [
         11.0 / 84.0,
     ],
 ];
-const E: [f64; 7] = [
+/// Dormand-Prince 5(4): the error weights.
+pub(crate) const E: [f64; 7] = [
     71.0 / 57600.0,
     0.0,
     -71.0 / 16695.0,

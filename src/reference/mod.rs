@@ -36,7 +36,7 @@ mod dynamics;
 mod event_log;
 pub mod experiments;
 mod inertial;
-mod integrators;
+pub(crate) mod integrators;
 mod locate;
 mod model_options;
 mod options;

@@ -1,6 +1,8 @@
 //! How propagation ended: completed, inhibited at a joint whose pair diverges, or stalled
 //! where a magnet never started its successor.
 
+use crate::timeline::{Event, EventKind};
+
 /// How propagation ended.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -47,6 +49,21 @@ impl Outcome {
             Outcome::Completed => f64::INFINITY,
             Outcome::Inhibited { time, .. } | Outcome::Stalled { time, .. } => *time,
         }
+    }
+
+    /// The event that closes a run's log when propagation stopped at `time` (an inhibition
+    /// or a stall at its joint); `None` when it completed.
+    pub fn stop_event(&self, time: f64) -> Option<Event> {
+        let (kind, joint) = match self {
+            Outcome::Completed => return None,
+            Outcome::Inhibited { joint, .. } => (EventKind::Inhibited, *joint),
+            Outcome::Stalled { joint, .. } => (EventKind::Stalled, *joint),
+        };
+        Some(Event {
+            time,
+            index: joint as u32,
+            kind,
+        })
     }
 
     /// Why propagation stopped, in words (`None` when it completed); `decided_by` names what

@@ -150,18 +150,7 @@ pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
     }
     let time = events.last().map_or(0.0, |e| e.time);
     let outcome = outcome(model, &chain, time);
-    let stop = match &outcome {
-        Outcome::Inhibited { joint, .. } => Some((EventKind::Inhibited, *joint)),
-        Outcome::Stalled { joint, .. } => Some((EventKind::Stalled, *joint)),
-        Outcome::Completed => None,
-    };
-    if let Some((kind, joint)) = stop {
-        events.push(Event {
-            time,
-            index: joint as u32,
-            kind,
-        });
-    }
+    events.extend(outcome.stop_event(time));
     LocalRun {
         solved: Solved {
             chain,
