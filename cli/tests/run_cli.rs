@@ -416,3 +416,21 @@ fn long_chains_use_the_kinematic_engine_and_say_so() {
     assert_eq!(short.status.code(), Some(0));
     assert!(!String::from_utf8_lossy(&short.stderr).contains("kinematic"));
 }
+
+#[test]
+fn a_start_rule_with_the_local_engine_is_refused() {
+    // --start-rule is the kinematic engine's; with --engine local it would be ignored
+    let d = tmp("start-rule-local");
+    let o = bin()
+        .args(["SS", "--engine", "local", "--start-rule", "force", "--out"])
+        .arg(d.join("out"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--start-rule is the kinematic engine's option"),
+        "{err}"
+    );
+    assert!(!d.join("out").exists());
+}

@@ -94,9 +94,10 @@ struct Args {
     speed: String,
     /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
     /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
-    /// reference integrator weighs them; about 40 us per tile).
-    #[arg(long, default_value = "distance", value_parser = ["distance", "force"])]
-    start_rule: String,
+    /// reference integrator weighs them; about 40 us per tile). Default distance; giving it
+    /// selects the kinematic engine (refused with --engine local).
+    #[arg(long, value_parser = ["distance", "force"])]
+    start_rule: Option<String>,
     /// The pair law of the reference and of the force start rule (and the energy plot):
     /// dipole (point dipoles, thesis 6.11/6.12) or cylinder (the design's magnets as
     /// uniformly magnetised cylinders, tabulated).
@@ -218,6 +219,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
     // the target outline, in tile widths, when the chain was planned from a shape
     let mut target = Vec::new();
+    if args.engine == "local" && args.start_rule.is_some() {
+        bail!("--start-rule is the kinematic engine's option; the local solves start magnets from the reference's forces (use --engine kinematic, or leave --start-rule out)");
+    }
     let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
         (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
         (None, None) => bail!(
@@ -387,6 +391,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     };
     let kinematic = match args.engine.as_str() {
         "kinematic" => true,
+        _ if args.start_rule.is_some() => true,
         "auto" if chain.len() > LOCAL_ENGINE_MAX_TILES && speed != SpeedLaw::Unit => {
             eprintln!(
                 "fold-run: {} tiles: the kinematic engine (the local solves take about 1.4 ms a joint; --engine local to use them anyway)",
@@ -400,7 +405,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
         EngineOptions::default()
             .with_speed(speed)
             .with_force_law(force_law)
-            .with_start_rule(match args.start_rule.as_str() {
+            .with_start_rule(match args.start_rule.as_deref().unwrap_or("distance") {
                 "force" => StartRule::Force {
                     cutoff: foldchain::physics::DEFAULT_CUTOFF,
                 },
