@@ -5,7 +5,7 @@
 //! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
-//! a run's margins ([`margins_file`]) and error messages ([`report`]). The libraries `foldchain` and
+//! a run's margins ([`margins_file`]), its name ([`run_name`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all five tools with `cargo install --path cli` from the repository root.
@@ -17,3 +17,4 @@ pub mod output;
 pub mod progress;
 pub mod report;
 pub mod run_files;
+pub mod run_name;

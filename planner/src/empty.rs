@@ -8,6 +8,7 @@
 use kurbo::Point;
 
 use crate::centre_grid::CentreGrid;
+use crate::plan::Plan;
 use crate::shape::Shape;
 
 /// Sample points farther than this (tile widths) from every tile centre are empty: a tile
@@ -25,6 +26,24 @@ pub(crate) const MAX_CHECKED_TILES: usize = 200_000;
 /// The largest empty part of the plan with tile centres `centres` over `work` (both in the
 /// work frame, unit tiles): its area in tile areas and a point in it, if it has at least
 /// [`MIN_EMPTY_TILES`].
+/// Why `plan` may not be returned: it leaves a part of the shape empty (see
+/// this module's documentation), said with where, in SVG user units.
+pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
+    let w = plan.tile_size;
+    let work = shape.scaled(1.0 / w);
+    let centres: Vec<Point> = plan
+        .poses
+        .iter()
+        .map(|p| Point::new(p.x / w, -p.y / w))
+        .collect();
+    let (area, at) = largest_empty_part(&work, &centres)?;
+    Some(format!(
+        "leaves a part of the shape empty: about {area:.0} tile areas without a tile, around ({:.0}, {:.0})",
+        at.x * w,
+        -at.y * w
+    ))
+}
+
 pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64, Point)> {
     if centres.is_empty() || centres.len() > MAX_CHECKED_TILES {
         return None;

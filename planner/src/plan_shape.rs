@@ -5,12 +5,11 @@
 
 use std::f64::consts::PI;
 
-use kurbo::Point;
 use rayon::prelude::*;
 
 use crate::cell_plan::{axes, plan_by_cells};
 use crate::cells::cells_of;
-use crate::empty::largest_empty_part;
+use crate::empty::empty_part;
 use crate::error::PlanError;
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
@@ -147,24 +146,6 @@ fn best_serpentine(
         }
     }
     None
-}
-
-/// Why `plan` may not be returned: it leaves a part of the shape empty (see
-/// [`crate::empty`]), said with where, in SVG user units.
-pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
-    let w = plan.tile_size;
-    let work = shape.scaled(1.0 / w);
-    let centres: Vec<Point> = plan
-        .poses
-        .iter()
-        .map(|p| Point::new(p.x / w, -p.y / w))
-        .collect();
-    let (area, at) = largest_empty_part(&work, &centres)?;
-    Some(format!(
-        "leaves a part of the shape empty: about {area:.0} tile areas without a tile, around ({:.0}, {:.0})",
-        at.x * w,
-        -at.y * w
-    ))
 }
 
 /// Why no plan was found: what is wrong with the shape, then what each planner said.

@@ -15,8 +15,9 @@
 use std::f64::consts::FRAC_PI_2;
 
 use crate::reference::dynamics::{Forces, Mode, Model, Moving};
+use crate::reference::dynamics_kind::Dynamics;
 use crate::reference::event_log::EventLog;
-use crate::reference::inertial::{run_inertial, Dynamics};
+use crate::reference::inertial::run_inertial;
 use crate::reference::integrators::{StepStats, Stepper};
 use crate::reference::locate::{any_event, condition, StepFrom};
 use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};

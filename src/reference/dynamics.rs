@@ -32,7 +32,7 @@ use crate::magnet_path::MagnetPath;
 use crate::physics::{
     along_path, joints_between, pairs_within, torque_about, upstream, Pole, ReactionInitiator,
 };
-use crate::reference::inertial::Dynamics;
+use crate::reference::dynamics_kind::Dynamics;
 use crate::reference::integrators::System;
 pub use crate::reference::model_options::ModelOptions;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};

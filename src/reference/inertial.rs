@@ -1,4 +1,4 @@
-//! The inertial reference dynamics ([`Dynamics::Inertial`]): every magnet and folding joint
+//! The inertial reference dynamics ([`crate::reference::Dynamics::Inertial`]): every magnet and folding joint
 //! of [`Model`] with mass, drag and a wall at each end of its range, integrated on
 //! positions and velocities (interleaved, so the Jacobian stays banded for ROS2) with the
 //! run's method.
@@ -29,30 +29,6 @@ use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::verdict::RestState;
 use std::f64::consts::FRAC_PI_2;
-
-/// How the chain answers the forces.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-#[non_exhaustive]
-pub enum Dynamics {
-    /// First order: every velocity proportional to its drive (drag
-    /// [`crate::reference::ModelOptions::drag`] and
-    /// [`crate::reference::ModelOptions::rotational_drag`]); the limit of negligible mass,
-    /// and the stiff case. The default.
-    #[default]
-    Overdamped,
-    /// Second order, with mass, drag, friction and bouncing walls ([`Inertia`]).
-    Inertial(Inertia),
-}
-
-impl Dynamics {
-    /// The short name: `overdamped` or `inertial`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Dynamics::Overdamped => "overdamped",
-            Dynamics::Inertial(_) => "inertial",
-        }
-    }
-}
 
 /// A rebound that would rise less than this fraction of the range ends the bouncing.
 const REST_HEIGHT: f64 = 1e-3;
@@ -172,7 +148,7 @@ fn release(
 }
 
 /// Runs the inertial model (the driver of [`crate::reference::run_reference`] for
-/// [`Dynamics::Inertial`]).
+/// [`crate::reference::Dynamics::Inertial`]).
 pub(crate) fn run_inertial(
     model: Model,
     inertia: Inertia,

@@ -33,6 +33,7 @@
 mod banded;
 mod driver;
 mod dynamics;
+mod dynamics_kind;
 mod event_log;
 pub mod experiments;
 mod inertial;
@@ -52,7 +53,7 @@ pub use driver::run_reference;
 pub use dynamics::{Model, ModelError, ModelOptions, BALANCE_TOLERANCE};
 // the unknowns' modes, for the event engine's local solves (which switch them as here)
 pub(crate) use dynamics::Mode;
-pub use inertial::Dynamics;
+pub use dynamics_kind::Dynamics;
 pub use integrators::{Method, StepStats};
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{

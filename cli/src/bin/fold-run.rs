@@ -25,6 +25,7 @@ use foldchain_cli::run_files::{
     is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
     MAX_FRAMES, MAX_VIEWER_TILES,
 };
+use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
@@ -172,47 +173,6 @@ fn s_value(text: &str) -> anyhow::Result<SValue> {
 /// `--engine auto` uses the local solves up to this many tiles (a 2,000-tile straight chain:
 /// 6.6 s of fold-run on the 2-core machine), the kinematic baseline beyond.
 const LOCAL_ENGINE_MAX_TILES: usize = 2_000;
-
-/// The name of a run given inline: the text itself when it is short and plain, else a name
-/// made from its fold word or its length.
-fn inline_name(arg: &str, chain: &Chain) -> String {
-    let t = arg.trim();
-    let plain = t
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || matches!(c, ' ' | '*' | '-' | '_'));
-    if plain && t.len() <= 40 {
-        return sanitize(t);
-    }
-    match chain.to_word() {
-        Ok(w) if w.to_string().len() <= 40 => sanitize(&w.to_string()),
-        _ => format!("chain-{}-tiles", chain.len()),
-    }
-}
-
-fn sanitize(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .take(40)
-        .collect();
-    if s.is_empty() {
-        "run".into()
-    } else {
-        s
-    }
-}
-
-fn stem(p: &Path) -> String {
-    p.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "run".into())
-}
 
 /// Bad input is an `Err` (exit 2); outcomes are exit codes.
 fn run(args: Args) -> anyhow::Result<u8> {
