@@ -1,14 +1,14 @@
 //! # foldchain-cli
 //!
-//! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`
-//! and `fold-validate` (in `src/bin/`), and the pieces they share: writing outputs without
+//! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`,
+//! `fold-validate` and `fold-tolerance` (in `src/bin/`), and the pieces they share: writing outputs without
 //! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
 //! a run's margins ([`margins_file`]), its name ([`run_name`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
-//! Install all five tools with `cargo install --path cli` from the repository root.
+//! Install all six tools with `cargo install --path cli` from the repository root.
 
 pub mod experiments;
 pub mod inputs;
