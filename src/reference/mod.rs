@@ -31,11 +31,14 @@
 //! ```
 
 mod banded;
+mod control;
+mod dense;
 mod driver;
 mod dynamics;
 mod dynamics_kind;
 mod event_log;
 pub mod experiments;
+mod forces;
 mod inertial;
 pub(crate) mod integrators;
 mod locate;
