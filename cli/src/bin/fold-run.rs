@@ -81,9 +81,9 @@ struct Args {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
-    /// How the engine times its events: local (solves of the reference's overdamped physics,
-    /// one joint at a time from the RI end: the reference's events within 0.5% of the run;
-    /// about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
+    /// How the engine times its events: local (solves of the reference's physics with
+    /// --dynamics, one joint at a time from the RI end: the reference's events within 0.5%
+    /// of the run; about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
     /// law, --speed and --start-rule; microseconds per tile, its times 7-9x early and folds
     /// that overlap in time), or auto (local up to 2,000 tiles, kinematic beyond, said on
     /// stderr).
