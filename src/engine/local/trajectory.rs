@@ -113,6 +113,12 @@ impl Shapes {
         (self.list.len() - 1) as u32
     }
 
+    /// How many shapes are stored.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.list.len()
+    }
+
     /// The shape of id `id`.
     pub(crate) fn get(&self, id: u32) -> &Shape {
         &self.list[id as usize]
