@@ -133,6 +133,7 @@ fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolu
     let mut solves_per_sweep = Vec::new();
     let mut saved = Saved::default();
     let mut library = Library::default();
+    let mut anchors = Anchors::default();
     while sweeps < MAX_SWEEPS {
         sweeps += 1;
         let solves_before = solves;
@@ -145,7 +146,7 @@ fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolu
             // step sizes hardly move), else when its inputs first move
             let anchor = match w.vars.first() {
                 Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => {
-                    shapes.crossing(magnets[a - 1], ANCHOR_FRACTION)
+                    anchors.crossing(&shapes, magnets[a - 1])
                 }
                 _ => None,
             };
@@ -290,6 +291,34 @@ fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolu
         solves,
         rhs,
         solves_per_sweep,
+    }
+}
+
+/// Each shape's crossing of [`ANCHOR_FRACTION`] from its start, found once.
+#[derive(Default)]
+struct Anchors {
+    /// By shape id: NaN not yet found, infinite never reached.
+    local: Vec<f64>,
+}
+
+impl Anchors {
+    /// When `track` reaches [`ANCHOR_FRACTION`], if it does.
+    fn crossing(&mut self, shapes: &Shapes, track: Track) -> Option<f64> {
+        if track.shape == REST {
+            return None;
+        }
+        let id = track.shape as usize;
+        if self.local.len() <= id {
+            self.local.resize(id + 1, f64::NAN);
+        }
+        if self.local[id].is_nan() {
+            self.local[id] = shapes
+                .get(track.shape)
+                .crossing(ANCHOR_FRACTION)
+                .unwrap_or(f64::INFINITY);
+        }
+        let t = self.local[id];
+        t.is_finite().then_some(track.offset + t)
     }
 }
 
