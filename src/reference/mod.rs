@@ -39,7 +39,7 @@ mod dynamics_kind;
 mod event_log;
 pub mod experiments;
 mod forces;
-mod inertial;
+pub(crate) mod inertial;
 pub(crate) mod integrators;
 mod locate;
 mod model_options;
