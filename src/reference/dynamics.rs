@@ -339,7 +339,7 @@ impl Model {
 
     /// The right-hand side `dy/dt` at `y` with `modes`; also leaves the drives in `work`.
     pub(crate) fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
-        self.forces(y, work);
+        self.forces_moving(y, modes, work);
         for i in 0..self.len() {
             dy[i] = self.rate(i, work.drive[i], modes[i]);
         }
