@@ -34,6 +34,7 @@ use crate::engine::progress::Progress;
 use crate::physics::ForceLaw;
 use crate::timeline::Geometry;
 
+mod answer;
 mod cache;
 #[cfg(test)]
 mod exact;
@@ -41,6 +42,7 @@ mod exact;
 mod fast_tests;
 mod window;
 
+pub(crate) use answer::ForceStart;
 pub(crate) use cache::ForceCache;
 use window::Window;
 
@@ -79,33 +81,6 @@ pub enum StartRule {
         /// Pairs at most this many apart in chain index count (at least 1).
         cutoff: usize,
     },
-}
-
-/// Where the force rule starts a magnet.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum ForceStart {
-    /// At this time, s.
-    At(f64),
-    /// Never: the drive came nearest to starting it at `time`, where it was `drive` N.
-    Never {
-        /// When the drive was largest, s.
-        time: f64,
-        /// The largest drive, N (negative: towards the rest point).
-        drive: f64,
-    },
-}
-
-impl ForceStart {
-    /// The same answer with its time moved by `dt`.
-    fn shifted(self, dt: f64) -> ForceStart {
-        match self {
-            ForceStart::At(t) => ForceStart::At(t + dt),
-            ForceStart::Never { time, drive } => ForceStart::Never {
-                time: time + dt,
-                drive,
-            },
-        }
-    }
 }
 
 /// The force rule's view of a run: the chain, the run so far, the law and the cutoff.

@@ -20,8 +20,8 @@
 use rustc_hash::FxHashMap;
 
 use crate::engine::progress::Progress;
+use crate::engine::start_rule::answer::ForceStart;
 use crate::engine::start_rule::window::ARRIVED_MARGIN;
-use crate::engine::start_rule::ForceStart;
 use crate::physics::reach;
 use crate::timeline::Geometry;
 
