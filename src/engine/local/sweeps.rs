@@ -476,6 +476,7 @@ mod tests {
             tol: 1e-8,
             start_fraction: start_fraction(&model.geometry),
             max_steps: 1_000_000,
+            inertial: None,
         };
         let c = solve_chain(&model, opts);
         (model, c)
@@ -518,6 +519,7 @@ mod tests {
             tol: 1e-8,
             start_fraction: start_fraction(&model.geometry),
             max_steps: 1_000_000,
+            inertial: None,
         };
         let (a, b) = (
             solve_chain_with(&model, opts, true),
