@@ -224,7 +224,7 @@ impl Driver {
                     ends: [(&self.y, &drive), (&y1, &drive1)],
                     tol,
                 }
-                .first(&mut y_event, &mut self.work, &mut self.stats);
+                .first(&mut y_event, stepper.work_mut(), &mut self.stats);
                 self.stats.event_steps += 1;
                 self.t += th * h;
                 // y1 keeps the state before the event

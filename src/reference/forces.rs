@@ -152,10 +152,21 @@ impl Model {
             out.spans = spans;
             return;
         };
-        // positions from `c` before a span to `c` after it; frames up to the last one
+        // positions from `c` before a span to `c` after it; frames from the first free
+        // joint (those before it are the full evaluation's) up to the last tile needed
         let last_tile = ((reach + c).min(n - 1)) / 2;
         let mut frames = std::mem::take(&mut out.frames);
-        self.frames_upto(y, last_tile, &mut frames);
+        let first_free_joint = self
+            .unknowns
+            .iter()
+            .zip(modes)
+            .find_map(|(u, &m)| match *u {
+                Unknown::Joint(j) if m == Mode::Free => Some(j),
+                _ => None,
+            });
+        if let Some(j0) = first_free_joint.filter(|&j0| j0 < last_tile) {
+            self.frames_from(y, j0, last_tile, &mut frames);
+        }
         for &(lo, hi) in &spans {
             for k in lo.saturating_sub(c)..=(hi + c).min(n - 1) {
                 let (p, t) = self.local_continued(k, y[self.magnet_var[k]]);
@@ -221,19 +232,19 @@ impl Model {
     /// [`crate::kinematics::poses_at_angles`] at [`Model::joint_angles`] for `y` in
     /// `[0, 1]`).
     fn frames(&self, y: &[f64], frames: &mut Vec<Frame>) {
-        self.frames_upto(y, self.joint_var.len(), frames);
+        frames.clear();
+        frames.resize(self.geometry.tiles(), Frame::default());
+        frames[0].cos = 1.0;
+        self.frames_from(y, 0, self.joint_var.len(), frames);
     }
 
-    /// The frames of tiles `0..=last` only (as [`Model::frames`]).
-    fn frames_upto(&self, y: &[f64], last: usize, frames: &mut Vec<Frame>) {
-        frames.clear();
-        let mut f = Frame {
-            cos: 1.0,
-            ..Frame::default()
-        };
-        frames.push(f);
+    /// The frames of tiles `first + 1..=last` from the frame of tile `first` (already in
+    /// `frames`, which holds every tile), as [`Model::frames`].
+    fn frames_from(&self, y: &[f64], first: usize, last: usize, frames: &mut [Frame]) {
+        let mut f = frames[first];
         let half = 0.5 * self.geometry.w;
-        for (j, &v) in self.joint_var.iter().enumerate().take(last) {
+        for j in first..last {
+            let v = self.joint_var[j];
             // the fold continued beyond [0, 1] as the path is (local_continued)
             let a = if v == usize::MAX {
                 0.0
@@ -265,7 +276,7 @@ impl Model {
                 sin,
                 cos,
             };
-            frames.push(f);
+            frames[j + 1] = f;
         }
     }
 

@@ -162,6 +162,12 @@ impl<W: Default + Debug> Stepper<W> {
         &self.work
     }
 
+    /// The scratch of `f`, to evaluate the system's forces elsewhere with it (the model's
+    /// drives near the free unknowns only, [`crate::reference::Model`]).
+    pub(crate) fn work_mut(&mut self) -> &mut W {
+        &mut self.work
+    }
+
     /// The stages of the last Dormand-Prince step (`[0]` the rates at its start, `[6]` at
     /// its end), for its dense output ([`crate::reference::dense`]).
     pub(crate) fn stages(&self) -> &[Vec<f64>] {

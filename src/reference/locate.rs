@@ -80,7 +80,7 @@ impl StepEvents<'_> {
         let clamped = self.candidates.iter().any(|&i| self.modes[i] != Mode::Free);
         if clamped {
             stats.rhs += 1;
-            self.model.forces(y, work);
+            self.model.forces_moving(y, self.modes, work);
         }
         self.smallest(y, &work.drive)
     }
