@@ -275,8 +275,14 @@ pub(crate) fn solved_fold_angle(solved: &Solved, fold: &FoldRecord, t: f64) -> f
         return 0.0;
     }
     if t >= fold.end {
-        // the end of a closed fold is exact, whatever the rounding of the track's offset
-        let f = solved.fold_fraction(fold.joint, fold.end);
+        // the end of a closed fold is exact, whatever the rounding of the track's offset (or
+        // the end of a shared shape, within the shape tolerance of the fold's own)
+        let last = solved
+            .chain
+            .shapes
+            .last_move(solved.chain.joints[fold.joint])
+            .map_or(fold.end, |t| t.max(fold.end));
+        let f = solved.fold_fraction(fold.joint, last);
         return if f > 1.0 - 1e-9 { target } else { target * f };
     }
     target * solved.fold_fraction(fold.joint, t)
