@@ -136,14 +136,7 @@ mod tests {
     use crate::shape::Ring;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-        Ring {
-            points: vec![
-                Point::new(x0, y0),
-                Point::new(x1, y0),
-                Point::new(x1, y1),
-                Point::new(x0, y1),
-            ],
-        }
+        Ring::rect(x0, y0, x1, y1)
     }
 
     /// Rows filling the left half of a 20 x 10 rectangle leave the right half empty; rows

@@ -92,7 +92,7 @@ pub struct Plan {
 }
 
 /// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
-fn mm(v: f64) -> String {
+pub(crate) fn mm(v: f64) -> String {
     if v >= 100.0 {
         format!("{v:.0}")
     } else if v >= 10.0 {

@@ -16,7 +16,7 @@ use svg::Document;
 
 use crate::error::PlanError;
 use crate::options::Turns;
-use crate::plan::Plan;
+use crate::plan::{mm, Plan};
 use crate::shape::Shape;
 
 /// The preview of `plan` over the shape in the SVG file `shape_path`.
@@ -116,7 +116,7 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
         ),
         format!(
             "tile {} mm, folded {:.0} x {:.0} mm",
-            round_mm(plan.tile_mm),
+            mm(plan.tile_mm),
             plan.extent_mm[0],
             plan.extent_mm[1]
         ),
@@ -140,17 +140,6 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
     }
     doc = legend(doc, x0, view.y1 - footer + 0.5 * m, legend_size);
     format!("{doc}\n")
-}
-
-/// Millimetres for the title: three significant digits.
-fn round_mm(v: f64) -> String {
-    if v >= 100.0 {
-        format!("{v:.0}")
-    } else if v >= 10.0 {
-        format!("{v:.1}")
-    } else {
-        format!("{v:.2}")
-    }
 }
 
 /// The share of a band of rows that octagons can cover: a tile's area `2 (sqrt2 - 1) w^2`

@@ -530,14 +530,7 @@ mod tests {
     use crate::shape::Ring;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
-        Shape::from_rings(vec![Ring {
-            points: vec![
-                Point::new(x0, y0),
-                Point::new(x1, y0),
-                Point::new(x1, y1),
-                Point::new(x0, y1),
-            ],
-        }])
+        Shape::from_rings(vec![Ring::rect(x0, y0, x1, y1)])
     }
 
     /// The per-column tile measures match the overlap computed column by column.

@@ -19,6 +19,19 @@ pub struct Ring {
 }
 
 impl Ring {
+    /// The axis-aligned rectangle from `(x0, y0)` to `(x1, y1)` (tests).
+    #[cfg(test)]
+    pub(crate) fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+        Ring {
+            points: vec![
+                Point::new(x0, y0),
+                Point::new(x1, y0),
+                Point::new(x1, y1),
+                Point::new(x0, y1),
+            ],
+        }
+    }
+
     /// The edges `(from, to)`, the last one closing the ring.
     pub(crate) fn edges(&self) -> impl Iterator<Item = (Point, Point)> + '_ {
         let n = self.points.len();

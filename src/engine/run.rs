@@ -19,7 +19,7 @@ use crate::engine::start_rule::{ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::physics::ForceLaw;
-use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
+use crate::reference::{Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
@@ -179,11 +179,6 @@ fn run_local_engine(
 ) -> Result<Timeline, EngineError> {
     if !(opts.tolerance > 0.0 && opts.tolerance <= 0.1) {
         return Err(EngineError::BadTolerance(opts.tolerance));
-    }
-    if opts.model.dynamics != Dynamics::Overdamped {
-        return Err(EngineError::Unsupported(
-            "the local solves follow the overdamped model only; run the inertial model with the reference (fold-run --reference)",
-        ));
     }
     let model = match Model::new(chain, designs, &opts.model) {
         Ok(m) => m,

@@ -26,7 +26,7 @@ use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::pictures::state_energy;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::{run_reference, Dynamics};
-use crate::timeline::{EventKind, TileDesigns};
+use crate::timeline::TileDesigns;
 use crate::{Chain, ChainError, FoldWord};
 
 /// One experiment of the thesis with what was observed.
@@ -222,15 +222,7 @@ pub fn pair_energies(run: &ReferenceRun) -> PairEnergies {
     let mut phases: Vec<f64> = run
         .events
         .iter()
-        .filter(|e| {
-            matches!(
-                e.kind,
-                EventKind::MagnetStarts
-                    | EventKind::MagnetArrives
-                    | EventKind::FoldStarts
-                    | EventKind::FoldEnds
-            )
-        })
+        .filter(|e| e.kind.is_motion())
         .map(|e| e.time)
         .collect();
     phases.dedup();

@@ -31,18 +31,18 @@ use crate::reference::verdict::RestState;
 use std::f64::consts::FRAC_PI_2;
 
 /// A rebound that would rise less than this fraction of the range ends the bouncing.
-const REST_HEIGHT: f64 = 1e-3;
+pub(crate) const REST_HEIGHT: f64 = 1e-3;
 
 /// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
 /// damping rate (1/s), and the Coulomb friction (in drive units).
-struct Coefficients {
-    inv_mass: Vec<f64>,
-    damping: Vec<f64>,
-    coulomb: Vec<f64>,
+pub(crate) struct Coefficients {
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) coulomb: Vec<f64>,
 }
 
 impl Coefficients {
-    fn new(model: &Model, inertia: &Inertia) -> Coefficients {
+    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
         let tiles = model.geometry.tiles();
         let n = model.len();
         let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);

@@ -36,7 +36,7 @@ mod dynamics;
 mod dynamics_kind;
 mod event_log;
 pub mod experiments;
-mod inertial;
+pub(crate) mod inertial;
 pub(crate) mod integrators;
 mod locate;
 mod model_options;

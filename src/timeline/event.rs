@@ -35,6 +35,18 @@ impl EventKind {
         )
     }
 
+    /// Whether the event is a motion's start or end: a magnet starts or arrives, a fold
+    /// starts or ends (not the RI's contact, not a verdict).
+    pub fn is_motion(self) -> bool {
+        matches!(
+            self,
+            EventKind::MagnetStarts
+                | EventKind::MagnetArrives
+                | EventKind::FoldStarts
+                | EventKind::FoldEnds
+        )
+    }
+
     /// The snake-case name used in `timeline.json`.
     pub fn name(self) -> &'static str {
         match self {

@@ -81,9 +81,9 @@ struct Args {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
-    /// How the engine times its events: local (solves of the reference's overdamped physics,
-    /// one joint at a time from the RI end: the reference's events within 0.5% of the run;
-    /// about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
+    /// How the engine times its events: local (solves of the reference's physics with
+    /// --dynamics, one joint at a time from the RI end: the reference's events within 0.5%
+    /// of the run; about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
     /// law, --speed and --start-rule; microseconds per tile, its times 7-9x early and folds
     /// that overlap in time), or auto (local up to 2,000 tiles, kinematic beyond, said on
     /// stderr).
@@ -104,10 +104,11 @@ struct Args {
     /// uniformly magnetised cylinders, tabulated).
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
-    /// The reference's dynamics (--reference, --compare): inertial (magnets of 0.265 g with a
-    /// drag of 0.05 N s/m, tiles with rotational inertia, bouncing at path ends; README,
-    /// "Physical parameters") or overdamped (first order, drag 5 N s/m: the stiff limit of
-    /// negligible mass, the one the event engine's speed law and fold-validate use).
+    /// The physics of the event engine's local solves and of the reference (--reference,
+    /// --compare), the same for both: inertial (magnets of 0.265 g with a drag of 0.05 N s/m,
+    /// tiles with rotational inertia, bouncing at path ends; README, "Physical parameters")
+    /// or overdamped (first order, drag --drag: the stiff limit of negligible mass, the one
+    /// fold-validate uses by default). The kinematic engine ignores it.
     #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
     dynamics: String,
     /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
@@ -372,12 +373,13 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 _ => StartRule::Distance,
             })
     } else {
-        // the local solves follow the overdamped model (the inertial one is not built in
-        // them yet): the drag is --drag's
+        // the local solves follow --dynamics, as the reference does (--drag is the
+        // overdamped model's drag)
         EngineOptions::default().with_model(
             ModelOptions::default()
                 .with_force_law(force_law)
-                .with_drag(args.drag),
+                .with_drag(args.drag)
+                .with_dynamics(dynamics),
         )
     };
     let bar = (chain.len() > 2000).then(|| {

@@ -82,10 +82,12 @@ pub(crate) struct LocalRun {
 
 /// Solves `model`'s chain (starts reported at [`start_fraction`]).
 pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
+    let inertial = solve::InertialModel::new(model);
     let opts = solve::SolveOptions {
         tol,
         start_fraction: start_fraction(&model.geometry),
         max_steps: 1_000_000,
+        inertial: inertial.as_ref(),
     };
     let chain = sweeps::solve_chain(model, opts);
     let g = &model.geometry;

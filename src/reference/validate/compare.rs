@@ -20,15 +20,7 @@ type Keyed = Vec<((EventKind, u32), f64)>;
 fn keyed(events: &[Event]) -> Keyed {
     events
         .iter()
-        .filter(|e| {
-            matches!(
-                e.kind,
-                EventKind::MagnetStarts
-                    | EventKind::MagnetArrives
-                    | EventKind::FoldStarts
-                    | EventKind::FoldEnds
-            )
-        })
+        .filter(|e| e.kind.is_motion())
         .map(|e| ((e.kind, e.index), e.time))
         .collect()
 }
