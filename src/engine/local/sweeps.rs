@@ -466,31 +466,40 @@ fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut 
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::local::solve::SolveOptions;
-    use crate::reference::ModelOptions;
+    use crate::engine::local::solve::{InertialModel, SolveOptions};
+    use crate::reference::{Dynamics, ModelOptions};
     use crate::timeline::{start_fraction, TileDesigns};
     use crate::{Chain, Design};
 
-    fn chain_of(word: &str, s: f64) -> (Model, ChainSolution) {
+    /// `word`'s chain at `s` solved with `dynamics`, with or without the cache (`reuse`).
+    fn solve_word(word: &str, s: f64, dynamics: Dynamics, reuse: bool) -> ChainSolution {
         let chain = Chain::parse(word).unwrap();
         let model = Model::new(
             &chain,
             &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default(),
+            &ModelOptions {
+                dynamics,
+                ..ModelOptions::default()
+            },
         )
         .unwrap();
+        let inertial = InertialModel::new(&model);
         let opts = SolveOptions {
             tol: 1e-8,
             start_fraction: start_fraction(&model.geometry),
             max_steps: 1_000_000,
+            inertial: inertial.as_ref(),
         };
-        let c = solve_chain(&model, opts);
-        (model, c)
+        solve_chain_with(&model, opts, reuse)
     }
 
     /// Solves of each sweep, shapes stored and events.
     fn counts(word: &str) -> (Vec<usize>, usize, f64) {
-        let (_, c) = chain_of(word, 0.1);
+        counts_with(word, Dynamics::Overdamped)
+    }
+
+    fn counts_with(word: &str, dynamics: Dynamics) -> (Vec<usize>, usize, f64) {
+        let c = solve_word(word, 0.1, dynamics, true);
         let events = c.events().len() as f64;
         (c.solves_per_sweep, c.shapes.len(), events)
     }
@@ -524,25 +533,19 @@ mod tests {
         assert!(events_four > 1.6 * events_two, "{events_two} {events_four}");
         same_cost(&two, &four);
         assert!(shapes_four <= shapes_two + 30, "{shapes_two} {shapes_four}");
+        // the inertial local solves (fold-run's default) as well
+        let inertial = Dynamics::Inertial(Default::default());
+        let (short, _, _) = counts_with("S*60", inertial);
+        let (long, _, _) = counts_with("S*240", inertial);
+        same_cost(&short, &long);
     }
 
     #[test]
     fn cached_and_uncached_solves_agree() {
-        let chain = Chain::parse("S*14 LL S*14 RR S*6").unwrap();
-        let model = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(0.1)),
-            &ModelOptions::default(),
-        )
-        .unwrap();
-        let opts = SolveOptions {
-            tol: 1e-8,
-            start_fraction: start_fraction(&model.geometry),
-            max_steps: 1_000_000,
-        };
+        let word = "S*14 LL S*14 RR S*6";
         let (a, b) = (
-            solve_chain_with(&model, opts, true),
-            solve_chain_with(&model, opts, false),
+            solve_word(word, 0.1, Dynamics::Overdamped, true),
+            solve_word(word, 0.1, Dynamics::Overdamped, false),
         );
         assert!(a.solves < b.solves, "{} {}", a.solves, b.solves);
         let (ea, eb) = (a.events(), b.events());
