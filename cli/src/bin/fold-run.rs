@@ -97,7 +97,7 @@ struct Args {
     speed: String,
     /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
     /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
-    /// reference integrator weighs them; about 40 us per tile). Default distance; giving it
+    /// reference integrator weighs them; about 0.4 us per tile). Default distance; giving it
     /// selects the kinematic engine (refused with --engine local).
     #[arg(long, value_parser = ["distance", "force"])]
     start_rule: Option<String>,
