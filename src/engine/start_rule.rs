@@ -21,14 +21,14 @@
 //! after it arrives, while magnets behind it still move). The search evaluates every fourth
 //! sample first and, in the first interval where the drive turns positive, the samples
 //! between, then finds the root by the Illinois method to [`ROOT_TOLERANCE`] of the mover's
-//! duration; with no sign change it evaluates every sample, as the rule is stated, for the
+//! duration and bisection to the clock's last bit; with no sign change it evaluates every sample, as the rule is stated, for the
 //! nearest approach. Each drive reuses what has not changed since the last time asked
 //! (window module: poses, sines and cosines, points on the paths). The answer is cached by
 //! the neighbourhood's integer description (cache module), so along a straight run or a
 //! serpentine's rows most magnets cost one hash look-up. Fast or cached, the start is within
 //! [`START_TOLERANCE`] of the mover's duration of the exact rule's (every sample, bisection
-//! to the last bit): the tests check it. About 1 us per tile on a serpentine (BENCHMARKS.md,
-//! "force start rule").
+//! to the last bit): the tests check it. About 0.35 us per tile in the engine on a straight
+//! run or a serpentine, next to the distance rule's 0.22 (BENCHMARKS.md, "Force start rule").
 
 use crate::engine::progress::Progress;
 use crate::physics::ForceLaw;
@@ -51,13 +51,16 @@ use window::Window;
 /// rounding error: 1e-12.
 pub const DRIVE_TOLERANCE: f64 = 1e-12;
 
-/// The root search stops when the start is bracketed to this fraction of the mover's
-/// duration (or to a few units of the clock's last bit, if larger): 1e-12.
+/// The root search takes false-position (Illinois) steps until the start is bracketed to
+/// this fraction of the mover's duration, then bisects to the clock's last bit (as the exact
+/// rule does, so that both end on the same number): 1e-12.
 pub const ROOT_TOLERANCE: f64 = 1e-12;
 
 /// The force rule's start, fast and cached, is within this fraction of the mover's duration
-/// of the exact rule's: 1e-9 (the cache merges neighbourhoods whose starts differ by less
-/// than 2^-32 of it; the root search stops at 1e-12 of it).
+/// of the exact rule's: 1e-9 (the search ends on the same last bit of the clock as the exact
+/// rule's bisection unless the drive crosses its threshold more than once within a sample
+/// step; the cache merges neighbourhoods whose starts differ by some 100 units of the clock's
+/// last bit).
 pub const START_TOLERANCE: f64 = 1e-9;
 
 /// Samples of the drive along the mover's path.
@@ -66,7 +69,7 @@ const PATH_SAMPLES: usize = 64;
 const AFTER_SAMPLES: usize = 16;
 /// The first pass of the search evaluates every this many samples.
 const COARSE: usize = 4;
-/// At most this many steps of the root search (it needs about ten).
+/// At most this many steps of the root search (it needs about twenty).
 const ROOT_STEPS: usize = 100;
 
 /// The rule that starts a magnet.
@@ -183,8 +186,8 @@ impl ForceRule<'_> {
 /// The first time in `(below.0, above.0]` where the drive exceeds `threshold`, the drive
 /// being at most `threshold` at `below` and above it at `above`: the Illinois method (false
 /// position, halving the value kept at an end that stays twice) until the bracket is within
-/// `tol` (or a few units of the clock's last bit); the bracket's upper end, where the drive
-/// is above the threshold.
+/// `tol`, then bisection until its ends are neighbouring numbers of the clock, as the exact
+/// rule's bisection ends; the bracket's upper end, where the drive is above the threshold.
 fn root(
     win: &mut Window<'_>,
     threshold: f64,
@@ -194,19 +197,18 @@ fn root(
 ) -> f64 {
     let (mut a, mut fa) = (below.0, below.1 - threshold);
     let (mut b, mut fb) = (above.0, above.1 - threshold);
-    let tol = tol.max(4.0 * f64::EPSILON * b.abs());
     let mut kept = 0i8;
     for _ in 0..ROOT_STEPS {
-        if b - a <= tol {
+        let mid = 0.5 * (a + b);
+        if mid <= a || mid >= b {
             break;
         }
-        let mut c = b - fb * (b - a) / (fb - fa);
-        if !(c > a && c < b) {
-            c = 0.5 * (a + b);
-            if !(c > a && c < b) {
-                break;
-            }
-        }
+        let falsi = b - fb * (b - a) / (fb - fa);
+        let c = if b - a > tol && falsi > a && falsi < b {
+            falsi
+        } else {
+            mid
+        };
         let fc = win.drive(c) - threshold;
         if fc > 0.0 {
             (b, fb) = (c, fc);

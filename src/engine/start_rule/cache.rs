@@ -6,16 +6,17 @@
 //! tiles' designs, the folds of the joints between them, the speed laws of the magnets behind
 //! `m` (their lengths and end gaps, exactly), whether the chain ends or the RI lies within
 //! reach, and when each magnet behind `m` started, relative to `t0`. The key holds all of
-//! these as integers: the offsets rounded to [`FORCE_OFFSET_QUANTUM`] of the mover's duration, and a
+//! these as integers: the offsets rounded to [`FORCE_OFFSET_QUANTUM`] of the clock's scale, and a
 //! magnet that has arrived (and whose fold, if any, has closed) as "at rest at its path end",
 //! whatever its offset. Along a straight run, or the rows of a serpentine, the same
 //! neighbourhood comes back magnet after magnet once the transient from the RI or a U-turn
 //! has died out, and the search is skipped.
 //!
-//! Two neighbourhoods with one key differ by less than one quantum in each offset, so the
-//! cached start differs from the exact one by about a quantum times the start's sensitivity
-//! to a neighbour's start (of order one): within the rule's stated [`crate::engine::START_TOLERANCE`]
-//! (the tests check it against the uncached search).
+//! Two neighbourhoods with one key differ by less than one quantum in each offset (some 100
+//! units of the clock's last bit), so the cached start differs from the exact one by about a
+//! quantum times the start's sensitivity to a neighbour's start (of order one): within the
+//! rule's stated [`crate::engine::START_TOLERANCE`] (the tests check it against the uncached
+//! search).
 
 use rustc_hash::FxHashMap;
 
@@ -25,10 +26,11 @@ use crate::engine::start_rule::window::ARRIVED_MARGIN;
 use crate::physics::reach;
 use crate::timeline::Geometry;
 
-/// Offsets in a key are rounded to this fraction of the mover's duration: 2^-32 (2.3e-10).
-/// Far above the rounding of the times themselves (1e-16 relative to the run's clock: a
-/// steady run keeps its key), far below the rule's tolerance.
-pub(crate) const FORCE_OFFSET_QUANTUM: f64 = 1.0 / 4_294_967_296.0;
+/// Offsets in a key are rounded to this fraction of the clock's scale (the larger of `t0` and
+/// the mover's duration, rounded up to a power of two): 2^-46, 64 to 128 units of the clock's
+/// last bit. Above the rounding of the start times themselves (a few units: a steady run
+/// keeps its key), and a cached start is as near the exact one as the clock resolves.
+pub(crate) const FORCE_OFFSET_QUANTUM: f64 = 1.0 / 70_368_744_177_664.0;
 
 /// A key's entry for a magnet at rest at its path end.
 const AT_REST: u64 = u64::MAX;
@@ -62,14 +64,21 @@ impl ForceCache {
         let within = reach(m, cutoff, n);
         let (lo, hi) = (*within.start(), *within.end());
         let (tlo, thi) = (lo / 2, hi / 2);
-        let q = progress.motion(m - 1).duration() * FORCE_OFFSET_QUANTUM;
-        if !(q > 0.0 && q.is_finite()) {
+        let scale = t0.abs().max(progress.motion(m - 1).duration());
+        if !(scale > 0.0 && scale.is_finite()) {
             return false;
         }
+        let exponent = scale.log2().ceil() as i32;
+        let q = 2f64.powi(exponent) * FORCE_OFFSET_QUANTUM;
         let key = &mut self.key;
         key.clear();
         let near_end = |d: usize| d.min(cutoff.saturating_add(1)) as u64;
-        key.extend([(m % 2) as u64, near_end(m), near_end(n - 1 - m)]);
+        key.extend([
+            (m % 2) as u64,
+            near_end(m),
+            near_end(n - 1 - m),
+            exponent as i64 as u64,
+        ]);
         key.extend((lo..=hi).map(|k| u64::from(g.path_id(k))));
         key.extend((tlo..=thi).map(|t| u64::from(g.design_index(t))));
         key.extend((tlo..thi).map(|j| g.joint_fold(j).quarter_turns() as i64 as u64));
