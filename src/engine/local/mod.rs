@@ -47,6 +47,7 @@ impl std::fmt::Debug for Solved {
         f.debug_struct("Solved")
             .field("sweeps", &self.chain.sweeps)
             .field("solves", &self.chain.solves)
+            .field("solves_per_sweep", &self.chain.solves_per_sweep)
             .finish()
     }
 }
