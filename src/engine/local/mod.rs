@@ -277,9 +277,20 @@ pub(crate) fn solved_fold_angle(solved: &Solved, fold: &FoldRecord, t: f64) -> f
         return 0.0;
     }
     if t >= fold.end {
-        // the end of a closed fold is exact, whatever the rounding of the track's offset
-        let f = solved.fold_fraction(fold.joint, fold.end);
-        return if f > 1.0 - 1e-9 { target } else { target * f };
+        // a fold that closed (its joint's final mode is at the end) ends exactly closed,
+        // whatever the rounding of the track's offset or a shape shared within
+        // SHAPE_TOLERANCE; one that stopped short ends where its track ends
+        let closed = solved
+            .chain
+            .units
+            .get(fold.joint + 1)
+            .and_then(|u| u.0.solution.modes.get(2))
+            == Some(&Mode::AtEnd);
+        return if closed {
+            target
+        } else {
+            target * solved.fold_fraction(fold.joint, fold.end)
+        };
     }
     target * solved.fold_fraction(fold.joint, t)
 }

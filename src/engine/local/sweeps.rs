@@ -137,6 +137,7 @@ fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolu
     while sweeps < MAX_SWEEPS {
         sweeps += 1;
         let solves_before = solves;
+        library.clear();
         let mut moved: f64 = 0.0;
         let mut duration: f64 = 0.0;
         for u in 0..=tiles {
@@ -346,6 +347,12 @@ impl Library {
     fn add(&mut self, kind: (bool, i64), end: f64, id: u32) {
         self.by_kind.entry(kind).or_default().push((end, id));
     }
+
+    /// Forgets every shape: a sweep shares only the shapes it made itself (a shape of the
+    /// sweep before, matched within the tolerance, would stop the sweeps' progress there).
+    fn clear(&mut self) {
+        self.by_kind.clear();
+    }
 }
 
 /// Downstream tracks as they were before [`shift_downstream`] moved them.
@@ -467,32 +474,40 @@ fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut 
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::local::solve::SolveOptions;
-    use crate::reference::ModelOptions;
+    use crate::engine::local::solve::{InertialModel, SolveOptions};
+    use crate::reference::{Dynamics, ModelOptions};
     use crate::timeline::{start_fraction, TileDesigns};
     use crate::{Chain, Design};
 
-    fn chain_of(word: &str, s: f64) -> (Model, ChainSolution) {
+    /// `word`'s chain at `s` solved with `dynamics`, with or without the cache (`reuse`).
+    fn solve_word(word: &str, s: f64, dynamics: Dynamics, reuse: bool) -> ChainSolution {
         let chain = Chain::parse(word).unwrap();
         let model = Model::new(
             &chain,
             &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default(),
+            &ModelOptions {
+                dynamics,
+                ..ModelOptions::default()
+            },
         )
         .unwrap();
+        let inertial = InertialModel::new(&model);
         let opts = SolveOptions {
             tol: 1e-8,
             start_fraction: start_fraction(&model.geometry),
             max_steps: 1_000_000,
-            inertial: None,
+            inertial: inertial.as_ref(),
         };
-        let c = solve_chain(&model, opts);
-        (model, c)
+        solve_chain_with(&model, opts, reuse)
     }
 
     /// Solves of each sweep, shapes stored and events.
     fn counts(word: &str) -> (Vec<usize>, usize, f64) {
-        let (_, c) = chain_of(word, 0.1);
+        counts_with(word, Dynamics::Overdamped)
+    }
+
+    fn counts_with(word: &str, dynamics: Dynamics) -> (Vec<usize>, usize, f64) {
+        let c = solve_word(word, 0.1, dynamics, true);
         let events = c.events().len() as f64;
         (c.solves_per_sweep, c.shapes.len(), events)
     }
@@ -500,38 +515,45 @@ mod tests {
     #[test]
     fn a_longer_steady_run_costs_no_more_solves() {
         // every sweep past the transients is a look-up per unit: four times the straight
-        // chain, or twice the U-turns, costs the same solves and stores the same shapes
-        let (short, shapes_short, end_short) = counts("S*60");
-        let (long, shapes_long, end_long) = counts("S*240");
-        assert!(end_long > 3.5 * end_short, "{end_short} {end_long}");
-        assert_eq!(short, long);
-        assert_eq!(shapes_short, shapes_long);
-        assert!(short.len() <= 4, "{short:?}");
+        // chain, or twice the U-turns, costs the same solves a sweep and stores the same
+        // shapes (a longer chain may take a sweep more: the sweeps stop on absolute times)
+        let same_cost = |short: &[usize], long: &[usize]| {
+            let most = short.iter().copied().max().unwrap();
+            assert!(long.len() <= short.len() + 1, "{short:?} {long:?}");
+            assert!(long.iter().all(|&n| n <= most), "{short:?} {long:?}");
+            assert_eq!(short[..2], long[..2]);
+        };
+        let (short, shapes_short, events_short) = counts("S*60");
+        let (long, shapes_long, events_long) = counts("S*240");
+        assert!(
+            events_long > 3.5 * events_short,
+            "{events_short} {events_long}"
+        );
+        same_cost(&short, &long);
+        assert!(
+            shapes_long <= shapes_short + 10,
+            "{shapes_short} {shapes_long}"
+        );
+        assert!(long.len() <= 5, "{long:?}");
         let row = "S*40 LL S*40 RR";
-        let (two, _, end_two) = counts(&format!("{row} S*40"));
-        let (four, _, end_four) = counts(&format!("{row} {row} S*40"));
-        assert!(end_four > 1.6 * end_two, "{end_two} {end_four}");
-        assert_eq!(two, four);
+        let (two, shapes_two, events_two) = counts(&format!("{row} S*40"));
+        let (four, shapes_four, events_four) = counts(&format!("{row} {row} S*40"));
+        assert!(events_four > 1.6 * events_two, "{events_two} {events_four}");
+        same_cost(&two, &four);
+        assert!(shapes_four <= shapes_two + 30, "{shapes_two} {shapes_four}");
+        // the inertial local solves (fold-run's default) as well
+        let inertial = Dynamics::Inertial(Default::default());
+        let (short, _, _) = counts_with("S*60", inertial);
+        let (long, _, _) = counts_with("S*240", inertial);
+        same_cost(&short, &long);
     }
 
     #[test]
     fn cached_and_uncached_solves_agree() {
-        let chain = Chain::parse("S*14 LL S*14 RR S*6").unwrap();
-        let model = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(0.1)),
-            &ModelOptions::default(),
-        )
-        .unwrap();
-        let opts = SolveOptions {
-            tol: 1e-8,
-            start_fraction: start_fraction(&model.geometry),
-            max_steps: 1_000_000,
-            inertial: None,
-        };
+        let word = "S*14 LL S*14 RR S*6";
         let (a, b) = (
-            solve_chain_with(&model, opts, true),
-            solve_chain_with(&model, opts, false),
+            solve_word(word, 0.1, Dynamics::Overdamped, true),
+            solve_word(word, 0.1, Dynamics::Overdamped, false),
         );
         assert!(a.solves < b.solves, "{} {}", a.solves, b.solves);
         let (ea, eb) = (a.events(), b.events());
