@@ -29,7 +29,7 @@ use rustc_hash::FxHashMap;
 use crate::engine::local::solve::{solve, Solution, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::window::{Inputs, Var, Window};
-use crate::reference::Model;
+use crate::reference::{Dynamics, Model};
 use crate::timeline::{Event, EventKind};
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
@@ -444,6 +444,14 @@ fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut 
     key.push(a - w.lo as i64);
     key.push(w.hi as i64 - a);
     key.push(w.vars.len() as i64);
+    if let Dynamics::Inertial(_) = w.model.options().dynamics {
+        // an inertial joint's inertia grows with the tiles it swings: its place matters
+        for v in &w.vars {
+            if let Var::Joint(jj) = v {
+                key.push((g.tiles() - 1 - jj) as i64);
+            }
+        }
+    }
     if w.lo == 0 {
         // the RI is in reach: the unit's place in the chain matters
         key.push(w.j as i64);

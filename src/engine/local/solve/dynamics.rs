@@ -110,3 +110,109 @@ impl InertialModel {
 pub(crate) fn at_wall(x: f64, v: f64) -> bool {
     (x >= 1.0 && v > 0.0) || (x <= 0.0 && v < 0.0)
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+    use crate::engine::{run, EngineOptions};
+    use crate::physics::Inertia;
+    use crate::reference::{run_reference, ModelOptions, ReferenceOptions};
+    use crate::timeline::{EventKind, TileDesigns};
+    use crate::{Chain, Design};
+
+    fn inertial() -> ModelOptions {
+        ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+    }
+
+    #[test]
+    fn walls_bounce_fast_arrivals_and_hold_slow_ones() {
+        let chain = Chain::parse("SL").unwrap();
+        let designs = TileDesigns::global(Design::thesis());
+        let model = Model::new(&chain, &designs, &inertial()).unwrap();
+        assert!(InertialModel::new(
+            &Model::new(&chain, &designs, &ModelOptions::default()).unwrap()
+        )
+        .is_none());
+        let im = InertialModel::new(&model).unwrap();
+        let g = model.magnet_var(1);
+        let push = model.force_scale;
+        // the arrival speed whose rebound rises 1e-3 of the path against the bonded force
+        let a = push * im.c.inv_mass[g];
+        let v_rest = (2.0 * a * REST_HEIGHT).sqrt() / im.restitution;
+        // a fast arrival bounces back with the restitution
+        let fast = 2.0 * v_rest;
+        assert_eq!(im.bounce(g, 1.0, fast, push), Some(-im.restitution * fast));
+        assert_eq!(im.bounce(g, 0.0, -fast, -push), Some(im.restitution * fast));
+        // a slower one pressed on by the bonded force stays
+        assert_eq!(im.bounce(g, 1.0, 0.5 * v_rest, push), None);
+        // the same with nothing pressing it on bounces
+        assert!(im.bounce(g, 1.0, 0.5 * v_rest, -push).is_some());
+        assert!(at_wall(1.0, 0.1) && at_wall(0.0, -0.1));
+        assert!(!at_wall(1.0, -0.1) && !at_wall(0.5, 1.0));
+        // released only by more than the threshold, towards the inside
+        assert!(im.released(&model, g, Mode::AtStart, push));
+        assert!(!im.released(&model, g, Mode::AtStart, -push));
+        assert!(im.released(&model, g, Mode::AtEnd, -push));
+        assert!(im.quiet(0.0, 0.0) && !im.quiet(1.0, 0.0));
+    }
+
+    #[test]
+    fn inertial_engine_events_are_the_inertial_references() {
+        // a serpentine repeats its U-turns: a cached unit must not stand for a joint that
+        // swings a different tail (its inertia grows with the tiles it swings)
+        let serpentine = "S*8 L L S*8 R R S*8 L L S*8 R R S*8";
+        for (word, s, most) in [
+            ("SL", 0.3, 1.0),
+            ("LL", 0.3, 1.0),
+            ("SSLS", 0.05, 1.0),
+            (serpentine, 0.3, 5.0),
+        ] {
+            let chain = Chain::parse(word).unwrap();
+            let designs = TileDesigns::global(Design::thesis().with_s(s));
+            let r = run_reference(
+                &chain,
+                &designs,
+                &ReferenceOptions::default().with_model(inertial()),
+            )
+            .unwrap();
+            let e = run(
+                &chain,
+                &designs,
+                &EngineOptions::default().with_model(inertial()),
+            )
+            .unwrap();
+            assert_eq!(e.outcome.name(), r.outcome.name(), "{word}");
+            let d = r.duration();
+            // seconds at most (the overdamped runs take ten times longer or more)
+            assert!(d < most, "{word}: {d}");
+            let motion = |k: EventKind| k != EventKind::RiContact;
+            let (a, b): (Vec<_>, Vec<_>) = (
+                r.events.iter().filter(|x| motion(x.kind)).collect(),
+                e.events.iter().filter(|x| motion(x.kind)).collect(),
+            );
+            assert_eq!(a.len(), b.len(), "{word}");
+            // the n-th event of a kind and index against the n-th (a magnet pulled off its
+            // end arrives twice)
+            let nth = |list: &[&crate::timeline::Event], x: &crate::timeline::Event| {
+                list.iter()
+                    .filter(|y| y.kind == x.kind && y.index == x.index && y.time < x.time)
+                    .count()
+            };
+            for x in &a {
+                let n = nth(&a, x);
+                let y = b
+                    .iter()
+                    .filter(|y| y.kind == x.kind && y.index == x.index)
+                    .nth(n)
+                    .unwrap_or_else(|| panic!("{word}: {x:?} missing"));
+                // the reference notes a release only at the end of its step: its starts
+                // lag the engine's located ones by up to a step
+                assert!(
+                    (x.time - y.time).abs() <= 5e-3 * d,
+                    "{word}: {x:?} vs {y:?}"
+                );
+            }
+        }
+    }
+}
