@@ -7,10 +7,10 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::cell_plan::{axes, plan_by_cells};
+use crate::cell_plan::{axes, plan_by_cells, CellFailure};
 use crate::cells::cells_of;
 use crate::empty::empty_part;
-use crate::error::PlanError;
+use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -59,10 +59,26 @@ pub(crate) fn plan_shape(
     let tiles_est = opts
         .tile_size
         .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    // the best plan rejected for an empty part, for a preview of where
+    let mut rejected: Option<Box<Rejected>> = None;
+    let mut reject = |r: Box<Rejected>| {
+        if rejected
+            .as_ref()
+            .is_none_or(|b| r.empty.tiles < b.empty.tiles)
+        {
+            rejected = Some(r);
+        }
+    };
     if let Some(p) = best.take() {
         match empty_part(shape, &p) {
             None => best = Some(p),
-            Some(why) => failures.push(format!("one serpentine {why}")),
+            Some(part) => {
+                failures.push(format!("one serpentine {part}"));
+                reject(Box::new(Rejected {
+                    plan: p,
+                    empty: part,
+                }));
+            }
         }
     }
     let parts = separate_parts(shape, tiles_est);
@@ -85,7 +101,7 @@ pub(crate) fn plan_shape(
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
         progress("planning by cells", 0, 1);
-        let by_cells: Vec<Result<Plan, String>> = styles
+        let by_cells: Vec<Result<Plan, CellFailure>> = styles
             .par_iter()
             .map(|&style| plan_by_cells(shape, opts, style, name))
             .collect();
@@ -99,13 +115,19 @@ pub(crate) fn plan_shape(
                         best = Some(p);
                     }
                 }
-                Err(e) => failures.push(format!("by cells: {e}")),
+                Err((e, r)) => {
+                    failures.push(format!("by cells: {e}"));
+                    if let Some(r) = r {
+                        reject(r);
+                    }
+                }
             }
         }
     }
     best.ok_or_else(|| PlanError::Unplannable {
         name: name.into(),
         reason: unplannable_reason(shape, parts, monotone.is_empty(), failures),
+        rejected,
     })
 }
 
