@@ -30,8 +30,8 @@ use crate::sizing::{width_for, SizeSearch};
 const MAX_MERGED_JUMPS: usize = 4;
 /// Decompositions (merges across jumps times choices at branches, where the sweep meets a
 /// hole) routed at most per axis: a ring's two branches have 5 and 3 choices (15), two
-/// holes side by side 225, of which the 4 pinwheels come first.
-const MAX_DECOMPOSITIONS: usize = 32;
+/// holes side by side 225; the pinwheels come first (2 for a ring, 4 for two holes).
+const MAX_DECOMPOSITIONS: usize = 8;
 /// Size steps of the tile width search.
 const SIZE_STEPS: usize = 10;
 /// The size search stops once the count is within this share of the target (2%: a cell
@@ -114,7 +114,15 @@ fn merges(split: &Cells) -> Vec<(u32, Vec<usize>)> {
     } else {
         vec![0]
     };
-    let room = (MAX_DECOMPOSITIONS / masks.len()).max(1);
+    // branches are merged or cut only around holes: where the graph of the plain cells
+    // has a cycle (a sweep meets a hole at a split and a join); a shape without holes keeps
+    // its plain branches, as the thesis' key does
+    let holes = split.graph.edge_count() + split.components() > split.cells.len();
+    let room = if holes {
+        (MAX_DECOMPOSITIONS / masks.len()).max(1)
+    } else {
+        1
+    };
     let mut choices: Vec<Vec<usize>> = vec![Vec::new()];
     for b in &split.branches {
         let mut next: Vec<Vec<usize>> = Vec::new();
@@ -131,7 +139,11 @@ fn merges(split: &Cells) -> Vec<(u32, Vec<usize>)> {
             choices.truncate(4 * room);
         }
     }
-    choices.sort_by_key(|c| pinwheel_rank(&split.branches, c));
+    if holes {
+        choices.sort_by_key(|c| pinwheel_rank(&split.branches, c));
+    } else {
+        choices = vec![Vec::new()];
+    }
     choices.truncate(room);
     masks
         .iter()

@@ -421,6 +421,55 @@ mod tests {
         assert_eq!(c.components(), 1);
     }
 
+    /// Around a hole: the split below it can go on in one side (an L-shaped cell) or cut
+    /// the cell below along a side of the hole (a pinwheel of three cells, each reaching
+    /// the outline at both ends of its rows); the area is kept and every cell is monotone.
+    #[test]
+    fn a_hole_merges_or_cuts_into_monotone_cells() {
+        let outer = poly(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        let hole = poly(&[(4.0, 3.0), (4.0, 7.0), (6.0, 7.0), (6.0, 3.0)]);
+        let s = Shape::from_rings(vec![outer, hole]);
+        let plain = decompose(&s, 0.5, 0.0);
+        // the split below the hole (2 sides: none, either, two cuts), the join above it
+        let choices: Vec<usize> = plain.branches.iter().map(|b| b.choices).collect();
+        assert_eq!(choices, vec![5, 3]);
+        let area = |c: &Cells| c.cells.iter().map(|c| c.area).sum::<f64>();
+        let merged = decompose_merging(
+            &s,
+            0.5,
+            0.0,
+            Merge {
+                jumps: 0,
+                branches: &[1, 2],
+            },
+        );
+        assert_eq!(merged.cells.len(), 2);
+        assert!((area(&merged) - 92.0).abs() < 1e-6);
+        // cut along the hole's left side: below-left with the left side, below-right with
+        // the right side, the top alone
+        let cut = decompose_merging(
+            &s,
+            0.5,
+            0.0,
+            Merge {
+                jumps: 0,
+                branches: &[4, 0],
+            },
+        );
+        assert_eq!(cut.cells.len(), 3, "{:?}", cut.cells);
+        assert!((area(&cut) - 92.0).abs() < 1e-6);
+        assert_eq!(cut.graph.edge_count(), 3);
+        for c in &cut.cells {
+            assert!(c.shape.max_pieces() <= 1, "{:?}", c.shape.bbox());
+            assert!((c.shape.area() - c.area).abs() < 1e-6);
+        }
+        let b = cut.cells.iter().map(|c| c.shape.bbox()).collect::<Vec<_>>();
+        assert!(
+            b.iter().any(|r| r.x0 == 0.0 && r.x1 == 4.0 && r.y1 == 7.0),
+            "{b:?}"
+        );
+    }
+
     #[test]
     fn a_jump_splits_a_cell_and_tiny_cells_drop() {
         // an L: a wide foot and a narrow post; the sweep meets one interval everywhere

@@ -97,6 +97,12 @@ pub(crate) fn plan_shape(
             }
         }
     }
+    // tiles by which a plan misses the asked count beyond the tolerance
+    let tol = (opts.tiles_tolerance * target as f64) as usize;
+    let miss = |q: &Plan| match (opts.tile_size, opts.tiles) {
+        (None, Some(n)) => q.tiles.abs_diff(n).saturating_sub(tol),
+        _ => 0,
+    };
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
@@ -109,8 +115,11 @@ pub(crate) fn plan_shape(
         for r in by_cells {
             match r {
                 Ok(p) => {
+                    // a count within the tolerance first, then the better fit
+                    let key = |q: &Plan| (miss(q), plan_score(q, opts.turn_cost));
                     if best.as_ref().is_none_or(|b| {
-                        plan_score(&p, opts.turn_cost) < plan_score(b, opts.turn_cost)
+                        let (a, b) = (key(&p), key(b));
+                        a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
                     }) {
                         best = Some(p);
                     }

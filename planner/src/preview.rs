@@ -394,4 +394,26 @@ mod tests {
         assert!(texts.iter().any(|t| t.contains("58.6%")), "{texts:?}");
         assert!(usvg::Tree::from_str(&out, &usvg::Options::default()).is_ok());
     }
+
+    /// A rejected plan's preview says so in red and frames the empty part.
+    #[test]
+    fn rejected_preview_is_marked() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><rect x="10" y="10" width="80" height="60"/></svg>"#;
+        let shape = Shape::from_svg_data(svg.as_bytes(), "t").unwrap();
+        let plan =
+            crate::plan_svg_str(svg, "t.svg", &PlanOptions::default().with_tiles(40)).unwrap();
+        let empty = EmptyPart {
+            tiles: 25.0,
+            centre: Point::new(50.0, 40.0),
+            bbox: Rect::new(30.0, 20.0, 70.0, 60.0),
+        };
+        let out = preview(&shape, &plan, Some(&empty));
+        assert!(out.contains("REJECTED, NOT A PLAN"), "{out}");
+        assert!(out.contains("about 25 tile areas"), "{out}");
+        let doc = usvg::roxmltree::Document::parse(&out).unwrap();
+        assert!(doc.descendants().any(|n| n.has_tag_name("rect")
+            && n.attribute("stroke") == Some("#d00000")
+            && n.attribute("width") == Some("40")));
+        assert!(!preview_svg(&shape, &plan).contains("REJECTED"));
+    }
 }

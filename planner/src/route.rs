@@ -291,11 +291,23 @@ fn next_legs(
     style: Style,
     toward: Option<Rect>,
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
+    // only tiles near the cell can block its rows
+    let cell_box = shape.bbox().inflate(2.0, 2.0);
+    let laid: Vec<Point> = laid
+        .iter()
+        .copied()
+        .filter(|&q| cell_box.contains(q))
+        .collect();
+    let laid = &laid[..];
     let grid = CentreGrid::new(laid);
     let p = style.pitch;
     let (e, h, side) = prev.end();
     let mut out = Vec::new();
     for join in joins(e, h, side, style) {
+        let near_box = laid
+            .iter()
+            .chain(&join.tiles)
+            .fold(Rect::from_points(e, e), |b, &q| b.union_pt(q));
         for &n in &join.sides {
             let frame = Frame {
                 o: join.start,
@@ -304,12 +316,15 @@ fn next_legs(
             };
             let work = frame.work(shape);
             let (lat, c0) = Lattice::from_origin(work.bbox(), p);
-            // tiles of the leg may not overlap those laid before, nor the join's
+            // tiles of the leg may not overlap those laid before, nor the join's (a box
+            // around them rejects most lattice tiles at once)
             let to_axis = frame.to_axis();
+            let reach = near_box.inflate(1.0, 1.0);
             let blocked = |q: Point| {
                 let q = to_axis * q;
-                grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
-                    || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP)
+                reach.contains(q)
+                    && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
+                        || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
             let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
