@@ -5,11 +5,13 @@
 //! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
-//! a run's margins ([`margins_file`]), its name ([`run_name`]) and error messages ([`report`]). The libraries `foldchain` and
+//! a run's margins ([`margins_file`]), its name ([`run_name`]), `fold-run --engine auto`'s choice
+//! ([`engine_choice`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all six tools with `cargo install --path cli` from the repository root.
 
+pub mod engine_choice;
 pub mod experiments;
 pub mod inputs;
 pub mod margins_file;

@@ -41,7 +41,7 @@ pub use result::{fold_angle, joint_angles_at, Timeline};
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
 pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
 pub use speed::Motion;
-pub use start_rule::{StartRule, DRIVE_TOLERANCE};
+pub use start_rule::{StartRule, DRIVE_TOLERANCE, ROOT_TOLERANCE, START_TOLERANCE};
 
 // The shared vocabulary the engine's results are written in, where the command-line tools and
 // the pictures have long found it (one home: `crate::timeline`, `crate::physics`).

@@ -15,11 +15,11 @@ use crate::engine::progress::Progress;
 use crate::engine::queue::Queue;
 use crate::engine::result::Timeline;
 use crate::engine::speed::{Motion, MotionTable};
-use crate::engine::start_rule::{ForceRule, ForceStart, StartRule};
+use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::physics::ForceLaw;
-use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
+use crate::reference::{Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
@@ -180,11 +180,6 @@ fn run_local_engine(
     if !(opts.tolerance > 0.0 && opts.tolerance <= 0.1) {
         return Err(EngineError::BadTolerance(opts.tolerance));
     }
-    if opts.model.dynamics != Dynamics::Overdamped {
-        return Err(EngineError::Unsupported(
-            "the local solves follow the overdamped model only; run the inertial model with the reference (fold-run --reference)",
-        ));
-    }
     let model = match Model::new(chain, designs, &opts.model) {
         Ok(m) => m,
         Err(ModelError::Geometry(g)) => return Err(EngineError::Geometry(g)),
@@ -215,6 +210,7 @@ struct Runner {
     opts: EngineOptions,
     geometry: Geometry,
     triggers: Triggers,
+    force_cache: ForceCache,
     motions: MotionTable,
     start: Vec<f64>,
     events: Vec<Event>,
@@ -234,6 +230,7 @@ impl Runner {
             motions: MotionTable::new(&geometry, opts.speed),
             opts,
             triggers: Triggers::default(),
+            force_cache: ForceCache::default(),
             start: vec![f64::NAN; n],
             events: Vec::with_capacity(3 * n),
             folds: Vec::new(),
@@ -360,13 +357,16 @@ impl Runner {
     /// within `cutoff` say, or stalls.
     fn force_trigger(&mut self, i: usize, t: f64, cutoff: usize) {
         let m = i + 1;
+        let mut cache = std::mem::take(&mut self.force_cache);
         let rule = ForceRule {
             geometry: &self.geometry,
             progress: self.progress(),
             law: self.opts.force_law,
             cutoff,
         };
-        match rule.start(m, t) {
+        let found = rule.start(&mut cache, m, t);
+        self.force_cache = cache;
+        match found {
             ForceStart::At(when) => self.queue.push(when, EventKind::TriggerReached, i),
             ForceStart::Never { time, drive } => self.stall(time, m, format!(
                 "magnet {m} never started: the force along its path from the magnets within {cutoff} of it stays towards its rest point (at most {drive:.3e} N, at {time:.4} s) while magnet {i} and those behind it move (force rule)"

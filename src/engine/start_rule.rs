@@ -17,28 +17,60 @@
 //! integrator's do ([`crate::reference`]), so the two agree on which magnets start; the
 //! engine's times still come from its speed law.
 //!
-//! The force rule samples the drive at 64 points along the mover's path (and 16 after it
-//! arrives, while magnets behind it still move), then bisects the first sign change to
-//! 1e-15 of the span. Its cost is about 100 force evaluations of at most `2 cutoff` pairs
-//! per magnet, with nothing cached: for chains up to some 1e5 tiles.
-
-use kurbo::{Point, Vec2};
+//! **Cost.** The rule asks for the drive along the mover's path at 64 sample times (and 16
+//! after it arrives, while magnets behind it still move). The search evaluates every fourth
+//! sample first and, in the first interval where the drive turns positive, the samples
+//! between, then finds the root by the Illinois method to [`ROOT_TOLERANCE`] of the mover's
+//! duration and bisection to the clock's last bit; with no sign change it evaluates every sample, as the rule is stated, for the
+//! nearest approach. Each drive reuses what has not changed since the last time asked
+//! (window module: poses, sines and cosines, points on the paths). The answer is cached by
+//! the neighbourhood's integer description (cache module), so along a straight run or a
+//! serpentine's rows most magnets cost one hash look-up. Fast or cached, the start is within
+//! [`START_TOLERANCE`] of the mover's duration of the exact rule's (every sample, bisection
+//! to the last bit): the tests check it. About 0.35 us per tile in the engine on a straight
+//! run or a serpentine, next to the distance rule's 0.22 (BENCHMARKS.md, "Force start rule").
 
 use crate::engine::progress::Progress;
-use crate::kinematics::joint_transform;
-use crate::physics::{along_path, neighbours, reach, ForceLaw, Pole};
+use crate::physics::ForceLaw;
 use crate::timeline::Geometry;
-use crate::Pose;
+
+mod answer;
+mod cache;
+#[cfg(test)]
+mod exact;
+#[cfg(test)]
+mod fast_tests;
+mod window;
+
+pub(crate) use answer::ForceStart;
+pub(crate) use cache::ForceCache;
+use window::Window;
 
 /// A drive smaller than this fraction of the bonded rest force counts as zero (the
 /// reference's balance tolerance), so an exact balance (`s = 0`) starts nothing on a
 /// rounding error: 1e-12.
 pub const DRIVE_TOLERANCE: f64 = 1e-12;
 
+/// The root search takes false-position (Illinois) steps until the start is bracketed to
+/// this fraction of the mover's duration, then bisects to the clock's last bit (as the exact
+/// rule does, so that both end on the same number): 1e-12.
+pub const ROOT_TOLERANCE: f64 = 1e-12;
+
+/// The force rule's start, fast and cached, is within this fraction of the mover's duration
+/// of the exact rule's: 1e-9 (the search ends on the same last bit of the clock as the exact
+/// rule's bisection unless the drive crosses its threshold more than once within a sample
+/// step; the cache merges neighbourhoods whose starts differ by some 100 units of the clock's
+/// last bit).
+pub const START_TOLERANCE: f64 = 1e-9;
+
 /// Samples of the drive along the mover's path.
 const PATH_SAMPLES: usize = 64;
 /// Samples after the mover arrives, while magnets behind it still move.
 const AFTER_SAMPLES: usize = 16;
+/// The first pass of the search evaluates every this many samples.
+const COARSE: usize = 4;
+/// At most this many steps of the root search (it needs about twenty).
+const ROOT_STEPS: usize = 100;
 
 /// The rule that starts a magnet.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -54,20 +86,6 @@ pub enum StartRule {
     },
 }
 
-/// Where the force rule starts a magnet.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum ForceStart {
-    /// At this time, s.
-    At(f64),
-    /// Never: the drive came nearest to starting it at `time`, where it was `drive` N.
-    Never {
-        /// When the drive was largest, s.
-        time: f64,
-        /// The largest drive, N (negative: towards the rest point).
-        drive: f64,
-    },
-}
-
 /// The force rule's view of a run: the chain, the run so far, the law and the cutoff.
 pub(crate) struct ForceRule<'a> {
     pub(crate) geometry: &'a Geometry,
@@ -76,100 +94,137 @@ pub(crate) struct ForceRule<'a> {
     pub(crate) cutoff: usize,
 }
 
+/// The rule's sample times for magnet `m`, its mover having started at `t0`: `t0`, 64 along
+/// the mover's path (equal steps of arc length), and 16 after its arrival while any magnet
+/// within reach behind `m` still moves.
+fn sample_times(progress: &Progress<'_>, cutoff: usize, m: usize, t0: f64) -> Vec<f64> {
+    let motion = *progress.motion(m - 1);
+    let mover_end = t0 + motion.duration();
+    // the last moment anything within reach behind `m` still moves
+    let lo = m.saturating_sub(cutoff);
+    let last = (lo..m)
+        .filter_map(|k| progress.arrival_of(k))
+        .fold(mover_end, f64::max);
+    let mut times = Vec::with_capacity(PATH_SAMPLES + AFTER_SAMPLES + 1);
+    times.push(t0);
+    for i in 1..=PATH_SAMPLES {
+        times.push(t0 + motion.time_to(motion.length * i as f64 / PATH_SAMPLES as f64));
+    }
+    if last > mover_end {
+        for i in 1..=AFTER_SAMPLES {
+            times.push(mover_end + (last - mover_end) * i as f64 / AFTER_SAMPLES as f64);
+        }
+    }
+    times
+}
+
 impl ForceRule<'_> {
-    /// The force (N) along magnet `m`'s path at its rest point at time `t`, from every
-    /// magnet within the cutoff of it in chain index (and the RI while within reach), each
-    /// where the run has it then.
-    fn drive(&self, m: usize, t: f64) -> f64 {
-        let g = self.geometry;
-        let within = reach(m, self.cutoff, g.magnets());
-        let (tlo, thi) = (within.start() / 2, within.end() / 2);
-        // tile poses in the frame of tile `tlo`
-        let mut poses = Vec::with_capacity(thi - tlo + 1);
-        let mut pose = Pose::IDENTITY;
-        poses.push(pose);
-        for j in tlo..thi {
-            pose = pose.then(&joint_transform(self.progress.joint_angle(j, t), g.w));
-            poses.push(pose);
-        }
-        let at = |k: usize| {
-            let p = g.path(k).point_at(self.progress.travel_at(k, t));
-            Point::from(poses[k / 2 - tlo].transform_point(p))
-        };
-        let on = Pole::Magnet(m);
-        let pm = at(m);
-        let tangent = Vec2::from(poses[m / 2 - tlo].transform_vector(g.path(m).tangent_at(0.0)));
-        let mm = g.design(m / 2).moment();
-        let ri = g.ri();
-        let mut drive = 0.0;
-        for source in neighbours(m, self.cutoff, g.magnets()) {
-            let (p, moment) = match source {
-                Pole::Magnet(k) => (at(k), g.design(k / 2).moment()),
-                // the RI is fixed in tile 0's frame
-                Pole::Ri => (
-                    Point::from(poses[0].transform_point(ri.position.into())),
-                    ri.moment,
-                ),
-            };
-            let force = self.law.force(p, pm, moment, mm, source.attracts(on));
-            drive += along_path(force, tangent);
-        }
-        drive
+    /// When magnet `m` starts, magnet `m - 1` having started at `t0`: from `cache` when the
+    /// same neighbourhood was searched before in this run.
+    pub(crate) fn start(&self, cache: &mut ForceCache, m: usize, t0: f64) -> ForceStart {
+        cache.start(self.geometry, &self.progress, self.cutoff, m, t0, || {
+            self.search(m, t0)
+        })
     }
 
-    /// When magnet `m` starts, magnet `m - 1` having started at `t0`.
-    pub(crate) fn start(&self, m: usize, t0: f64) -> ForceStart {
-        let threshold = DRIVE_TOLERANCE * self.law.bonded_rest_force(self.geometry.design(0));
-        let mover = m - 1;
-        let motion = *self.progress.motion(mover);
-        let mover_end = t0 + motion.duration();
-        // the last moment anything within reach behind `m` still moves
-        let lo = m.saturating_sub(self.cutoff);
-        let last = (lo..m)
-            .filter_map(|k| self.progress.arrival_of(k))
-            .fold(mover_end, f64::max);
-        let mut times = Vec::with_capacity(PATH_SAMPLES + AFTER_SAMPLES + 1);
-        times.push(t0);
-        for i in 1..=PATH_SAMPLES {
-            times.push(t0 + motion.time_to(motion.length * i as f64 / PATH_SAMPLES as f64));
+    /// The drive threshold, N.
+    fn threshold(&self) -> f64 {
+        DRIVE_TOLERANCE * self.law.bonded_rest_force(self.geometry.design(0))
+    }
+
+    /// When magnet `m` starts, magnet `m - 1` having started at `t0`, searched (no cache).
+    pub(crate) fn search(&self, m: usize, t0: f64) -> ForceStart {
+        let threshold = self.threshold();
+        let times = sample_times(&self.progress, self.cutoff, m, t0);
+        let tol = ROOT_TOLERANCE * self.progress.motion(m - 1).duration();
+        let mut win = Window::new(self.geometry, self.progress, self.law, self.cutoff, m);
+        let v0 = win.drive(t0);
+        if v0 > threshold {
+            return ForceStart::At(t0);
         }
-        if last > mover_end {
-            for i in 1..=AFTER_SAMPLES {
-                times.push(mover_end + (last - mover_end) * i as f64 / AFTER_SAMPLES as f64);
-            }
-        }
-        let mut best = (t0, f64::NEG_INFINITY);
-        let mut prev = t0;
-        for (i, &t) in times.iter().enumerate() {
-            let v = self.drive(m, t);
+        // every COARSE-th sample (and the last); in the first interval where the drive
+        // turns positive, the samples between, in order
+        let last = times.len() - 1;
+        let (mut i, mut vi) = (0, v0);
+        while i < last {
+            let next = (i + COARSE).min(last);
+            let v = win.drive(times[next]);
             if v > threshold {
-                if i == 0 {
-                    return ForceStart::At(t0);
-                }
-                let (mut a, mut b) = (prev, t);
-                for _ in 0..60 {
-                    let mid = 0.5 * (a + b);
-                    if mid <= a || mid >= b {
-                        break;
+                let mut below = (times[i], vi);
+                for &t in &times[i + 1..next] {
+                    let vk = win.drive(t);
+                    if vk > threshold {
+                        return ForceStart::At(root(&mut win, threshold, below, (t, vk), tol));
                     }
-                    if self.drive(m, mid) > threshold {
-                        b = mid;
-                    } else {
-                        a = mid;
-                    }
+                    below = (t, vk);
                 }
-                return ForceStart::At(b);
+                let above = (times[next], v);
+                return ForceStart::At(root(&mut win, threshold, below, above, tol));
+            }
+            (i, vi) = (next, v);
+        }
+        // no sign change on the coarse samples: every sample, as the rule is stated
+        let mut best = (t0, v0);
+        let mut below = (t0, v0);
+        for &t in &times[1..] {
+            let v = win.drive(t);
+            if v > threshold {
+                return ForceStart::At(root(&mut win, threshold, below, (t, v), tol));
             }
             if v > best.1 {
                 best = (t, v);
             }
-            prev = t;
+            below = (t, v);
         }
         ForceStart::Never {
             time: best.0,
             drive: best.1,
         }
     }
+}
+
+/// The first time in `(below.0, above.0]` where the drive exceeds `threshold`, the drive
+/// being at most `threshold` at `below` and above it at `above`: the Illinois method (false
+/// position, halving the value kept at an end that stays twice) until the bracket is within
+/// `tol`, then bisection until its ends are neighbouring numbers of the clock, as the exact
+/// rule's bisection ends; the bracket's upper end, where the drive is above the threshold.
+fn root(
+    win: &mut Window<'_>,
+    threshold: f64,
+    below: (f64, f64),
+    above: (f64, f64),
+    tol: f64,
+) -> f64 {
+    let (mut a, mut fa) = (below.0, below.1 - threshold);
+    let (mut b, mut fb) = (above.0, above.1 - threshold);
+    let mut kept = 0i8;
+    for _ in 0..ROOT_STEPS {
+        let mid = 0.5 * (a + b);
+        if mid <= a || mid >= b {
+            break;
+        }
+        let falsi = b - fb * (b - a) / (fb - fa);
+        let c = if b - a > tol && falsi > a && falsi < b {
+            falsi
+        } else {
+            mid
+        };
+        let fc = win.drive(c) - threshold;
+        if fc > 0.0 {
+            (b, fb) = (c, fc);
+            if kept == -1 {
+                fa *= 0.5;
+            }
+            kept = -1;
+        } else {
+            (a, fa) = (c, fc);
+            if kept == 1 {
+                fb *= 0.5;
+            }
+            kept = 1;
+        }
+    }
+    b
 }
 
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! The hybrid driver of a reference run ([`run_reference`]): it integrates the model between
 //! events with adaptive steps, locates each event (a magnet starting or arriving, a joint
-//! starting or ending its fold) on real integrator steps ([`crate::reference`]'s event
-//! location), switches the unknown's mode there, and ends when nothing moves.
+//! starting or ending its fold) on the step's dense output ([`crate::reference`]'s event
+//! location), switches the unknown's mode there, and ends when nothing moves. The step size
+//! is a PI controller's (the `control` module) and is kept across events; nothing is
+//! allocated per step.
 //!
 //! **End of a run.** When no unknown is free and no clamped one is driven off its end, the
 //! chain is at rest. A free unknown whose rate would change it by less than 1e-9 over the
@@ -14,12 +16,14 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+use crate::reference::control::StepControl;
+use crate::reference::dense::Dense;
 use crate::reference::dynamics::{Forces, Mode, Model, Moving};
 use crate::reference::dynamics_kind::Dynamics;
 use crate::reference::event_log::EventLog;
 use crate::reference::inertial::run_inertial;
-use crate::reference::integrators::{StepStats, Stepper};
-use crate::reference::locate::{any_event, condition, StepFrom};
+use crate::reference::integrators::{Method, StepStats, Stepper};
+use crate::reference::locate::{condition, events_at, StepEvents};
 use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
@@ -135,16 +139,25 @@ impl Driver {
         let tol = self.opts.tolerance;
         let mut stepper: Stepper<Forces> =
             Stepper::new(self.opts.method, self.model.len(), self.model.bandwidth());
-        let q = self.opts.method.error_order() as f64;
+        let q = self.opts.method.error_order();
+        let mut control = StepControl::new(q);
         self.switch();
-        let mut f = vec![0.0; n];
+        // the rates and drives at the current state, and at a step's end
+        let (mut f, mut f1) = (vec![0.0; n], vec![0.0; n]);
+        let (mut drive, mut drive1) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        // a step's end (then the state before it), and the state at an event
+        let (mut y1, mut y_event) = (vec![0.0; n], vec![0.0; n]);
+        let mut free: Vec<usize> = Vec::with_capacity(n);
+        let mut candidates: Vec<usize> = Vec::with_capacity(n);
+        let mut dense = Dense::default();
         self.rates(&mut stepper, &mut f);
+        drive.clone_from(&stepper.work().drive);
         let scale = self.model.time_scale;
         // the slowest of the model's time scales: a path at the bonded rest force's speed, or
         // a fold under the bonded rest torque (heavy tiles fold far slower than magnets move)
         let slowest =
             scale.max(self.model.options().rotational_drag * FRAC_PI_2 / self.model.torque_scale);
-        let mut h = scale * 1e-3 * tol.powf(1.0 / (q + 1.0));
+        let mut h = scale * 1e-3 * tol.powf(1.0 / (f64::from(q) + 1.0));
         let mut stopped = None;
         let mut rec = match self.opts.record {
             Recording::Off => None,
@@ -153,7 +166,8 @@ impl Driver {
             }
         };
         loop {
-            let free: Vec<usize> = (0..n).filter(|&i| self.modes[i] == Mode::Free).collect();
+            free.clear();
+            free.extend((0..n).filter(|&i| self.modes[i] == Mode::Free));
             if free.is_empty() {
                 break;
             }
@@ -173,78 +187,71 @@ impl Driver {
                 model: &self.model,
                 modes: &self.modes,
             };
-            let att = match stepper.attempt(&moving, &self.y, &f, h, tol, &mut self.stats) {
-                Ok(a) => a,
+            let err = match stepper.attempt(&moving, &self.y, &f, h, tol, &mut self.stats, &mut y1)
+            {
+                Ok(e) => e,
                 Err(_) => {
                     self.stats.rejected += 1;
                     h *= 0.5;
                     continue;
                 }
             };
-            let finite = att.error.is_finite() && att.y.iter().all(|v| v.is_finite());
-            if !finite || att.error > 1.0 {
+            let finite = err.is_finite() && y1.iter().all(|v| v.is_finite());
+            if !finite || err > 1.0 {
                 self.stats.rejected += 1;
-                let factor = if finite {
-                    (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
-                } else {
-                    0.1
-                };
-                h *= factor;
+                h *= control.reject(if finite { err } else { f64::NAN });
                 continue;
             }
             self.stats.accepted += 1;
-            let grow = if att.error > 0.0 {
-                (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
-            } else {
-                5.0
-            };
-            if any_event(&self.model, &self.modes, &att.y, &mut self.work) {
-                self.stats.rhs += 1;
-                let from = StepFrom {
-                    system: Moving {
-                        model: &self.model,
-                        modes: &self.modes,
-                    },
-                    y: &self.y,
-                    f: &f,
+            let grow = control.accept(h, err);
+            // the rates and drives at the step's end: Dormand-Prince's last stage, or one
+            // more evaluation for ROS2
+            match stepper.last_derivative() {
+                Some(d) => f1.copy_from_slice(d),
+                None => stepper.rhs(&moving, &y1, &mut f1, &mut self.stats),
+            }
+            drive1.clone_from(&stepper.work().drive);
+            stepper.invalidate();
+            let t0 = self.t;
+            if events_at(&self.model, &self.modes, &y1, &drive1, &mut candidates) {
+                let stages = (self.opts.method == Method::Dopri5).then(|| stepper.stages());
+                dense.set(&self.y, &y1, &f, &f1, h, stages);
+                let th = StepEvents {
+                    model: &self.model,
+                    modes: &self.modes,
+                    dense: &dense,
+                    candidates: &candidates,
+                    ends: [(&self.y, &drive), (&y1, &drive1)],
                     tol,
-                };
-                let (hi, y_hi) =
-                    from.locate(&mut stepper, h, att.y, &mut self.stats, &mut self.work);
-                let t0 = self.t;
-                self.t += hi;
-                let y0 = std::mem::replace(&mut self.y, y_hi);
+                }
+                .first(&mut y_event, stepper.work_mut(), &mut self.stats);
+                self.stats.event_steps += 1;
+                self.t += th * h;
+                // y1 keeps the state before the event
+                y1.copy_from_slice(&self.y);
+                self.y.copy_from_slice(&y_event);
                 self.clamp_free();
                 self.log
-                    .cross(&self.model, t0, &y0, None, self.t, &self.y, None);
+                    .cross(&self.model, t0, &y1, None, self.t, &self.y, None);
                 self.switch();
                 if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
-                    r.cover(t0, &y0, &f, self.t, &self.y, None);
+                    r.cover(t0, &y1, &f, self.t, &self.y, None);
                 }
-                stepper.invalidate();
                 self.rates(&mut stepper, &mut f);
-                h = h.min(hi * 4.0).max(hi);
-                continue;
-            }
-            let t0 = self.t;
-            self.t += h;
-            let y0 = std::mem::replace(&mut self.y, att.y);
-            let f0 = rec
-                .as_ref()
-                .filter(|r| r.next_time() <= self.t)
-                .map(|_| f.clone());
-            let f_prev = self.log.reports_crossings().then(|| f.clone());
-            stepper.invalidate();
-            match stepper.last_derivative() {
-                Some(d) => f.copy_from_slice(d),
-                None => self.rates(&mut stepper, &mut f),
-            }
-            if let Some(fp) = &f_prev {
-                self.log
-                    .cross(&self.model, t0, &y0, Some(fp), self.t, &self.y, Some(&f));
-            }
-            if let (Some(r), Some(f0)) = (rec.as_mut(), f0) {
-                r.cover(t0, &y0, &f0, self.t, &self.y, Some(&f));
+                drive.clone_from(&stepper.work().drive);
+            } else {
+                self.t += h;
+                std::mem::swap(&mut self.y, &mut y1);
+                std::mem::swap(&mut f, &mut f1);
+                std::mem::swap(&mut drive, &mut drive1);
+                // now y1 and f1 hold the step's start
+                if self.log.reports_crossings() {
+                    self.log
+                        .cross(&self.model, t0, &y1, Some(&f1), self.t, &self.y, Some(&f));
+                }
+                if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
+                    r.cover(t0, &y1, &f1, self.t, &self.y, Some(&f));
+                }
             }
             h *= grow;
         }

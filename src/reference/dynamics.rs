@@ -26,13 +26,12 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use kurbo::{Point, Vec2};
+use kurbo::Point;
 
 use crate::magnet_path::MagnetPath;
-use crate::physics::{
-    along_path, joints_between, pairs_within, torque_about, upstream, Pole, ReactionInitiator,
-};
+use crate::physics::ReactionInitiator;
 use crate::reference::dynamics_kind::Dynamics;
+pub(crate) use crate::reference::forces::Forces;
 use crate::reference::integrators::System;
 pub use crate::reference::model_options::ModelOptions;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};
@@ -68,20 +67,20 @@ pub(crate) enum Mode {
 pub struct Model {
     /// The chain at rest (paths in tile frames).
     pub geometry: Geometry,
-    opts: ModelOptions,
+    pub(super) opts: ModelOptions,
     /// The unknowns, in state order.
     pub(crate) unknowns: Vec<Unknown>,
     /// State index of each magnet.
-    magnet_var: Vec<usize>,
+    pub(super) magnet_var: Vec<usize>,
     /// State index of each joint, `usize::MAX` for rigid joints.
-    joint_var: Vec<usize>,
+    pub(super) joint_var: Vec<usize>,
     /// Fold direction of each joint: +1 left, -1 right, 0 rigid.
-    joint_sign: Vec<f64>,
-    lengths: Vec<f64>,
-    moments: Vec<f64>,
-    ri: ReactionInitiator,
-    hinge_left: Point,
-    hinge_right: Point,
+    pub(super) joint_sign: Vec<f64>,
+    pub(super) lengths: Vec<f64>,
+    pub(super) moments: Vec<f64>,
+    pub(super) ri: ReactionInitiator,
+    pub(super) hinge_left: Point,
+    pub(super) hinge_right: Point,
     /// Bonded rest force, N (scale of the drives).
     pub force_scale: f64,
     /// Bonded rest torque about a hinge, N m.
@@ -89,15 +88,6 @@ pub struct Model {
     /// A time scale, s: a path travelled at the bonded rest force's speed.
     pub time_scale: f64,
     bandwidth: usize,
-}
-
-/// Everything the forces give at one state.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Forces {
-    /// World positions of the magnets, mm.
-    pub(crate) positions: Vec<Point>,
-    /// Drive of each unknown (force along the path, N, or torque towards folding, N m).
-    pub(crate) drive: Vec<f64>,
 }
 
 /// Why a model cannot be built.
@@ -303,12 +293,12 @@ impl Model {
         crate::kinematics::poses_at_angles(&self.joint_angles(y), self.geometry.w)
     }
 
-    fn path(&self, k: usize) -> &MagnetPath {
+    pub(super) fn path(&self, k: usize) -> &MagnetPath {
         self.geometry.path(k)
     }
 
     /// Magnet `k` at fraction `x` of its path: point and unit tangent, tile frame.
-    fn local(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
+    pub(super) fn local(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
         let p = self.path(k);
         let len = self.lengths[k];
         let u = (x * len).clamp(0.0, len);
@@ -324,97 +314,6 @@ impl Model {
                 poses[k / 2].transform_point(p)
             })
             .collect()
-    }
-
-    /// Drives of every unknown at state `y` (see [`Forces`]), with pairs up to `cutoff`
-    /// apart in chain index.
-    pub(crate) fn forces_with_cutoff(&self, y: &[f64], cutoff: usize, out: &mut Forces) {
-        let n = self.geometry.magnets();
-        let poses: Vec<Pose> = self.poses(y);
-        out.positions.clear();
-        let mut tangents = Vec::with_capacity(n);
-        for k in 0..n {
-            let (p, t) = self.local(k, y[self.magnet_var[k]]);
-            let pose = &poses[k / 2];
-            out.positions.push(pose.transform_point(p).into());
-            tangents.push(Vec2::from(pose.transform_vector(t)));
-        }
-        let mut force = vec![Vec2::ZERO; n];
-        out.drive.clear();
-        out.drive.resize(self.len(), 0.0);
-        let hinges: Vec<Point> = (0..self.joint_var.len())
-            .map(|j| {
-                let h = if self.joint_sign[j] >= 0.0 {
-                    self.hinge_left
-                } else {
-                    self.hinge_right
-                };
-                poses[j].transform_point(h.into()).into()
-            })
-            .collect();
-        let law = self.opts.force_law;
-        for b in 0..n {
-            let on = out.positions[b];
-            for a in upstream(b, cutoff) {
-                // the RI is fixed in tile 0's frame, which is the world frame
-                let (pa, ma) = match a {
-                    Pole::Ri => (self.ri.position, self.ri.moment),
-                    Pole::Magnet(a) => (out.positions[a], self.moments[a]),
-                };
-                let f = law.force(pa, on, ma, self.moments[b], a.attracts(Pole::Magnet(b)));
-                force[b] += f;
-                if let Pole::Magnet(a) = a {
-                    force[a] -= f;
-                }
-                // torque on every folding joint between the two (b downstream)
-                for j in joints_between(a, b) {
-                    let v = self.joint_var[j];
-                    if v != usize::MAX {
-                        out.drive[v] += self.joint_sign[j] * torque_about(hinges[j], on, f);
-                    }
-                }
-            }
-        }
-        // pairs near in space but beyond the chain-index cutoff (the RI is point n)
-        let far = match self.opts.distance_cutoff {
-            Some(r) if cutoff < n => {
-                let mut pts = out.positions.clone();
-                pts.push(self.ri.position);
-                pairs_within(&pts, r)
-            }
-            _ => Vec::new(),
-        };
-        for (a, b) in far {
-            // the RI is magnet -1: its pair with b is beyond the cutoff when b >= cutoff
-            let (from, on) = if b == n {
-                (Pole::Ri, a)
-            } else {
-                (Pole::Magnet(a), b)
-            };
-            if (on as isize) - from.index() <= cutoff as isize {
-                continue;
-            }
-            let (pa, ma) = match from {
-                Pole::Ri => (self.ri.position, self.ri.moment),
-                Pole::Magnet(a) => (out.positions[a], self.moments[a]),
-            };
-            let pb = out.positions[on];
-            let attract = from.attracts(Pole::Magnet(on));
-            let f = law.force(pa, pb, ma, self.moments[on], attract);
-            force[on] += f;
-            if let Pole::Magnet(a) = from {
-                force[a] -= f;
-            }
-            for j in joints_between(from, on) {
-                let v = self.joint_var[j];
-                if v != usize::MAX {
-                    out.drive[v] += self.joint_sign[j] * torque_about(hinges[j], pb, f);
-                }
-            }
-        }
-        for k in 0..n {
-            out.drive[self.magnet_var[k]] = along_path(force[k], tangents[k]);
-        }
     }
 
     /// Drives at state `y` with the model's cutoff.
@@ -440,7 +339,7 @@ impl Model {
 
     /// The right-hand side `dy/dt` at `y` with `modes`; also leaves the drives in `work`.
     pub(crate) fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
-        self.forces(y, work);
+        self.forces_moving(y, modes, work);
         for i in 0..self.len() {
             dy[i] = self.rate(i, work.drive[i], modes[i]);
         }

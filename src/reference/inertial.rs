@@ -31,18 +31,18 @@ use crate::reference::verdict::RestState;
 use std::f64::consts::FRAC_PI_2;
 
 /// A rebound that would rise less than this fraction of the range ends the bouncing.
-const REST_HEIGHT: f64 = 1e-3;
+pub(crate) const REST_HEIGHT: f64 = 1e-3;
 
 /// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
 /// damping rate (1/s), and the Coulomb friction (in drive units).
-struct Coefficients {
-    inv_mass: Vec<f64>,
-    damping: Vec<f64>,
-    coulomb: Vec<f64>,
+pub(crate) struct Coefficients {
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) coulomb: Vec<f64>,
 }
 
 impl Coefficients {
-    fn new(model: &Model, inertia: &Inertia) -> Coefficients {
+    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
         let tiles = model.geometry.tiles();
         let n = model.len();
         let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -195,6 +195,7 @@ pub(crate) fn run_inertial(
         )),
     };
     let mut f = vec![0.0; 2 * n];
+    let mut z1 = vec![0.0; 2 * n];
     release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
     loop {
         let free: Vec<usize> = (0..n).filter(|&i| modes[i] == Mode::Free).collect();
@@ -237,18 +238,18 @@ pub(crate) fn run_inertial(
             modes: &modes,
             c: &c,
         };
-        let att = match stepper.attempt(&sys, &z, &f, h, tol, &mut stats) {
+        let err = match stepper.attempt(&sys, &z, &f, h, tol, &mut stats, &mut z1) {
             Ok(a) => a,
             Err(_) => {
                 h *= 0.5;
                 continue;
             }
         };
-        let finite = att.error.is_finite() && att.y.iter().all(|v| v.is_finite());
-        if !finite || att.error > 1.0 {
+        let finite = err.is_finite() && z1.iter().all(|v| v.is_finite());
+        if !finite || err > 1.0 {
             stats.rejected += 1;
             h *= if finite {
-                (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
+                (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
             } else {
                 0.1
             };
@@ -263,7 +264,7 @@ pub(crate) fn run_inertial(
         // a wall crossed: cut the step to end just past the first crossing
         let mut theta: f64 = 1.0;
         for &i in &free {
-            let (a, b) = (z[2 * i], att.y[2 * i]);
+            let (a, b) = (z[2 * i], z1[2 * i]);
             for wall in [0.0, 1.0] {
                 let past = if wall == 0.0 { b < 0.0 } else { b > 1.0 };
                 if past && (b - wall).abs() > 1e-9 {
@@ -279,12 +280,14 @@ pub(crate) fn run_inertial(
             }
         }
         stats.accepted += 1;
-        let grow = if att.error > 0.0 {
-            (0.9 * att.error.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
+        let grow = if err > 0.0 {
+            (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
         } else {
             5.0
         };
-        let (t0, z0) = (t, std::mem::replace(&mut z, att.y));
+        std::mem::swap(&mut z, &mut z1);
+        // z1 keeps the step's start
+        let (t0, z0) = (t, &z1);
         t += h;
         if log.reports_crossings() {
             // starts at a fraction of the path: positions and velocities are the step's
@@ -292,8 +295,8 @@ pub(crate) fn run_inertial(
             log.cross(
                 &model,
                 t0,
-                &positions(&z0),
-                Some(&velocities(&z0)),
+                &positions(z0),
+                Some(&velocities(z0)),
                 t,
                 &positions(&z),
                 Some(&velocities(&z)),
@@ -352,8 +355,8 @@ pub(crate) fn run_inertial(
         if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= t) {
             r.cover(
                 t0,
-                &positions(&z0),
-                &velocities(&z0),
+                &positions(z0),
+                &velocities(z0),
                 t,
                 &positions(&z),
                 Some(&velocities(&z)),

@@ -118,7 +118,8 @@ pub(crate) trait System {
     fn rhs(&self, y: &[f64], work: &mut Self::Work, out: &mut [f64]);
 }
 
-/// One integrator's working storage for a system of `n` unknowns with scratch `W`.
+/// One integrator's working storage for a system of `n` unknowns with scratch `W`: nothing
+/// is allocated per step.
 #[derive(Debug)]
 pub(crate) struct Stepper<W> {
     /// The method.
@@ -129,15 +130,9 @@ pub(crate) struct Stepper<W> {
     jac: Band,
     lu: Band,
     jac_fresh: bool,
-}
-
-/// The result of one step attempt.
-#[derive(Clone, Debug)]
-pub(crate) struct Attempt {
-    /// The new state.
-    pub(crate) y: Vec<f64>,
-    /// Weighted RMS error over the free unknowns (accept when <= 1).
-    pub(crate) error: f64,
+    /// Scratch of the Jacobian's differences: a state and its rates.
+    jac_y: Vec<f64>,
+    jac_f: Vec<f64>,
 }
 
 impl<W: Default + Debug> Stepper<W> {
@@ -151,12 +146,32 @@ impl<W: Default + Debug> Stepper<W> {
             jac: Band::zeros(n, bandwidth, bandwidth),
             lu: Band::zeros(n, bandwidth, bandwidth),
             jac_fresh: false,
+            jac_y: vec![0.0; n],
+            jac_f: vec![0.0; n],
         }
     }
 
     /// Forgets the Jacobian (the state or the modes changed).
     pub(crate) fn invalidate(&mut self) {
         self.jac_fresh = false;
+    }
+
+    /// The scratch of the last evaluation of `f` (for the model: the drives there; after a
+    /// Dormand-Prince step, at the step's new state).
+    pub(crate) fn work(&self) -> &W {
+        &self.work
+    }
+
+    /// The scratch of `f`, to evaluate the system's forces elsewhere with it (the model's
+    /// drives near the free unknowns only, [`crate::reference::Model`]).
+    pub(crate) fn work_mut(&mut self) -> &mut W {
+        &mut self.work
+    }
+
+    /// The stages of the last Dormand-Prince step (`[0]` the rates at its start, `[6]` at
+    /// its end), for its dense output ([`crate::reference::dense`]).
+    pub(crate) fn stages(&self) -> &[Vec<f64>] {
+        &self.k
     }
 
     /// `dy/dt` at `y`.
@@ -171,7 +186,10 @@ impl<W: Default + Debug> Stepper<W> {
         sys.rhs(y, &mut self.work, out);
     }
 
-    /// One step of size `h` from `y0` (with `f0 = dy/dt(y0)`), tolerance `tol`.
+    /// One step of size `h` from `y0` (with `f0 = dy/dt(y0)`), tolerance `tol`: the new
+    /// state into `y1`; returns the weighted RMS error over the free unknowns (accept when
+    /// <= 1).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn attempt<S: System<Work = W>>(
         &mut self,
         sys: &S,
@@ -180,13 +198,15 @@ impl<W: Default + Debug> Stepper<W> {
         h: f64,
         tol: f64,
         stats: &mut StepStats,
-    ) -> Result<Attempt, Singular> {
+        y1: &mut [f64],
+    ) -> Result<f64, Singular> {
         match self.method {
-            Method::Dopri5 => Ok(self.dopri5(sys, y0, f0, h, tol, stats)),
-            Method::Ros2 => self.ros2(sys, y0, f0, h, tol, stats),
+            Method::Dopri5 => Ok(self.dopri5(sys, y0, f0, h, tol, stats, y1)),
+            Method::Ros2 => self.ros2(sys, y0, f0, h, tol, stats, y1),
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn dopri5<S: System<Work = W>>(
         &mut self,
         sys: &S,
@@ -195,10 +215,10 @@ impl<W: Default + Debug> Stepper<W> {
         h: f64,
         tol: f64,
         stats: &mut StepStats,
-    ) -> Attempt {
+        y: &mut [f64],
+    ) -> f64 {
         let n = y0.len();
         self.k[0].copy_from_slice(f0);
-        let mut y = vec![0.0; n];
         for (s, row) in A.iter().enumerate() {
             for i in 0..n {
                 let mut acc = 0.0;
@@ -208,7 +228,7 @@ impl<W: Default + Debug> Stepper<W> {
                 y[i] = y0[i] + h * acc;
             }
             let mut out = std::mem::take(&mut self.k[s + 1]);
-            self.rhs(sys, &y, &mut out, stats);
+            self.rhs(sys, y, &mut out, stats);
             self.k[s + 1] = out;
         }
         // y is now the fifth-order solution (row 6 of A is b)
@@ -226,12 +246,11 @@ impl<W: Default + Debug> Stepper<W> {
             sum += (h * e / sc).powi(2);
             count += 1;
         }
-        let error = if count == 0 {
+        if count == 0 {
             0.0
         } else {
             (sum / count as f64).sqrt()
-        };
-        Attempt { y, error }
+        }
     }
 
     /// The last stage's derivative, `dy/dt` at the new state (Dormand-Prince only).
@@ -251,8 +270,8 @@ impl<W: Default + Debug> Stepper<W> {
         let groups = (2 * bw + 1).min(n);
         self.jac.clear();
         stats.jacobians += 1;
-        let mut y = y0.to_vec();
-        let mut f = vec![0.0; n];
+        let mut y = std::mem::take(&mut self.jac_y);
+        let mut f = std::mem::take(&mut self.jac_f);
         let delta = |x: f64| if x > 0.5 { -1e-7 } else { 1e-7 };
         for g in 0..groups {
             y.copy_from_slice(y0);
@@ -273,9 +292,12 @@ impl<W: Default + Debug> Stepper<W> {
                 c += groups;
             }
         }
+        self.jac_y = y;
+        self.jac_f = f;
         self.jac_fresh = true;
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn ros2<S: System<Work = W>>(
         &mut self,
         sys: &S,
@@ -284,7 +306,8 @@ impl<W: Default + Debug> Stepper<W> {
         h: f64,
         tol: f64,
         stats: &mut StepStats,
-    ) -> Result<Attempt, Singular> {
+        y: &mut [f64],
+    ) -> Result<f64, Singular> {
         let n = y0.len();
         if !self.jac_fresh {
             self.jacobian(sys, y0, f0, stats);
@@ -299,12 +322,14 @@ impl<W: Default + Debug> Stepper<W> {
         }
         stats.factorisations += 1;
         self.lu.factor()?;
-        let mut k1 = f0.to_vec();
+        // the two stages live in the first two of Dormand-Prince's stage vectors
+        let mut k1 = std::mem::take(&mut self.k[0]);
+        let mut k2 = std::mem::take(&mut self.k[1]);
+        k1.copy_from_slice(f0);
         self.lu.solve(&mut k1);
         for i in 0..n {
             self.tmp[i] = y0[i] + h * k1[i];
         }
-        let mut k2 = vec![0.0; n];
         let tmp = std::mem::take(&mut self.tmp);
         self.rhs(sys, &tmp, &mut k2, stats);
         self.tmp = tmp;
@@ -312,7 +337,6 @@ impl<W: Default + Debug> Stepper<W> {
             k2[i] -= 2.0 * k1[i];
         }
         self.lu.solve(&mut k2);
-        let mut y = vec![0.0; n];
         let mut sum = 0.0;
         let mut count = 0usize;
         for i in 0..n {
@@ -324,12 +348,13 @@ impl<W: Default + Debug> Stepper<W> {
                 count += 1;
             }
         }
-        let error = if count == 0 {
+        self.k[0] = k1;
+        self.k[1] = k2;
+        Ok(if count == 0 {
             0.0
         } else {
             (sum / count as f64).sqrt()
-        };
-        Ok(Attempt { y, error })
+        })
     }
 }
 
@@ -395,10 +420,11 @@ mod tests {
         let mut f = vec![0.0; LINE.n];
         for _ in 0..steps {
             stepper.rhs(&LINE, &y, &mut f, &mut stats);
-            y = stepper
-                .attempt(&LINE, &y, &f, h, 1.0, &mut stats)
-                .unwrap()
-                .y;
+            let mut y1 = vec![0.0; LINE.n];
+            stepper
+                .attempt(&LINE, &y, &f, h, 1.0, &mut stats, &mut y1)
+                .unwrap();
+            y = y1;
             stepper.invalidate();
         }
         let exact = LINE.exact(2.0);
@@ -442,7 +468,7 @@ mod tests {
         let mut f = vec![0.0; LINE.n];
         stepper.rhs(&LINE, &y, &mut f, &mut stats);
         stepper
-            .attempt(&LINE, &y, &f, 0.1, 1.0, &mut stats)
+            .attempt(&LINE, &y, &f, 0.1, 1.0, &mut stats, &mut [0.0; LINE.n])
             .unwrap();
         assert_eq!(stats.jacobians, 1);
         assert_eq!(stats.rhs, 1 + 3 + 1); // f0, three column groups, the second stage
@@ -470,7 +496,10 @@ mod tests {
             let mut f = vec![0.0; LINE.n];
             stepper.rhs(&LINE, &y, &mut f, &mut stats);
             let est = |stepper: &mut Stepper<()>, h: f64, stats: &mut StepStats| {
-                stepper.attempt(&LINE, &y, &f, h, 1.0, stats).unwrap().error
+                let mut y1 = vec![0.0; LINE.n];
+                stepper
+                    .attempt(&LINE, &y, &f, h, 1.0, stats, &mut y1)
+                    .unwrap()
             };
             let (a, b) = (
                 est(&mut stepper, h, &mut stats),
@@ -493,10 +522,10 @@ mod tests {
             let y0 = stiff.exact(0.0);
             let mut f = vec![0.0; stiff.n];
             stepper.rhs(&stiff, &y0, &mut f, &mut stats);
-            let y1 = stepper
-                .attempt(&stiff, &y0, &f, 1.0, 1.0, &mut stats)
-                .unwrap()
-                .y;
+            let mut y1 = vec![0.0; stiff.n];
+            stepper
+                .attempt(&stiff, &y0, &f, 1.0, 1.0, &mut stats, &mut y1)
+                .unwrap();
             let norm = |y: &[f64]| y.iter().map(|v| v * v).sum::<f64>().sqrt();
             assert_eq!(norm(&y1) < norm(&y0), stable, "{method:?}: {}", norm(&y1));
         }

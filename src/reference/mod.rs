@@ -31,12 +31,15 @@
 //! ```
 
 mod banded;
+mod control;
+mod dense;
 mod driver;
 mod dynamics;
 mod dynamics_kind;
 mod event_log;
 pub mod experiments;
-mod inertial;
+mod forces;
+pub(crate) mod inertial;
 pub(crate) mod integrators;
 mod locate;
 mod model_options;

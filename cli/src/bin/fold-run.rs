@@ -18,6 +18,7 @@ use foldchain::reference::{
 };
 use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
+use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
 use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
 use foldchain_cli::margins_file::run_margins;
 use foldchain_cli::report::print_error;
@@ -81,12 +82,13 @@ struct Args {
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
-    /// How the engine times its events: local (solves of the reference's overdamped physics,
-    /// one joint at a time from the RI end: the reference's events within 0.5% of the run;
-    /// about 1.4 ms per joint), kinematic (the baseline: a start rule and a closed-form speed
-    /// law, --speed and --start-rule; microseconds per tile, its times 7-9x early and folds
-    /// that overlap in time), or auto (local up to 2,000 tiles, kinematic beyond, said on
-    /// stderr).
+    /// How the engine times its events: local (solves of the reference's physics with
+    /// --dynamics, one joint at a time from the RI end: the reference's events within 0.5%
+    /// of the run; a few ms for each distinct neighbourhood of a joint, repeated ones cached:
+    /// 100,000 straight or serpentine tiles in about 2 s of CPU), kinematic (the baseline: a start rule
+    /// and a closed-form speed law, --speed and --start-rule; microseconds per tile, its times
+    /// 7-9x early and folds that overlap in time), or auto (local up to 2,000 distinct joint
+    /// neighbourhoods, as in a 2,000-tile random word, kinematic beyond, said on stderr).
     #[arg(long, default_value = "auto", value_parser = ["auto", "local", "kinematic"])]
     engine: String,
     /// The kinematic baseline's speed law: overdamped (seconds) or unit (1 mm/s, the
@@ -95,7 +97,7 @@ struct Args {
     speed: String,
     /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
     /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
-    /// reference integrator weighs them; about 40 us per tile). Default distance; giving it
+    /// reference integrator weighs them; about 0.4 us per tile). Default distance; giving it
     /// selects the kinematic engine (refused with --engine local).
     #[arg(long, value_parser = ["distance", "force"])]
     start_rule: Option<String>,
@@ -104,10 +106,11 @@ struct Args {
     /// uniformly magnetised cylinders, tabulated).
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
-    /// The reference's dynamics (--reference, --compare): inertial (magnets of 0.265 g with a
-    /// drag of 0.05 N s/m, tiles with rotational inertia, bouncing at path ends; README,
-    /// "Physical parameters") or overdamped (first order, drag 5 N s/m: the stiff limit of
-    /// negligible mass, the one the event engine's speed law and fold-validate use).
+    /// The physics of the event engine's local solves and of the reference (--reference,
+    /// --compare), the same for both: inertial (magnets of 0.265 g with a drag of 0.05 N s/m,
+    /// tiles with rotational inertia, bouncing at path ends; README, "Physical parameters")
+    /// or overdamped (first order, drag --drag: the stiff limit of negligible mass, the one
+    /// fold-validate uses by default). The kinematic engine ignores it.
     #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
     dynamics: String,
     /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
@@ -169,10 +172,6 @@ fn count_arg(s: &str) -> Result<usize, String> {
 fn s_value(text: &str) -> anyhow::Result<SValue> {
     Ok(SValue::parse(text)?)
 }
-
-/// `--engine auto` uses the local solves up to this many tiles (a 2,000-tile straight chain:
-/// 6.6 s of fold-run on the 2-core machine), the kinematic baseline beyond.
-const LOCAL_ENGINE_MAX_TILES: usize = 2_000;
 
 /// Bad input is an `Err` (exit 2); outcomes are exit codes.
 fn run(args: Args) -> anyhow::Result<u8> {
@@ -352,10 +351,14 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let kinematic = match args.engine.as_str() {
         "kinematic" => true,
         _ if args.start_rule.is_some() => true,
-        "auto" if chain.len() > LOCAL_ENGINE_MAX_TILES && speed != SpeedLaw::Unit => {
+        "auto"
+            if speed != SpeedLaw::Unit
+                && distinct_neighbourhoods(&chain, &designs) > LOCAL_ENGINE_MAX_NEIGHBOURHOODS =>
+        {
             eprintln!(
-                "fold-run: {} tiles: the kinematic engine (the local solves take about 1.4 ms a joint; --engine local to use them anyway)",
-                chain.len()
+                "fold-run: {} tiles with {} distinct joint neighbourhoods: the kinematic engine (the local solves take a few ms for each; --engine local to use them anyway)",
+                chain.len(),
+                distinct_neighbourhoods(&chain, &designs)
             );
             true
         }
@@ -372,12 +375,13 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 _ => StartRule::Distance,
             })
     } else {
-        // the local solves follow the overdamped model (the inertial one is not built in
-        // them yet): the drag is --drag's
+        // the local solves follow --dynamics, as the reference does (--drag is the
+        // overdamped model's drag)
         EngineOptions::default().with_model(
             ModelOptions::default()
                 .with_force_law(force_law)
-                .with_drag(args.drag),
+                .with_drag(args.drag)
+                .with_dynamics(dynamics),
         )
     };
     let bar = (chain.len() > 2000).then(|| {

@@ -47,6 +47,7 @@ impl std::fmt::Debug for Solved {
         f.debug_struct("Solved")
             .field("sweeps", &self.chain.sweeps)
             .field("solves", &self.chain.solves)
+            .field("solves_per_sweep", &self.chain.solves_per_sweep)
             .finish()
     }
 }
@@ -81,10 +82,12 @@ pub(crate) struct LocalRun {
 
 /// Solves `model`'s chain (starts reported at [`start_fraction`]).
 pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
+    let inertial = solve::InertialModel::new(model);
     let opts = solve::SolveOptions {
         tol,
         start_fraction: start_fraction(&model.geometry),
         max_steps: 1_000_000,
+        inertial: inertial.as_ref(),
     };
     let chain = sweeps::solve_chain(model, opts);
     let g = &model.geometry;
@@ -274,9 +277,20 @@ pub(crate) fn solved_fold_angle(solved: &Solved, fold: &FoldRecord, t: f64) -> f
         return 0.0;
     }
     if t >= fold.end {
-        // the end of a closed fold is exact, whatever the rounding of the track's offset
-        let f = solved.fold_fraction(fold.joint, fold.end);
-        return if f > 1.0 - 1e-9 { target } else { target * f };
+        // a fold that closed (its joint's final mode is at the end) ends exactly closed,
+        // whatever the rounding of the track's offset or a shape shared within
+        // SHAPE_TOLERANCE; one that stopped short ends where its track ends
+        let closed = solved
+            .chain
+            .units
+            .get(fold.joint + 1)
+            .and_then(|u| u.0.solution.modes.get(2))
+            == Some(&Mode::AtEnd);
+        return if closed {
+            target
+        } else {
+            target * solved.fold_fraction(fold.joint, fold.end)
+        };
     }
     target * solved.fold_fraction(fold.joint, t)
 }

@@ -41,6 +41,29 @@ impl Shape {
         )
     }
 
+    /// When the shape first reaches `x` (bisection on its interpolant), if it does.
+    pub(crate) fn crossing(&self, x: f64) -> Option<f64> {
+        let i = self.y.iter().position(|&y| y >= x)?;
+        if i == 0 {
+            return Some(self.t[0]);
+        }
+        let (mut lo, mut hi) = (self.t[i - 1], self.t[i]);
+        let (a, b) = ((self.y[i - 1], self.dy[i - 1]), (self.y[i], self.dy[i]));
+        let (t0, t1) = (lo, hi);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if hermite(t0, t1, a, b, mid) >= x {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(hi)
+    }
+
     /// The time of the last node (the shape is constant after it).
     pub(crate) fn end(&self) -> f64 {
         self.t.last().copied().unwrap_or(0.0)
@@ -113,6 +136,12 @@ impl Shapes {
         (self.list.len() - 1) as u32
     }
 
+    /// How many shapes are stored.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.list.len()
+    }
+
     /// The shape of id `id`.
     pub(crate) fn get(&self, id: u32) -> &Shape {
         &self.list[id as usize]
@@ -134,31 +163,6 @@ impl Shapes {
     /// When `track` stops changing (`None` for the rest track).
     pub(crate) fn last_move(&self, track: Track) -> Option<f64> {
         (track.shape != REST).then(|| track.offset + self.get(track.shape).end())
-    }
-
-    /// When `track` first reaches `x` (bisection on its interpolant), if it does.
-    pub(crate) fn crossing(&self, track: Track, x: f64) -> Option<f64> {
-        if track.shape == REST {
-            return None;
-        }
-        let sh = self.get(track.shape);
-        let i = sh.y.iter().position(|&y| y >= x)?;
-        if i == 0 {
-            return Some(track.offset + sh.t[0]);
-        }
-        let (mut lo, mut hi) = (sh.t[i - 1], sh.t[i]);
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if sh.at(mid) >= x {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        Some(track.offset + hi)
     }
 
     /// The first node of `track` after `t`, if any.

@@ -25,7 +25,6 @@ use crate::reference::integrators::Method;
 use crate::reference::options::{ReferenceError, ReferenceOptions};
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::scenes::{all_scenes, Scene};
-use crate::reference::Dynamics;
 
 pub use compare::{compare_events, EventComparison};
 pub use results::{Row, SceneReport, Validation};
@@ -183,9 +182,6 @@ pub fn validate(
             ("event-force", Some(force)),
             ("event-dist", Some(StartRule::Distance)),
         ] {
-            if rule.is_none() && opts.model.dynamics != Dynamics::Overdamped {
-                continue;
-            }
             progress(sc.name, method, None);
             let t0 = Instant::now();
             let eo = match rule {

@@ -1,0 +1,112 @@
+//! How a unit's unknowns answer their drives: the overdamped model's rates (first order,
+//! [`crate::reference::Model::rate`]) or the inertial model's accelerations (second order,
+//! [`crate::reference::Dynamics::Inertial`]), with the inertial model's walls.
+//!
+//! **Inertial.** Each unknown carries a position and a velocity; its acceleration is
+//! `(drive - friction) / (m L) - (gamma / m) v` with the coefficients of the reference's
+//! inertial driver ([`crate::reference::inertial::Coefficients`], by the unknown's state
+//! index), so a unit's motion is the reference's equation for those unknowns. At a wall (0
+//! or 1) a free unknown moving outwards bounces with the restitution, or stays there when
+//! the rebound would rise less than [`REST_HEIGHT`] of the range against the drive pressing
+//! it on (or the restitution is 0): that is its arrival (a fold's end). A clamped unknown
+//! is released, at rest, when its drive pulls it off its wall by more than the static
+//! threshold and the Coulomb friction. The unit has settled when every free unknown is
+//! quiet on the reference's time scale (speed and acceleration under 1e-7 of the range).
+
+use std::fmt;
+
+use crate::reference::inertial::{Coefficients, REST_HEIGHT};
+use crate::reference::{Dynamics, Mode, Model};
+
+/// The inertial model's coefficients and time scale, for the local solves.
+pub(crate) struct InertialModel {
+    c: Coefficients,
+    restitution: f64,
+    /// The reference's time scale of the inertial run: the longest of the inertial time,
+    /// a path's time at the bonded force from rest, and its time against the drag alone.
+    pub(crate) scale: f64,
+    /// The shortest of the inertial time and a path's time at the bonded force (first step).
+    pub(crate) first_step: f64,
+}
+
+impl fmt::Debug for InertialModel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("InertialModel")
+            .field("restitution", &self.restitution)
+            .field("scale", &self.scale)
+            .finish()
+    }
+}
+
+impl InertialModel {
+    /// The inertial coefficients of `model`, if its dynamics are inertial.
+    pub(crate) fn new(model: &Model) -> Option<InertialModel> {
+        let Dynamics::Inertial(inertia) = model.options().dynamics else {
+            return None;
+        };
+        let c = Coefficients::new(model, &inertia);
+        // the reference's scales (its inertial driver)
+        let tau = c
+            .damping
+            .iter()
+            .filter(|d| **d > 0.0)
+            .map(|d| 1.0 / d)
+            .fold(0.0, f64::max);
+        let inv0 = c.inv_mass.first().copied().unwrap_or(1.0);
+        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
+        let drag_time = c.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
+        Some(InertialModel {
+            restitution: inertia.restitution,
+            scale: tau.max(move_time).max(drag_time),
+            first_step: tau.min(move_time),
+            c,
+        })
+    }
+
+    /// The acceleration of unknown `g` (state index) at velocity `v` under `drive`.
+    pub(crate) fn acceleration(&self, g: usize, drive: f64, v: f64) -> f64 {
+        let fc = self.c.coulomb[g];
+        let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
+        (drive - friction) * self.c.inv_mass[g] - self.c.damping[g] * v
+    }
+
+    /// The drive a clamped unknown `g` must exceed to be released.
+    pub(crate) fn threshold(&self, model: &Model, g: usize) -> f64 {
+        model.threshold(g).max(self.c.coulomb[g])
+    }
+
+    /// Whether clamped unknown `g` in `mode` is pulled off its wall by `drive`.
+    pub(crate) fn released(&self, model: &Model, g: usize, mode: Mode, drive: f64) -> bool {
+        let th = self.threshold(model, g);
+        match mode {
+            Mode::AtStart => drive > th,
+            Mode::AtEnd => -drive > th,
+            Mode::Free => false,
+        }
+    }
+
+    /// What free unknown `g` does on reaching wall `wall` (0 or 1) with velocity `v` (moving
+    /// outwards) under `drive`: `None` stays there (rest), `Some(rebound)` bounces.
+    pub(crate) fn bounce(&self, g: usize, wall: f64, v: f64, drive: f64) -> Option<f64> {
+        let rebound = -self.restitution * v;
+        // the drive pressing it on against the wall, as an acceleration
+        let press = if wall == 1.0 { drive } else { -drive };
+        let a = press.max(0.0) * self.c.inv_mass[g];
+        if self.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
+            None
+        } else {
+            Some(rebound)
+        }
+    }
+
+    /// Whether an unknown with velocity `v` and acceleration `a` is quiet (the reference's
+    /// rest test).
+    pub(crate) fn quiet(&self, v: f64, a: f64) -> bool {
+        v.abs() * self.scale < 1e-7 && a.abs() * self.scale * self.scale < 1e-7
+    }
+}
+
+/// Whether a free unknown at `x` with velocity `v` has reached a wall moving outwards.
+pub(crate) fn at_wall(x: f64, v: f64) -> bool {
+    (x >= 1.0 && v > 0.0) || (x <= 0.0 && v < 0.0)
+}

@@ -1,0 +1,111 @@
+//! A unit's events and switches: the overdamped model's switch conditions (as the
+//! reference's event conditions decide them), the events a switch means (with the trigger a
+//! start implies), and the overdamped settling test.
+
+use crate::engine::local::solve::{LocalEvent, Solver, M, Z};
+use crate::engine::local::window::Var;
+use crate::reference::{Mode, Model};
+use crate::timeline::EventKind;
+
+/// The mode overdamped unknown `g` (reference state index) switches to, as the reference's
+/// event conditions decide.
+pub(super) fn condition(model: &Model, g: usize, mode: Mode, y: f64, drive: f64) -> Option<Mode> {
+    match mode {
+        Mode::AtStart if drive > model.threshold(g) => Some(Mode::Free),
+        Mode::AtEnd if -drive > model.threshold(g) => Some(Mode::Free),
+        Mode::Free if y >= 1.0 => Some(Mode::AtEnd),
+        Mode::Free if y <= 0.0 && drive <= model.threshold(g) => Some(Mode::AtStart),
+        _ => None,
+    }
+}
+
+impl Solver<'_> {
+    /// The event unknown `i` switching from `before` to `next` means, if any (a fold's
+    /// start and end and a magnet's start, when reported at the switch, once each).
+    pub(super) fn switch_event(&mut self, i: usize, before: Mode, next: Mode) -> Option<EventKind> {
+        match (self.w.vars[i], before, next) {
+            (Var::Magnet(_), Mode::AtStart, Mode::Free) => {
+                if self.opts.start_fraction > 0.0 || self.reported[i] {
+                    None
+                } else {
+                    self.reported[i] = true;
+                    Some(EventKind::MagnetStarts)
+                }
+            }
+            (Var::Magnet(_), Mode::Free, Mode::AtEnd) => Some(EventKind::MagnetArrives),
+            (Var::Joint(_), Mode::AtStart, Mode::Free) if !self.reported[i] => {
+                self.reported[i] = true;
+                Some(EventKind::FoldStarts)
+            }
+            (Var::Joint(_), Mode::Free, Mode::AtEnd) if !self.closed[i] => {
+                self.closed[i] = self.opts.inertial.is_some();
+                Some(EventKind::FoldEnds)
+            }
+            _ => None,
+        }
+    }
+
+    /// Records event `kind` of unknown `i` at `tau` with the unit at `z`, with the trigger
+    /// it implies: a magnet starting while the one before it has moved.
+    pub(super) fn event(&mut self, i: usize, tau: f64, kind: EventKind, z: &[f64; Z]) {
+        let base = 2 * self.w.j;
+        let rel = match self.w.vars[i] {
+            Var::Magnet(k) => k as i64 - base as i64,
+            Var::Joint(_) => 0,
+        };
+        if kind == EventKind::FoldStarts {
+            self.sol.p0 = 0.5 * (z[0] + z[1]);
+        }
+        if kind == EventKind::MagnetStarts {
+            if let Var::Magnet(k) = self.w.vars[i] {
+                if k >= 1 {
+                    let before = k - 1;
+                    let moved = match self.w.vars.iter().position(|&v| v == Var::Magnet(before)) {
+                        Some(p) => self.modes[p] != Mode::AtStart || z[p] > 0.0,
+                        None => {
+                            let tr = self.inputs.magnets[before];
+                            self.inputs
+                                .shapes
+                                .first_move(tr)
+                                .is_some_and(|t0| t0 <= self.t_ref + tau)
+                        }
+                    };
+                    if moved {
+                        self.sol.events.push(LocalEvent {
+                            time: tau,
+                            kind: EventKind::TriggerReached,
+                            rel: rel - 1,
+                        });
+                    }
+                }
+            }
+        }
+        self.sol.events.push(LocalEvent {
+            time: tau,
+            kind,
+            rel,
+        });
+        self.last_event = tau;
+    }
+
+    /// Whether every free unknown settles on a stable balance inside its range (the
+    /// reference's test: its own rate falls as it moves, and the linearised distance left is
+    /// under the tolerance); overdamped units.
+    pub(super) fn settled(&mut self, tau: f64, y: &[f64; Z], f: &[f64; Z], free: &[usize]) -> bool {
+        let mut yy = *y;
+        let mut d = [0.0; M];
+        let mut r = [0.0; Z];
+        for &i in free {
+            let delta = if y[i] > 0.5 { -1e-7 } else { 1e-7 };
+            yy[i] += delta;
+            self.deriv(tau, &yy, &mut d, &mut r);
+            yy[i] = y[i];
+            let lambda = (r[i] - f[i]) / delta;
+            let left = (f[i] / lambda).abs();
+            if lambda >= 0.0 || left > self.opts.tol.max(1e-6) || y[i] < left || 1.0 - y[i] < left {
+                return false;
+            }
+        }
+        true
+    }
+}

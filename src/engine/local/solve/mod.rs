@@ -1,0 +1,528 @@
+//! One unit's local solve: its unknowns integrated in time with every other magnet and
+//! joint on its track (upstream: solved; downstream: at rest, or the previous sweep's),
+//! by Dormand-Prince 5(4) with adaptive steps ([`step`]); the rates and the switches
+//! between modes (at rest, free, at the end) are the reference model's
+//! ([`crate::reference::Model`]), and every switch is located by bisection on the dense
+//! output (cubic Hermite on the step's ends), the drives evaluated there.
+//!
+//! The unit follows the reference's dynamics ([`dynamics`]): overdamped, one position per
+//! unknown moving at the rate its drive gives; or inertial, a position and a velocity per
+//! unknown, with the walls' bounces and rest rule. Either way its tracks are Hermite
+//! pieces on the positions and their time derivatives (the rates, or the velocities).
+//!
+//! Time runs from the unit's own origin `t_ref` (the first moment an input moves), so
+//! that a unit whose inputs repeat an earlier unit's, shifted in time, has the same
+//! solution shifted ([`crate::engine::local`]'s cache).
+
+mod dynamics;
+mod events;
+mod step;
+
+pub(crate) use dynamics::InertialModel;
+
+use crate::engine::local::trajectory::{hermite, Shape};
+use crate::engine::local::window::{Inputs, Scratch, Var, Window};
+use crate::reference::Mode;
+use crate::timeline::EventKind;
+use dynamics::at_wall;
+use events::condition;
+use step::{dopri, interpolate};
+
+/// Most unknowns of a unit.
+const M: usize = 3;
+/// Most components of a unit's state (positions and velocities).
+const Z: usize = 2 * M;
+
+/// Options of a local solve.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SolveOptions<'a> {
+    /// Tolerance on the unknowns (fractions of a path or of a fold).
+    pub(crate) tol: f64,
+    /// A magnet's start is reported when it has travelled this fraction of its path (0: when
+    /// it is first driven off its rest point).
+    pub(crate) start_fraction: f64,
+    /// Most steps before the solve gives up.
+    pub(crate) max_steps: usize,
+    /// The inertial model's coefficients when the dynamics are inertial (`None`:
+    /// overdamped).
+    pub(crate) inertial: Option<&'a InertialModel>,
+}
+
+/// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LocalEvent {
+    /// Local time, s.
+    pub(crate) time: f64,
+    /// What.
+    pub(crate) kind: EventKind,
+    /// Magnet index minus `2j`, or 0 for the joint.
+    pub(crate) rel: i64,
+}
+
+/// A unit's solution, in its local time.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Solution {
+    /// Each unknown's shape and when it starts (local time), if it ever moved.
+    pub(crate) shapes: Vec<Option<(Shape, f64)>>,
+    /// The unit's events.
+    pub(crate) events: Vec<LocalEvent>,
+    /// The fold's pair progress when it started.
+    pub(crate) p0: f64,
+    /// Final modes, values and drives of the unknowns.
+    pub(crate) modes: Vec<Mode>,
+    /// Final values.
+    pub(crate) y: Vec<f64>,
+    /// Final drives.
+    pub(crate) drive: Vec<f64>,
+    /// Why the solve gave up, if it did.
+    pub(crate) stopped: Option<String>,
+    /// Right-hand sides evaluated.
+    pub(crate) rhs: u64,
+}
+
+/// A local solve in progress.
+pub(super) struct Solver<'a> {
+    w: &'a Window<'a>,
+    inputs: Inputs<'a>,
+    opts: SolveOptions<'a>,
+    t_ref: f64,
+    m: usize,
+    globals: [usize; M],
+    modes: [Mode; M],
+    scratch: Scratch,
+    rhs: u64,
+    /// Whether each magnet's start (each joint's fold start) has been reported.
+    reported: [bool; M],
+    /// Whether each joint's fold end has been reported (inertial: once, as the reference).
+    closed: [bool; M],
+    /// Each unknown's nodes so far.
+    nodes: Vec<Shape>,
+    /// When each unknown first moved (NaN: not yet).
+    started: [f64; M],
+    sol: Solution,
+    last_event: f64,
+}
+
+impl Solver<'_> {
+    /// Components of the state: the positions, and the velocities if inertial.
+    fn dim(&self) -> usize {
+        if self.opts.inertial.is_some() {
+            2 * self.m
+        } else {
+            self.m
+        }
+    }
+
+    fn drives(&mut self, tau: f64, z: &[f64; Z], out: &mut [f64; M]) {
+        self.rhs += 1;
+        self.w.drives(
+            self.t_ref + tau,
+            &z[..self.m],
+            &self.inputs,
+            &mut self.scratch,
+            &mut out[..self.m],
+        );
+    }
+
+    /// The state's time derivative at `(tau, z)`; the drives into `drive`.
+    fn deriv(&mut self, tau: f64, z: &[f64; Z], drive: &mut [f64; M], f: &mut [f64; Z]) {
+        self.drives(tau, z, drive);
+        let m = self.m;
+        match self.opts.inertial {
+            None => {
+                for i in 0..m {
+                    f[i] = self.w.model.rate(self.globals[i], drive[i], self.modes[i]);
+                }
+            }
+            Some(im) => {
+                for i in 0..m {
+                    if self.modes[i] == Mode::Free {
+                        f[i] = z[m + i];
+                        f[m + i] = im.acceleration(self.globals[i], drive[i], z[m + i]);
+                    } else {
+                        f[i] = 0.0;
+                        f[m + i] = 0.0;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether anything switches (or a start is to be reported) at `z` with drives `d`.
+    fn any_switch(&self, z: &[f64; Z], d: &[f64; M]) -> bool {
+        let model = self.w.model;
+        (0..self.m).any(|i| {
+            let g = self.globals[i];
+            let switch = match self.opts.inertial {
+                None => condition(model, g, self.modes[i], z[i], d[i]).is_some(),
+                Some(im) => match self.modes[i] {
+                    Mode::Free => at_wall(z[i], z[self.m + i]),
+                    mode => im.released(model, g, mode, d[i]),
+                },
+            };
+            switch || self.report_due(i, z[i])
+        })
+    }
+
+    fn report_due(&self, i: usize, y: f64) -> bool {
+        matches!(self.w.vars[i], Var::Magnet(_))
+            && !self.reported[i]
+            && self.modes[i] != Mode::AtStart
+            && self.opts.start_fraction > 0.0
+            && y >= self.opts.start_fraction
+    }
+
+    /// Appends a node to unknown `i`'s shape.
+    fn node(&mut self, i: usize, t: f64, y: f64, dy: f64) {
+        let sh = &mut self.nodes[i];
+        sh.t.push(t);
+        sh.y.push(y);
+        sh.dy.push(dy);
+    }
+
+    /// Unknown `i` switches to `next` at `tau`, its rate going from `before` to `after`.
+    fn switch(&mut self, i: usize, tau: f64, next: Mode, (y, before, after): (f64, f64, f64)) {
+        if self.started[i].is_nan() {
+            self.started[i] = tau;
+        }
+        self.node(i, tau, y, before);
+        self.node(i, tau, y, after);
+        self.modes[i] = next;
+    }
+
+    /// The overdamped switches of unknown `i` at `(tau, z)` with drives `d`.
+    fn switch_first_order(&mut self, i: usize, tau: f64, z: &mut [f64; Z], d: &[f64; M]) {
+        let model = self.w.model;
+        let g = self.globals[i];
+        let before = self.modes[i];
+        let rate_before = model.rate(g, d[i], before);
+        let Some(next) = condition(model, g, before, z[i], d[i]) else {
+            return;
+        };
+        match next {
+            Mode::AtEnd => z[i] = 1.0,
+            Mode::AtStart => z[i] = 0.0,
+            Mode::Free => {}
+        }
+        let rate_after = model.rate(g, d[i], next);
+        let rb = if before == Mode::AtStart {
+            0.0
+        } else {
+            rate_before
+        };
+        self.switch(i, tau, next, (z[i], rb, rate_after));
+        if let Some(kind) = self.switch_event(i, before, next) {
+            self.event(i, tau, kind, z);
+        }
+    }
+
+    /// The inertial switches of unknown `i` at `(tau, z)` with drives `d`: a release, a
+    /// bounce or a rest at a wall.
+    fn switch_second_order(
+        &mut self,
+        im: &InertialModel,
+        i: usize,
+        tau: f64,
+        z: &mut [f64; Z],
+        d: &[f64; M],
+    ) {
+        let model = self.w.model;
+        let (g, m) = (self.globals[i], self.m);
+        let before = self.modes[i];
+        if before != Mode::Free {
+            if im.released(model, g, before, d[i]) {
+                z[m + i] = 0.0;
+                self.switch(i, tau, Mode::Free, (z[i], 0.0, 0.0));
+                if let Some(kind) = self.switch_event(i, before, Mode::Free) {
+                    self.event(i, tau, kind, z);
+                }
+            }
+            return;
+        }
+        let wall = if z[i] >= 1.0 {
+            1.0
+        } else if z[i] <= 0.0 {
+            0.0
+        } else {
+            return;
+        };
+        z[i] = wall;
+        let v = z[m + i];
+        if !at_wall(wall, v) {
+            return;
+        }
+        match im.bounce(g, wall, v, d[i]) {
+            Some(rebound) => {
+                z[m + i] = rebound;
+                self.node(i, tau, wall, v);
+                self.node(i, tau, wall, rebound);
+            }
+            None => {
+                let next = if wall == 1.0 {
+                    Mode::AtEnd
+                } else {
+                    Mode::AtStart
+                };
+                z[m + i] = 0.0;
+                self.switch(i, tau, next, (wall, v, 0.0));
+                if let Some(kind) = self.switch_event(i, before, next) {
+                    self.event(i, tau, kind, z);
+                }
+            }
+        }
+    }
+}
+
+/// Solves unit `w` against `inputs`.
+pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
+    let tracks = w.input_tracks(&inputs);
+    let first = tracks
+        .iter()
+        .filter_map(|&t| inputs.shapes.first_move(t))
+        .fold(f64::INFINITY, f64::min);
+    let last = tracks
+        .iter()
+        .filter_map(|&t| inputs.shapes.last_move(t))
+        .fold(f64::NEG_INFINITY, f64::max);
+    // the RI pulls from t = 0
+    let t_ref = if w.lo == 0 || !first.is_finite() {
+        0.0
+    } else {
+        first
+    };
+    let t_last = last - t_ref;
+    let m = w.vars.len();
+    let mut globals = [0; M];
+    for (i, g) in globals.iter_mut().enumerate().take(m) {
+        *g = w.global(i);
+    }
+    let mut s = Solver {
+        w,
+        inputs,
+        opts,
+        t_ref,
+        m,
+        globals,
+        modes: [Mode::AtStart; M],
+        scratch: Scratch::default(),
+        rhs: 0,
+        reported: [false; M],
+        closed: [false; M],
+        nodes: vec![Shape::default(); m],
+        started: [f64::NAN; M],
+        sol: Solution {
+            shapes: vec![None; m],
+            ..Solution::default()
+        },
+        last_event: 0.0,
+    };
+    let model = w.model;
+    let dim = s.dim();
+    let mut z = [0.0; Z];
+    let mut d = [0.0; M];
+    let mut f = [0.0; Z];
+    let mut tau = 0.0;
+    let (scale, mut h) = match opts.inertial {
+        Some(im) => (im.scale, im.first_step * 1e-3 * opts.tol.powf(0.2)),
+        None => (
+            model.time_scale,
+            model.time_scale * 1e-3 * opts.tol.powf(0.2),
+        ),
+    };
+    let mut steps = 0usize;
+    let next_input_node = |tau: f64| -> Option<f64> {
+        // strictly later than tau, whatever the rounding of the offsets
+        let t = t_ref + tau;
+        let t = t + 1e-13 * t.abs().max(scale);
+        tracks
+            .iter()
+            .filter_map(|&tr| inputs.shapes.next_node(tr, t))
+            .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.min(b))))
+            .map(|t| t - t_ref)
+    };
+    let input_span = |tau: f64| -> f64 {
+        // the widest interval of a moving input at tau (steps stay within two of them)
+        let t = t_ref + tau;
+        let mut span = f64::INFINITY;
+        for &tr in &tracks {
+            if let (Some(a), Some(b)) = (inputs.shapes.first_move(tr), inputs.shapes.last_move(tr))
+            {
+                if t < a {
+                    span = span.min(a - t);
+                } else if t < b {
+                    let sh = inputs.shapes.get(tr.shape);
+                    let i =
+                        sh.t.partition_point(|&x| x <= t - tr.offset)
+                            .clamp(1, sh.t.len() - 1);
+                    span = span.min(2.0 * (sh.t[i] - sh.t[i - 1]).max(1e-12 * t.abs().max(1.0)));
+                }
+            }
+        }
+        span
+    };
+    loop {
+        // switches at tau
+        s.drives(tau, &z, &mut d);
+        for i in 0..m {
+            match opts.inertial {
+                None => s.switch_first_order(i, tau, &mut z, &d),
+                Some(im) => s.switch_second_order(im, i, tau, &mut z, &d),
+            }
+            if s.report_due(i, z[i]) {
+                s.reported[i] = true;
+                s.event(i, tau, EventKind::MagnetStarts, &z);
+            }
+        }
+        let free: Vec<usize> = (0..m).filter(|&i| s.modes[i] == Mode::Free).collect();
+        steps += 1;
+        if steps > opts.max_steps {
+            s.sol.stopped = Some(format!(
+                "local solve of joint {} gave up after {} steps at t = {:.6e} s",
+                w.j,
+                opts.max_steps,
+                t_ref + tau
+            ));
+            break;
+        }
+        if free.is_empty() {
+            // nothing of the unit moves: step from input node to input node
+            let Some(tn) = next_input_node(tau) else {
+                break;
+            };
+            let z0 = z;
+            let mut dn = [0.0; M];
+            s.drives(tn, &z0, &mut dn);
+            if s.any_switch(&z0, &dn) {
+                let (mut lo, mut hi) = (tau, tn);
+                for _ in 0..60 {
+                    if hi - lo <= 1e-13 * hi.abs().max(scale) {
+                        break;
+                    }
+                    let mid = 0.5 * (lo + hi);
+                    s.drives(mid, &z0, &mut dn);
+                    if s.any_switch(&z0, &dn) {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                tau = hi;
+            } else {
+                tau = tn;
+            }
+            continue;
+        }
+        // settled or at rest once the inputs are still
+        if tau >= t_last {
+            s.deriv(tau, &z, &mut d, &mut f);
+            match opts.inertial {
+                None => {
+                    let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
+                    let since = (tau - s.last_event).max(scale);
+                    if fastest * since < 1e-9
+                        || (fastest * since < 1e-2 && s.settled(tau, &z, &f, &free))
+                    {
+                        break;
+                    }
+                }
+                Some(im) => {
+                    if free.iter().all(|&i| im.quiet(z[m + i], f[m + i])) {
+                        break;
+                    }
+                }
+            }
+        }
+        // one Dormand-Prince step
+        let hmax = input_span(tau);
+        h = h.min(hmax);
+        let st = dopri(&mut s, tau, &z, h, &free);
+        let err = st.err;
+        if !err.is_finite() || err > 1.0 {
+            let fac = if err.is_finite() {
+                (0.9 * err.powf(-0.2)).clamp(0.1, 0.9)
+            } else {
+                0.1
+            };
+            h *= fac;
+            continue;
+        }
+        let grow = if err > 0.0 {
+            (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+        } else {
+            5.0
+        };
+        let (t0, z0, f0) = (tau, z, st.f0);
+        let (t1, z1, f1) = (tau + h, st.z1, st.f1);
+        // an event inside the step?
+        let mut d1 = [0.0; M];
+        s.drives(t1, &z1, &mut d1);
+        if s.any_switch(&z1, &d1) {
+            let (mut lo, mut hi) = (t0, t1);
+            let mut z_hi = z1;
+            for _ in 0..60 {
+                if hi - lo <= 1e-13 * hi.abs().max(scale) {
+                    break;
+                }
+                let mid = 0.5 * (lo + hi);
+                let zm = interpolate(dim, t0, t1, &z0, &f0, &z1, &f1, mid);
+                let mut dm = [0.0; M];
+                s.drives(mid, &zm, &mut dm);
+                if s.any_switch(&zm, &dm) {
+                    hi = mid;
+                    z_hi = zm;
+                } else {
+                    lo = mid;
+                }
+            }
+            for &i in &free {
+                let slope = if opts.inertial.is_some() {
+                    z_hi[m + i]
+                } else {
+                    // the rate at the event, from the interpolant's slope
+                    let dt = 1e-9 * (t1 - t0);
+                    (hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi)
+                        - hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi - dt))
+                        / dt
+                };
+                s.node(i, hi, z_hi[i].clamp(0.0, 1.0), slope);
+            }
+            for &i in &free {
+                z[i] = z_hi[i].clamp(0.0, 1.0);
+                if dim > m {
+                    z[m + i] = z_hi[m + i];
+                }
+            }
+            tau = hi;
+            h = h.max(1e-6 * scale);
+            continue;
+        }
+        for &i in &free {
+            s.node(i, t1, z1[i], f1[i]);
+        }
+        tau = t1;
+        z = z1;
+        h *= grow;
+    }
+    s.drives(tau, &z, &mut d);
+    let mut sol = std::mem::take(&mut s.sol);
+    for i in 0..m {
+        if !s.started[i].is_nan() {
+            let mut sh = std::mem::take(&mut s.nodes[i]);
+            let origin = s.started[i];
+            for t in &mut sh.t {
+                *t -= origin;
+            }
+            sol.shapes[i] = Some((sh, origin));
+        }
+    }
+    sol.modes = s.modes[..m].to_vec();
+    sol.y = z[..m].to_vec();
+    sol.drive = d[..m].to_vec();
+    sol.rhs = s.rhs;
+    sol.events.sort_by(|a, b| {
+        a.time
+            .total_cmp(&b.time)
+            .then((a.kind, a.rel).cmp(&(b.kind, b.rel)))
+    });
+    (t_ref, sol)
+}

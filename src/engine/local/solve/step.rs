@@ -1,0 +1,87 @@
+//! One Dormand-Prince 5(4) step of a unit's state (the reference's tableau), its error
+//! estimate, and its dense output: cubic Hermite on each component's values and rates at
+//! the step's ends. A first-order unit's state is its positions; a second-order unit's is
+//! its positions then its velocities, so that the positions' rates are the velocities and
+//! the velocities' rates the accelerations.
+
+use crate::engine::local::solve::{Solver, M, Z};
+use crate::engine::local::trajectory::hermite;
+use crate::reference::integrators::{A, E};
+
+/// Dormand-Prince 5(4) stage times (the tableau is the reference's).
+const C: [f64; 6] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+
+/// A step attempt: the new state, the rates at both ends and the weighted RMS error.
+pub(super) struct Step {
+    /// The state at the step's end.
+    pub(super) z1: [f64; Z],
+    /// Rates at the start.
+    pub(super) f0: [f64; Z],
+    /// Rates at the end.
+    pub(super) f1: [f64; Z],
+    /// The error over the free unknowns, in tolerances (accept when <= 1).
+    pub(super) err: f64,
+}
+
+/// One step of `h` from `(tau, z)`, the error measured on the unknowns `free` (both their
+/// position and velocity for a second-order unit).
+pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usize]) -> Step {
+    let dim = s.dim();
+    let mut k = [[0.0; Z]; 7];
+    let mut d = [0.0; M];
+    s.deriv(tau, z, &mut d, &mut k[0]);
+    let mut zs = [0.0; Z];
+    for st in 0..6 {
+        for c in 0..dim {
+            let mut acc = 0.0;
+            for (jj, a) in A[st].iter().enumerate().take(st + 1) {
+                acc += a * k[jj][c];
+            }
+            zs[c] = z[c] + h * acc;
+        }
+        let mut out = [0.0; Z];
+        s.deriv(tau + C[st] * h, &zs, &mut d, &mut out);
+        k[st + 1] = out;
+    }
+    let mut sum = 0.0;
+    let mut count = 0usize;
+    let second = dim > s.m;
+    for &i in free {
+        let comps = if second { [i, s.m + i] } else { [i, i] };
+        for &c in &comps[..if second { 2 } else { 1 }] {
+            let mut e = 0.0;
+            for (jj, w) in E.iter().enumerate() {
+                e += w * k[jj][c];
+            }
+            let sc = s.opts.tol * (1.0 + z[c].abs().max(zs[c].abs()));
+            sum += (h * e / sc).powi(2);
+            count += 1;
+        }
+    }
+    Step {
+        z1: zs,
+        f0: k[0],
+        f1: k[6],
+        err: (sum / count.max(1) as f64).sqrt(),
+    }
+}
+
+/// The dense output of a step from `(t0, z0, f0)` to `(t1, z1, f1)` at `t`, on the first
+/// `dim` components.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn interpolate(
+    dim: usize,
+    t0: f64,
+    t1: f64,
+    z0: &[f64; Z],
+    f0: &[f64; Z],
+    z1: &[f64; Z],
+    f1: &[f64; Z],
+    t: f64,
+) -> [f64; Z] {
+    let mut out = [0.0; Z];
+    for c in 0..dim {
+        out[c] = hermite(t0, t1, (z0[c], f0[c]), (z1[c], f1[c]), t);
+    }
+    out
+}
