@@ -10,9 +10,10 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::assembly::Assembly;
-use crate::cells::{decompose_merging, Cells};
+use crate::cells::{decompose_merging, Branch, Cells, Merge};
 use crate::check::check_folds;
 use crate::empty::empty_part;
+use crate::error::Rejected;
 use crate::fit::plan_score;
 use crate::frame::{stacking_axis_deg, Orientation};
 use crate::options::{PlanOptions, DEFAULT_TILES};
@@ -27,6 +28,10 @@ use crate::sizing::{width_for, SizeSearch};
 /// too (2^jumps decompositions): a key's shaft and bits as one cell, its head another,
 /// which a row programme fills with fewer turns than five separate cells.
 const MAX_MERGED_JUMPS: usize = 4;
+/// Decompositions (merges across jumps times choices at branches, where the sweep meets a
+/// hole) routed at most per axis: a ring's two branches have 5 and 3 choices (15), two
+/// holes side by side 225; the pinwheels come first (2 for a ring, 4 for two holes).
+const MAX_DECOMPOSITIONS: usize = 8;
 /// Size steps of the tile width search.
 const SIZE_STEPS: usize = 10;
 /// The size search stops once the count is within this share of the target (2%: a cell
@@ -42,6 +47,9 @@ const MAX_CELLS: usize = 12;
 /// Complete routes per axis turned into words and checked.
 const ROUTES_KEPT: usize = 4;
 
+/// Why no cell route was returned, with the best one rejected for an empty part.
+pub(crate) type CellFailure = (String, Option<Box<Rejected>>);
+
 /// Why an axis gave no route.
 type Why = String;
 
@@ -55,19 +63,23 @@ fn plan_cells(
     style: Style,
     describe: &(dyn Fn(&Shape) -> String + Sync),
 ) -> Result<Vec<Routed>, Why> {
-    let split = decompose_merging(axis_shape, 1.0, 1.0, 0);
-    let masks: Vec<u32> = if split.jumps <= MAX_MERGED_JUMPS {
-        (0..1u32 << split.jumps).collect()
-    } else {
-        vec![0]
-    };
-    let per_mask: Vec<Result<Vec<Routed>, Why>> = masks
+    let split = decompose_merging(axis_shape, 1.0, 1.0, Merge::default());
+    let merges = merges(&split);
+    let per_mask: Vec<Result<Vec<Routed>, Why>> = merges
         .par_iter()
-        .map(|&m| {
-            let cells = if m == 0 {
+        .map(|(m, b)| {
+            let cells = if *m == 0 && b.iter().all(|&c| c == 0) {
                 None
             } else {
-                Some(decompose_merging(axis_shape, 1.0, 1.0, m))
+                Some(decompose_merging(
+                    axis_shape,
+                    1.0,
+                    1.0,
+                    Merge {
+                        jumps: *m,
+                        branches: b,
+                    },
+                ))
             };
             route_cells(cells.as_ref().unwrap_or(&split), style, describe)
         })
@@ -88,6 +100,69 @@ fn plan_cells(
     routed.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     routed.truncate(ROUTES_KEPT);
     Ok(routed)
+}
+
+/// The merges of the cells of `split` to route, at most [`MAX_DECOMPOSITIONS`]: every way
+/// of merging across its jumps (up to [`MAX_MERGED_JUMPS`]), each with choices at its
+/// branches: first the pinwheels (every split cut along one side or the other of its gap,
+/// no join merged: the cells around a hole then each reach the outline at both ends of
+/// their rows, which sequential folding needs, since a row pointing across a hole at tiles
+/// already laid would sweep into them), then the others, fewest merged branches first.
+fn merges(split: &Cells) -> Vec<(u32, Vec<usize>)> {
+    let masks: Vec<u32> = if split.jumps <= MAX_MERGED_JUMPS {
+        (0..1u32 << split.jumps).collect()
+    } else {
+        vec![0]
+    };
+    // branches are merged or cut only around holes: where the graph of the plain cells
+    // has a cycle (a sweep meets a hole at a split and a join); a shape without holes keeps
+    // its plain branches, as the thesis' key does
+    let holes = split.graph.edge_count() + split.components() > split.cells.len();
+    let room = if holes {
+        (MAX_DECOMPOSITIONS / masks.len()).max(1)
+    } else {
+        1
+    };
+    let mut choices: Vec<Vec<usize>> = vec![Vec::new()];
+    for b in &split.branches {
+        let mut next: Vec<Vec<usize>> = Vec::new();
+        for c in &choices {
+            for k in 0..b.choices {
+                let mut c = c.clone();
+                c.push(k);
+                next.push(c);
+            }
+        }
+        choices = next;
+        if choices.len() > 4 * room {
+            choices.sort_by_key(|c| pinwheel_rank(&split.branches, c));
+            choices.truncate(4 * room);
+        }
+    }
+    if holes {
+        choices.sort_by_key(|c| pinwheel_rank(&split.branches, c));
+    } else {
+        choices = vec![Vec::new()];
+    }
+    choices.truncate(room);
+    masks
+        .iter()
+        .flat_map(|&m| choices.iter().map(move |c| (m, c.clone())))
+        .collect()
+}
+
+/// The rank of branch choices `c` (lower first): 0 for a pinwheel (every split cut, no join
+/// merged, as far as `c` goes), else one more than the number of branches merged or cut.
+fn pinwheel_rank(branches: &[Branch], c: &[usize]) -> usize {
+    let pinwheel = branches
+        .iter()
+        .zip(c)
+        .all(|(b, &k)| if b.cuts { k + 2 >= b.choices } else { k == 0 });
+    if pinwheel {
+        0
+    } else {
+        1 + c.iter().filter(|&&k| k > 0).count()
+    }
 }
 
 /// The best routes through `cells`, cheapest first, or why there is none.
@@ -162,13 +237,13 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 /// Plans `shape` by cells with one turn style: the tile width is searched like the
 /// serpentine's (a few secant steps on the count), every axis is routed in parallel, and the
 /// cheapest routes are checked by sequential folding; the best fit wins. The error says, per
-/// axis, why no route was found.
+/// axis, why no route was found, with the best route that folds but leaves a part empty.
 pub(crate) fn plan_by_cells(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
-) -> Result<Plan, String> {
+) -> Result<Plan, CellFailure> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let w0 = opts
         .tile_size
@@ -205,12 +280,13 @@ pub(crate) fn plan_by_cells(
             .iter()
             .map(|(r, axes)| format!("along axes {} deg: {r}", axes.join(", ")))
             .collect();
-        return Err(text.join("; "));
+        return Err((text.join("; "), None));
     };
     let w = found.w;
     let mut plans: Vec<Plan> = Vec::new();
     let mut collide = String::new();
     let mut empty = String::new();
+    let mut rejected: Option<Box<Rejected>> = None;
     for (a, r) in found.plans.iter().take(CHECKED_ROUTES) {
         if let Err(e) = check_folds(&r.word) {
             collide = e;
@@ -235,11 +311,14 @@ pub(crate) fn plan_by_cells(
             continue;
         }
         let plan = asm.to_plan(&r.word, name);
-        if let Some(why) = empty_part(shape, &plan) {
-            empty = format!(
-                "the best route ({} cells, {} tiles) {why}",
-                plan.cells, plan.tiles
-            );
+        if let Some(part) = empty_part(shape, &plan) {
+            if rejected.is_none() {
+                empty = format!(
+                    "the best route ({} cells, {} tiles) {part}",
+                    plan.cells, plan.tiles
+                );
+                rejected = Some(Box::new(Rejected { plan, empty: part }));
+            }
             continue;
         }
         plans.push(plan);
@@ -259,9 +338,12 @@ pub(crate) fn plan_by_cells(
         })
         .ok_or_else(|| {
             if empty.is_empty() {
-                format!("every cell route collides when folded (first: {collide})")
+                (
+                    format!("every cell route collides when folded (first: {collide})"),
+                    None,
+                )
             } else {
-                empty
+                (empty, rejected)
             }
         })
 }

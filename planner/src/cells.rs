@@ -29,6 +29,33 @@ pub(crate) struct Cells {
     pub graph: UnGraph<usize, ()>,
     /// The number of jumps that split a cell (see [`decompose_merging`]).
     pub jumps: usize,
+    /// The branches, in sweep order (see [`Merge`]).
+    pub branches: Vec<Branch>,
+}
+
+/// A branch of the sweep: where a piece splits into several above it or several join.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Branch {
+    /// The number of choices (see [`Merge::branches`]).
+    pub choices: usize,
+    /// True for a split in two, whose last two choices cut the cell below.
+    pub cuts: bool,
+}
+
+/// Which cells a decomposition merges across its jumps and branches.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Merge<'a> {
+    /// The jumps (numbered in sweep order, bit `i` for jump `i`) across which the cells are
+    /// merged: where one piece continues one other but an end jumps by more than the step
+    /// (a key's shaft with its bits).
+    pub jumps: u32,
+    /// A choice per branch, in sweep order: where a piece splits into several above it (the
+    /// bottom of a hole) or several join into one (its top), 0 starts new cells, `c` goes on
+    /// with the `c`-th of them (1-based). A ring's band below its hole with its left side is
+    /// one L-shaped cell, monotone like the cells it joins; its band above with the right
+    /// side another, and one chain fills the two, rows in one and columns in the other.
+    /// Missing choices are 0.
+    pub branches: &'a [usize],
 }
 
 /// A piece of one slab: the interval at the bottom and at the top of the slab.
@@ -49,13 +76,17 @@ pub(crate) fn cells_of(axis_shape: &Shape) -> Cells {
 /// Decomposes `shape` along y into monotone cells. Ends that jump by more than `jump` start a
 /// new cell; cells smaller than `min_area` are dropped (with their edges).
 pub(crate) fn decompose(shape: &Shape, jump: f64, min_area: f64) -> Cells {
-    decompose_merging(shape, jump, min_area, 0)
+    decompose_merging(shape, jump, min_area, Merge::default())
 }
 
-/// [`decompose`], but the jumps whose bit is set in `merge` (the jumps numbered in sweep
-/// order, where one piece continues one other but an end jumps by more than `jump`) do not
-/// start a new cell: the cells either side are merged (a key's shaft with its bits).
-pub(crate) fn decompose_merging(shape: &Shape, jump: f64, min_area: f64, merge: u32) -> Cells {
+/// [`decompose`], but the cells either side of the jumps and branches that `merge` chooses
+/// are merged (see [`Merge`]). Every cell stays monotone: one piece in every slab it spans.
+pub(crate) fn decompose_merging(
+    shape: &Shape,
+    jump: f64,
+    min_area: f64,
+    merge: Merge<'_>,
+) -> Cells {
     let size = shape.size();
     let mut ys = shape.vertex_heights();
     ys.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * size);
@@ -98,44 +129,117 @@ pub(crate) fn decompose_merging(shape: &Shape, jump: f64, min_area: f64, merge: 
     let mut members: Vec<Vec<Piece>> = Vec::new();
     let mut touches: Vec<(usize, usize)> = Vec::new();
     let mut jumps = 0usize;
+    let mut branches: Vec<Branch> = Vec::new();
     for (i, slab) in slabs.iter().enumerate() {
+        let touching = i > 0
+            && slabs[i - 1]
+                .first()
+                .zip(slab.first())
+                .is_some_and(|(q, p)| (q.y1 - p.y0).abs() <= 1e-9 * size);
+        let meets = |q: &Piece, p: &Piece| q.hi.0 < p.lo.1 && p.lo.0 < q.hi.1;
+        // below[m]: the pieces of the slab below that piece m touches
+        let below: Vec<Vec<usize>> = slab
+            .iter()
+            .map(|p| match touching {
+                true => (0..slabs[i - 1].len())
+                    .filter(|&j| meets(&slabs[i - 1][j], p))
+                    .collect(),
+                false => Vec::new(),
+            })
+            .collect();
+        let ups = |j: usize| -> Vec<usize> {
+            (0..slab.len()).filter(|&m| below[m].contains(&j)).collect()
+        };
+        // cont[m]: the cell that piece m continues
+        let mut cont: Vec<Option<usize>> = vec![None; slab.len()];
+        let mut taken = vec![false; if i > 0 { slabs[i - 1].len() } else { 0 }];
+        for (m, p) in slab.iter().enumerate() {
+            if below[m].len() != 1 || ups(below[m][0]).len() != 1 {
+                continue;
+            }
+            let j = below[m][0];
+            let q = slabs[i - 1][j];
+            let small = (q.hi.0 - p.lo.0).abs() <= jump && (q.hi.1 - p.lo.1).abs() <= jump;
+            if !small {
+                jumps += 1;
+            }
+            if small || (jumps <= 32 && merge.jumps & (1 << (jumps - 1)) != 0) {
+                cont[m] = Some(cell_of[i - 1][j]);
+                taken[j] = true;
+            }
+        }
+        // branches: a piece below that splits into several (a hole's bottom) may go on in
+        // one of them, or, split in two, be cut along either side of the gap between them
+        // (its cell with it), each part going on in one; a piece that joins several (a
+        // hole's top) may go on from one
+        for j in 0..taken.len() {
+            let up = ups(j);
+            if up.len() < 2 {
+                continue;
+            }
+            let c = merge.branches.get(branches.len()).copied().unwrap_or(0);
+            let cuts = up.len() == 2;
+            branches.push(Branch {
+                choices: up.len() + 1 + if cuts { 2 } else { 0 },
+                cuts,
+            });
+            let x = cell_of[i - 1][j];
+            if (1..=up.len()).contains(&c) {
+                let m = up[c - 1];
+                if cont[m].is_none() && !taken[j] {
+                    cont[m] = Some(x);
+                    taken[j] = true;
+                }
+            } else if c > up.len() && !taken[j] && up.iter().all(|&m| cont[m].is_none()) {
+                let (a, b) = (slab[up[0]], slab[up[1]]);
+                let at = if c == up.len() + 1 { b.lo.0 } else { a.lo.1 };
+                if let Some(y) = cut_cell(&mut members, x, at, jump) {
+                    touches.push((x.min(y), x.max(y)));
+                    // the cell's earlier neighbours may touch either part
+                    let near: Vec<(usize, usize)> = touches
+                        .iter()
+                        .filter(|t| (t.0 == x || t.1 == x) && t.0 != y && t.1 != y)
+                        .map(|&(u, v)| {
+                            if u == x {
+                                (v.min(y), v.max(y))
+                            } else {
+                                (u.min(y), u.max(y))
+                            }
+                        })
+                        .collect();
+                    touches.extend(near);
+                    cont[up[0]] = Some(x);
+                    cont[up[1]] = Some(y);
+                    taken[j] = true;
+                }
+            }
+        }
+        for m in 0..slab.len() {
+            if below[m].len() < 2 {
+                continue;
+            }
+            let c = merge.branches.get(branches.len()).copied().unwrap_or(0);
+            branches.push(Branch {
+                choices: below[m].len() + 1,
+                cuts: false,
+            });
+            if let Some(&j) = c.checked_sub(1).and_then(|c| below[m].get(c)) {
+                if cont[m].is_none() && !taken[j] {
+                    cont[m] = Some(cell_of[i - 1][j]);
+                    taken[j] = true;
+                }
+            }
+        }
         let mut ids = Vec::with_capacity(slab.len());
-        for p in slab {
-            let touching = i > 0
-                && slabs[i - 1]
-                    .first()
-                    .is_some_and(|q| (q.y1 - p.y0).abs() <= 1e-9 * size);
-            let below: Vec<usize> = if touching {
-                slabs[i - 1]
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, q)| q.hi.0 < p.lo.1 && p.lo.0 < q.hi.1)
-                    .map(|(j, _)| j)
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            let continues = below.len() == 1 && {
-                let q = slabs[i - 1][below[0]];
-                let ups = slab
-                    .iter()
-                    .filter(|r| q.hi.0 < r.lo.1 && r.lo.0 < q.hi.1)
-                    .count();
-                ups == 1 && {
-                    let small = (q.hi.0 - p.lo.0).abs() <= jump && (q.hi.1 - p.lo.1).abs() <= jump;
-                    if !small {
-                        jumps += 1;
-                    }
-                    small || (jumps <= 32 && merge & (1 << (jumps - 1)) != 0)
+        for (m, p) in slab.iter().enumerate() {
+            let id = match cont[m] {
+                Some(id) => id,
+                None => {
+                    members.push(Vec::new());
+                    members.len() - 1
                 }
             };
-            let id = if continues {
-                cell_of[i - 1][below[0]]
-            } else {
-                members.push(Vec::new());
-                members.len() - 1
-            };
-            for &j in &below {
+            for &j in &below[m] {
                 let other = cell_of[i - 1][j];
                 if other != id {
                     touches.push((other.min(id), other.max(id)));
@@ -188,7 +292,39 @@ pub(crate) fn decompose_merging(shape: &Shape, jump: f64, min_area: f64, merge: 
         cells,
         graph,
         jumps,
+        branches,
     }
+}
+
+/// Cuts every piece of cell `x` along the sweep line at `at` (each part at least `margin`
+/// wide at both ends of every piece): `x` keeps the parts below `at`, a new cell, returned,
+/// takes those above. None, and nothing cut, if some piece does not reach across `at`.
+fn cut_cell(members: &mut Vec<Vec<Piece>>, x: usize, at: f64, margin: f64) -> Option<usize> {
+    let ps = members.get(x)?;
+    let across = |iv: (f64, f64)| iv.0 + margin <= at && at + margin <= iv.1;
+    if ps.is_empty() || !ps.iter().all(|p| across(p.lo) && across(p.hi)) {
+        return None;
+    }
+    let (low, high): (Vec<Piece>, Vec<Piece>) = ps
+        .iter()
+        .map(|p| {
+            (
+                Piece {
+                    lo: (p.lo.0, at),
+                    hi: (p.hi.0, at),
+                    ..*p
+                },
+                Piece {
+                    lo: (at, p.lo.1),
+                    hi: (at, p.hi.1),
+                    ..*p
+                },
+            )
+        })
+        .unzip();
+    members[x] = low;
+    members.push(high);
+    Some(members.len() - 1)
 }
 
 impl Cells {
@@ -283,6 +419,55 @@ mod tests {
         // a 4-cycle has 8 Hamiltonian paths (4 starts x 2 ways)
         assert_eq!(c.orders(100, 10_000).len(), 8);
         assert_eq!(c.components(), 1);
+    }
+
+    /// Around a hole: the split below it can go on in one side (an L-shaped cell) or cut
+    /// the cell below along a side of the hole (a pinwheel of three cells, each reaching
+    /// the outline at both ends of its rows); the area is kept and every cell is monotone.
+    #[test]
+    fn a_hole_merges_or_cuts_into_monotone_cells() {
+        let outer = poly(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        let hole = poly(&[(4.0, 3.0), (4.0, 7.0), (6.0, 7.0), (6.0, 3.0)]);
+        let s = Shape::from_rings(vec![outer, hole]);
+        let plain = decompose(&s, 0.5, 0.0);
+        // the split below the hole (2 sides: none, either, two cuts), the join above it
+        let choices: Vec<usize> = plain.branches.iter().map(|b| b.choices).collect();
+        assert_eq!(choices, vec![5, 3]);
+        let area = |c: &Cells| c.cells.iter().map(|c| c.area).sum::<f64>();
+        let merged = decompose_merging(
+            &s,
+            0.5,
+            0.0,
+            Merge {
+                jumps: 0,
+                branches: &[1, 2],
+            },
+        );
+        assert_eq!(merged.cells.len(), 2);
+        assert!((area(&merged) - 92.0).abs() < 1e-6);
+        // cut along the hole's left side: below-left with the left side, below-right with
+        // the right side, the top alone
+        let cut = decompose_merging(
+            &s,
+            0.5,
+            0.0,
+            Merge {
+                jumps: 0,
+                branches: &[4, 0],
+            },
+        );
+        assert_eq!(cut.cells.len(), 3, "{:?}", cut.cells);
+        assert!((area(&cut) - 92.0).abs() < 1e-6);
+        assert_eq!(cut.graph.edge_count(), 3);
+        for c in &cut.cells {
+            assert!(c.shape.max_pieces() <= 1, "{:?}", c.shape.bbox());
+            assert!((c.shape.area() - c.area).abs() < 1e-6);
+        }
+        let b = cut.cells.iter().map(|c| c.shape.bbox()).collect::<Vec<_>>();
+        assert!(
+            b.iter().any(|r| r.x0 == 0.0 && r.x1 == 4.0 && r.y1 == 7.0),
+            "{b:?}"
+        );
     }
 
     #[test]

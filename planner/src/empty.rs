@@ -5,7 +5,7 @@
 //! group of empty points (four-neighbour) of at least [`MIN_EMPTY_TILES`] tile areas is an
 //! empty part. Slivers along the outline and small bumps (a key's bits) stay below it.
 
-use kurbo::Point;
+use kurbo::{Point, Rect, Vec2};
 
 use crate::centre_grid::CentreGrid;
 use crate::plan::Plan;
@@ -23,12 +23,36 @@ pub(crate) const MIN_EMPTY_TILES: f64 = 20.0;
 /// points; a part left empty at that size is a small share of the shape).
 pub(crate) const MAX_CHECKED_TILES: usize = 200_000;
 
-/// The largest empty part of the plan with tile centres `centres` over `work` (both in the
-/// work frame, unit tiles): its area in tile areas and a point in it, if it has at least
-/// [`MIN_EMPTY_TILES`].
-/// Why `plan` may not be returned: it leaves a part of the shape empty (see
-/// this module's documentation), said with where, in SVG user units.
-pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
+/// A part of the shape a plan leaves empty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmptyPart {
+    /// Its area in tile areas.
+    pub tiles: f64,
+    /// Its centroid, SVG user units.
+    pub centre: Point,
+    /// Its bounding box, SVG user units (y down).
+    pub bbox: Rect,
+}
+
+impl std::fmt::Display for EmptyPart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "leaves a part of the shape empty: about {:.0} tile areas without a tile, around ({:.0}, {:.0}) (x {:.0} to {:.0}, y {:.0} to {:.0})",
+            self.tiles,
+            self.centre.x,
+            self.centre.y,
+            self.bbox.x0,
+            self.bbox.x1,
+            self.bbox.y0,
+            self.bbox.y1
+        )
+    }
+}
+
+/// The largest part of the shape that `plan` leaves empty (see this module's
+/// documentation), in SVG user units, if it has at least [`MIN_EMPTY_TILES`] tile areas.
+pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<EmptyPart> {
     let w = plan.tile_size;
     let work = shape.scaled(1.0 / w);
     let centres: Vec<Point> = plan
@@ -36,15 +60,18 @@ pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<String> {
         .iter()
         .map(|p| Point::new(p.x / w, -p.y / w))
         .collect();
-    let (area, at) = largest_empty_part(&work, &centres)?;
-    Some(format!(
-        "leaves a part of the shape empty: about {area:.0} tile areas without a tile, around ({:.0}, {:.0})",
-        at.x * w,
-        -at.y * w
-    ))
+    let (tiles, c, b) = largest_empty_part(&work, &centres)?;
+    Some(EmptyPart {
+        tiles,
+        centre: Point::new(c.x * w, -c.y * w),
+        bbox: Rect::new(b.x0 * w, -b.y1 * w, b.x1 * w, -b.y0 * w),
+    })
 }
 
-pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64, Point)> {
+/// The largest empty part of the plan with tile centres `centres` over `work` (both in the
+/// work frame, unit tiles): its area in tile areas, its centroid and its bounding box (of
+/// the sample points), if it has at least [`MIN_EMPTY_TILES`].
+pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64, Point, Rect)> {
     if centres.is_empty() || centres.len() > MAX_CHECKED_TILES {
         return None;
     }
@@ -69,7 +96,7 @@ pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64
         }
     }
     let mut seen = vec![false; nx * ny];
-    let mut best: Option<(f64, Point)> = None;
+    let mut best: Option<(f64, Point, Rect)> = None;
     let mut stack = Vec::new();
     for start in 0..nx * ny {
         if !empty[start] || seen[start] {
@@ -78,9 +105,19 @@ pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64
         seen[start] = true;
         stack.push(start);
         let mut count = 0usize;
+        let (mut sum, mut bb) = (
+            Vec2::ZERO,
+            Rect::new(f64::MAX, f64::MAX, f64::MIN, f64::MIN),
+        );
         while let Some(c) = stack.pop() {
             count += 1;
             let (i, j) = (c / nx, c % nx);
+            let p = Point::new(
+                b.x0 + (j as f64 + 0.5) * step,
+                b.y0 + (i as f64 + 0.5) * step,
+            );
+            sum += p.to_vec2();
+            bb = bb.union_pt(p);
             let mut visit = |n: usize| {
                 if empty[n] && !seen[n] {
                     seen[n] = true;
@@ -101,13 +138,8 @@ pub(crate) fn largest_empty_part(work: &Shape, centres: &[Point]) -> Option<(f64
             }
         }
         let area = count as f64 * step * step / tile_area_exact();
-        if area >= MIN_EMPTY_TILES && best.is_none_or(|(a, _)| area > a) {
-            let (i, j) = (start / nx, start % nx);
-            let p = Point::new(
-                b.x0 + (j as f64 + 0.5) * step,
-                b.y0 + (i as f64 + 0.5) * step,
-            );
-            best = Some((area, p));
+        if area >= MIN_EMPTY_TILES && best.is_none_or(|(a, _, _)| area > a) {
+            best = Some((area, (sum / count as f64).to_point(), bb));
         }
     }
     best
@@ -151,8 +183,9 @@ mod tests {
                 })
                 .collect()
         };
-        let (area, p) = largest_empty_part(&shape, &rows(10)).expect("the right half is empty");
+        let (area, p, b) = largest_empty_part(&shape, &rows(10)).expect("the right half is empty");
         assert!(area > 40.0 && p.x > 10.0, "{area} at {p:?}");
+        assert!(b.x0 > 10.0 && b.x1 < 20.0 && b.height() > 8.0, "{b:?}");
         assert!(largest_empty_part(&shape, &rows(20)).is_none());
     }
 }

@@ -75,7 +75,20 @@ pub enum PlanError {
         name: String,
         /// Which part failed and what would be needed.
         reason: String,
+        /// The best plan found that folds but was rejected because it leaves a part of the
+        /// shape empty: for a preview that shows where ([`crate::preview_svg_rejected`]).
+        rejected: Option<Box<Rejected>>,
     },
+}
+
+/// A plan that folds without collision but was not returned: it leaves a part of the shape
+/// empty.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rejected {
+    /// The plan.
+    pub plan: crate::Plan,
+    /// The part it leaves empty.
+    pub empty: crate::EmptyPart,
 }
 
 /// An option of [`crate::PlanOptions`], as errors name it (a command line maps it to its

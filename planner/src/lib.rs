@@ -47,6 +47,7 @@ mod plan;
 mod plan_shape;
 mod preview;
 mod route;
+mod row_chain;
 mod rows;
 mod serpentine;
 mod shape;
@@ -59,13 +60,14 @@ mod units;
 pub use kurbo;
 
 pub use drawing::FLATTEN_TOLERANCE;
-pub use error::{PlanError, PlanOption};
+pub use empty::EmptyPart;
+pub use error::{PlanError, PlanOption, Rejected};
 pub use options::{
     ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
     MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
 };
 pub use plan::{Metrics, Plan, PlanPose};
-pub use preview::{preview_svg, preview_svg_file};
+pub use preview::{preview_svg, preview_svg_file, preview_svg_rejected};
 pub use shape::{Ring, Shape};
 
 /// A progress callback: `(stage, done, total)`, called now and then while a plan is made
@@ -105,7 +107,16 @@ fn plan_svg_data(
 ) -> Result<Plan, PlanError> {
     progress("reading the drawing", 0, 1);
     let (shape, mm_per_unit) = drawing::read_drawing(data, name)?;
-    let mut plan = plan_shape::plan_shape(&shape, &opts.resolved(mm_per_unit), name, progress)?;
+    let mut plan = plan_shape::plan_shape(&shape, &opts.resolved(mm_per_unit), name, progress)
+        .map_err(|mut e| {
+            if let PlanError::Unplannable {
+                rejected: Some(r), ..
+            } = &mut e
+            {
+                r.plan.set_scale(mm_per_unit);
+            }
+            e
+        })?;
     plan.set_scale(mm_per_unit);
     Ok(plan)
 }

@@ -7,10 +7,10 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::cell_plan::{axes, plan_by_cells};
+use crate::cell_plan::{axes, plan_by_cells, CellFailure};
 use crate::cells::cells_of;
 use crate::empty::empty_part;
-use crate::error::PlanError;
+use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -59,10 +59,26 @@ pub(crate) fn plan_shape(
     let tiles_est = opts
         .tile_size
         .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    // the best plan rejected for an empty part, for a preview of where
+    let mut rejected: Option<Box<Rejected>> = None;
+    let mut reject = |r: Box<Rejected>| {
+        if rejected
+            .as_ref()
+            .is_none_or(|b| r.empty.tiles < b.empty.tiles)
+        {
+            rejected = Some(r);
+        }
+    };
     if let Some(p) = best.take() {
         match empty_part(shape, &p) {
             None => best = Some(p),
-            Some(why) => failures.push(format!("one serpentine {why}")),
+            Some(part) => {
+                failures.push(format!("one serpentine {part}"));
+                reject(Box::new(Rejected {
+                    plan: p,
+                    empty: part,
+                }));
+            }
         }
     }
     let parts = separate_parts(shape, tiles_est);
@@ -81,11 +97,17 @@ pub(crate) fn plan_shape(
             }
         }
     }
+    // tiles by which a plan misses the asked count beyond the tolerance
+    let tol = (opts.tiles_tolerance * target as f64) as usize;
+    let miss = |q: &Plan| match (opts.tile_size, opts.tiles) {
+        (None, Some(n)) => q.tiles.abs_diff(n).saturating_sub(tol),
+        _ => 0,
+    };
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
         progress("planning by cells", 0, 1);
-        let by_cells: Vec<Result<Plan, String>> = styles
+        let by_cells: Vec<Result<Plan, CellFailure>> = styles
             .par_iter()
             .map(|&style| plan_by_cells(shape, opts, style, name))
             .collect();
@@ -93,19 +115,28 @@ pub(crate) fn plan_shape(
         for r in by_cells {
             match r {
                 Ok(p) => {
+                    // a count within the tolerance first, then the better fit
+                    let key = |q: &Plan| (miss(q), plan_score(q, opts.turn_cost));
                     if best.as_ref().is_none_or(|b| {
-                        plan_score(&p, opts.turn_cost) < plan_score(b, opts.turn_cost)
+                        let (a, b) = (key(&p), key(b));
+                        a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
                     }) {
                         best = Some(p);
                     }
                 }
-                Err(e) => failures.push(format!("by cells: {e}")),
+                Err((e, r)) => {
+                    failures.push(format!("by cells: {e}"));
+                    if let Some(r) = r {
+                        reject(r);
+                    }
+                }
             }
         }
     }
     best.ok_or_else(|| PlanError::Unplannable {
         name: name.into(),
         reason: unplannable_reason(shape, parts, monotone.is_empty(), failures),
+        rejected,
     })
 }
 

@@ -14,7 +14,8 @@ use svg::node::element::path::Data;
 use svg::node::element::{Circle, Group, Line, Path as SvgPath, Polygon, Rectangle, Text};
 use svg::Document;
 
-use crate::error::PlanError;
+use crate::empty::EmptyPart;
+use crate::error::{PlanError, Rejected};
 use crate::options::Turns;
 use crate::plan::{mm, Plan};
 use crate::shape::Shape;
@@ -36,6 +37,22 @@ fn r4(v: f64) -> f64 {
 
 /// The preview of `plan` over `shape` (as read by [`Shape::from_svg_data`]).
 pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
+    preview(shape, plan, None)
+}
+
+/// The preview of a plan that was rejected (see [`PlanError::Unplannable`]) over the shape
+/// in the SVG file `shape_path`: marked in red as no plan, with the empty part it leaves
+/// framed.
+pub fn preview_svg_rejected(shape_path: &Path, rejected: &Rejected) -> Result<String, PlanError> {
+    let data = std::fs::read(shape_path).map_err(|source| PlanError::Read {
+        path: shape_path.to_path_buf(),
+        source,
+    })?;
+    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string())?;
+    Ok(preview(&shape, &rejected.plan, Some(&rejected.empty)))
+}
+
+fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
     let w = plan.tile_size;
     let b = shape.bbox();
     // physical y up -> SVG y down; the view holds the shape and every tile
@@ -53,7 +70,8 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
         (13.0 * px).min(view.width() / 42.0),
         (12.0 * px).min(view.width() / 40.0),
     );
-    let header = 3.0 * 1.5 * title_size;
+    let header_lines = if rejected.is_some() { 5.0 } else { 3.0 };
+    let header = header_lines * 1.5 * title_size;
     let footer = 8.0 * 1.5 * legend_size + 0.5 * m;
     let view = Rect::new(view.x0, view.y0 - header, view.x1, view.y1 + footer);
     let scale = 800.0 / view.width().max(view.height());
@@ -127,7 +145,37 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
             100.0 * plan.metrics.outside_share
         ),
     ];
+    let mut lines = lines.to_vec();
+    if let Some(e) = rejected {
+        lines.insert(
+            0,
+            "REJECTED, NOT A PLAN: the chain folds but leaves the part".to_string(),
+        );
+        lines.insert(
+            1,
+            format!(
+                "framed in red empty: about {:.0} tile areas without a tile",
+                e.tiles
+            ),
+        );
+        doc = doc.add(
+            Rectangle::new()
+                .set("x", r4(e.bbox.x0))
+                .set("y", r4(e.bbox.y0))
+                .set("width", r4(e.bbox.width()))
+                .set("height", r4(e.bbox.height()))
+                .set("fill", "#d00000")
+                .set("fill-opacity", 0.15)
+                .set("stroke", "#d00000")
+                .set("stroke-width", r4(2.0 * lw)),
+        );
+    }
     for (i, t) in lines.iter().enumerate() {
+        let colour = if rejected.is_some() && i < 2 {
+            "#d00000"
+        } else {
+            "#333"
+        };
         doc = doc.add(
             label(
                 t,
@@ -135,7 +183,7 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
                 view.y0 + (1.2 + 1.5 * i as f64) * title_size,
                 title_size,
             )
-            .set("fill", "#333"),
+            .set("fill", colour),
         );
     }
     doc = legend(doc, x0, view.y1 - footer + 0.5 * m, legend_size);
@@ -345,5 +393,27 @@ mod tests {
         assert!(texts.iter().any(|t| t.contains("U-turn tile")), "{texts:?}");
         assert!(texts.iter().any(|t| t.contains("58.6%")), "{texts:?}");
         assert!(usvg::Tree::from_str(&out, &usvg::Options::default()).is_ok());
+    }
+
+    /// A rejected plan's preview says so in red and frames the empty part.
+    #[test]
+    fn rejected_preview_is_marked() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><rect x="10" y="10" width="80" height="60"/></svg>"#;
+        let shape = Shape::from_svg_data(svg.as_bytes(), "t").unwrap();
+        let plan =
+            crate::plan_svg_str(svg, "t.svg", &PlanOptions::default().with_tiles(40)).unwrap();
+        let empty = EmptyPart {
+            tiles: 25.0,
+            centre: Point::new(50.0, 40.0),
+            bbox: Rect::new(30.0, 20.0, 70.0, 60.0),
+        };
+        let out = preview(&shape, &plan, Some(&empty));
+        assert!(out.contains("REJECTED, NOT A PLAN"), "{out}");
+        assert!(out.contains("about 25 tile areas"), "{out}");
+        let doc = usvg::roxmltree::Document::parse(&out).unwrap();
+        assert!(doc.descendants().any(|n| n.has_tag_name("rect")
+            && n.attribute("stroke") == Some("#d00000")
+            && n.attribute("width") == Some("40")));
+        assert!(!preview_svg(&shape, &plan).contains("REJECTED"));
     }
 }

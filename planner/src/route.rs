@@ -19,6 +19,7 @@
 //! (octagons of width 1 then overlap), or whose prefix collides when folded in sequence
 //! from tile 0, is dropped as it grows.
 
+use std::collections::HashSet;
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
@@ -29,7 +30,7 @@ use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
 use crate::check::check_folds;
 use crate::options::Turns;
-use crate::rows::{solve_rows, Lattice, Serpentine, Solved, Style};
+use crate::rows::{solve_rows, tile_area, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
@@ -133,16 +134,17 @@ pub(crate) struct Routed {
     pub cost: f64,
 }
 
-/// How much an end's distance (tile widths) from the next cell's bounding box counts when
-/// ends are picked to lead there, in tile areas per tile width: an end a few tiles away
-/// from the next cell costs that cell a few partial rows.
-const TOWARD_WEIGHT: f64 = 1.0;
-
 /// The ends of a solved programme (on `lat`, cell frame `frame`) the route tries: the best
 /// one whose last row runs +d and the best one running -d, and, when there is a next cell
 /// (its bounding box `toward`, axis frame), for each parity the best end counting its
 /// distance from that box: the exit of a cell is chosen with the entry of the next (the head of
 /// a key ends its last column where the shaft begins, not at a corner).
+///
+/// The distance is priced at what it may cost the next cell: every tile width between the
+/// end and the box is a strip of the cell (as long as the box's longer side) that the chain
+/// cannot reach without crossing what it has laid, and rows hold `a / pitch` tile areas
+/// per unit of area (`a` the tile area). A ring's top cell filled in rows ends a cell's
+/// height away from the last cell and loses all of it; in columns it ends beside it.
 fn ends(
     sol: &Solved,
     lat: Lattice,
@@ -157,7 +159,8 @@ fn ends(
             let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
             let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
             let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
-            TOWARD_WEIGHT * dx.hypot(dy)
+            let strip = t.width().max(t.height()) * tile_area() / pitch;
+            strip * dx.hypot(dy)
         }
         None => 0.0,
     };
@@ -201,7 +204,7 @@ fn first_legs(shape: &Shape, style: Style, toward: Option<Rect>) -> Vec<(f64, f6
             };
             let work = frame.work(shape);
             for lat in Lattice::phased(work.bbox(), p) {
-                let sol = solve_rows(&work, style, lat, None);
+                let sol = solve_rows(&work, style, lat, None, None);
                 for (cost, look, k, e) in ends(&sol, lat, p, frame, toward) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
@@ -283,14 +286,28 @@ fn joins(e: Point, h: Vec2, side: Vec2, style: Style) -> Vec<Join> {
 /// with the best end of either parity, with the tiles the join lays.
 fn next_legs(
     prev: &Leg,
+    laid: &[Point],
     shape: &Shape,
     style: Style,
     toward: Option<Rect>,
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
+    // only tiles near the cell can block its rows
+    let cell_box = shape.bbox().inflate(2.0, 2.0);
+    let laid: Vec<Point> = laid
+        .iter()
+        .copied()
+        .filter(|&q| cell_box.contains(q))
+        .collect();
+    let laid = &laid[..];
+    let grid = CentreGrid::new(laid);
     let p = style.pitch;
     let (e, h, side) = prev.end();
     let mut out = Vec::new();
     for join in joins(e, h, side, style) {
+        let near_box = laid
+            .iter()
+            .chain(&join.tiles)
+            .fold(Rect::from_points(e, e), |b, &q| b.union_pt(q));
         for &n in &join.sides {
             let frame = Frame {
                 o: join.start,
@@ -299,7 +316,17 @@ fn next_legs(
             };
             let work = frame.work(shape);
             let (lat, c0) = Lattice::from_origin(work.bbox(), p);
-            let sol = solve_rows(&work, style, lat, Some(c0));
+            // tiles of the leg may not overlap those laid before, nor the join's (a box
+            // around them rejects most lattice tiles at once)
+            let to_axis = frame.to_axis();
+            let reach = near_box.inflate(1.0, 1.0);
+            let blocked = |q: Point| {
+                let q = to_axis * q;
+                reach.contains(q)
+                    && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
+                        || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
+            };
+            let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
                 let leg = Leg {
                     frame,
@@ -317,6 +344,16 @@ fn next_legs(
         }
     }
     out
+}
+
+/// A leg's end pose (position to 1/1000 tile, heading, stacking side), for merging routes
+/// that end alike.
+type EndKey = [i64; 6];
+
+fn end_key(leg: &Leg) -> EndKey {
+    let (e, h, side) = leg.end();
+    let r = |v: f64| (v * 1000.0).round() as i64;
+    [r(e.x), r(e.y), r(h.x), r(h.y), r(side.x), r(side.y)]
 }
 
 /// The best routes through the cells in `order`, cheapest first.
@@ -341,16 +378,25 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
         let mut cands: Vec<(f64, f64, usize, Leg, Vec<Point>)> = Vec::new();
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
-            for (cost, look, leg, join_tiles) in next_legs(prev, shape, style, toward) {
+            let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
+            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward) {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }
         }
         // ranked with the look-ahead to the next cell; the route keeps the cost alone
         cands.sort_by(|a, b| (a.0 + a.1).total_cmp(&(b.0 + b.1)));
         let mut next: Vec<Route> = Vec::new();
+        let mut seen: HashSet<EndKey> = HashSet::new();
         for (cost, _, i, leg, join_tiles) in cands {
             if next.len() >= BEAM {
                 break;
+            }
+            // routes that end in the same pose have the same ways on; the cheapest is kept
+            // (near-copies would fill the beam with one end: a ring's top cell all in rows
+            // ending far from the last cell, none in columns ending at it)
+            let key = end_key(&leg);
+            if seen.contains(&key) {
+                continue;
             }
             let r = &beam[i];
             let mut c = join_tiles;
@@ -365,6 +411,7 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
             if check_folds(&FoldWord::from_folds(route_folds(&legs, style))).is_err() {
                 continue;
             }
+            seen.insert(key);
             let mut centres = r.centres.clone();
             centres.push(Arc::new(c));
             next.push(Route {

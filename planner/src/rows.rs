@@ -14,15 +14,15 @@
 //! all row-length choices. Row tables cost O(intervals) per line (a difference array for
 //! the columns wholly inside an interval), into flat buffers allocated once per programme.
 //!
-//! A solved programme is read back as a [`Serpentine`]: its rows in chain order, their tile
-//! centres and their folds (rows of straight joints, U-turns between them).
+//! A solved programme is read back as a [`Serpentine`] ([`crate::row_chain`]): its rows in
+//! chain order, their tile centres and their folds.
 
 use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
 
-use foldchain::Fold;
 use kurbo::{Point, Rect};
 
 use crate::options::Turns;
+pub(crate) use crate::row_chain::Serpentine;
 use crate::shape::Shape;
 
 /// Offsets across a tile (tile widths) of the lines on which the area of the shape under it
@@ -237,6 +237,14 @@ fn tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64], diff: &mut [f64]) 
     }
 }
 
+/// True where a tile centred at the point (work frame) would overlap a tile laid before.
+pub(crate) type Blocked<'a> = &'a (dyn Fn(Point) -> bool + Sync);
+
+/// The cost of a tile that overlaps one laid before (see [`solve_rows`]): more than any
+/// chain's gain (a tile gains at most one tile area), finite so that prefix sums stay exact
+/// enough.
+const BLOCKED: f64 = 1e6;
+
 /// Solves the programme on `work` (unit tiles). With `fixed_start = Some(c)` the chain must
 /// begin in row 0 at column `c` running +x, and that row holds at least two tiles (a fold
 /// before it may be opposite to the U-turn after it); otherwise the first row is free.
@@ -245,11 +253,17 @@ fn tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64], diff: &mut [f64]) 
 /// chain outside the shape weighted by [`Style::outside_weight`], less the shape's area (a
 /// constant): every tile, in a row or in a U-turn, adds its weighted area outside the shape
 /// less the area of the shape it covers; every U-turn adds the style's `turn_price`.
+///
+/// Tiles where `blocked` holds (they would overlap tiles an earlier cell laid) cost
+/// [`BLOCKED`]: rows stop short of them, so a cell's rows reach up to the rows of the cell
+/// before, whatever the boundary between the two (a ring's top cell, in columns, begins
+/// right above the last row of its side).
 pub(crate) fn solve_rows(
     work: &Shape,
     style: Style,
     lat: Lattice,
     fixed_start: Option<usize>,
+    blocked: Option<Blocked<'_>>,
 ) -> Solved {
     let Lattice {
         x0,
@@ -273,15 +287,18 @@ pub(crate) fn solve_rows(
         tile_cover(work, x0, y, &mut cover, &mut diff);
         let pr = &mut pre[k * w1..(k + 1) * w1];
         for j in 0..cols {
-            pr[j + 1] = pr[j] + tile_cost(cover[j]);
+            let taken = blocked.is_some_and(|b| b(Point::new(x0 + j as f64, y)));
+            pr[j + 1] = pr[j] + if taken { BLOCKED } else { tile_cost(cover[j]) };
         }
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
         for h in style.turn_heights {
-            tile_cover(work, x0 + dir * FRAC_1_SQRT_2, y + h, &mut cover, &mut diff);
-            for (tj, c) in t.iter_mut().zip(&cover) {
-                *tj += tile_cost(*c);
+            let xt = x0 + dir * FRAC_1_SQRT_2;
+            tile_cover(work, xt, y + h, &mut cover, &mut diff);
+            for (j, (tj, c)) in t.iter_mut().zip(&cover).enumerate() {
+                let taken = blocked.is_some_and(|b| b(Point::new(xt + j as f64, y + h)));
+                *tj += if taken { BLOCKED } else { tile_cost(*c) };
             }
         }
     }
@@ -418,111 +435,6 @@ impl Solved {
     }
 }
 
-/// A solved serpentine in its lattice frame (unit tiles): row `k` at `y0 + k pitch` runs +x
-/// for even `k`, -x for odd, over the columns `x0 + j`.
-#[derive(Clone, Debug)]
-pub(crate) struct Serpentine {
-    pub x0: f64,
-    pub y0: f64,
-    pub pitch: f64,
-    /// (row index k, start column, end column) in chain order.
-    pub rows: Vec<(usize, i64, i64)>,
-}
-
-impl Serpentine {
-    /// The first row `(k, start column)`, or row 0 column 0 for an empty serpentine.
-    pub(crate) fn first(&self) -> (usize, i64) {
-        self.rows.first().map_or((0, 0), |&(k, s, _)| (k, s))
-    }
-
-    /// The last row `(k, end column)`, or row 0 column 0 for an empty serpentine.
-    pub(crate) fn last(&self) -> (usize, i64) {
-        self.rows.last().map_or((0, 0), |&(k, _, e)| (k, e))
-    }
-
-    /// The direction (+1 along +x, -1 along -x) in which row `k` runs.
-    pub(crate) fn runs(k: usize) -> f64 {
-        if k % 2 == 0 {
-            1.0
-        } else {
-            -1.0
-        }
-    }
-
-    /// The number of U-turns.
-    pub(crate) fn u_turns(&self) -> usize {
-        self.rows.len().saturating_sub(1)
-    }
-
-    /// The number of tiles of its chain.
-    pub(crate) fn tiles(&self, style: Style) -> usize {
-        let row_tiles: usize = self
-            .rows
-            .iter()
-            .map(|&(_, s, e)| (e - s).unsigned_abs() as usize + 1)
-            .sum();
-        // a tight U-turn adds its LL/RR tile, a loose one that and a straight tile
-        let turn_tiles = if style.turns == Turns::Loose { 2 } else { 1 };
-        row_tiles + turn_tiles * self.u_turns()
-    }
-
-    /// The centre of the tile in row `k`, column `j`.
-    pub(crate) fn centre(&self, k: usize, j: i64) -> Point {
-        Point::new(self.x0 + j as f64, self.y0 + k as f64 * self.pitch)
-    }
-
-    /// Every tile centre (rows and U-turn tiles) in chain order.
-    pub(crate) fn centres(&self, style: Style) -> Vec<Point> {
-        let mut out = Vec::new();
-        for (i, &(k, s, e)) in self.rows.iter().enumerate() {
-            let step = if e >= s { 1 } else { -1 };
-            let mut j = s;
-            loop {
-                out.push(self.centre(k, j));
-                if j == e {
-                    break;
-                }
-                j += step;
-            }
-            if i + 1 < self.rows.len() {
-                let x = self.x0 + e as f64 + Serpentine::runs(k) * FRAC_1_SQRT_2;
-                let y = self.y0 + k as f64 * self.pitch + FRAC_1_SQRT_2;
-                out.push(Point::new(x, y));
-                if style.turns == Turns::Loose {
-                    out.push(Point::new(x, y + 1.0));
-                }
-            }
-        }
-        out
-    }
-
-    /// Appends the folds of its rows and U-turns: straight joints along a row, and each
-    /// U-turn two L folds or two R folds (with a straight one between for loose turns).
-    /// `ccw` says whether turning from +x towards +y is counter-clockwise (an L fold) in the
-    /// physical frame.
-    pub(crate) fn folds(&self, style: Style, ccw: bool, out: &mut Vec<Fold>) {
-        for (i, &(k, s, e)) in self.rows.iter().enumerate() {
-            out.extend(std::iter::repeat_n(
-                Fold::S,
-                (e - s).unsigned_abs() as usize,
-            ));
-            if i + 1 < self.rows.len() {
-                // from a +x row the U-turn turns towards +y, from a -x row away from it
-                let f = if (k % 2 == 0) == ccw {
-                    Fold::L
-                } else {
-                    Fold::R
-                };
-                out.push(f);
-                if style.turns == Turns::Loose {
-                    out.push(Fold::S);
-                }
-                out.push(f);
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -567,7 +479,7 @@ mod tests {
             cols: 16,
             nrows: 6,
         };
-        let sol = solve_rows(&s, TIGHT, lat, Some(3));
+        let sol = solve_rows(&s, TIGHT, lat, Some(3), None);
         let (_, k, e) = sol.best_end(|_| true).unwrap();
         let rows = sol.rows_to(k, e);
         assert_eq!(rows[0].0, 0);

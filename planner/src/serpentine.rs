@@ -254,7 +254,7 @@ fn solve_all(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<
             let work = orient.work_shape(shape, w);
             Lattice::phased(work.bbox(), style.pitch)
                 .filter_map(|lat| {
-                    let sol = solve_rows(&work, style, lat, None);
+                    let sol = solve_rows(&work, style, lat, None, None);
                     let (cost, k, e) = sol.best_end(|_| true)?;
                     let serp = sol.serpentine(lat, style.pitch, k, e);
                     let rank = estimate(area, serp.tiles(style), serp.u_turns(), cost, style);

@@ -12,7 +12,7 @@ use foldchain_cli::inputs::refuse_overwrite;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::message;
 use foldchain_planner::{
-    plan_svg_file_reporting, preview_svg_file, PlanError, PlanOptions, Turns,
+    plan_svg_file_reporting, preview_svg_file, preview_svg_rejected, PlanError, PlanOptions, Turns,
     DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
 };
 
@@ -58,7 +58,8 @@ struct Args {
     /// Write the plan JSON here (what fold-run --plan reads).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Write a preview SVG here: the outline, the tiles over it and the fold order.
+    /// Write a preview SVG here: the outline, the tiles over it and the fold order (when the
+    /// shape cannot be planned, the best rejected plan, marked as no plan, if there is one).
     #[arg(long)]
     preview: Option<PathBuf>,
     /// Print the plan JSON instead of the tile list and summary.
@@ -120,7 +121,33 @@ fn run(args: &Args) -> anyhow::Result<()> {
         progress.update(stage, done, total)
     });
     progress.finish();
-    let plan = plan?;
+    let plan = match plan {
+        Ok(p) => p,
+        Err(PlanError::Unplannable {
+            name,
+            reason,
+            rejected,
+        }) => {
+            // the best rejected plan still shows where it falls short
+            let mut reason = reason;
+            if let (Some(p), Some(r)) = (&args.preview, &rejected) {
+                let svg = preview_svg_rejected(&args.shape, r).context("drawing the preview")?;
+                foldchain_cli::output::write_atomic(p, svg.as_bytes())
+                    .context("writing the preview")?;
+                reason.push_str(&format!(
+                    " (the best rejected plan is drawn in {}, marked as no plan)",
+                    p.display()
+                ));
+            }
+            return Err(PlanError::Unplannable {
+                name,
+                reason,
+                rejected,
+            }
+            .into());
+        }
+        Err(e) => return Err(e.into()),
+    };
     if let Some(out) = &args.out {
         foldchain_cli::output::write_atomic(out, plan.to_json().as_bytes())
             .context("writing the plan")?;
