@@ -45,6 +45,7 @@ pub mod count;
 pub mod design;
 pub mod engine;
 mod error;
+mod frame;
 pub mod exact;
 pub mod input;
 mod joint;

@@ -9,10 +9,11 @@
 //! frames are the same numbers [`crate::kinematics::poses_at_angles`] composes (the same
 //! operations in the same order), kept with their sine and cosine.
 
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::FRAC_PI_2;
 
 use kurbo::{Point, Vec2};
 
+use crate::frame::Frame;
 use crate::physics::{along_path, joints_between, pairs_within, torque_about, Pole};
 use crate::reference::dynamics::{Mode, Model, Unknown};
 
@@ -35,52 +36,6 @@ pub(crate) struct Forces {
     base_modes: Vec<Mode>,
     /// Spans of magnets whose drives the free unknowns change.
     spans: Vec<(usize, usize)>,
-}
-
-/// A tile's pose with the sine and cosine of its heading.
-#[derive(Clone, Copy, Debug, Default)]
-struct Frame {
-    x: f64,
-    y: f64,
-    angle: f64,
-    sin: f64,
-    cos: f64,
-}
-
-impl Frame {
-    /// A point of the tile's frame in the world (as [`crate::Pose::transform_point`]).
-    fn point(&self, p: (f64, f64)) -> Point {
-        Point::new(
-            self.x + self.cos * p.0 - self.sin * p.1,
-            self.y + self.sin * p.0 + self.cos * p.1,
-        )
-    }
-
-    /// A vector of the tile's frame turned into the world.
-    fn vector(&self, v: (f64, f64)) -> Vec2 {
-        Vec2::new(
-            self.cos * v.0 - self.sin * v.1,
-            self.sin * v.0 + self.cos * v.1,
-        )
-    }
-}
-
-/// An angle brought into `[-pi, pi)` (as [`crate::Pose::then`] keeps headings).
-fn wrap_angle(a: f64) -> f64 {
-    if (-PI..PI).contains(&a) {
-        a
-    } else {
-        (a + PI).rem_euclid(TAU) - PI
-    }
-}
-
-/// `(sin, cos)` of `a`, without the call for a zero angle.
-fn sin_cos(a: f64) -> (f64, f64) {
-    if a == 0.0 {
-        (a, 1.0)
-    } else {
-        a.sin_cos()
-    }
 }
 
 impl Model {
@@ -259,23 +214,7 @@ impl Model {
             } else {
                 self.hinge_right
             };
-            let (s, c) = sin_cos(a);
-            let (dx, dy) = (half, -h.y);
-            let rel = (h.x + c * dx - s * dy, h.y + s * dx + c * dy);
-            let p = f.point(rel);
-            let angle = wrap_angle(f.angle + a);
-            let (sin, cos) = if angle == f.angle {
-                (f.sin, f.cos)
-            } else {
-                angle.sin_cos()
-            };
-            f = Frame {
-                x: p.x,
-                y: p.y,
-                angle,
-                sin,
-                cos,
-            };
+            f = f.across_joint(a, h, half);
             frames[j + 1] = f;
         }
     }

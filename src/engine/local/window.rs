@@ -16,10 +16,10 @@ use std::f64::consts::FRAC_PI_2;
 use kurbo::{Point, Vec2};
 
 use crate::engine::local::trajectory::{Shapes, Track};
-use crate::kinematics::joint_transform;
+use crate::frame::Frame;
 use crate::physics::{along_path, neighbours, torque_about, upstream, Pole};
 use crate::reference::Model;
-use crate::{Octagon, Pose};
+use crate::Octagon;
 
 /// One unknown of a unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,7 +44,7 @@ pub(crate) struct Inputs<'a> {
 /// Scratch space of a drive evaluation.
 #[derive(Default)]
 pub(crate) struct Scratch {
-    poses: Vec<Pose>,
+    poses: Vec<Frame>,
     positions: Vec<Point>,
 }
 
@@ -156,7 +156,8 @@ impl<'a> Window<'a> {
         let g = &m.geometry;
         let (t0, t1) = self.tiles();
         s.poses.clear();
-        let mut pose = Pose::IDENTITY;
+        let mut pose = Frame::IDENTITY;
+        let half = 0.5 * g.w;
         for tile in t0..=t1 {
             s.poses.push(pose);
             if tile < t1 {
@@ -166,7 +167,12 @@ impl<'a> Window<'a> {
                 } else {
                     0.0
                 };
-                pose = pose.then(&joint_transform(angle, g.w));
+                let hinge = if angle >= 0.0 {
+                    self.hinge_left
+                } else {
+                    self.hinge_right
+                };
+                pose = pose.across_joint(angle, hinge, half);
             }
         }
         s.positions.clear();
@@ -174,8 +180,7 @@ impl<'a> Window<'a> {
             let len = m.path_length(k);
             let x = self.value(Var::Magnet(k), y, t, inputs);
             let p = g.path(k).point_at((x * len).clamp(0.0, len));
-            s.positions
-                .push(s.poses[k / 2 - t0].transform_point(p).into());
+            s.positions.push(s.poses[k / 2 - t0].point(p));
         }
         let n = g.magnets();
         let law = m.options().force_law;
@@ -200,7 +205,7 @@ impl<'a> Window<'a> {
                     let len = m.path_length(k);
                     let x = y[i];
                     let tan = g.path(k).tangent_at((x * len).clamp(0.0, len));
-                    let tan = Vec2::from(s.poses[k / 2 - t0].transform_vector(tan));
+                    let tan = s.poses[k / 2 - t0].vector(tan);
                     along_path(f, tan)
                 }
                 Var::Joint(j) => {
@@ -210,7 +215,7 @@ impl<'a> Window<'a> {
                     } else {
                         self.hinge_right
                     };
-                    let hinge: Point = s.poses[j - t0].transform_point(h.into()).into();
+                    let hinge: Point = s.poses[j - t0].point(h.into());
                     let mut tau = 0.0;
                     let last = (2 * j + 1 + self.cutoff).min(n - 1);
                     for b in 2 * j + 2..=last {
