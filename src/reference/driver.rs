@@ -18,9 +18,10 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::reference::control::StepControl;
 use crate::reference::dense::Dense;
-use crate::reference::dynamics::{Forces, Mode, Model, Moving};
+use crate::reference::dynamics::{Mode, Model};
 use crate::reference::dynamics_kind::Dynamics;
 use crate::reference::event_log::EventLog;
+use crate::reference::forces::{Forces, Moving};
 use crate::reference::inertial::run_inertial;
 use crate::reference::integrators::{Method, StepStats, Stepper};
 use crate::reference::locate::{condition, events_at, StepEvents};

@@ -31,8 +31,6 @@ use kurbo::Point;
 use crate::magnet_path::MagnetPath;
 use crate::physics::ReactionInitiator;
 use crate::reference::dynamics_kind::Dynamics;
-pub(crate) use crate::reference::forces::Forces;
-use crate::reference::integrators::System;
 pub use crate::reference::model_options::ModelOptions;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};
 use crate::{Chain, Octagon, Pose};
@@ -316,11 +314,6 @@ impl Model {
             .collect()
     }
 
-    /// Drives at state `y` with the model's cutoff.
-    pub(crate) fn forces(&self, y: &[f64], out: &mut Forces) {
-        self.forces_with_cutoff(y, self.opts.cutoff, out);
-    }
-
     /// The rate of unknown `i` (per second) for drive `drive` in mode `mode`.
     pub(crate) fn rate(&self, i: usize, drive: f64, mode: Mode) -> f64 {
         if mode != Mode::Free {
@@ -335,99 +328,5 @@ impl Model {
             }
             Unknown::Joint(_) => drive / self.opts.rotational_drag / FRAC_PI_2,
         }
-    }
-
-    /// The right-hand side `dy/dt` at `y` with `modes`; also leaves the drives in `work`.
-    pub(crate) fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
-        self.forces_moving(y, modes, work);
-        for i in 0..self.len() {
-            dy[i] = self.rate(i, work.drive[i], modes[i]);
-        }
-    }
-
-    /// The largest change the cutoff makes to any magnet's drive at state `y`, as a
-    /// fraction of the bonded rest force (all pairs against pairs up to the cutoff).
-    pub fn cutoff_error(&self, y: &[f64]) -> f64 {
-        let (mut a, mut b) = (Forces::default(), Forces::default());
-        self.forces(y, &mut a);
-        self.forces_with_cutoff(y, self.geometry.magnets() + 1, &mut b);
-        let mut worst: f64 = 0.0;
-        for (i, u) in self.unknowns.iter().enumerate() {
-            if let Unknown::Magnet(_) = u {
-                worst = worst.max((a.drive[i] - b.drive[i]).abs() / self.force_scale);
-            }
-        }
-        worst
-    }
-}
-
-/// The model with its unknowns' modes: the system the integrators step.
-pub(crate) struct Moving<'a> {
-    pub(crate) model: &'a Model,
-    pub(crate) modes: &'a [Mode],
-}
-
-impl System for Moving<'_> {
-    type Work = Forces;
-
-    fn bandwidth(&self) -> usize {
-        self.model.bandwidth()
-    }
-
-    fn counts(&self, i: usize) -> bool {
-        self.modes[i] == Mode::Free
-    }
-
-    fn rhs(&self, y: &[f64], work: &mut Forces, out: &mut [f64]) {
-        self.model.rhs(y, self.modes, work, out);
-    }
-}
-
-#[cfg(test)]
-#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
-mod tests {
-    use super::*;
-    use crate::Design;
-
-    fn model(word: &str, s: f64) -> Model {
-        Model::new(
-            &Chain::parse(word).unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default(),
-        )
-        .unwrap()
-    }
-
-    #[test]
-    fn rest_state_holds_but_magnet_0_is_pulled_by_the_ri() {
-        let m = model("SSSS", 0.3);
-        let y = vec![0.0; m.len()];
-        let mut f = Forces::default();
-        m.forces(&y, &mut f);
-        assert!(f.drive[m.magnet_var(0)] > 0.0);
-        for k in 1..m.geometry.magnets() {
-            assert!(f.drive[m.magnet_var(k)] < 0.0, "{k}: {}", f.drive[k]);
-        }
-    }
-
-    #[test]
-    fn straight_joint_held_by_the_face_and_banded() {
-        let m = model("SLLS", 0.3);
-        let y = vec![0.0; m.len()];
-        let mut f = Forces::default();
-        m.forces(&y, &mut f);
-        for j in [1, 2] {
-            let v = m.joint_var(j).unwrap();
-            assert!(f.drive[v] < 0.0, "joint {j}: {}", f.drive[v]);
-        }
-        assert!(m.joint_var(0).is_none());
-        assert!(m.bandwidth() <= 7, "{}", m.bandwidth());
-    }
-
-    #[test]
-    fn cutoff_error_is_small_at_rest() {
-        let m = model("S*19", 0.3);
-        let e = m.cutoff_error(&vec![0.0; m.len()]);
-        assert!(e < 0.01, "{e}");
     }
 }

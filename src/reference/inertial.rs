@@ -21,8 +21,9 @@
 //! range per inertial time, acceleration likewise) or nothing is free.
 
 use crate::physics::Inertia;
-use crate::reference::dynamics::{Forces, Mode, Model, Unknown};
+use crate::reference::dynamics::{Mode, Model, Unknown};
 use crate::reference::event_log::EventLog;
+use crate::reference::forces::Forces;
 use crate::reference::integrators::{StepStats, Stepper, System};
 use crate::reference::options::{Recording, ReferenceOptions};
 use crate::reference::recorder::Recorder;

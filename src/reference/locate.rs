@@ -14,7 +14,8 @@
 //! full steps (140 evaluations) of bisection with full steps at 1e-6.
 
 use crate::reference::dense::Dense;
-use crate::reference::dynamics::{Forces, Mode, Model};
+use crate::reference::dynamics::{Mode, Model};
+use crate::reference::forces::Forces;
 use crate::reference::integrators::StepStats;
 
 /// The mode unknown `i` switches to from `mode` at value `y` under `drive`, if it switches.
@@ -174,7 +175,7 @@ impl StepEvents<'_> {
 mod tests {
     use super::*;
     use crate::reference::control::StepControl;
-    use crate::reference::dynamics::Moving;
+    use crate::reference::forces::Moving;
     use crate::reference::integrators::{Method, Stepper};
     use crate::reference::ModelOptions;
     use crate::timeline::TileDesigns;
