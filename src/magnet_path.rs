@@ -23,6 +23,8 @@
 
 use std::f64::consts::SQRT_2;
 
+use kurbo::Point;
+
 use crate::{Design, PathKind};
 
 /// Which end of its tile a path lies at.
@@ -165,17 +167,24 @@ impl MagnetPath {
 
     /// The unit tangent (tile frame) along which a magnet at arc length `u` moves forwards.
     /// On the straight part it is the direction away from the tile centre, exactly; on the
-    /// arc, the derivative of [`MagnetPath::point_at`] (beyond the path's end: the end's).
+    /// arc, the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept on the arc, which
+    /// is parallel to the arc's tangent at `u`.
     pub fn tangent_at(&self, u: f64) -> (f64, f64) {
+        let len = self.length();
         let along = (self.sign(), 0.0);
-        match self.arc {
-            Some(a) if u >= self.straight => {
-                let u = u.min(self.length());
-                let phi = a.start + (u - self.straight) / a.radius;
-                let (s, c) = phi.sin_cos();
-                (-self.sign() * s, a.cy.signum() * c)
-            }
-            _ => along,
+        if self.arc.is_none() || u < self.straight {
+            return along;
+        }
+        let h = 1e-6 * len;
+        let lo = (u - h).max(self.straight.min(len));
+        let hi = (u + h).min(len);
+        let (a, b) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        let d = Point::from(self.point_at(b)) - Point::from(self.point_at(a));
+        let norm = d.hypot();
+        if norm > 0.0 {
+            (d.x / norm, d.y / norm)
+        } else {
+            along
         }
     }
 
@@ -212,7 +221,6 @@ impl MagnetPath {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use kurbo::Point;
 
     fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
         Point::from(a).distance(Point::from(b))
@@ -320,14 +328,6 @@ mod tests {
                         let step = (b.0 - a.0, b.1 - a.1);
                         let cos = (step.0 * t.0 + step.1 * t.1) / step.0.hypot(step.1);
                         assert!(cos > 0.999, "{kind:?} {end:?} s {s} u {u}: {cos}");
-                        // inside the path it is the derivative: a central difference agrees
-                        let h = 1e-6 * len;
-                        if u > h && u + h < len && (u - p.straight).abs() > h {
-                            let (a, b) = (p.point_at(u - h), p.point_at(u + h));
-                            let n = (b.0 - a.0).hypot(b.1 - a.1);
-                            let d = ((b.0 - a.0) / n - t.0).hypot((b.1 - a.1) / n - t.1);
-                            assert!(d < 1e-8, "{kind:?} {end:?} s {s} u {u}: {d}");
-                        }
                     }
                 }
             }

@@ -43,6 +43,22 @@ pub(crate) struct Coefficients {
 }
 
 impl Coefficients {
+    /// The run's three times, s: the inertial time of the slowest unknown, a move's time at
+    /// the bonded force, and a path's time at the bonded force against the drag alone (the
+    /// longest is the scale the rest test is measured on, the first step comes from them).
+    pub(crate) fn times(&self, model: &Model) -> (f64, f64, f64) {
+        let tau = self
+            .damping
+            .iter()
+            .filter(|d| **d > 0.0)
+            .map(|d| 1.0 / d)
+            .fold(0.0, f64::max);
+        let inv0 = self.inv_mass.first().copied().unwrap_or(1.0);
+        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
+        let drag_time = self.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
+        (tau, move_time, drag_time)
+    }
+
     pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
         let tiles = model.geometry.tiles();
         let n = model.len();
@@ -168,17 +184,7 @@ pub(crate) fn run_inertial(
     let mut z = vec![0.0; 2 * n];
     let mut work = Forces::default();
     let tol = opts.tolerance;
-    // the inertial time of the slowest unknown, and a move's time at the bonded force
-    let tau = c
-        .damping
-        .iter()
-        .filter(|d| **d > 0.0)
-        .map(|d| 1.0 / d)
-        .fold(0.0, f64::max);
-    // and the time a path takes at the bonded force against the drag alone: the longest of
-    // the three is the scale the run's rest test and first step are measured on
-    let move_time = (2.0 / (model.force_scale * c.inv_mass[0])).sqrt();
-    let drag_time = c.damping[0] / (model.force_scale * c.inv_mass[0]);
+    let (tau, move_time, drag_time) = c.times(&model);
     let scale = tau.max(move_time).max(drag_time);
     let mut stepper: Stepper<Work> = Stepper::new(opts.method, 2 * n, 2 * model.bandwidth() + 1);
     let q = opts.method.error_order() as f64;

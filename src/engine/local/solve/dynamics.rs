@@ -45,16 +45,8 @@ impl InertialModel {
             return None;
         };
         let c = Coefficients::new(model, &inertia);
-        // the reference's scales (its inertial driver)
-        let tau = c
-            .damping
-            .iter()
-            .filter(|d| **d > 0.0)
-            .map(|d| 1.0 / d)
-            .fold(0.0, f64::max);
-        let inv0 = c.inv_mass.first().copied().unwrap_or(1.0);
-        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
-        let drag_time = c.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
+        // the reference's scale (its inertial driver)
+        let (tau, move_time, drag_time) = c.times(model);
         Some(InertialModel {
             restitution: inertia.restitution,
             scale: tau.max(move_time).max(drag_time),
