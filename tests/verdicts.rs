@@ -84,12 +84,18 @@ fn disagreements(words: &[String], dynamics: Dynamics) -> Vec<String> {
         .iter()
         .flat_map(|w| [0.0, 0.05, 0.1, 0.3].map(|s| (w.clone(), s)))
         .collect();
+    let done = std::sync::atomic::AtomicUsize::new(0);
     cases
         .par_iter()
         .filter_map(|(w, s)| {
             let (e, r, agree) = verdicts(w, *s, dynamics);
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            if n % 1000 == 0 {
+                // progress of a long scan (shown with --nocapture)
+                println!("  {n} of {} cases", cases.len());
+            }
             (!agree).then(|| {
-                format!(
+                let line = format!(
                     "{w} s={s} {}: engine {} {:?} ({:.4} s), reference {} {:?} ({:.4} s)",
                     dynamics.name(),
                     e.result,
@@ -98,7 +104,10 @@ fn disagreements(words: &[String], dynamics: Dynamics) -> Vec<String> {
                     r.result,
                     r.first_collision,
                     r.duration_s
-                )
+                );
+                // shown at once, so a long scan stopped early still tells
+                println!("  disagree: {line}");
+                line
             })
         })
         .collect()
