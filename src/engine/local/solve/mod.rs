@@ -396,7 +396,9 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             if let (Some(a), Some(b)) = (inputs.shapes.first_move(tr), inputs.shapes.last_move(tr))
             {
                 if t < a {
-                    span = span.min(a - t);
+                    // (an input starting within a rounding of `t` must not make the step
+                    // vanish: tau + h == tau would repeat it to the step limit)
+                    span = span.min((a - t).max(1e-12 * t.abs().max(1.0)));
                 } else if t < b {
                     let sh = inputs.shapes.get(tr.shape);
                     let i =
