@@ -1,22 +1,15 @@
 //! The fold schedule handed to the collision check: each fold of a timeline as a
 //! piecewise-linear [`JointTrack`], sampled adaptively: an interval is halved until the fold
 //! law ([`crate::engine::fold_angle`]) at its midpoint lies within [`ANGLE_TOLERANCE`] of the
-//! chord, so the track follows the law within that tolerance. The moments an inertial fold
-//! touches its wall (a bounce: a corner of the law) are knots.
+//! chord, so the track follows the law within that tolerance.
 
 use crate::collision::{FoldSchedule, JointTrack};
 use crate::engine::result::{fold_angle, Timeline};
 use crate::timeline::FoldRecord;
 
-/// How closely a schedule track follows the fold angle law: 1e-4 rad (0.0057 degrees). On
-/// 30 mm tiles a tile next to the hinge moves by at most 1e-4 * 1.1 w = 3.3 um within it.
-/// Inertial folds end in bounces at the wall, where tiles that close face to face pass
-/// within a few thousandths of `w` of each other: at 1e-3 rad (the tolerance before) the
-/// chords of the other joints turned SRLLLRR's near miss at joint 4's first bounce (s =
-/// 0.1 mm; tiles 1 and 6 pass 2.9e-4 w clear in the law) into a contact 17 ms before the
-/// real one the reference sees. The reference's tracks follow its recorded states within
-/// 1e-5 rad ([`crate::viewer::ANGLE_TOLERANCE`]).
-pub const ANGLE_TOLERANCE: f64 = 1e-4;
+/// How closely a schedule track follows the fold angle law: 1e-3 rad (0.057 degrees). On
+/// 30 mm tiles a tile next to the hinge moves by at most 1e-3 * 1.1 w = 0.03 mm within it.
+pub const ANGLE_TOLERANCE: f64 = 1e-3;
 
 /// Deepest halving of a schedule interval.
 const MAX_DEPTH: u32 = 14;
@@ -40,10 +33,8 @@ pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
                     }
                 }
             }
-            knots.extend(wall_touches(timeline, f));
             knots.push(f.end);
             knots.sort_by(f64::total_cmp);
-            knots.dedup();
             let n0 = 8;
             for w in knots.windows(2) {
                 let (a, b) = (w[0], w[1]);
@@ -61,35 +52,6 @@ pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
         })
         .collect();
     FoldSchedule { tracks }
-}
-
-/// The moments fold `f`'s solved track touches its wall (a fraction of 1) before its end:
-/// an inertial fold that bounces there turns back at a corner, which the chords of the
-/// midpoint test cut (SRLLLRR at s = 0.1 mm: joints 3 and 4 bounce at 90 degrees while
-/// tiles 1 and 6 overlap by 2.7e-3 w in the law; the chords stopped 0.03 to 0.06 degrees
-/// short and hid it). None for the kinematic baseline, whose folds close once.
-fn wall_touches(tl: &Timeline, f: &FoldRecord) -> Vec<f64> {
-    let Some(solved) = tl.progress().solved else {
-        return Vec::new();
-    };
-    let Some(&track) = solved.chain.joints.get(f.joint) else {
-        return Vec::new();
-    };
-    let shapes = &solved.chain.shapes;
-    if shapes.first_move(track).is_none() {
-        return Vec::new();
-    }
-    let shape = shapes.get(track.shape);
-    let mut out: Vec<f64> = shape
-        .t
-        .iter()
-        .zip(&shape.y)
-        .filter(|&(_, &y)| y >= 1.0)
-        .map(|(&t, _)| t + track.offset)
-        .filter(|&t| t > f.start && t < f.end)
-        .collect();
-    out.dedup();
-    out
 }
 
 fn refine(
