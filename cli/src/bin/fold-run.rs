@@ -85,7 +85,7 @@ struct Args {
     /// How the engine times its events: local (solves of the reference's physics with
     /// --dynamics, one joint at a time from the RI end: the reference's events within 0.5%
     /// of the run; a few ms for each distinct neighbourhood of a joint, repeated ones cached:
-    /// 100,000 straight tiles in about 2 s of CPU, a serpentine's inertial U-turns 0.1 s each), kinematic (the baseline: a start rule
+    /// 100,000 straight tiles in about 2 s of CPU, a serpentine's inertial U-turns about 0.05 s each), kinematic (the baseline: a start rule
     /// and a closed-form speed law, --speed and --start-rule; microseconds per tile, its times
     /// 7-9x early and folds that overlap in time), or auto (local up to 2,000 distinct joint
     /// neighbourhoods, as in a 2,000-tile random word, kinematic beyond, said on stderr).
