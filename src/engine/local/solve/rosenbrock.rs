@@ -29,6 +29,12 @@ const GAMMA: f64 = 0.25;
 const ALPHA: [f64; S] = [0.0, 0.386, 0.21, 0.63, 1.0, 1.0];
 /// Sums `gamma_i` of the stages' `gamma_ij` (weights of `df/dt`).
 const GAMMA_I: [f64; S] = [0.25, -0.1043, 0.1035, -0.036_200_000_000_000_23, 0.0, 0.0];
+/// The first four weights of the solution, also the last two stages' (stiffly accurate:
+/// the fifth stage is the order-3 solution, the last the order-4 one).
+const W1: f64 = 1.221_224_509_226_641;
+const W2: f64 = 6.019_134_481_288_629;
+const W3: f64 = 12.537_083_329_320_87;
+const W4: f64 = -0.687_886_036_105_895;
 /// `A_ij`, row by row (`j < i`).
 const A: [[f64; S]; S] = [
     [0.0; S],
@@ -49,22 +55,8 @@ const A: [[f64; S]; S] = [
         0.0,
         0.0,
     ],
-    [
-        1.221_224_509_226_641,
-        6.019_134_481_288_629,
-        12.537_083_329_320_87,
-        -0.687_886_036_105_895,
-        0.0,
-        0.0,
-    ],
-    [
-        1.221_224_509_226_641,
-        6.019_134_481_288_629,
-        12.537_083_329_320_87,
-        -0.687_886_036_105_895,
-        1.0,
-        0.0,
-    ],
+    [W1, W2, W3, W4, 0.0, 0.0],
+    [W1, W2, W3, W4, 1.0, 0.0],
 ];
 /// `C_ij`, row by row (`j < i`).
 const C: [[f64; S]; S] = [
@@ -104,14 +96,7 @@ const C: [[f64; S]; S] = [
     ],
 ];
 /// Weights of the solution (`y1 = Y_6 + K_6`: stiffly accurate).
-const MW: [f64; S] = [
-    1.221_224_509_226_641,
-    6.019_134_481_288_629,
-    12.537_083_329_320_87,
-    -0.687_886_036_105_895,
-    1.0,
-    1.0,
-];
+const MW: [f64; S] = [W1, W2, W3, W4, 1.0, 1.0];
 
 /// Relative size of a finite-difference increment: the square root of the machine epsilon.
 const DIFF: f64 = 1e-5;
