@@ -71,3 +71,11 @@ fn dog_plans_at_200_tiles() {
     assert_sound(&p, 200);
     assert!(p.cells >= 2, "{} cells", p.cells);
 }
+
+/// The dog at 700 tiles (exit 1 before: the routes at the settled width left the tail's
+/// hook empty).
+#[test]
+fn dog_plans_at_700_tiles() {
+    let p = plan("dog.svg", 700);
+    assert_sound(&p, 700);
+}

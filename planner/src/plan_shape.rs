@@ -99,9 +99,10 @@ pub(crate) fn plan_shape(
     }
     // tiles by which a plan misses the asked count beyond the tolerance
     let tol = (opts.tiles_tolerance * target as f64) as usize;
-    let miss = |q: &Plan| match (opts.tile_size, opts.tiles) {
-        (None, Some(n)) => q.tiles.abs_diff(n).saturating_sub(tol),
-        _ => 0,
+    // (no count asked and no width: the default count, as the planners aim at it)
+    let miss = |q: &Plan| match opts.tile_size {
+        None => q.tiles.abs_diff(target).saturating_sub(tol),
+        Some(_) => 0,
     };
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
