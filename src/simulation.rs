@@ -107,8 +107,31 @@ pub fn simulate(
 ) -> Result<(Timeline, Summary), SimulateError> {
     let tl = run(chain, designs, engine)?;
     let (collision, undecided) = check_timeline(&tl, check)?;
-    let summary = overrule(tl.summary(), collision, undecided);
+    let mut summary = tl.summary();
+    if let Some(why) = solve_stopped(&tl) {
+        // a stall's reason already ends with it
+        if summary.reason.as_deref().is_some_and(|r| r.contains(&why)) {
+            summary.result = "stopped";
+            summary.completed = false;
+        } else {
+            summary = summary.overruled("stopped", why);
+        }
+    }
+    let summary = overrule(summary, collision, undecided);
     Ok((tl, summary))
+}
+
+/// Why a local solve of the engine gave up (its step limit), if one did: the run is
+/// `stopped`, as a reference run whose integration stopped early
+/// ([`ReferenceRun::to_summary`]), not `stalled`, which says the physics came to rest with a
+/// magnet short of its trigger (the reference's [`crate::timeline::Outcome::Stalled`]).
+fn solve_stopped(tl: &Timeline) -> Option<String> {
+    tl.solved
+        .as_ref()?
+        .chain
+        .units
+        .iter()
+        .find_map(|u| u.0.solution.stopped.clone())
 }
 
 fn check_timeline(

@@ -232,6 +232,34 @@ mod tests {
     }
 
     #[test]
+    fn a_contact_names_the_fold_front_not_the_fastest_joint() {
+        // the ring LLLL folding at once, joint 3 (the front) three times slower than the
+        // others: tiles 0 and 4 meet while all four turn, joints 0 to 2 the fastest
+        let w = word("LLLL");
+        let mut s = simultaneous(&w);
+        s.tracks[3].times[1] = 3.0;
+        match check_schedule(&w, &s, &CheckOptions::default()) {
+            Err(ScheduleError::Collision(c)) => {
+                assert_eq!(c.tiles, (0, 4));
+                let t = c.time.unwrap();
+                assert!(t > 0.0 && t < 1.0, "{t}: joints 0 to 2 still turn");
+                assert_eq!(c.joint, Some(3));
+                assert!((c.angle_deg - 30.0 * t).abs() < 1e-6, "{c:?}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // joint 2 the front once joint 3 has closed: LLLL with joint 3 done first
+        let mut s = simultaneous(&w);
+        s.tracks[3].times = vec![0.0, 0.1];
+        if let Err(ScheduleError::Collision(c)) = check_schedule(&w, &s, &CheckOptions::default()) {
+            assert!(c.time.unwrap() > 0.1);
+            assert_eq!(c.joint, Some(2), "{c:?}");
+        } else {
+            panic!("LLLL collides");
+        }
+    }
+
+    #[test]
     fn general_advancement_agrees_with_exact_sweeps() {
         // the same sequential folding, but with a pause in each track so that it is not
         // recognised as sequential: both methods must agree on every word of 5 and 6 tiles.

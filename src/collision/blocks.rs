@@ -40,7 +40,8 @@ pub(super) struct Contact {
     pub time: f64,
     /// The two tiles, lower first.
     pub tiles: (usize, usize),
-    /// The moving joint reported: the one the tiles turn about, or the fastest between them.
+    /// The moving joint reported: the highest joint between the tiles that turns in the
+    /// segment (the one they turn about, for neighbouring blocks).
     pub joint: usize,
     /// That joint's angle at contact, degrees, unsigned.
     pub angle_deg: f64,
@@ -341,12 +342,14 @@ impl<'a> Segment<'a> {
         Ok(())
     }
 
-    /// A contact found by advancement at `t` between tiles `i < j`: reported with the fastest
-    /// moving joint between them.
+    /// A contact found by advancement at `t` between tiles `i < j`: reported with the fold
+    /// front, the highest joint between them that turns in this segment
+    /// ([`super::Collision::joint`]).
     fn contact_at(&self, t: f64, i: usize, j: usize) -> Contact {
+        // joints increase: the last one between the tiles
         let l = (0..self.joints.len())
-            .filter(|&l| (i..j).contains(&self.joints[l]))
-            .max_by(|&x, &y| self.rate[x].abs().total_cmp(&self.rate[y].abs()))
+            .rev()
+            .find(|&l| (i..j).contains(&self.joints[l]))
             .unwrap_or(0);
         Contact {
             time: t,

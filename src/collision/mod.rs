@@ -84,6 +84,17 @@ impl CheckOptions {
 pub struct Collision {
     /// The joint folding when the tiles met (0 = nearest the reaction initiator); `None` for
     /// an overlap found in the final shape.
+    ///
+    /// It is the *fold front*: the highest joint between the two tiles that is turning at the
+    /// contact. In sequential folding that is the one fold in progress (the joints before it
+    /// have closed, those after it are straight). When folds overlap in time (inertial
+    /// dynamics, small `s`) several joints between the tiles turn at once and each moves them;
+    /// the front is the latest of those folds to have started, the same one sequential
+    /// folding would name. The rule asks only which joints turn, not how fast: two runs of
+    /// the same physics (the event engine's schedule and the reference's recorded one) name
+    /// the same joint unless one of them starts or ends a fold between their two contact
+    /// times, whereas the fastest joint at the contact (the rule before) flipped between
+    /// joints turning at nearly the same rate.
     pub joint: Option<usize>,
     /// How far that joint had turned, in degrees (90 for the final shape).
     pub angle_deg: f64,

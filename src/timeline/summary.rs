@@ -8,7 +8,8 @@ use crate::timeline::{Outcome, SpeedLaw};
 pub struct CollisionReport {
     /// Time of contact, s (`None` when found only in the final shape).
     pub time: Option<f64>,
-    /// The joint folding at contact (0 = nearest the RI), if any.
+    /// The joint folding at contact (0 = nearest the RI), if any: the fold front, the highest
+    /// joint between the two tiles turning at contact ([`crate::collision::Collision::joint`]).
     pub joint: Option<usize>,
     /// The two tiles, lower index first.
     pub tiles: (usize, usize),

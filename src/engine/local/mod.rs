@@ -88,6 +88,7 @@ pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
         start_fraction: start_fraction(&model.geometry),
         max_steps: 1_000_000,
         inertial: inertial.as_ref(),
+        rosenbrock: true,
     };
     let chain = sweeps::solve_chain(model, opts);
     let g = &model.geometry;

@@ -1,6 +1,10 @@
 //! One unit's local solve: its unknowns integrated in time with every other magnet and
 //! joint on its track (upstream: solved; downstream: at rest, or the previous sweep's),
-//! by Dormand-Prince 5(4) with adaptive steps ([`step`]); the rates and the switches
+//! by Dormand-Prince 5(4) with adaptive steps ([`step`]), or by RODAS4 ([`rosenbrock`])
+//! while an inertial unit is stiff (Hairer's test on the Dormand-Prince stages); the
+//! error is measured on the positions, a velocity's as the position error it makes in the
+//! unit's inertial time (the magnets' fast relaxation is no reason for small steps once it
+//! has died out). The rates and the switches
 //! between modes (at rest, free, at the end) are the reference model's
 //! ([`crate::reference::Model`]), and every switch is located by bisection on the dense
 //! output (cubic Hermite on the step's ends), the drives evaluated there.
@@ -16,6 +20,7 @@
 
 mod dynamics;
 mod events;
+mod rosenbrock;
 mod step;
 
 pub(crate) use dynamics::InertialModel;
@@ -26,6 +31,7 @@ use crate::reference::Mode;
 use crate::timeline::EventKind;
 use dynamics::at_wall;
 use events::condition;
+use rosenbrock::rodas;
 use step::{dopri, interpolate};
 
 /// Most unknowns of a unit.
@@ -46,6 +52,9 @@ pub(crate) struct SolveOptions<'a> {
     /// The inertial model's coefficients when the dynamics are inertial (`None`:
     /// overdamped).
     pub(crate) inertial: Option<&'a InertialModel>,
+    /// Whether an inertial unit switches to RODAS4 where it is stiff (else Dormand-Prince
+    /// throughout: the tests compare the two).
+    pub(crate) rosenbrock: bool,
 }
 
 /// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
@@ -101,9 +110,28 @@ pub(super) struct Solver<'a> {
     started: [f64; M],
     sol: Solution,
     last_event: f64,
+    /// The last drives evaluated: time, positions and drives (a step's last stage is the
+    /// next step's first, and the switches at a step's end look at the same point).
+    memo: Option<(f64, [f64; M], [f64; M])>,
 }
 
 impl Solver<'_> {
+    /// The time over which a velocity's error is weighed as the position error it makes.
+    fn vel_weight(&self) -> f64 {
+        match self.opts.inertial {
+            Some(im) => im.first_step,
+            None => 1.0,
+        }
+    }
+
+    /// The time scale steps are measured on.
+    fn time_scale(&self) -> f64 {
+        match self.opts.inertial {
+            Some(im) => im.scale,
+            None => self.w.model.time_scale,
+        }
+    }
+
     /// Components of the state: the positions, and the velocities if inertial.
     fn dim(&self) -> usize {
         if self.opts.inertial.is_some() {
@@ -114,19 +142,35 @@ impl Solver<'_> {
     }
 
     fn drives(&mut self, tau: f64, z: &[f64; Z], out: &mut [f64; M]) {
+        let m = self.m;
+        if let Some((t, x, d)) = &self.memo {
+            // the drives depend on the time and the positions only (not on the modes)
+            if *t == tau && x[..m] == z[..m] {
+                out[..m].copy_from_slice(&d[..m]);
+                return;
+            }
+        }
         self.rhs += 1;
         self.w.drives(
             self.t_ref + tau,
-            &z[..self.m],
+            &z[..m],
             &self.inputs,
             &mut self.scratch,
-            &mut out[..self.m],
+            &mut out[..m],
         );
+        let mut x = [0.0; M];
+        x[..m].copy_from_slice(&z[..m]);
+        self.memo = Some((tau, x, *out));
     }
 
     /// The state's time derivative at `(tau, z)`; the drives into `drive`.
     fn deriv(&mut self, tau: f64, z: &[f64; Z], drive: &mut [f64; M], f: &mut [f64; Z]) {
         self.drives(tau, z, drive);
+        self.rates(z, drive, f);
+    }
+
+    /// The state's time derivative at `z` with drives `drive` (no evaluation).
+    fn rates(&self, z: &[f64; Z], drive: &[f64; M], f: &mut [f64; Z]) {
         let m = self.m;
         match self.opts.inertial {
             None => {
@@ -315,6 +359,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             ..Solution::default()
         },
         last_event: 0.0,
+        memo: None,
     };
     let model = w.model;
     let dim = s.dim();
@@ -330,6 +375,9 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
         ),
     };
     let mut steps = 0usize;
+    // RODAS4 instead of Dormand-Prince while the unit is stiff, and how many steps in a row
+    // asked for the other method
+    let (mut stiff, mut streak) = (false, 0usize);
     let next_input_node = |tau: f64| -> Option<f64> {
         // strictly later than tau, whatever the rounding of the offsets
         let t = t_ref + tau;
@@ -348,7 +396,9 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             if let (Some(a), Some(b)) = (inputs.shapes.first_move(tr), inputs.shapes.last_move(tr))
             {
                 if t < a {
-                    span = span.min(a - t);
+                    // (an input starting within a rounding of `t` must not make the step
+                    // vanish: tau + h == tau would repeat it to the step limit)
+                    span = span.min((a - t).max(1e-12 * t.abs().max(1.0)));
                 } else if t < b {
                     let sh = inputs.shapes.get(tr.shape);
                     let i =
@@ -435,11 +485,30 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
         // one Dormand-Prince step
         let hmax = input_span(tau);
         h = h.min(hmax);
-        let st = dopri(&mut s, tau, &z, h, &free);
+        let st = if stiff {
+            rodas(&mut s, tau, &z, h, &free)
+        } else {
+            dopri(&mut s, tau, &z, h, &free)
+        };
         let err = st.err;
+        // the method: Dormand-Prince until its step is bounded by stability (Hairer's test,
+        // h |lambda| > 3.25, three attempts in a row), RODAS4 until the step it takes is
+        // one Dormand-Prince could take stably (h |J| < 1, three steps in a row)
+        // (inertial units only: an overdamped unit's stiff stretches are short, and
+        // Dormand-Prince, more accurate at the same tolerance, keeps its events closer)
+        let other = if stiff {
+            st.stiffness < 1.0 && err <= 1.0
+        } else {
+            opts.rosenbrock && opts.inertial.is_some() && st.stiffness > 3.25
+        };
+        streak = if other { streak + 1 } else { 0 };
+        if streak >= 3 {
+            stiff = !stiff;
+            streak = 0;
+        }
         if !err.is_finite() || err > 1.0 {
             let fac = if err.is_finite() {
-                (0.9 * err.powf(-0.2)).clamp(0.1, 0.9)
+                (0.9 * err.powf(-st.exponent)).clamp(0.1, 0.9)
             } else {
                 0.1
             };
@@ -447,7 +516,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             continue;
         }
         let grow = if err > 0.0 {
-            (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+            (0.9 * err.powf(-st.exponent)).clamp(0.2, 5.0)
         } else {
             5.0
         };

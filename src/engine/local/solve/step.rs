@@ -21,6 +21,12 @@ pub(super) struct Step {
     pub(super) f1: [f64; Z],
     /// The error over the free unknowns, in tolerances (accept when <= 1).
     pub(super) err: f64,
+    /// `h |lambda|`: Dormand-Prince's estimate of the stiffest eigenvalue along the step
+    /// (Hairer's: the last two stages' rates over their states), or RODAS4's `h` times the
+    /// Jacobian's norm.
+    pub(super) stiffness: f64,
+    /// The step controller's exponent: one over the error estimate's order plus one.
+    pub(super) exponent: f64,
 }
 
 /// One step of `h` from `(tau, z)`, the error measured on the unknowns `free` (both their
@@ -31,6 +37,7 @@ pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usiz
     let mut d = [0.0; M];
     s.deriv(tau, z, &mut d, &mut k[0]);
     let mut zs = [0.0; Z];
+    let mut y6 = [0.0; Z];
     for st in 0..6 {
         for c in 0..dim {
             let mut acc = 0.0;
@@ -42,6 +49,9 @@ pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usiz
         let mut out = [0.0; Z];
         s.deriv(tau + C[st] * h, &zs, &mut d, &mut out);
         k[st + 1] = out;
+        if st == 4 {
+            y6 = zs;
+        }
     }
     let mut sum = 0.0;
     let mut count = 0usize;
@@ -53,9 +63,21 @@ pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usiz
             for (jj, w) in E.iter().enumerate() {
                 e += w * k[jj][c];
             }
-            let sc = s.opts.tol * (1.0 + z[c].abs().max(zs[c].abs()));
-            sum += (h * e / sc).powi(2);
+            // a velocity's error weighed by the position error it makes in the unit's
+            // inertial time
+            let wv = if c >= s.m { s.vel_weight() } else { 1.0 };
+            let sc = s.opts.tol * (1.0 + wv * z[c].abs().max(zs[c].abs()));
+            sum += (wv * h * e / sc).powi(2);
             count += 1;
+        }
+    }
+    let (mut num, mut den) = (0.0, 0.0);
+    for &i in free {
+        for c in [i, i + s.m] {
+            if c < dim {
+                num += (k[6][c] - k[5][c]).powi(2);
+                den += (zs[c] - y6[c]).powi(2);
+            }
         }
     }
     Step {
@@ -63,6 +85,12 @@ pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usiz
         f0: k[0],
         f1: k[6],
         err: (sum / count.max(1) as f64).sqrt(),
+        stiffness: if den > 0.0 {
+            h * (num / den).sqrt()
+        } else {
+            0.0
+        },
+        exponent: 0.2,
     }
 }
 
