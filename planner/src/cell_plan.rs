@@ -306,9 +306,10 @@ pub(crate) fn plan_by_cells(
         let n = first.1.word.tiles();
         let plans = checked_plans(shape, style, w, name, &routes, &mut collide, &mut rejected);
         // plans at different widths are compared by their count only: an equal miss keeps
-        // the width found first
+        // the width found first. The first search steers by the count of the cheapest route
+        // (as it always did: fewer widths), the retry search by the plan's own count
         match plans.into_iter().min_by(by_rank) {
-            Some(p) => Attempt::Plan(p.tiles, 0.0, p),
+            Some(p) => Attempt::Plan(if retry { p.tiles } else { n }, 0.0, p),
             None => Attempt::Rejected(n),
         }
     });
