@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use crate::assembly::Assembly;
 use crate::cells::{decompose_merging, Branch, Cells, Merge};
-use crate::check::check_folds;
+use crate::check::{check_folds, CheckMemo};
 use crate::empty::empty_part;
 use crate::error::Rejected;
 use crate::fit::plan_score;
@@ -21,7 +21,7 @@ use crate::plan::Plan;
 use crate::route::{route_order, Route, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
-use crate::sizing::{width_for, SizeSearch};
+use crate::sizing::{width_for, Attempt, SizeSearch};
 
 /// Cells are split where an end of the sweep interval jumps by more than a tile width. Up
 /// to this many such jumps, every way of merging the cells across some of them is routed
@@ -37,6 +37,11 @@ const SIZE_STEPS: usize = 10;
 /// The size search stops once the count is within this share of the target (2%: a cell
 /// route changes by whole rows in several cells at once).
 const CELL_COUNT_TOLERANCE: f64 = 0.02;
+/// Factors tried on the tile width when every route checked at the width the steps settle on
+/// collides or leaves a part of the shape empty: the joins then fall on the cells at other
+/// phases (a dog's leg two tiles wide gets a column or none by where the body's columns
+/// fall). Within about 1.5% of the width, so the count stays near the tolerance.
+const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
 /// Routes (cheapest first, over all axes) checked and measured.
 const CHECKED_ROUTES: usize = 10;
 /// Hamiltonian paths tried per axis, and the search steps spent finding them.
@@ -61,6 +66,7 @@ type Reasons = Vec<(Why, Vec<String>)>;
 fn plan_cells(
     axis_shape: &Shape,
     style: Style,
+    memo: &CheckMemo,
     describe: &(dyn Fn(&Shape) -> String + Sync),
 ) -> Result<Vec<Routed>, Why> {
     let split = decompose_merging(axis_shape, 1.0, 1.0, Merge::default());
@@ -81,7 +87,7 @@ fn plan_cells(
                     },
                 ))
             };
-            route_cells(cells.as_ref().unwrap_or(&split), style, describe)
+            route_cells(cells.as_ref().unwrap_or(&split), style, memo, describe)
         })
         .collect();
     let mut routed: Vec<Routed> = Vec::new();
@@ -169,6 +175,7 @@ fn pinwheel_rank(branches: &[Branch], c: &[usize]) -> usize {
 fn route_cells(
     cells: &Cells,
     style: Style,
+    memo: &CheckMemo,
     describe: &(dyn Fn(&Shape) -> String + Sync),
 ) -> Result<Vec<Routed>, Why> {
     let n = cells.cells.len();
@@ -197,7 +204,7 @@ fn route_cells(
     }
     let mut routes: Vec<Route> = orders
         .par_iter()
-        .flat_map_iter(|o| route_order(cells, o, style).into_iter().take(2))
+        .flat_map_iter(|o| route_order(cells, o, style, memo).into_iter().take(2))
         .collect();
     if routes.is_empty() {
         return Err(format!(
@@ -236,13 +243,16 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 
 /// Plans `shape` by cells with one turn style: the tile width is searched like the
 /// serpentine's (a few secant steps on the count), every axis is routed in parallel, and the
-/// cheapest routes are checked by sequential folding; the best fit wins. The error says, per
+/// cheapest routes are checked by sequential folding; the best fit wins. A width whose
+/// checked routes all collide or leave a part empty is not the answer; with `retry`, widths
+/// a little either side of it are tried too ([`RETRIES`]). The error says, per
 /// axis, why no route was found, with the best route that folds but leaves a part empty.
 pub(crate) fn plan_by_cells(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
+    retry: bool,
 ) -> Result<Plan, CellFailure> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let w0 = opts
@@ -262,34 +272,82 @@ pub(crate) fn plan_by_cells(
         tolerance: tol,
         explore: false,
         shrink_when_empty: None,
+        // a width given is kept
+        retries: if retry && opts.tile_size.is_none() {
+            &RETRIES
+        } else {
+            &[]
+        },
     };
-    let found = search.run(target, w0, |w| {
+    // counts within the tolerance first (routes at one width differ in count), then the
+    // best score
+    let miss = |p: &Plan| match opts.tile_size {
+        Some(_) => 0,
+        None => p.tiles.abs_diff(target).saturating_sub(tol),
+    };
+    let by_rank = |x: &Plan, y: &Plan| {
+        miss(x)
+            .cmp(&miss(y))
+            .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
+    };
+    let mut collide = String::new();
+    // the best route rejected for an empty part (the smallest part), with its message
+    let mut rejected: Option<(String, Box<Rejected>)> = None;
+    let found = search.run_checked(target, w0, |w| {
         let (mut routes, reasons) = route_axes(shape, &axes, style, w);
         why = reasons;
         // routes whose count is within the tolerance first, each group cheapest first
         if opts.tile_size.is_none() {
             routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
         }
-        let n = routes.first()?.1.word.tiles();
-        // routes at different widths are compared by their count only: an equal miss
-        // keeps the width found first
-        Some((n, 0.0, routes))
+        let Some(first) = routes.first() else {
+            return Attempt::Nothing;
+        };
+        let n = first.1.word.tiles();
+        let plans = checked_plans(shape, style, w, name, &routes, &mut collide, &mut rejected);
+        // plans at different widths are compared by their count only: an equal miss keeps
+        // the width found first. The first search steers by the count of the cheapest route
+        // (as it always did: fewer widths), the retry search by the plan's own count
+        match plans.into_iter().min_by(by_rank) {
+            Some(p) => Attempt::Plan(if retry { p.tiles } else { n }, 0.0, p),
+            None => Attempt::Rejected(n),
+        }
     });
-    let Some(found) = found else {
-        let text: Vec<String> = why
-            .iter()
-            .map(|(r, axes)| format!("along axes {} deg: {r}", axes.join(", ")))
-            .collect();
-        return Err((text.join("; "), None));
-    };
-    let w = found.w;
+    match found {
+        Some(found) => Ok(found.plans),
+        None if !collide.is_empty() || rejected.is_some() => Err(match rejected {
+            Some((text, r)) => (text, Some(r)),
+            None => (
+                format!("every cell route collides when folded (first: {collide})"),
+                None,
+            ),
+        }),
+        None => {
+            let text: Vec<String> = why
+                .iter()
+                .map(|(r, axes)| format!("along axes {} deg: {r}", axes.join(", ")))
+                .collect();
+            Err((text.join("; "), None))
+        }
+    }
+}
+
+/// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`) that fold
+/// without collision and leave no part of the shape empty. The last collision is kept in
+/// `collide`, and the route that leaves the smallest part empty in `rejected`.
+fn checked_plans(
+    shape: &Shape,
+    style: Style,
+    w: f64,
+    name: &str,
+    routes: &[(f64, Routed)],
+    collide: &mut String,
+    rejected: &mut Option<(String, Box<Rejected>)>,
+) -> Vec<Plan> {
     let mut plans: Vec<Plan> = Vec::new();
-    let mut collide = String::new();
-    let mut empty = String::new();
-    let mut rejected: Option<Box<Rejected>> = None;
-    for (a, r) in found.plans.iter().take(CHECKED_ROUTES) {
+    for (a, r) in routes.iter().take(CHECKED_ROUTES) {
         if let Err(e) = check_folds(&r.word) {
-            collide = e;
+            *collide = e;
             continue;
         }
         let orient = Orientation::along(*a);
@@ -306,57 +364,40 @@ pub(crate) fn plan_by_cells(
             cells: r.cells,
         };
         if !asm.agrees(&r.word, &r.centres) {
-            collide =
+            *collide =
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
         let plan = asm.to_plan(&r.word, name);
         if let Some(part) = empty_part(shape, &plan) {
-            if rejected.is_none() {
-                empty = format!(
+            if rejected
+                .as_ref()
+                .is_none_or(|(_, b)| part.tiles < b.empty.tiles)
+            {
+                let text = format!(
                     "the best route ({} cells, {} tiles) {part}",
                     plan.cells, plan.tiles
                 );
-                rejected = Some(Box::new(Rejected { plan, empty: part }));
+                *rejected = Some((text, Box::new(Rejected { plan, empty: part })));
             }
             continue;
         }
         plans.push(plan);
     }
-    // counts within the tolerance first (routes at one width differ in count), then the
-    // best score
-    let miss = |p: &Plan| match opts.tile_size {
-        Some(_) => 0,
-        None => p.tiles.abs_diff(target).saturating_sub(tol),
-    };
     plans
-        .into_iter()
-        .min_by(|x, y| {
-            miss(x)
-                .cmp(&miss(y))
-                .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
-        })
-        .ok_or_else(|| {
-            if empty.is_empty() {
-                (
-                    format!("every cell route collides when folded (first: {collide})"),
-                    None,
-                )
-            } else {
-                (empty, rejected)
-            }
-        })
 }
 
 /// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest
 /// first, and why the other axes gave none (each reason with the axes, SVG degrees).
 fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, Routed)>, Reasons) {
+    // one memo of fold checks for every axis at this width (a check depends on the word)
+    let memo = CheckMemo::default();
     let per_axis: Vec<(f64, Result<Vec<Routed>, Why>)> = axes
         .par_iter()
         .map(|&a| {
             let axis_shape = Orientation::along(a).work_shape(shape, w);
             let describe = |cell: &Shape| describe_cell(cell, a, w);
-            (a, plan_cells(&axis_shape, style, &describe))
+            (a, plan_cells(&axis_shape, style, &memo, &describe))
         })
         .collect();
     let mut routes: Vec<(f64, Routed)> = Vec::new();
@@ -404,7 +445,7 @@ mod tests {
     #[test]
     fn key_by_cells() {
         let opts = PlanOptions::default().with_tiles(171);
-        let p = plan_by_cells(&sample("key.svg"), &opts, TIGHT, "key.svg").unwrap();
+        let p = plan_by_cells(&sample("key.svg"), &opts, TIGHT, "key.svg", false).unwrap();
         assert!(p.cells >= 2, "{}", p.summary());
         let w = p.fold_word().unwrap();
         assert!(w.first_opposite_pair().is_none());

@@ -99,35 +99,45 @@ pub(crate) fn plan_shape(
     }
     // tiles by which a plan misses the asked count beyond the tolerance
     let tol = (opts.tiles_tolerance * target as f64) as usize;
-    let miss = |q: &Plan| match (opts.tile_size, opts.tiles) {
-        (None, Some(n)) => q.tiles.abs_diff(n).saturating_sub(tol),
-        _ => 0,
+    // (no count asked and no width: the default count, as the planners aim at it)
+    let miss = |q: &Plan| match opts.tile_size {
+        None => q.tiles.abs_diff(target).saturating_sub(tol),
+        Some(_) => 0,
     };
     // cells joined by turns, for shapes that split into several cells along some axis and
     // plans small enough to route (a monotone shape keeps the better fit of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
-        progress("planning by cells", 0, 1);
-        let by_cells: Vec<Result<Plan, CellFailure>> = styles
-            .par_iter()
-            .map(|&style| plan_by_cells(shape, opts, style, name))
-            .collect();
-        progress("planning by cells", 1, 1);
-        for r in by_cells {
-            match r {
-                Ok(p) => {
-                    // a count within the tolerance first, then the better fit
-                    let key = |q: &Plan| (miss(q), plan_score(q, opts.turn_cost));
-                    if best.as_ref().is_none_or(|b| {
-                        let (a, b) = (key(&p), key(b));
-                        a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
-                    }) {
-                        best = Some(p);
+        // when no plan within the count's tolerance is found, the routes are searched again
+        // with widths a little either side of those whose routes were all rejected (the
+        // cells then meet the rows at other phases); a shape that plans keeps the first
+        // search's plan
+        for retry in [false, true] {
+            if retry && best.as_ref().is_some_and(|b| miss(b) == 0) {
+                break;
+            }
+            progress("planning by cells", 0, 1);
+            let by_cells: Vec<Result<Plan, CellFailure>> = styles
+                .par_iter()
+                .map(|&style| plan_by_cells(shape, opts, style, name, retry))
+                .collect();
+            progress("planning by cells", 1, 1);
+            for r in by_cells {
+                match r {
+                    Ok(p) => {
+                        // a count within the tolerance first, then the better fit
+                        let key = |q: &Plan| (miss(q), plan_score(q, opts.turn_cost));
+                        if best.as_ref().is_none_or(|b| {
+                            let (a, b) = (key(&p), key(b));
+                            a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
+                        }) {
+                            best = Some(p);
+                        }
                     }
-                }
-                Err((e, r)) => {
-                    failures.push(format!("by cells: {e}"));
-                    if let Some(r) = r {
-                        reject(r);
+                    Err((e, r)) => {
+                        failures.push(format!("by cells: {e}"));
+                        if let Some(r) = r {
+                            reject(r);
+                        }
                     }
                 }
             }

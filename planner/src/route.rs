@@ -28,7 +28,7 @@ use kurbo::{Affine, Point, Rect, Vec2};
 
 use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
-use crate::check::check_folds;
+use crate::check::CheckMemo;
 use crate::options::Turns;
 use crate::rows::{solve_rows, tile_area, Lattice, Serpentine, Solved, Style};
 use crate::shape::Shape;
@@ -357,7 +357,12 @@ fn end_key(leg: &Leg) -> EndKey {
 }
 
 /// The best routes through the cells in `order`, cheapest first.
-pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<Route> {
+pub(crate) fn route_order(
+    cells: &Cells,
+    order: &[usize],
+    style: Style,
+    memo: &CheckMemo,
+) -> Vec<Route> {
     let centre = |i: usize| order.get(i).map(|&c| cells.cells[c].shape.bbox());
     let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style, centre(1))
         .into_iter()
@@ -408,7 +413,7 @@ pub(crate) fn route_order(cells: &Cells, order: &[usize], style: Style) -> Vec<R
             legs.push(Arc::new(leg));
             // folding is sequential from tile 0: a prefix that collides stays colliding,
             // so routes are checked as they grow, not only when complete
-            if check_folds(&FoldWord::from_folds(route_folds(&legs, style))).is_err() {
+            if !memo.folds_cleanly(&route_folds(&legs, style)) {
                 continue;
             }
             seen.insert(key);

@@ -205,6 +205,7 @@ pub(crate) fn size_style(
         tolerance: (share * target as f64) as usize,
         explore,
         shrink_when_empty: Some(0.97),
+        retries: &[],
     };
     let stage = format!("sizing the {} serpentine", style.turns);
     let total = (SECANT_STEPS + NUDGES.len()) as u64;

@@ -2,7 +2,10 @@
 //! number of tiles. Rows hold whole tiles and a plan gains or loses whole rows, so the count
 //! is a step function of the width; the search takes secant-like steps on the square root of
 //! the count (the count goes as 1 / w^2), then optional small nudges around the best width,
-//! and keeps the width whose count misses the target least.
+//! and keeps the width whose count misses the target least. A planner whose plans at some
+//! width fail a later check (they collide, or leave a part of the shape empty) says so with
+//! their count; the search then also tries widths a little either side of the nearest such
+//! width, where the rows fall on the shape at other phases.
 
 /// The tile width (user units) at which `tiles` tiles of a serpentine with row pitch `pitch`
 /// (tile widths) take `area`: one column of width w times the pitch per tile.
@@ -30,6 +33,19 @@ pub(crate) struct SizeSearch {
     pub explore: bool,
     /// When a width gives no plan: `Some(f)` tries `f` times that width next, `None` stops.
     pub shrink_when_empty: Option<f64>,
+    /// Factors tried in turn on the width whose rejected plans (see [`Attempt::Rejected`])
+    /// missed the target least, after the steps, while no plan within the tolerance is found.
+    pub retries: &'static [f64],
+}
+
+/// What a planner made at one width.
+pub(crate) enum Attempt<T> {
+    /// No plan at all.
+    Nothing,
+    /// Plans of about this many tiles, all rejected by a later check.
+    Rejected(usize),
+    /// A plan: its tile count, its cost, and the planner's answer.
+    Plan(usize, f64, T),
 }
 
 /// What the search found: the width and the planner's answer there.
@@ -50,9 +66,28 @@ impl SizeSearch {
     pub(crate) fn run<T>(
         &self,
         target: usize,
-        mut w: f64,
+        w: f64,
         mut solve: impl FnMut(f64) -> Option<(usize, f64, T)>,
     ) -> Option<Found<T>> {
+        self.run_checked(target, w, |w| match solve(w) {
+            Some((n, cost, plans)) => Attempt::Plan(n, cost, plans),
+            None => Attempt::Nothing,
+        })
+    }
+
+    /// [`SizeSearch::run`] for a planner whose plans may be rejected at some widths: a width
+    /// whose plans were all rejected steers the steps by its count like any other but is
+    /// never the answer; a rejected count within the tolerance ends the steps, and the
+    /// [`SizeSearch::retries`] around the rejected width that missed least follow while no
+    /// plan within the tolerance is found.
+    pub(crate) fn run_checked<T>(
+        &self,
+        target: usize,
+        mut w: f64,
+        mut solve: impl FnMut(f64) -> Attempt<T>,
+    ) -> Option<Found<T>> {
+        // (miss beyond the tolerance, width) of the rejected width that missed least
+        let mut rejected: Option<(usize, f64)> = None;
         // (miss beyond the tolerance, cost, width, answer)
         let mut best: Option<(usize, f64, f64, T)> = None;
         let mut tried: Vec<f64> = Vec::new();
@@ -79,15 +114,17 @@ impl SizeSearch {
                 continue;
             }
             tried.push(w);
-            let Some((n, cost, plans)) = solve(w) else {
-                match self.shrink_when_empty {
+            let (n, plan) = match solve(w) {
+                Attempt::Plan(n, cost, plans) => (n, Some((cost, plans))),
+                Attempt::Rejected(n) => (n, None),
+                Attempt::Nothing => match self.shrink_when_empty {
                     Some(f) if step < self.secant_steps => {
                         w *= f;
                         continue;
                     }
                     Some(_) => continue,
                     None => break,
-                }
+                },
             };
             let miss = n.abs_diff(target).saturating_sub(self.tolerance);
             let at = w;
@@ -96,11 +133,24 @@ impl SizeSearch {
             } else if n < target {
                 too_few = Some(too_few.map_or(at, |t: f64| t.min(at)));
             }
-            if better(&best, miss, cost) {
-                best = Some((miss, cost, at, plans));
+            match plan {
+                Some((cost, plans)) => {
+                    if better(&best, miss, cost) {
+                        best = Some((miss, cost, at, plans));
+                    }
+                }
+                None => {
+                    if rejected.is_none_or(|(m, _)| miss < m) {
+                        rejected = Some((miss, at));
+                    }
+                    // the steps would stay at this count: the retries try other widths
+                    if miss == 0 && step < self.secant_steps {
+                        break;
+                    }
+                }
             }
             if step < self.secant_steps {
-                if miss == 0 && !self.explore {
+                if miss == 0 && !self.explore && best.is_some() {
                     break;
                 }
                 settled |= miss == 0;
@@ -108,6 +158,24 @@ impl SizeSearch {
                     (Some(a), Some(b)) if a < b => (a * b).sqrt(),
                     _ => w * (n.max(1) as f64 / target as f64).sqrt(),
                 };
+            }
+        }
+        if let Some((_, base)) = rejected {
+            for &f in self.retries {
+                if best.as_ref().is_some_and(|b| b.0 == 0) {
+                    break;
+                }
+                let w = base * f;
+                if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
+                    continue;
+                }
+                tried.push(w);
+                if let Attempt::Plan(n, cost, plans) = solve(w) {
+                    let miss = n.abs_diff(target).saturating_sub(self.tolerance);
+                    if better(&best, miss, cost) {
+                        best = Some((miss, cost, w, plans));
+                    }
+                }
             }
         }
         best.map(|(_, _, w, plans)| Found { w, plans })
@@ -130,6 +198,7 @@ mod tests {
             tolerance: 2,
             explore: false,
             shrink_when_empty: Some(0.97),
+            retries: &[],
         };
         let f = s
             .run(500, 5.0, |w| Some((count(w), 0.0, count(w))))
@@ -155,6 +224,7 @@ mod tests {
             tolerance: 0,
             explore: false,
             shrink_when_empty: None,
+            retries: &[],
         };
         let f = s
             .run(107, 9.5, |w| Some((count(w), 0.0, count(w))))
@@ -173,6 +243,7 @@ mod tests {
             tolerance: 5,
             explore: true,
             shrink_when_empty: None,
+            retries: &[],
         };
         let f = s
             .run(100, 10.0, |w| Some((count(w), cost(count(w)), count(w))))
@@ -184,6 +255,49 @@ mod tests {
         );
     }
 
+    /// Plans rejected at the width the steps settle on: the retries around it find a
+    /// width whose plan passes, and a rejected width is never the answer.
+    #[test]
+    fn retries_around_a_rejected_width() {
+        let count = |w: f64| (10_000.0 / (w * w)).round() as usize;
+        // plans pass only at widths a little above 10.04 (count 99 or less)
+        let s = SizeSearch {
+            secant_steps: 8,
+            nudges: &[],
+            tolerance: 3,
+            explore: false,
+            shrink_when_empty: None,
+            retries: &[0.995, 1.005, 0.99, 1.01],
+        };
+        let mut widths = Vec::new();
+        let f = s
+            .run_checked(100, 10.0, |w| {
+                widths.push(w);
+                if w > 10.04 {
+                    Attempt::Plan(count(w), 0.0, count(w))
+                } else {
+                    Attempt::Rejected(count(w))
+                }
+            })
+            .unwrap();
+        assert!(
+            f.w > 10.04 && f.plans.abs_diff(100) <= 3,
+            "{} at {}",
+            f.plans,
+            f.w
+        );
+        assert!(widths.len() >= 3, "{widths:?}");
+        // without retries the same search finds nothing
+        let none = SizeSearch { retries: &[], ..s }.run_checked(100, 10.0, |w| {
+            if w > 10.04 {
+                Attempt::Plan(count(w), 0.0, count(w))
+            } else {
+                Attempt::Rejected(count(w))
+            }
+        });
+        assert!(none.is_none());
+    }
+
     #[test]
     fn no_plan_anywhere_is_none_and_stops_when_told() {
         let mut calls = 0;
@@ -193,6 +307,7 @@ mod tests {
             tolerance: 1,
             explore: false,
             shrink_when_empty: None,
+            retries: &[],
         };
         let f = s.run(10, 1.0, |_| {
             calls += 1;
