@@ -41,6 +41,39 @@ impl Shape {
         )
     }
 
+    /// [`Shape::at`], starting the search for `t`'s interval at `hint` (the interval found
+    /// last, kept up to date): the same value, in constant time while `t` moves by no more
+    /// than an interval between calls.
+    pub(crate) fn at_hinted(&self, t: f64, hint: &mut usize) -> f64 {
+        let n = self.t.len();
+        if n == 0 {
+            return 0.0;
+        }
+        if t <= self.t[0] {
+            return self.y[0];
+        }
+        if t >= self.t[n - 1] {
+            return self.y[n - 1];
+        }
+        // the interval `at` finds: the last node at or before `t` (n >= 2 here)
+        let fits = |i: usize| i + 1 < n && self.t[i] <= t && t < self.t[i + 1];
+        let i = if fits(*hint) {
+            *hint
+        } else if fits(*hint + 1) {
+            *hint + 1
+        } else {
+            self.t.partition_point(|&x| x <= t).clamp(1, n - 1) - 1
+        };
+        *hint = i;
+        hermite(
+            self.t[i],
+            self.t[i + 1],
+            (self.y[i], self.dy[i]),
+            (self.y[i + 1], self.dy[i + 1]),
+            t,
+        )
+    }
+
     /// When the shape first reaches `x` (bisection on its interpolant), if it does.
     pub(crate) fn crossing(&self, x: f64) -> Option<f64> {
         let i = self.y.iter().position(|&y| y >= x)?;
@@ -155,6 +188,14 @@ impl Shapes {
         self.get(track.shape).at(t - track.offset)
     }
 
+    /// [`Shapes::value`] by [`Shape::at_hinted`].
+    pub(crate) fn value_hinted(&self, track: Track, t: f64, hint: &mut usize) -> f64 {
+        if track.shape == REST {
+            return 0.0;
+        }
+        self.get(track.shape).at_hinted(t - track.offset, hint)
+    }
+
     /// When `track` starts changing (`None` for the rest track).
     pub(crate) fn first_move(&self, track: Track) -> Option<f64> {
         (track.shape != REST).then_some(track.offset)
@@ -195,6 +236,10 @@ mod tests {
         assert_eq!(s.at(-1.0), f(0.0));
         assert_eq!(s.at(5.0), f(3.0));
         assert_eq!(s.next_node_after(1.0), Some(3.0));
+        let mut hint = 0;
+        for t in [0.2, 0.7, 1.5, 2.9, 0.1, 2.0, 1.0] {
+            assert_eq!(s.at_hinted(t, &mut hint), s.at(t), "{t}");
+        }
         assert!(s.close_shifted(&s.clone(), 0.0, 0.0, 0.0));
         let mut shapes = Shapes::default();
         let id = shapes.add(s);

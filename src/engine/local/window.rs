@@ -46,6 +46,8 @@ pub(crate) struct Inputs<'a> {
 pub(crate) struct Scratch {
     poses: Vec<Frame>,
     positions: Vec<Point>,
+    /// Where each input's last look-up fell in its shape (magnets `lo..=hi`, then joints).
+    hints: Vec<usize>,
 }
 
 /// One unit's window on the chain.
@@ -63,6 +65,8 @@ pub(crate) struct Window<'a> {
     cutoff: usize,
     hinge_left: Point,
     hinge_right: Point,
+    /// The moments of magnets `lo..=hi`, A m^2.
+    moments: Vec<f64>,
 }
 
 impl<'a> Window<'a> {
@@ -89,15 +93,19 @@ impl<'a> Window<'a> {
             _ => (0, 0),
         };
         let oct = Octagon::new(model.geometry.w);
+        let (lo, hi) = (first.saturating_sub(cutoff), (last + cutoff).min(n - 1));
         Window {
             model,
             j,
-            lo: first.saturating_sub(cutoff),
-            hi: (last + cutoff).min(n - 1),
+            lo,
+            hi,
             vars,
             cutoff,
             hinge_left: oct.hinge(true).into(),
             hinge_right: oct.hinge(false).into(),
+            moments: (lo..=hi)
+                .map(|k| model.geometry.design(k / 2).moment())
+                .collect(),
         }
     }
 
@@ -132,14 +140,15 @@ impl<'a> Window<'a> {
         out
     }
 
-    fn value(&self, var: Var, y: &[f64], t: f64, inputs: &Inputs) -> f64 {
+    fn value(&self, var: Var, y: &[f64], t: f64, inputs: &Inputs, hints: &mut [usize]) -> f64 {
         if let Some(i) = self.vars.iter().position(|&v| v == var) {
             return y[i];
         }
-        match var {
-            Var::Magnet(k) => inputs.shapes.value(inputs.magnets[k], t),
-            Var::Joint(j) => inputs.shapes.value(inputs.joints[j], t),
-        }
+        let (track, slot) = match var {
+            Var::Magnet(k) => (inputs.magnets[k], k - self.lo),
+            Var::Joint(j) => (inputs.joints[j], self.hi - self.lo + 1 + j - self.lo / 2),
+        };
+        inputs.shapes.value_hinted(track, t, &mut hints[slot])
     }
 
     /// The drive of each unknown (N along a magnet's path, N m towards the fold) at time `t`
@@ -155,6 +164,7 @@ impl<'a> Window<'a> {
         let m = self.model;
         let g = &m.geometry;
         let (t0, t1) = self.tiles();
+        s.hints.resize(self.hi - self.lo + 1 + t1 - t0, 0);
         s.poses.clear();
         let mut pose = Frame::IDENTITY;
         let half = 0.5 * g.w;
@@ -163,7 +173,8 @@ impl<'a> Window<'a> {
             if tile < t1 {
                 let sign = m.joint_sign(tile);
                 let angle = if sign != 0.0 {
-                    sign * self.value(Var::Joint(tile), y, t, inputs).clamp(0.0, 1.0) * FRAC_PI_2
+                    let x = self.value(Var::Joint(tile), y, t, inputs, &mut s.hints);
+                    sign * x.clamp(0.0, 1.0) * FRAC_PI_2
                 } else {
                     0.0
                 };
@@ -178,7 +189,7 @@ impl<'a> Window<'a> {
         s.positions.clear();
         for k in self.lo..=self.hi {
             let len = m.path_length(k);
-            let x = self.value(Var::Magnet(k), y, t, inputs);
+            let x = self.value(Var::Magnet(k), y, t, inputs, &mut s.hints);
             let p = g.path(k).point_at((x * len).clamp(0.0, len));
             s.positions.push(s.poses[k / 2 - t0].point(p));
         }
@@ -189,14 +200,14 @@ impl<'a> Window<'a> {
             match p {
                 // the RI is fixed in tile 0's frame, which is the window's when it is in reach
                 Pole::Ri => (ri.position, ri.moment),
-                Pole::Magnet(a) => (s.positions[a - self.lo], g.design(a / 2).moment()),
+                Pole::Magnet(a) => (s.positions[a - self.lo], self.moments[a - self.lo]),
             }
         };
         for (i, var) in self.vars.iter().enumerate() {
             out[i] = match *var {
                 Var::Magnet(k) => {
                     let on = s.positions[k - self.lo];
-                    let mk = g.design(k / 2).moment();
+                    let mk = self.moments[k - self.lo];
                     let mut f = Vec2::ZERO;
                     for p in neighbours(k, self.cutoff, n) {
                         let (pa, ma) = pole(p, s);
@@ -220,7 +231,7 @@ impl<'a> Window<'a> {
                     let last = (2 * j + 1 + self.cutoff).min(n - 1);
                     for b in 2 * j + 2..=last {
                         let on = s.positions[b - self.lo];
-                        let mb = g.design(b / 2).moment();
+                        let mb = self.moments[b - self.lo];
                         for a in upstream(b, self.cutoff) {
                             if let Pole::Magnet(ai) = a {
                                 if ai > 2 * j + 1 {

@@ -1,7 +1,9 @@
 //! A unit's events and switches: the overdamped model's switch conditions (as the
-//! reference's event conditions decide them), the events a switch means (with the trigger a
-//! start implies), and the overdamped settling test.
+//! reference's event conditions decide them), the inertial model's releases, bounces and
+//! rests at a wall, the events a switch means (with the trigger a start implies), and the
+//! overdamped settling test.
 
+use crate::engine::local::solve::dynamics::{at_wall, InertialModel};
 use crate::engine::local::solve::{LocalEvent, Solver, M, Z};
 use crate::engine::local::window::Var;
 use crate::reference::{Mode, Model};
@@ -20,6 +22,141 @@ pub(super) fn condition(model: &Model, g: usize, mode: Mode, y: f64, drive: f64)
 }
 
 impl Solver<'_> {
+    /// Whether anything switches (or a start is to be reported) at `z` with drives `d`.
+    pub(super) fn any_switch(&self, z: &[f64; Z], d: &[f64; M]) -> bool {
+        let model = self.w.model;
+        (0..self.m).any(|i| {
+            let g = self.globals[i];
+            let switch = match self.opts.inertial {
+                None => condition(model, g, self.modes[i], z[i], d[i]).is_some(),
+                Some(im) => match self.modes[i] {
+                    Mode::Free => at_wall(z[i], z[self.m + i]),
+                    mode => im.released(model, g, mode, d[i]),
+                },
+            };
+            switch || self.report_due(i, z[i])
+        })
+    }
+
+    /// Whether [`Solver::any_switch`] reads the drives: an overdamped unit's switches, or
+    /// a clamped inertial unknown's release (a free inertial unknown switches on its
+    /// position and velocity alone: a wall, a start to report).
+    pub(super) fn switches_need_drives(&self) -> bool {
+        self.opts.inertial.is_none() || self.modes[..self.m].iter().any(|&x| x != Mode::Free)
+    }
+
+    pub(super) fn report_due(&self, i: usize, y: f64) -> bool {
+        matches!(self.w.vars[i], Var::Magnet(_))
+            && !self.reported[i]
+            && self.modes[i] != Mode::AtStart
+            && self.opts.start_fraction > 0.0
+            && y >= self.opts.start_fraction
+    }
+
+    /// Unknown `i` switches to `next` at `tau`, its rate going from `before` to `after`.
+    pub(super) fn switch(
+        &mut self,
+        i: usize,
+        tau: f64,
+        next: Mode,
+        (y, before, after): (f64, f64, f64),
+    ) {
+        if self.started[i].is_nan() {
+            self.started[i] = tau;
+        }
+        self.node(i, tau, y, before);
+        self.node(i, tau, y, after);
+        self.modes[i] = next;
+    }
+
+    /// The overdamped switches of unknown `i` at `(tau, z)` with drives `d`.
+    pub(super) fn switch_first_order(
+        &mut self,
+        i: usize,
+        tau: f64,
+        z: &mut [f64; Z],
+        d: &[f64; M],
+    ) {
+        let model = self.w.model;
+        let g = self.globals[i];
+        let before = self.modes[i];
+        let rate_before = model.rate(g, d[i], before);
+        let Some(next) = condition(model, g, before, z[i], d[i]) else {
+            return;
+        };
+        match next {
+            Mode::AtEnd => z[i] = 1.0,
+            Mode::AtStart => z[i] = 0.0,
+            Mode::Free => {}
+        }
+        let rate_after = model.rate(g, d[i], next);
+        let rb = if before == Mode::AtStart {
+            0.0
+        } else {
+            rate_before
+        };
+        self.switch(i, tau, next, (z[i], rb, rate_after));
+        if let Some(kind) = self.switch_event(i, before, next) {
+            self.event(i, tau, kind, z);
+        }
+    }
+
+    /// The inertial switches of unknown `i` at `(tau, z)` with drives `d`: a release, a
+    /// bounce or a rest at a wall.
+    pub(super) fn switch_second_order(
+        &mut self,
+        im: &InertialModel,
+        i: usize,
+        tau: f64,
+        z: &mut [f64; Z],
+        d: &[f64; M],
+    ) {
+        let model = self.w.model;
+        let (g, m) = (self.globals[i], self.m);
+        let before = self.modes[i];
+        if before != Mode::Free {
+            if im.released(model, g, before, d[i]) {
+                z[m + i] = 0.0;
+                self.switch(i, tau, Mode::Free, (z[i], 0.0, 0.0));
+                if let Some(kind) = self.switch_event(i, before, Mode::Free) {
+                    self.event(i, tau, kind, z);
+                }
+            }
+            return;
+        }
+        let wall = if z[i] >= 1.0 {
+            1.0
+        } else if z[i] <= 0.0 {
+            0.0
+        } else {
+            return;
+        };
+        z[i] = wall;
+        let v = z[m + i];
+        if !at_wall(wall, v) {
+            return;
+        }
+        match im.bounce(g, wall, v, d[i]) {
+            Some(rebound) => {
+                z[m + i] = rebound;
+                self.node(i, tau, wall, v);
+                self.node(i, tau, wall, rebound);
+            }
+            None => {
+                let next = if wall == 1.0 {
+                    Mode::AtEnd
+                } else {
+                    Mode::AtStart
+                };
+                z[m + i] = 0.0;
+                self.switch(i, tau, next, (wall, v, 0.0));
+                if let Some(kind) = self.switch_event(i, before, next) {
+                    self.event(i, tau, kind, z);
+                }
+            }
+        }
+    }
+
     /// The event unknown `i` switching from `before` to `next` means, if any (a fold's
     /// start and end and a magnet's start, when reported at the switch, once each).
     pub(super) fn switch_event(&mut self, i: usize, before: Mode, next: Mode) -> Option<EventKind> {

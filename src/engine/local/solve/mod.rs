@@ -26,11 +26,9 @@ mod step;
 pub(crate) use dynamics::InertialModel;
 
 use crate::engine::local::trajectory::{hermite, Shape};
-use crate::engine::local::window::{Inputs, Scratch, Var, Window};
+use crate::engine::local::window::{Inputs, Scratch, Window};
 use crate::reference::Mode;
 use crate::timeline::EventKind;
-use dynamics::at_wall;
-use events::condition;
 use rosenbrock::rodas;
 use step::{dopri, interpolate};
 
@@ -192,128 +190,12 @@ impl Solver<'_> {
         }
     }
 
-    /// Whether anything switches (or a start is to be reported) at `z` with drives `d`.
-    fn any_switch(&self, z: &[f64; Z], d: &[f64; M]) -> bool {
-        let model = self.w.model;
-        (0..self.m).any(|i| {
-            let g = self.globals[i];
-            let switch = match self.opts.inertial {
-                None => condition(model, g, self.modes[i], z[i], d[i]).is_some(),
-                Some(im) => match self.modes[i] {
-                    Mode::Free => at_wall(z[i], z[self.m + i]),
-                    mode => im.released(model, g, mode, d[i]),
-                },
-            };
-            switch || self.report_due(i, z[i])
-        })
-    }
-
-    fn report_due(&self, i: usize, y: f64) -> bool {
-        matches!(self.w.vars[i], Var::Magnet(_))
-            && !self.reported[i]
-            && self.modes[i] != Mode::AtStart
-            && self.opts.start_fraction > 0.0
-            && y >= self.opts.start_fraction
-    }
-
     /// Appends a node to unknown `i`'s shape.
     fn node(&mut self, i: usize, t: f64, y: f64, dy: f64) {
         let sh = &mut self.nodes[i];
         sh.t.push(t);
         sh.y.push(y);
         sh.dy.push(dy);
-    }
-
-    /// Unknown `i` switches to `next` at `tau`, its rate going from `before` to `after`.
-    fn switch(&mut self, i: usize, tau: f64, next: Mode, (y, before, after): (f64, f64, f64)) {
-        if self.started[i].is_nan() {
-            self.started[i] = tau;
-        }
-        self.node(i, tau, y, before);
-        self.node(i, tau, y, after);
-        self.modes[i] = next;
-    }
-
-    /// The overdamped switches of unknown `i` at `(tau, z)` with drives `d`.
-    fn switch_first_order(&mut self, i: usize, tau: f64, z: &mut [f64; Z], d: &[f64; M]) {
-        let model = self.w.model;
-        let g = self.globals[i];
-        let before = self.modes[i];
-        let rate_before = model.rate(g, d[i], before);
-        let Some(next) = condition(model, g, before, z[i], d[i]) else {
-            return;
-        };
-        match next {
-            Mode::AtEnd => z[i] = 1.0,
-            Mode::AtStart => z[i] = 0.0,
-            Mode::Free => {}
-        }
-        let rate_after = model.rate(g, d[i], next);
-        let rb = if before == Mode::AtStart {
-            0.0
-        } else {
-            rate_before
-        };
-        self.switch(i, tau, next, (z[i], rb, rate_after));
-        if let Some(kind) = self.switch_event(i, before, next) {
-            self.event(i, tau, kind, z);
-        }
-    }
-
-    /// The inertial switches of unknown `i` at `(tau, z)` with drives `d`: a release, a
-    /// bounce or a rest at a wall.
-    fn switch_second_order(
-        &mut self,
-        im: &InertialModel,
-        i: usize,
-        tau: f64,
-        z: &mut [f64; Z],
-        d: &[f64; M],
-    ) {
-        let model = self.w.model;
-        let (g, m) = (self.globals[i], self.m);
-        let before = self.modes[i];
-        if before != Mode::Free {
-            if im.released(model, g, before, d[i]) {
-                z[m + i] = 0.0;
-                self.switch(i, tau, Mode::Free, (z[i], 0.0, 0.0));
-                if let Some(kind) = self.switch_event(i, before, Mode::Free) {
-                    self.event(i, tau, kind, z);
-                }
-            }
-            return;
-        }
-        let wall = if z[i] >= 1.0 {
-            1.0
-        } else if z[i] <= 0.0 {
-            0.0
-        } else {
-            return;
-        };
-        z[i] = wall;
-        let v = z[m + i];
-        if !at_wall(wall, v) {
-            return;
-        }
-        match im.bounce(g, wall, v, d[i]) {
-            Some(rebound) => {
-                z[m + i] = rebound;
-                self.node(i, tau, wall, v);
-                self.node(i, tau, wall, rebound);
-            }
-            None => {
-                let next = if wall == 1.0 {
-                    Mode::AtEnd
-                } else {
-                    Mode::AtStart
-                };
-                z[m + i] = 0.0;
-                self.switch(i, tau, next, (wall, v, 0.0));
-                if let Some(kind) = self.switch_event(i, before, next) {
-                    self.event(i, tau, kind, z);
-                }
-            }
-        }
     }
 }
 
@@ -535,7 +417,9 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
                 let mid = 0.5 * (lo + hi);
                 let zm = interpolate(dim, t0, t1, &z0, &f0, &z1, &f1, mid);
                 let mut dm = [0.0; M];
-                s.drives(mid, &zm, &mut dm);
+                if s.switches_need_drives() {
+                    s.drives(mid, &zm, &mut dm);
+                }
                 if s.any_switch(&zm, &dm) {
                     hi = mid;
                     z_hi = zm;
