@@ -44,7 +44,15 @@ pub(crate) struct Inputs<'a> {
 /// Scratch space of a drive evaluation.
 #[derive(Default)]
 pub(crate) struct Scratch {
+    /// Each tile's pose, and the joint angles they were built from (a pose is built again
+    /// only from the first joint whose angle changed).
     poses: Vec<Frame>,
+    angles: Vec<f64>,
+    /// Each magnet's arc length along its path and its point there, tile frame (a magnet
+    /// at rest is not placed again).
+    local: Vec<(f64, (f64, f64))>,
+    /// Each unknown magnet's arc length and its path's tangent there.
+    tangents: Vec<(f64, (f64, f64))>,
     positions: Vec<Point>,
     /// Where each input's last look-up fell in its shape (magnets `lo..=hi`, then joints).
     hints: Vec<usize>,
@@ -164,33 +172,47 @@ impl<'a> Window<'a> {
         let m = self.model;
         let g = &m.geometry;
         let (t0, t1) = self.tiles();
-        s.hints.resize(self.hi - self.lo + 1 + t1 - t0, 0);
-        s.poses.clear();
-        let mut pose = Frame::IDENTITY;
+        let magnets = self.hi - self.lo + 1;
+        s.hints.resize(magnets + t1 - t0, 0);
+        if s.poses.len() != t1 - t0 + 1 {
+            s.poses = vec![Frame::IDENTITY; t1 - t0 + 1];
+            s.angles = vec![f64::NAN; t1 - t0];
+            s.local = vec![(f64::NAN, (0.0, 0.0)); magnets];
+            s.tangents = vec![(f64::NAN, (0.0, 0.0)); self.vars.len()];
+        }
         let half = 0.5 * g.w;
-        for tile in t0..=t1 {
-            s.poses.push(pose);
-            if tile < t1 {
-                let sign = m.joint_sign(tile);
-                let angle = if sign != 0.0 {
-                    let x = self.value(Var::Joint(tile), y, t, inputs, &mut s.hints);
-                    sign * x.clamp(0.0, 1.0) * FRAC_PI_2
-                } else {
-                    0.0
-                };
+        let mut changed = false;
+        for tile in t0..t1 {
+            let sign = m.joint_sign(tile);
+            let angle = if sign != 0.0 {
+                let x = self.value(Var::Joint(tile), y, t, inputs, &mut s.hints);
+                sign * x.clamp(0.0, 1.0) * FRAC_PI_2
+            } else {
+                0.0
+            };
+            let slot = tile - t0;
+            // the same angle after the same poses gives the same pose
+            changed |= angle.to_bits() != s.angles[slot].to_bits();
+            if changed {
+                s.angles[slot] = angle;
                 let hinge = if angle >= 0.0 {
                     self.hinge_left
                 } else {
                     self.hinge_right
                 };
-                pose = pose.across_joint(angle, hinge, half);
+                s.poses[slot + 1] = s.poses[slot].across_joint(angle, hinge, half);
             }
         }
         s.positions.clear();
         for k in self.lo..=self.hi {
             let len = m.path_length(k);
             let x = self.value(Var::Magnet(k), y, t, inputs, &mut s.hints);
-            let p = g.path(k).point_at((x * len).clamp(0.0, len));
+            let u = (x * len).clamp(0.0, len);
+            let cached = &mut s.local[k - self.lo];
+            if u.to_bits() != cached.0.to_bits() {
+                *cached = (u, g.path(k).point_at(u));
+            }
+            let p = cached.1;
             s.positions.push(s.poses[k / 2 - t0].point(p));
         }
         let n = g.magnets();
@@ -215,8 +237,12 @@ impl<'a> Window<'a> {
                     }
                     let len = m.path_length(k);
                     let x = y[i];
-                    let tan = g.path(k).tangent_at((x * len).clamp(0.0, len));
-                    let tan = s.poses[k / 2 - t0].vector(tan);
+                    let u = (x * len).clamp(0.0, len);
+                    let cached = &mut s.tangents[i];
+                    if u.to_bits() != cached.0.to_bits() {
+                        *cached = (u, g.path(k).tangent_at(u));
+                    }
+                    let tan = s.poses[k / 2 - t0].vector(cached.1);
                     along_path(f, tan)
                 }
                 Var::Joint(j) => {
