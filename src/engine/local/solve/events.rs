@@ -38,6 +38,27 @@ impl Solver<'_> {
         })
     }
 
+    /// How far the clamped unknowns are from a release with drives `d`: the largest of
+    /// their drives past their thresholds, in drive scales (negative: none released).
+    pub(super) fn release_margin(&self, d: &[f64; M]) -> f64 {
+        let model = self.w.model;
+        (0..self.m)
+            .map(|i| {
+                let g = self.globals[i];
+                let th = match self.opts.inertial {
+                    Some(im) => im.threshold(model, g),
+                    None => model.threshold(g),
+                };
+                let past = match self.modes[i] {
+                    Mode::AtStart => d[i] - th,
+                    Mode::AtEnd => -d[i] - th,
+                    Mode::Free => return f64::NEG_INFINITY,
+                };
+                past / model.drive_scale(g)
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// Whether [`Solver::any_switch`] reads the drives: an overdamped unit's switches, or
     /// a clamped inertial unknown's release (a free inertial unknown switches on its
     /// position and velocity alone: a wall, a start to report).

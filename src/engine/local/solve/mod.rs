@@ -32,6 +32,12 @@ use crate::timeline::EventKind;
 use rosenbrock::rodas;
 use step::{dopri, interpolate};
 
+/// A unit at rest checks its release at most this many input nodes apart: 8.
+const MAX_SKIP: usize = 8;
+/// ... while its release margin, rising this many times faster than over its last rest
+/// step, would stay short of a release: 4.
+const SKIP_SAFETY: f64 = 4.0;
+
 /// Most unknowns of a unit.
 const M: usize = 3;
 /// Most components of a unit's state (positions and velocities).
@@ -257,6 +263,8 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
         ),
     };
     let mut steps = 0usize;
+    // the last time and release margin met while nothing of the unit moved
+    let mut rest_prev: Option<(f64, f64)> = None;
     // RODAS4 instead of Dormand-Prince while the unit is stiff, and how many steps in a row
     // asked for the other method
     let (mut stiff, mut streak) = (false, 0usize);
@@ -317,10 +325,25 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             break;
         }
         if free.is_empty() {
-            // nothing of the unit moves: step from input node to input node
-            let Some(tn) = next_input_node(tau) else {
+            // nothing of the unit moves: step from input node to input node, past the nodes
+            // where the release margin, changing at SKIP_SAFETY times its last rate either way,
+            // stays short
+            let Some(mut tn) = next_input_node(tau) else {
                 break;
             };
+            let margin = s.release_margin(&d);
+            // (inertial units: the overdamped rows of fold-validate stay as they were)
+            let skip = opts.inertial.is_some() && margin < 0.0;
+            if let Some((tp, mp)) = rest_prev.filter(|&(tp, _)| skip && tp < tau) {
+                let rate = ((margin - mp) / (tau - tp)).abs();
+                for _ in 1..MAX_SKIP {
+                    match next_input_node(tn) {
+                        Some(next) if margin + SKIP_SAFETY * rate * (next - tau) < 0.0 => tn = next,
+                        _ => break,
+                    }
+                }
+            }
+            rest_prev = Some((tau, margin));
             let z0 = z;
             let mut dn = [0.0; M];
             s.drives(tn, &z0, &mut dn);
@@ -344,6 +367,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             }
             continue;
         }
+        rest_prev = None;
         // settled or at rest once the inputs are still
         if tau >= t_last {
             s.deriv(tau, &z, &mut d, &mut f);
