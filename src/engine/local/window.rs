@@ -70,11 +70,14 @@ pub(crate) struct Window<'a> {
     pub(crate) lo: usize,
     /// Last magnet within reach.
     pub(crate) hi: usize,
-    cutoff: usize,
     hinge_left: Point,
     hinge_right: Point,
     /// The moments of magnets `lo..=hi`, A m^2.
     moments: Vec<f64>,
+    /// Each unknown's pairs, in the order [`crate::physics`]'s neighbour sets give them:
+    /// the magnet acted on and the pole acting (slots from `lo`; `None`: the RI), and
+    /// whether they attract.
+    pairs: Vec<Vec<(usize, Option<usize>, bool)>>,
 }
 
 impl<'a> Window<'a> {
@@ -102,18 +105,19 @@ impl<'a> Window<'a> {
         };
         let oct = Octagon::new(model.geometry.w);
         let (lo, hi) = (first.saturating_sub(cutoff), (last + cutoff).min(n - 1));
+        let pairs: Vec<_> = vars.iter().map(|&v| pairs(v, lo, cutoff, n)).collect();
         Window {
             model,
             j,
             lo,
             hi,
             vars,
-            cutoff,
             hinge_left: oct.hinge(true).into(),
             hinge_right: oct.hinge(false).into(),
             moments: (lo..=hi)
                 .map(|k| model.geometry.design(k / 2).moment())
                 .collect(),
+            pairs,
         }
     }
 
@@ -215,14 +219,13 @@ impl<'a> Window<'a> {
             let p = cached.1;
             s.positions.push(s.poses[k / 2 - t0].point(p));
         }
-        let n = g.magnets();
         let law = m.options().force_law;
         let ri = g.ri();
-        let pole = |p: Pole, s: &Scratch| -> (Point, f64) {
-            match p {
+        let pole = |a: Option<usize>, s: &Scratch| -> (Point, f64) {
+            match a {
                 // the RI is fixed in tile 0's frame, which is the window's when it is in reach
-                Pole::Ri => (ri.position, ri.moment),
-                Pole::Magnet(a) => (s.positions[a - self.lo], self.moments[a - self.lo]),
+                None => (ri.position, ri.moment),
+                Some(a) => (s.positions[a], self.moments[a]),
             }
         };
         for (i, var) in self.vars.iter().enumerate() {
@@ -231,9 +234,9 @@ impl<'a> Window<'a> {
                     let on = s.positions[k - self.lo];
                     let mk = self.moments[k - self.lo];
                     let mut f = Vec2::ZERO;
-                    for p in neighbours(k, self.cutoff, n) {
-                        let (pa, ma) = pole(p, s);
-                        f += law.force(pa, on, ma, mk, p.attracts(Pole::Magnet(k)));
+                    for &(_, a, attract) in &self.pairs[i] {
+                        let (pa, ma) = pole(a, s);
+                        f += law.force(pa, on, ma, mk, attract);
                     }
                     let len = m.path_length(k);
                     let x = y[i];
@@ -254,24 +257,43 @@ impl<'a> Window<'a> {
                     };
                     let hinge: Point = s.poses[j - t0].point(h.into());
                     let mut tau = 0.0;
-                    let last = (2 * j + 1 + self.cutoff).min(n - 1);
-                    for b in 2 * j + 2..=last {
-                        let on = s.positions[b - self.lo];
-                        let mb = self.moments[b - self.lo];
-                        for a in upstream(b, self.cutoff) {
-                            if let Pole::Magnet(ai) = a {
-                                if ai > 2 * j + 1 {
-                                    continue;
-                                }
-                            }
-                            let (pa, ma) = pole(a, s);
-                            let f = law.force(pa, on, ma, mb, a.attracts(Pole::Magnet(b)));
-                            tau += sign * torque_about(hinge, on, f);
-                        }
+                    for &(b, a, attract) in &self.pairs[i] {
+                        let (on, mb) = (s.positions[b], self.moments[b]);
+                        let (pa, ma) = pole(a, s);
+                        let f = law.force(pa, on, ma, mb, attract);
+                        tau += sign * torque_about(hinge, on, f);
                     }
                     tau
                 }
             };
+        }
+    }
+}
+
+/// Unknown `v`'s pairs in a window from magnet `lo` (see [`Window`]'s `pairs`): a magnet's
+/// neighbours within `cutoff`, or the pairs across a joint whose torque turns it (a pole up
+/// to the joint's first magnet on a magnet after it, within `cutoff` of the joint).
+fn pairs(v: Var, lo: usize, cutoff: usize, n: usize) -> Vec<(usize, Option<usize>, bool)> {
+    let slot = |p: Pole| match p {
+        Pole::Ri => None,
+        Pole::Magnet(a) => Some(a - lo),
+    };
+    match v {
+        Var::Magnet(k) => neighbours(k, cutoff, n)
+            .map(|p| (k - lo, slot(p), p.attracts(Pole::Magnet(k))))
+            .collect(),
+        Var::Joint(j) => {
+            let last = (2 * j + 1 + cutoff).min(n - 1);
+            let mut out = Vec::new();
+            for b in 2 * j + 2..=last {
+                for a in upstream(b, cutoff) {
+                    if matches!(a, Pole::Magnet(ai) if ai > 2 * j + 1) {
+                        continue;
+                    }
+                    out.push((b - lo, slot(a), a.attracts(Pole::Magnet(b))));
+                }
+            }
+            out
         }
     }
 }
