@@ -89,6 +89,7 @@ pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
         max_steps: 1_000_000,
         inertial: inertial.as_ref(),
         rosenbrock: true,
+        rest_skip: true,
     };
     let chain = sweeps::solve_chain(model, opts);
     let g = &model.geometry;

@@ -503,6 +503,7 @@ mod tests {
             max_steps: 1_000_000,
             inertial: inertial.as_ref(),
             rosenbrock: rb,
+            rest_skip: true,
         };
         solve_chain_with(&model, opts, reuse)
     }

@@ -59,6 +59,9 @@ pub(crate) struct SolveOptions<'a> {
     /// Whether an inertial unit switches to RODAS4 where it is stiff (else Dormand-Prince
     /// throughout: the tests compare the two).
     pub(crate) rosenbrock: bool,
+    /// Whether an inertial unit at rest checks its release past the input nodes where its
+    /// release margin stays short (else at every input node: the tests compare the two).
+    pub(crate) rest_skip: bool,
 }
 
 /// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
@@ -333,7 +336,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             };
             let margin = s.release_margin(&d);
             // (inertial units: the overdamped rows of fold-validate stay as they were)
-            let skip = opts.inertial.is_some() && margin < 0.0;
+            let skip = opts.rest_skip && opts.inertial.is_some() && margin < 0.0;
             if let Some((tp, mp)) = rest_prev.filter(|&(tp, _)| skip && tp < tau) {
                 let rate = ((margin - mp) / (tau - tp)).abs();
                 for _ in 1..MAX_SKIP {
@@ -502,4 +505,58 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             .then((a.kind, a.rel).cmp(&(b.kind, b.rel)))
     });
     (t_ref, sol)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+    use crate::engine::local::sweeps::{solve_chain, ChainSolution};
+    use crate::reference::{Dynamics, Model, ModelOptions};
+    use crate::timeline::{start_fraction, TileDesigns};
+    use crate::{Chain, Design};
+
+    fn solved(word: &str, rest_skip: bool) -> ChainSolution {
+        let chain = Chain::parse(word).unwrap();
+        let model = Model::new(
+            &chain,
+            &TileDesigns::global(Design::thesis().with_s(0.1)),
+            &ModelOptions {
+                dynamics: Dynamics::Inertial(Default::default()),
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        let inertial = InertialModel::new(&model);
+        let opts = SolveOptions {
+            tol: 1e-8,
+            start_fraction: start_fraction(&model.geometry),
+            max_steps: 1_000_000,
+            inertial: inertial.as_ref(),
+            rosenbrock: true,
+            rest_skip,
+        };
+        solve_chain(&model, opts)
+    }
+
+    #[test]
+    fn units_at_rest_skip_input_nodes_and_keep_the_events() {
+        // a U-turn's neighbours wait at rest through the fold next door: checking their
+        // release every input node costs a drive evaluation a node
+        let word = "S*12 LL S*12 RR S*12";
+        let (skip, every) = (solved(word, true), solved(word, false));
+        let (a, b) = (skip.events(), every.events());
+        assert_eq!(a.len(), b.len());
+        let duration = b.last().unwrap().time;
+        let mut worst: f64 = 0.0;
+        for (x, y) in a.iter().zip(&b) {
+            assert_eq!((x.kind, x.index), (y.kind, y.index));
+            worst = worst.max((x.time - y.time).abs());
+        }
+        // measured: 1.4e-6 of the run (2.4 us of 1.66 s), within what RODAS4 moves them
+        assert!(worst <= 1e-5 * duration, "{worst} of {duration}");
+        // measured: 174,124 right-hand sides against 205,747
+        let (a, b) = (skip.rhs as f64, every.rhs as f64);
+        assert!(a < 0.9 * b, "{a} {b}");
+    }
 }
