@@ -4,6 +4,7 @@
 //! overdamped settling test.
 
 use crate::engine::local::solve::dynamics::{at_wall, InertialModel};
+use crate::engine::local::solve::step::interpolate;
 use crate::engine::local::solve::{LocalEvent, Solver, M, Z};
 use crate::engine::local::window::Var;
 use crate::reference::{Mode, Model};
@@ -36,6 +37,65 @@ impl Solver<'_> {
             };
             switch || self.report_due(i, z[i])
         })
+    }
+
+    /// Whether a free inertial unknown meets a wall or a start is to be reported at `z`:
+    /// the switches that read positions and velocities only.
+    pub(super) fn any_kinematic_switch(&self, z: &[f64; Z]) -> bool {
+        (0..self.m).any(|i| {
+            (self.modes[i] == Mode::Free && at_wall(z[i], z[self.m + i]))
+                || self.report_due(i, z[i])
+        })
+    }
+
+    /// Whether a clamped inertial unknown is released by drives `d`.
+    pub(super) fn any_release(&self, im: &InertialModel, d: &[f64; M]) -> bool {
+        (0..self.m).any(|i| {
+            let mode = self.modes[i];
+            mode != Mode::Free && im.released(self.w.model, self.globals[i], mode, d[i])
+        })
+    }
+
+    /// The first switch inside a step from `(t0, z0, f0)` to `(t1, z1, f1)`, which has one
+    /// at its end, by bisection on the dense output down to `1e-13` of the time (or of
+    /// `scale`): the last time found without a switch, the first found with one, the state
+    /// there. `kinematic`: only the switches that read no drives (an inertial unit's walls
+    /// and starts to report).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn bisect_switch(
+        &mut self,
+        (t0, t1): (f64, f64),
+        (z0, f0): (&[f64; Z], &[f64; Z]),
+        (z1, f1): (&[f64; Z], &[f64; Z]),
+        scale: f64,
+        kinematic: bool,
+    ) -> (f64, f64, [f64; Z]) {
+        let dim = self.dim();
+        let (mut lo, mut hi) = (t0, t1);
+        let mut z_hi = *z1;
+        for _ in 0..60 {
+            if hi - lo <= 1e-13 * hi.abs().max(scale) {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            let zm = interpolate(dim, t0, t1, z0, f0, z1, f1, mid);
+            let switch = if kinematic {
+                self.any_kinematic_switch(&zm)
+            } else {
+                let mut dm = [0.0; M];
+                if self.switches_need_drives() {
+                    self.drives(mid, &zm, &mut dm);
+                }
+                self.any_switch(&zm, &dm)
+            };
+            if switch {
+                hi = mid;
+                z_hi = zm;
+            } else {
+                lo = mid;
+            }
+        }
+        (lo, hi, z_hi)
     }
 
     /// How far the clamped unknowns are from a release with drives `d`: the largest of

@@ -30,7 +30,7 @@ use crate::engine::local::window::{Inputs, Scratch, Window};
 use crate::reference::Mode;
 use crate::timeline::EventKind;
 use rosenbrock::rodas;
-use step::{dopri, interpolate};
+use step::dopri;
 
 /// A unit at rest checks its release at most this many input nodes apart: 8.
 const MAX_SKIP: usize = 8;
@@ -435,25 +435,24 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
         let mut d1 = [0.0; M];
         s.drives(t1, &z1, &mut d1);
         if s.any_switch(&z1, &d1) {
-            let (mut lo, mut hi) = (t0, t1);
-            let mut z_hi = z1;
-            for _ in 0..60 {
-                if hi - lo <= 1e-13 * hi.abs().max(scale) {
-                    break;
+            let ends = (t0, t1);
+            let (start, end) = ((&z0, &f0), (&z1, &f1));
+            // a wall or a start to report while a clamped unknown waits: found without drives,
+            // then a release looked for where it is (none there: the same bisection, as a
+            // release that has not come by then has not come before)
+            let kinematic = match opts.inertial {
+                Some(im) if s.switches_need_drives() && s.any_kinematic_switch(&z1) => {
+                    let (lo, hi, zh) = s.bisect_switch(ends, start, end, scale, true);
+                    let mut dh = [0.0; M];
+                    s.drives(hi, &zh, &mut dh);
+                    (!s.any_release(im, &dh)).then_some((lo, hi, zh))
                 }
-                let mid = 0.5 * (lo + hi);
-                let zm = interpolate(dim, t0, t1, &z0, &f0, &z1, &f1, mid);
-                let mut dm = [0.0; M];
-                if s.switches_need_drives() {
-                    s.drives(mid, &zm, &mut dm);
-                }
-                if s.any_switch(&zm, &dm) {
-                    hi = mid;
-                    z_hi = zm;
-                } else {
-                    lo = mid;
-                }
-            }
+                _ => None,
+            };
+            let (_, hi, z_hi) = match kinematic {
+                Some(found) => found,
+                None => s.bisect_switch(ends, start, end, scale, false),
+            };
             for &i in &free {
                 let slope = if opts.inertial.is_some() {
                     z_hi[m + i]
