@@ -34,6 +34,7 @@ mod lattice;
 mod schedule;
 mod sequential;
 mod sweep;
+mod windows;
 
 pub use advancement::check_schedule;
 pub use lattice::final_overlap;
