@@ -125,7 +125,7 @@ impl<'a> Walk<'a> {
             }
             // bring the tree to the angles at ta; note the joints that turn until tb, with
             // their chords' rates (kept past tb until the track's next breakpoint)
-            let mut moving: Vec<(usize, f64, f64)> = Vec::new();
+            let mut moving: Vec<(usize, f64, f64, f64)> = Vec::new();
             active.retain(|&ti| {
                 let tr = &self.tracks[ti];
                 windows.pass(self.tracks, ti, ta);
@@ -136,7 +136,7 @@ impl<'a> Walk<'a> {
                 }
                 let rate = chord_rate(tr, ta);
                 if rate != 0.0 {
-                    moving.push((tr.joint, a0, rate));
+                    moving.push((tr.joint, a0, rate, tr.ended.unwrap_or(f64::INFINITY)));
                 }
                 true
             });
@@ -226,6 +226,7 @@ mod tests {
                     joint,
                     times: vec![0.0, 1.0],
                     angles: vec![0.0, f.quarter_turns() as f64 * FRAC_PI_2],
+                    ended: None,
                 })
                 .collect(),
         }
@@ -338,6 +339,7 @@ mod tests {
                 joint: 5,
                 times: vec![0.0],
                 angles: vec![0.0],
+                ended: None,
             }],
         };
         assert!(matches!(
@@ -451,6 +453,7 @@ mod tests {
                         joint,
                         times,
                         angles,
+                        ended: None,
                     });
                 } else if next() < 0.3 {
                     let a = 0.4 * (next() - 0.5);
@@ -458,6 +461,7 @@ mod tests {
                         joint,
                         times: vec![start, start + 0.5 * len, start + len],
                         angles: vec![0.0, a, -a],
+                        ended: None,
                     });
                 }
             }

@@ -48,7 +48,8 @@ pub(super) struct Contact {
     /// The two tiles, lower first.
     pub tiles: (usize, usize),
     /// The moving joint reported: the highest joint between the tiles that turns in the
-    /// segment (the one they turn about, for neighbouring blocks).
+    /// segment and whose fold goes on, else the highest that turns (the one they turn
+    /// about, for neighbouring blocks).
     pub joint: usize,
     /// That joint's angle at contact, degrees, unsigned.
     pub angle_deg: f64,
@@ -87,6 +88,8 @@ pub(super) struct Segment<'a> {
     /// Moving joints, increasing; block `b` starts after `joints[b - 1]`.
     joints: Vec<usize>,
     start: Vec<f64>,
+    /// When each moving joint's fold ended (infinity when it has not).
+    ended: Vec<f64>,
     rate: Vec<f64>,
     /// World hinge of each moving joint at the segment's start.
     hinges: Vec<Point>,
@@ -109,20 +112,20 @@ pub(super) struct Segment<'a> {
 impl<'a> Segment<'a> {
     /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` at the
     /// rate `moving[l].2` (joints increasing, every rate nonzero, no angle crossing zero
-    /// before the joint's next breakpoint), with the tree at the angles of `ta`; outlines
-    /// inset by `tolerance`.
+    /// before the joint's next breakpoint), its fold ended at `moving[l].3` (infinity when
+    /// not), with the tree at the angles of `ta`; outlines inset by `tolerance`.
     pub fn new(
         tree: &'a ChainTree,
         ta: f64,
         tb: f64,
-        moving: &[(usize, f64, f64)],
+        moving: &[(usize, f64, f64, f64)],
         tolerance: f64,
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
         let hinges: Vec<Point> = moving
             .iter()
-            .map(|&(k, a0, rate)| {
+            .map(|&(k, a0, rate, _)| {
                 let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
                 tree.pose_of(k).apply(Point::new(x, y))
             })
@@ -176,6 +179,7 @@ impl<'a> Segment<'a> {
             tb,
             joints: moving.iter().map(|m| m.0).collect(),
             start: moving.iter().map(|m| m.1).collect(),
+            ended: moving.iter().map(|m| m.3).collect(),
             rate,
             hinges,
             spin,
@@ -425,13 +429,16 @@ impl<'a> Segment<'a> {
     }
 
     /// A contact found by advancement at `t` between tiles `i < j`: reported with the fold
-    /// front, the highest joint between them that turns in this segment
-    /// ([`super::Collision::joint`]).
+    /// front, the highest joint between them that turns in this segment and whose fold has
+    /// not ended, or the highest that turns ([`super::Collision::joint`]).
     fn contact_at(&self, t: f64, i: usize, j: usize) -> Contact {
-        // joints increase: the last one between the tiles
+        // joints increase: the last one between the tiles whose fold goes on, else the last
+        let between = |l: &usize| (i..j).contains(&self.joints[*l]);
         let l = (0..self.joints.len())
             .rev()
-            .find(|&l| (i..j).contains(&self.joints[l]))
+            .filter(between)
+            .find(|&l| self.ended[l] > t)
+            .or_else(|| (0..self.joints.len()).rev().find(between))
             .unwrap_or(0);
         Contact {
             time: t,

@@ -121,11 +121,13 @@ mod tests {
                 joint: 2,
                 times: vec![1.0, 2.0, 4.0],
                 angles: vec![0.0, 0.5, 1.0],
+                ended: None,
             },
             JointTrack {
                 joint: 7,
                 times: vec![0.0, 3.0],
                 angles: vec![0.2, -0.4], // straight at t = 1
+                ended: None,
             },
         ];
         let mut w = Windows::new(&tracks, 10);

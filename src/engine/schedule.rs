@@ -52,6 +52,7 @@ pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
                 joint: f.joint,
                 times,
                 angles,
+                ended: f.end.is_finite().then_some(f.end),
             }
         })
         .collect();
