@@ -40,8 +40,8 @@ fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
 
 /// Checks a reference run's fold schedule for collisions with the engine's checker
 /// ([`check_schedule`]): each fold's track from the run's recorded states (linear between
-/// them, thinned within [`crate::engine::ANGLE_TOLERANCE`]; a run that recorded none has
-/// its final angles only), the word of the joints that turned. Its summary, overruled
+/// them, thinned within [`crate::viewer::ANGLE_TOLERANCE`]; a run that recorded none has
+/// its final angles only) with its fold's end, the word of the joints that turned. Its summary, overruled
 /// (`collided`, `first_collision`) or `undecided` as [`simulate`]'s.
 pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, SimulateError> {
     let mut summary = run.to_summary();
@@ -59,6 +59,7 @@ pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summa
                 joint: f.joint,
                 times,
                 angles,
+                ended: f.end.is_finite().then_some(f.end),
             }
         })
         .collect();

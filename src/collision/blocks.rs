@@ -15,10 +15,17 @@
 //!   size step by their disc distance over that speed; close ones are split into their
 //!   children, down to pairs of tiles, which step by their exact distance. Parts that no
 //!   contact can reach (the far end of a long tail) take one step for the whole segment.
+//!   Besides its disc every part has a box ([`ChainTree::bounds`]; a whole block's in world
+//!   coordinates): parts whose boxes are too far apart to meet are done, and two straight
+//!   rows (or a row and a tile) close to each other step on their boxes' gap, which for rows
+//!   lying face to face is their faces' gap: a serpentine's rows settling against each other
+//!   at a U-turn cost one pair, not one pair per tile.
+//! - A pair of blocks is advanced past the segment's end, up to the next breakpoint of a
+//!   joint inside its span ([`super::windows`]), and reports until when it is clean.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use kurbo::Point;
+use kurbo::{Point, Vec2};
 use parry2d_f64::query;
 use parry2d_f64::shape::ConvexPolygon;
 
@@ -41,7 +48,8 @@ pub(super) struct Contact {
     /// The two tiles, lower first.
     pub tiles: (usize, usize),
     /// The moving joint reported: the highest joint between the tiles that turns in the
-    /// segment (the one they turn about, for neighbouring blocks).
+    /// segment and whose fold goes on, else the highest that turns (the one they turn
+    /// about, for neighbouring blocks).
     pub joint: usize,
     /// That joint's angle at contact, degrees, unsigned.
     pub angle_deg: f64,
@@ -80,6 +88,8 @@ pub(super) struct Segment<'a> {
     /// Moving joints, increasing; block `b` starts after `joints[b - 1]`.
     joints: Vec<usize>,
     start: Vec<f64>,
+    /// When each moving joint's fold ended (infinity when it has not).
+    ended: Vec<f64>,
     rate: Vec<f64>,
     /// World hinge of each moving joint at the segment's start.
     hinges: Vec<Point>,
@@ -92,32 +102,36 @@ pub(super) struct Segment<'a> {
     /// The tree nodes making up each block.
     covers: Vec<Vec<Part>>,
     roots: Vec<Part>,
+    /// Each block's box, in world coordinates at the segment's start.
+    root_boxes: Vec<(Point, Point)>,
     /// The tile's inset outline about its centre, and the full outline's circumradius.
     outline: [Point; 8],
     radius: f64,
 }
 
 impl<'a> Segment<'a> {
-    /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` to
-    /// `moving[l].2` (joints increasing, every angle change nonzero and not crossing zero),
-    /// with the tree at the angles of `ta`; outlines inset by `tolerance`.
+    /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` at the
+    /// rate `moving[l].2` (joints increasing, every rate nonzero, no angle crossing zero
+    /// before the joint's next breakpoint), its fold ended at `moving[l].3` (infinity when
+    /// not), with the tree at the angles of `ta`; outlines inset by `tolerance`.
     pub fn new(
         tree: &'a ChainTree,
         ta: f64,
         tb: f64,
-        moving: &[(usize, f64, f64)],
+        moving: &[(usize, f64, f64, f64)],
         tolerance: f64,
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
         let hinges: Vec<Point> = moving
             .iter()
-            .map(|&(k, a0, a1)| {
-                let (x, y) = o.hinge(a0 + a1 > 0.0);
+            .map(|&(k, a0, rate, _)| {
+                let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
                 tree.pose_of(k).apply(Point::new(x, y))
             })
             .collect();
         let mut covers = Vec::with_capacity(moving.len() + 1);
+        let mut root_boxes = Vec::with_capacity(moving.len() + 1);
         let mut roots = Vec::with_capacity(moving.len() + 1);
         let mut lo = 0;
         for b in 0..=moving.len() {
@@ -138,6 +152,7 @@ impl<'a> Segment<'a> {
                 })
                 .collect();
             let (centre, radius) = enclosing(&parts);
+            root_boxes.push(world_box(tree, &parts));
             roots.push(Part {
                 node: 0,
                 block: b,
@@ -148,7 +163,7 @@ impl<'a> Segment<'a> {
             covers.push(parts);
             lo = hi + 1;
         }
-        let rate: Vec<f64> = moving.iter().map(|m| (m.2 - m.1) / span).collect();
+        let rate: Vec<f64> = moving.iter().map(|m| m.2).collect();
         let (mut spin, mut chain, mut spin_chain) = (vec![0.0], vec![0.0], vec![0.0]);
         for l in 0..rate.len() {
             let next: f64 = hinges
@@ -164,6 +179,7 @@ impl<'a> Segment<'a> {
             tb,
             joints: moving.iter().map(|m| m.0).collect(),
             start: moving.iter().map(|m| m.1).collect(),
+            ended: moving.iter().map(|m| m.3).collect(),
             rate,
             hinges,
             spin,
@@ -171,6 +187,7 @@ impl<'a> Segment<'a> {
             spin_chain,
             covers,
             roots,
+            root_boxes,
             outline: o.inset_vertices(tolerance).map(Point::from),
             radius: o.circumradius(),
         }
@@ -279,18 +296,29 @@ impl<'a> Segment<'a> {
         })
     }
 
+    /// The runs of tiles of blocks `a` and `b`: first and last tile of each.
+    pub fn span(&self, a: usize, b: usize) -> (usize, usize, usize, usize) {
+        let first = |b: usize| if b == 0 { 0 } else { self.joints[b - 1] + 1 };
+        let last = |b: usize| self.joints.get(b).copied().unwrap_or(self.tree.tiles() - 1);
+        (first(a), last(a), first(b), last(b))
+    }
+
     /// Conservative advancement of blocks `a` and `b` (`b >= a + 2`) from the segment's start
-    /// until contact, the end, or `best`'s time; a contact found earlier than `best` replaces
-    /// it. `work` counts pair evaluations against `budget`.
+    /// until contact, `until` (at or after the segment's end: no joint between the two blocks
+    /// or inside them changes its motion before it), or `best`'s time; a contact found earlier
+    /// than `best` replaces it. Returns the time until which the pair is clean. `work` counts
+    /// pair evaluations against `budget`.
+    #[allow(clippy::too_many_arguments)]
     pub fn advance(
         &self,
         a: usize,
         b: usize,
         shape: &ConvexPolygon,
+        until: f64,
         best: &mut Option<Contact>,
         work: &mut usize,
         budget: usize,
-    ) -> Result<(), OverBudget> {
+    ) -> Result<f64, OverBudget> {
         // speed of a point at distance rho from hinge b-1 (block b's first hinge):
         // w * rho + kk, from the fixed distances between consecutive moving hinges
         // (prefix sums: w = sum |rate_l|, kk = sum |rate_l| * (chain to hinge b-1 from l))
@@ -302,7 +330,7 @@ impl<'a> Segment<'a> {
             // grown by a hair over the rounding of the prefix sums
             let speed = (w * ((q.centre - hinge).hypot() + q.radius) + kk) * (1.0 + 1e-9);
             loop {
-                let limit = best.map_or(self.tb, |c| c.time.min(self.tb));
+                let limit = best.map_or(until, |c| c.time.min(until));
                 if t >= limit || speed <= 0.0 {
                     break;
                 }
@@ -326,7 +354,9 @@ impl<'a> Segment<'a> {
                     continue;
                 }
                 // parts that cannot meet before the limit are done; parts far apart for their
-                // size step; close ones are split
+                // size step on their discs; close ones on their boxes when both are straight
+                // rows or tiles (rows lying face to face, whose boxes' gap is their faces');
+                // the rest are split
                 let d = (p.centre - g.apply(q.centre)).hypot() - p.radius - q.radius;
                 if d > 0.0 && t + d / speed >= limit {
                     break;
@@ -335,21 +365,80 @@ impl<'a> Segment<'a> {
                     t += d / speed;
                     continue;
                 }
+                let d = self.box_gap(&p, &q, &g);
+                if d > 0.0 && t + d / speed >= limit {
+                    break;
+                }
+                if d > CONTACT && self.straight(&p) && self.straight(&q) {
+                    t += (d / speed).max(1e-15 * (1.0 + t.abs()));
+                    continue;
+                }
                 self.split_larger(&p, &q, |x, y| stack.push((x, y, t)));
                 break;
             }
         }
-        Ok(())
+        Ok(best.map_or(until, |c| c.time.min(until)))
+    }
+
+    /// Whether a part is a straight row of tiles (or one tile).
+    fn straight(&self, part: &Part) -> bool {
+        part.node != 0 && self.tree.straight(part.node)
+    }
+
+    /// A part's box, in its frame (the world's for a whole block).
+    fn bounds(&self, part: &Part) -> (Point, Point) {
+        if part.node == 0 {
+            self.root_boxes[part.block]
+        } else {
+            self.tree.bounds(part.node)
+        }
+    }
+
+    /// A lower bound on the distance between the inset outlines of parts `p` (block `a`,
+    /// unmoved) and `q` (moved by `g`): the widest gap between their boxes
+    /// along one of the four box normals (separating axes), 0 when the boxes overlap.
+    fn box_gap(&self, p: &Part, q: &Part, g: &Rigid) -> f64 {
+        let gq = g.then(&q.pose);
+        let boxes = [(p.pose, self.bounds(p)), (gq, self.bounds(q))];
+        // each box: its world centre, unit axes and half sizes
+        let frames = boxes.map(|(at, (lo, hi))| {
+            let c = at.apply(lo.midpoint(hi));
+            let o = at.apply(Point::ORIGIN);
+            let u = at.apply(Point::new(1.0, 0.0)) - o;
+            (
+                c,
+                u,
+                Vec2::new(-u.y, u.x),
+                0.5 * (hi.x - lo.x),
+                0.5 * (hi.y - lo.y),
+            )
+        });
+        let between = frames[1].0 - frames[0].0;
+        let mut gap = 0.0f64;
+        for f in &frames {
+            for n in [f.1, f.2] {
+                let reach: f64 = frames
+                    .iter()
+                    .map(|e| e.3 * e.1.dot(n).abs() + e.4 * e.2.dot(n).abs())
+                    .sum();
+                gap = gap.max(between.dot(n).abs() - reach);
+            }
+        }
+        // the axes' rounding (a few 1e-16 of the coordinates) kept off the bound
+        gap - 1e-15 * (1.0 + between.hypot())
     }
 
     /// A contact found by advancement at `t` between tiles `i < j`: reported with the fold
-    /// front, the highest joint between them that turns in this segment
-    /// ([`super::Collision::joint`]).
+    /// front, the highest joint between them that turns in this segment and whose fold has
+    /// not ended, or the highest that turns ([`super::Collision::joint`]).
     fn contact_at(&self, t: f64, i: usize, j: usize) -> Contact {
-        // joints increase: the last one between the tiles
+        // joints increase: the last one between the tiles whose fold goes on, else the last
+        let between = |l: &usize| (i..j).contains(&self.joints[*l]);
         let l = (0..self.joints.len())
             .rev()
-            .find(|&l| (i..j).contains(&self.joints[l]))
+            .filter(between)
+            .find(|&l| self.ended[l] > t)
+            .or_else(|| (0..self.joints.len()).rev().find(between))
             .unwrap_or(0);
         Contact {
             time: t,
@@ -360,6 +449,28 @@ impl<'a> Segment<'a> {
                 .to_degrees(),
         }
     }
+}
+
+/// The box, in world coordinates, holding every part's box.
+fn world_box(tree: &ChainTree, parts: &[Part]) -> (Point, Point) {
+    let (mut lo, mut hi) = (
+        Point::new(f64::MAX, f64::MAX),
+        Point::new(f64::MIN, f64::MIN),
+    );
+    for p in parts {
+        let (a, b) = tree.bounds(p.node);
+        for c in [a, Point::new(b.x, a.y), b, Point::new(a.x, b.y)] {
+            let c = p.pose.apply(c);
+            (lo.x, lo.y) = (lo.x.min(c.x), lo.y.min(c.y));
+            (hi.x, hi.y) = (hi.x.max(c.x), hi.y.max(c.y));
+        }
+    }
+    // grown by a hair over the rounding of the turned corners
+    let grow = 1e-12 * (1.0 + lo.x.abs().max(lo.y.abs()).max(hi.x.abs()).max(hi.y.abs()));
+    (
+        Point::new(lo.x - grow, lo.y - grow),
+        Point::new(hi.x + grow, hi.y + grow),
+    )
 }
 
 /// The disc holding every part's disc (a simple bound: centred on the parts' box).

@@ -100,6 +100,12 @@ struct Node {
     /// Disc holding the run's outlines, in the first tile's frame; radius `-1` for no tiles.
     centre: Point,
     radius: f64,
+    /// Every joint inside the run stands at exactly 0: the run is a straight row of tiles.
+    straight: bool,
+    /// Corners of a box holding the run's inset outlines, in the first tile's frame: exactly
+    /// the row's outer faces for a straight run.
+    lo: Point,
+    hi: Point,
 }
 
 const EMPTY: Node = Node {
@@ -107,6 +113,9 @@ const EMPTY: Node = Node {
     to_last: Rigid::IDENTITY,
     centre: Point::ORIGIN,
     radius: -1.0,
+    straight: true,
+    lo: Point::ORIGIN,
+    hi: Point::ORIGIN,
 };
 
 /// Poses and bounding discs of every aligned run of tiles (tile width 1).
@@ -120,14 +129,18 @@ pub(super) struct ChainTree {
 }
 
 impl ChainTree {
-    /// The tree of a chain whose joints stand at `angles` (radians, positive = left).
-    pub fn new(angles: Vec<f64>) -> ChainTree {
+    /// The tree of a chain whose joints stand at `angles` (radians, positive = left), its
+    /// boxes holding the outlines inset by `inset` (tile widths).
+    pub fn new(angles: Vec<f64>, inset: f64) -> ChainTree {
         let tiles = angles.len() + 1;
         let leaves = tiles.next_power_of_two();
         let mut nodes = vec![EMPTY; 2 * leaves];
         let radius = Octagon::new(1.0).circumradius();
+        let h = 0.5 - inset;
         for node in &mut nodes[leaves..leaves + tiles] {
             node.radius = radius;
+            node.lo = Point::new(-h, -h);
+            node.hi = Point::new(h, h);
         }
         let mut tree = ChainTree {
             tiles,
@@ -157,11 +170,32 @@ impl ChainTree {
         let turn = Rigid::from_pose(&kinematics::joint_transform(self.angles[joint], 1.0));
         let to_right = l.to_last.then(&turn);
         let (centre, radius) = enclose((l.centre, l.radius), (to_right.apply(r.centre), r.radius));
+        let (mut lo, mut hi) = (l.lo, l.hi);
+        for (x, y) in [
+            (r.lo.x, r.lo.y),
+            (r.hi.x, r.lo.y),
+            (r.hi.x, r.hi.y),
+            (r.lo.x, r.hi.y),
+        ] {
+            let c = to_right.apply(Point::new(x, y));
+            (lo.x, lo.y) = (lo.x.min(c.x), lo.y.min(c.y));
+            (hi.x, hi.y) = (hi.x.max(c.x), hi.y.max(c.y));
+        }
+        let straight = l.straight && r.straight && self.angles[joint] == 0.0;
+        if !straight {
+            // grown by a hair over the rounding of the turned corners (a straight row's
+            // corners are exact: its tiles sit at whole widths)
+            let grow = 1e-12 * (1.0 + lo.x.abs().max(lo.y.abs()).max(hi.x.abs()).max(hi.y.abs()));
+            (lo.x, lo.y, hi.x, hi.y) = (lo.x - grow, lo.y - grow, hi.x + grow, hi.y + grow);
+        }
         self.nodes[p] = Node {
             to_right,
             to_last: to_right.then(&r.to_last),
             centre,
             radius,
+            straight,
+            lo,
+            hi,
         };
     }
 
@@ -197,6 +231,16 @@ impl ChainTree {
     /// The tile of leaf `p`, or `None` for an inner node.
     pub fn tile(&self, p: usize) -> Option<usize> {
         (p >= self.leaves).then(|| p - self.leaves)
+    }
+
+    /// Whether node `p`'s run is a straight row (every joint inside at exactly 0).
+    pub fn straight(&self, p: usize) -> bool {
+        self.nodes[p].straight
+    }
+
+    /// Corners of node `p`'s box, in the frame of its first tile.
+    pub fn bounds(&self, p: usize) -> (Point, Point) {
+        (self.nodes[p].lo, self.nodes[p].hi)
     }
 
     /// Node `p`'s disc, in the frame of its first tile.
@@ -263,7 +307,7 @@ mod tests {
         // a chain of 77 tiles at random angles, then some joints turned: every tile's pose is
         // the kinematics' one, and every node's disc holds its tiles' outlines
         let mut a = angles(76, 42);
-        let mut tree = ChainTree::new(a.clone());
+        let mut tree = ChainTree::new(a.clone(), 1e-7);
         let r = Octagon::new(1.0).circumradius();
         for round in 0..4 {
             let poses = kinematics::poses_at_angles(&a, 1.0);
@@ -295,7 +339,7 @@ mod tests {
 
     #[test]
     fn cover_is_a_few_runs_in_order() {
-        let tree = ChainTree::new(vec![0.0; 999]);
+        let tree = ChainTree::new(vec![0.0; 999], 1e-7);
         let mut cover = Vec::new();
         tree.cover(3, 871, &mut cover);
         let mut next = 3;

@@ -34,6 +34,7 @@ mod lattice;
 mod schedule;
 mod sequential;
 mod sweep;
+mod windows;
 
 pub use advancement::check_schedule;
 pub use lattice::final_overlap;
@@ -94,7 +95,10 @@ pub struct Collision {
     /// the same physics (the event engine's schedule and the reference's recorded one) name
     /// the same joint unless one of them starts or ends a fold between their two contact
     /// times, whereas the fastest joint at the contact (the rule before) flipped between
-    /// joints turning at nearly the same rate.
+    /// joints turning at nearly the same rate. A joint whose fold has ended
+    /// ([`JointTrack::ended`]) but that moves again (an inertial fold released from its wall)
+    /// is named only when no joint between the tiles whose fold goes on turns: the
+    /// reference's recorded states keep such tiny motions, the engine's closed folds do not.
     pub joint: Option<usize>,
     /// How far that joint had turned, in degrees (90 for the final shape).
     pub angle_deg: f64,

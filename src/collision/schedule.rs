@@ -22,6 +22,12 @@ pub struct JointTrack {
     pub times: Vec<f64>,
     /// Signed angles at those times, radians, within `[-pi/2, pi/2]`.
     pub angles: Vec<f64>,
+    /// When the joint's fold ended (it closed at its wall), if it did. A joint released
+    /// again after that (an inertial fold bouncing, or pulled off by its neighbours) still
+    /// moves the tiles, but a contact after its end names another joint between the tiles
+    /// that still folds, if one turns ([`super::Collision::joint`]). Default none.
+    #[serde(default)]
+    pub ended: Option<f64>,
 }
 
 impl JointTrack {
@@ -143,6 +149,7 @@ impl FoldSchedule {
                     joint,
                     times: vec![t, t + fold_time],
                     angles: vec![0.0, target],
+                    ended: Some(t + fold_time),
                 });
                 t += fold_time;
             }
@@ -208,6 +215,7 @@ mod tests {
             joint: 0,
             times: vec![1.0, 3.0],
             angles: vec![0.0, FRAC_PI_2],
+            ended: None,
         };
         assert_eq!(tr.angle_at(0.0), 0.0);
         assert!((tr.angle_at(2.0) - FRAC_PI_2 / 2.0).abs() < 1e-15);
@@ -235,6 +243,7 @@ mod tests {
                 joint: 5,
                 times: vec![0.0],
                 angles: vec![0.0],
+                ended: None,
             }],
         };
         assert!(s.validate(&w).unwrap_err().to_string().contains("joint 5"));
@@ -243,6 +252,7 @@ mod tests {
                 joint: 1,
                 times: vec![1.0, 0.0],
                 angles: vec![0.0, 1.0],
+                ended: None,
             }],
         };
         assert!(matches!(
@@ -254,6 +264,7 @@ mod tests {
                 joint: 1,
                 times: vec![0.0],
                 angles: vec![f64::NAN],
+                ended: None,
             }],
         };
         assert!(matches!(
