@@ -21,6 +21,7 @@ use crate::{FoldWord, Octagon};
 
 use std::collections::HashMap;
 
+use super::block_pairs::near_pairs;
 use super::blocks::{Contact, Segment};
 use super::chain_tree::ChainTree;
 use super::windows::Windows;
@@ -114,6 +115,7 @@ impl<'a> Walk<'a> {
         // pairs of blocks (by their runs of tiles) advanced past a segment's end: clean until
         let mut certified: HashMap<Span, f64> = HashMap::new();
         let mut best: Option<Contact> = None;
+        let mut pairs = Vec::new();
         for seg in self.breakpoints.windows(2) {
             let (ta, tb) = (seg[0], seg[1]);
             if tb <= ta {
@@ -148,23 +150,23 @@ impl<'a> Walk<'a> {
             for b in 1..segment.blocks() {
                 segment.rotation_contact(b, &mut best);
             }
-            for a in 0..segment.blocks() {
-                for b in a + 2..segment.blocks() {
-                    let span = segment.span(a, b);
-                    if certified.get(&span).is_some_and(|&t| t >= tb) {
-                        continue;
-                    }
-                    // the joints inside the span keep their motion until their next breakpoint
-                    let until = windows.until(span.0, span.3).max(tb);
-                    let clean = segment
-                        .advance(a, b, shape, until, &mut best, &mut work, MAX_WORK)
-                        .map_err(|e| ScheduleError::Undecided {
-                            steps: work,
-                            time: e.time,
-                        })?;
-                    if clean > tb {
-                        certified.insert(span, clean);
-                    }
+            pairs.clear();
+            near_pairs(&segment, |a, b| pairs.push((a, b)));
+            for &(a, b) in &pairs {
+                let span = segment.span(a, b);
+                if certified.get(&span).is_some_and(|&t| t >= tb) {
+                    continue;
+                }
+                // the joints inside the span keep their motion until their next breakpoint
+                let until = windows.until(span.0, span.3).max(tb);
+                let clean = segment
+                    .advance(a, b, shape, until, &mut best, &mut work, MAX_WORK)
+                    .map_err(|e| ScheduleError::Undecided {
+                        steps: work,
+                        time: e.time,
+                    })?;
+                if clean > tb {
+                    certified.insert(span, clean);
                 }
             }
             if let Some(c) = best.filter(|c| c.time <= tb) {

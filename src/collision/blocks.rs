@@ -198,6 +198,34 @@ impl<'a> Segment<'a> {
         self.roots.len()
     }
 
+    /// The segment's length, seconds.
+    pub fn span_time(&self) -> f64 {
+        self.tb - self.ta
+    }
+
+    /// Block `b`'s disc at the segment's start, and for `b >= 1` the distance from its first
+    /// hinge (fixed in the block) that holds it.
+    pub fn block_disc(&self, b: usize) -> (Point, f64, f64) {
+        let r = &self.roots[b];
+        let reach = match b.checked_sub(1) {
+            Some(l) => (r.centre - self.hinges[l]).hypot() + r.radius,
+            None => 0.0,
+        };
+        (r.centre, r.radius, reach)
+    }
+
+    /// The sum of `|rate|` over the moving joints `l0..l1`, and the distance along the moving
+    /// hinges from hinge `l0` to hinge `l1 - 1` (0 for an empty range).
+    pub fn spin_and_chain(&self, l0: usize, l1: usize) -> (f64, f64) {
+        if l1 <= l0 {
+            return (0.0, 0.0);
+        }
+        (
+            self.spin[l1] - self.spin[l0],
+            self.chain[l1 - 1] - self.chain[l0],
+        )
+    }
+
     /// Calls `f` with each part of `part` (none for a tile).
     fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
         if part.node == 0 {
