@@ -76,6 +76,11 @@ impl Rigid {
     }
 }
 
+/// The transform across a joint at `angle`, tile width 1.
+fn turn_of(angle: f64) -> Rigid {
+    Rigid::from_pose(&kinematics::joint_transform(angle, 1.0))
+}
+
 /// The smallest disc holding two discs.
 fn enclose(a: (Point, f64), b: (Point, f64)) -> (Point, f64) {
     let d = (b.0 - a.0).hypot();
@@ -126,6 +131,9 @@ pub(super) struct ChainTree {
     leaves: usize,
     nodes: Vec<Node>,
     angles: Vec<f64>,
+    /// Each joint's transform at its angle (one sine and cosine per new angle, not one per
+    /// node above it).
+    turns: Vec<Rigid>,
 }
 
 impl ChainTree {
@@ -142,11 +150,13 @@ impl ChainTree {
             node.lo = Point::new(-h, -h);
             node.hi = Point::new(h, h);
         }
+        let turns = angles.iter().map(|&a| turn_of(a)).collect();
         let mut tree = ChainTree {
             tiles,
             leaves,
             nodes,
             angles,
+            turns,
         };
         for p in (1..leaves).rev() {
             tree.merge(p);
@@ -167,7 +177,7 @@ impl ChainTree {
             return;
         }
         let joint = self.first(2 * p + 1) - 1;
-        let turn = Rigid::from_pose(&kinematics::joint_transform(self.angles[joint], 1.0));
+        let turn = self.turns[joint];
         let to_right = l.to_last.then(&turn);
         let (centre, radius) = enclose((l.centre, l.radius), (to_right.apply(r.centre), r.radius));
         let (mut lo, mut hi) = (l.lo, l.hi);
@@ -205,6 +215,7 @@ impl ChainTree {
             return;
         }
         self.angles[k] = angle;
+        self.turns[k] = turn_of(angle);
         let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
         while a != b {
             a /= 2;
@@ -269,8 +280,11 @@ impl ChainTree {
                 out.push((p, at));
                 continue;
             }
-            let kids: Vec<(usize, Rigid)> = self.children(p, &at).collect();
-            stack.extend(kids.into_iter().rev());
+            // right child first: the left one is taken next
+            if self.nodes[2 * p + 1].radius >= 0.0 {
+                stack.push((2 * p + 1, at.then(&self.nodes[p].to_right)));
+            }
+            stack.push((2 * p, at));
         }
     }
 
