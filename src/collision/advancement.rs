@@ -24,7 +24,7 @@ use std::collections::HashMap;
 use super::block_pairs::near_pairs;
 use super::blocks::{Contact, Segment};
 use super::chain_tree::ChainTree;
-use super::windows::Windows;
+use super::windows::{track_breakpoints, Windows};
 use super::{check_word, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError};
 
 /// Checks a chain folding along `schedule`: every pair of tiles with a moving joint between
@@ -79,14 +79,7 @@ impl<'a> Walk<'a> {
     fn new(word: &FoldWord, schedule: &'a FoldSchedule) -> Walk<'a> {
         let mut breakpoints: Vec<f64> = Vec::new();
         for tr in &schedule.tracks {
-            breakpoints.extend(&tr.times);
-            for i in 1..tr.times.len() {
-                let (a0, a1) = (tr.angles[i - 1], tr.angles[i]);
-                if a0 * a1 < 0.0 {
-                    let (t0, t1) = (tr.times[i - 1], tr.times[i]);
-                    breakpoints.push(t0 + (t1 - t0) * a0 / (a0 - a1));
-                }
-            }
+            breakpoints.extend(track_breakpoints(tr));
         }
         breakpoints.sort_by(f64::total_cmp);
         breakpoints.dedup();

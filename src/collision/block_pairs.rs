@@ -13,6 +13,7 @@
 use kurbo::Point;
 
 use super::blocks::Segment;
+use super::chain_tree::enclose;
 
 /// A range of blocks `lo..hi` with a disc holding them and the largest distance of a point
 /// of one of them from its block's first hinge.
@@ -117,19 +118,6 @@ fn build(
         },
     ));
     groups.len() - 1
-}
-
-/// The smallest disc holding two discs, grown by a hair over rounding.
-fn enclose(a: (Point, f64), b: (Point, f64)) -> (Point, f64) {
-    let d = (b.0 - a.0).hypot();
-    if d + b.1 <= a.1 {
-        return a;
-    }
-    if d + a.1 <= b.1 {
-        return b;
-    }
-    let r = 0.5 * (d + a.1 + b.1);
-    (a.0 + (b.0 - a.0) * ((r - a.1) / d), r * (1.0 + 1e-12))
 }
 
 #[cfg(test)]

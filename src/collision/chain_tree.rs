@@ -82,7 +82,7 @@ fn turn_of(angle: f64) -> Rigid {
 }
 
 /// The smallest disc holding two discs.
-fn enclose(a: (Point, f64), b: (Point, f64)) -> (Point, f64) {
+pub(super) fn enclose(a: (Point, f64), b: (Point, f64)) -> (Point, f64) {
     let d = (b.0 - a.0).hypot();
     if d + b.1 <= a.1 {
         return a;

@@ -96,7 +96,7 @@ impl Windows {
 }
 
 /// A track's breakpoints: its times and the moments it passes through straight, sorted.
-fn track_breakpoints(tr: &JointTrack) -> Vec<f64> {
+pub(super) fn track_breakpoints(tr: &JointTrack) -> Vec<f64> {
     let mut out = tr.times.clone();
     for i in 1..tr.times.len() {
         let (a0, a1) = (tr.angles[i - 1], tr.angles[i]);

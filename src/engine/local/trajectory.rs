@@ -21,24 +21,8 @@ pub(crate) struct Shape {
 impl Shape {
     /// The value at `t` (before the first node: the first value; after the last: the last).
     pub(crate) fn at(&self, t: f64) -> f64 {
-        let n = self.t.len();
-        if n == 0 {
-            return 0.0;
-        }
-        if t <= self.t[0] {
-            return self.y[0];
-        }
-        if t >= self.t[n - 1] {
-            return self.y[n - 1];
-        }
-        let i = self.t.partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
-        hermite(
-            self.t[i],
-            self.t[i + 1],
-            (self.y[i], self.dy[i]),
-            (self.y[i + 1], self.dy[i + 1]),
-            t,
-        )
+        // no hint: the search of at_hinted, after two failed guesses
+        self.at_hinted(t, &mut 0)
     }
 
     /// [`Shape::at`], starting the search for `t`'s interval at `hint` (the interval found
