@@ -19,7 +19,7 @@ use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::physics::ForceLaw;
-use crate::reference::{Model, ModelError, ModelOptions};
+use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
@@ -147,7 +147,7 @@ pub fn run(
     designs: &TileDesigns,
     opts: &EngineOptions,
 ) -> Result<Timeline, EngineError> {
-    if let SpeedLaw::Overdamped { drag } = opts.speed {
+    if let SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } = opts.speed {
         if !drag.is_finite() || drag <= 0.0 {
             return Err(EngineError::BadDrag(drag));
         }
@@ -190,8 +190,13 @@ fn run_local_engine(
         drag: opts.model.drag,
     };
     let motions = MotionTable::new(&model.geometry, speed);
+    // the law the times are in, as summary.json and timeline.json report it
+    let reported = match opts.model.dynamics {
+        Dynamics::Inertial(i) => SpeedLaw::Inertial { drag: i.drag },
+        _ => speed,
+    };
     Ok(Timeline {
-        speed,
+        speed: reported,
         force_law: opts.model.force_law,
         motions,
         start: local.solved.start.clone(),
@@ -443,6 +448,27 @@ mod tests {
             &EngineOptions::default().with_speed(speed),
         )
         .unwrap()
+    }
+
+    #[test]
+    fn the_reported_law_is_the_dynamics_of_the_run() {
+        // a local run under inertia reports the inertial law, not the overdamped one its
+        // kinematic motion table uses
+        let chain = Chain::parse("SLLS").unwrap();
+        let designs = TileDesigns::global(Design::thesis());
+        let inertia = crate::physics::Inertia::default();
+        for (dynamics, want) in [
+            (
+                Dynamics::Inertial(inertia),
+                SpeedLaw::Inertial { drag: inertia.drag },
+            ),
+            (Dynamics::Overdamped, SpeedLaw::default()),
+        ] {
+            let model = ModelOptions::default().with_dynamics(dynamics);
+            let opts = EngineOptions::default().with_model(model);
+            let tl = run(&chain, &designs, &opts).unwrap();
+            assert_eq!(tl.summary().speed_law, want, "{dynamics:?}");
+        }
     }
 
     #[test]

@@ -45,7 +45,7 @@ impl Motion {
     pub fn new(length: f64, end_gap: f64, design: &Design, law: SpeedLaw) -> Motion {
         let tau = match law {
             SpeedLaw::Unit => None,
-            SpeedLaw::Overdamped { drag } => {
+            SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => {
                 let m = design.moment();
                 // K, N m^4: the point-dipole force at 1 m
                 let k = ForceLaw::PointDipole.magnitude(m, m, 1.0);

@@ -7,6 +7,7 @@ use std::f64::consts::FRAC_PI_2;
 use crate::reference::dynamics::Model;
 use crate::reference::integrators::{Method, StepStats};
 use crate::reference::options::ReferenceOptions;
+use crate::reference::Dynamics;
 use crate::timeline::{
     Event, FoldRecord, Outcome, RunFacts, SpeedLaw, Summary, TimelineJson, EVENT_INDEX,
 };
@@ -93,7 +94,7 @@ impl ReferenceRun {
     }
 
     /// The summary, with the same fields as the event engine's `summary.json` (no collision
-    /// check: `first_collision` is null; `speed_law` is the overdamped law with the drag).
+    /// check: `first_collision` is null; `speed_law` is the dynamics with its drag).
     pub fn to_summary(&self) -> Summary {
         let summary = Summary::new(RunFacts {
             tiles: self.tiles(),
@@ -103,8 +104,11 @@ impl ReferenceRun {
             events: self.events.len(),
             folds: self.folded_joints(),
             max_moving_magnets: self.max_moving.0,
-            speed_law: SpeedLaw::Overdamped {
-                drag: self.model.options().drag,
+            speed_law: match self.model.options().dynamics {
+                Dynamics::Inertial(i) => SpeedLaw::Inertial { drag: i.drag },
+                _ => SpeedLaw::Overdamped {
+                    drag: self.model.options().drag,
+                },
             },
         });
         match &self.stopped {

@@ -1,5 +1,6 @@
 //! The law a run's times are in: overdamped motion under the pair's attraction against a
-//! drag, or one millimetre per second (the thesis' transition diagram, figure 6.3).
+//! drag, the inertial dynamics (magnets with mass, tiles with rotational inertia), or one
+//! millimetre per second (the thesis' transition diagram, figure 6.3).
 
 use crate::physics::DEFAULT_DRAG;
 
@@ -14,6 +15,14 @@ pub enum SpeedLaw {
     },
     /// 1 mm per second: the transition diagram's timeline.
     Unit,
+    /// The inertial dynamics ([`crate::physics::Inertia`]) of the engine's local solves:
+    /// magnets with mass against a drag, tiles with rotational inertia, bouncing at path ends
+    /// and walls. A kinematic engine given it moves its magnets by the overdamped law with
+    /// this drag (the kinematic speed laws have no mass).
+    Inertial {
+        /// Drag of a magnet in its channel, N s/m.
+        drag: f64,
+    },
 }
 
 impl Default for SpeedLaw {
