@@ -18,6 +18,8 @@
 
 mod solve;
 mod sweeps;
+#[cfg(test)]
+mod test_support;
 mod trajectory;
 mod window;
 

@@ -117,7 +117,7 @@ pub(crate) fn solve_chain(model: &Model, opts: SolveOptions) -> ChainSolution {
 }
 
 /// [`solve_chain`], with or without the cache and the sharing of shapes (`reuse`).
-fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolution {
+pub(crate) fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolution {
     let g = &model.geometry;
     let n = g.magnets();
     let tiles = g.tiles();
@@ -474,10 +474,7 @@ fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut 
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::local::solve::{InertialModel, SolveOptions};
-    use crate::reference::{Dynamics, ModelOptions};
-    use crate::timeline::{start_fraction, TileDesigns};
-    use crate::{Chain, Design};
+    use crate::reference::Dynamics;
 
     /// `word`'s chain at `s` solved with `dynamics`, with or without the cache (`reuse`).
     fn solve_word(word: &str, s: f64, dynamics: Dynamics, reuse: bool) -> ChainSolution {
@@ -486,26 +483,14 @@ mod tests {
 
     /// [`solve_word`], with or without RODAS4 where a unit is stiff.
     fn solve_word_with(word: &str, s: f64, d: Dynamics, reuse: bool, rb: bool) -> ChainSolution {
-        let chain = Chain::parse(word).unwrap();
-        let model = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions {
-                dynamics: d,
-                ..ModelOptions::default()
-            },
-        )
-        .unwrap();
-        let inertial = InertialModel::new(&model);
-        let opts = SolveOptions {
-            tol: 1e-8,
-            start_fraction: start_fraction(&model.geometry),
-            max_steps: 1_000_000,
-            inertial: inertial.as_ref(),
+        let o = crate::engine::local::test_support::Options {
+            s,
+            dynamics: d,
+            reuse,
             rosenbrock: rb,
             rest_skip: true,
         };
-        solve_chain_with(&model, opts, reuse)
+        crate::engine::local::test_support::solve_word(word, o)
     }
 
     /// Solves of each sweep, shapes stored and events.

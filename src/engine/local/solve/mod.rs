@@ -509,33 +509,18 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
-    use super::*;
-    use crate::engine::local::sweeps::{solve_chain, ChainSolution};
-    use crate::reference::{Dynamics, Model, ModelOptions};
-    use crate::timeline::{start_fraction, TileDesigns};
-    use crate::{Chain, Design};
+    use crate::engine::local::sweeps::ChainSolution;
+    use crate::reference::Dynamics;
 
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {
-        let chain = Chain::parse(word).unwrap();
-        let model = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(0.1)),
-            &ModelOptions {
-                dynamics: Dynamics::Inertial(Default::default()),
-                ..ModelOptions::default()
-            },
-        )
-        .unwrap();
-        let inertial = InertialModel::new(&model);
-        let opts = SolveOptions {
-            tol: 1e-8,
-            start_fraction: start_fraction(&model.geometry),
-            max_steps: 1_000_000,
-            inertial: inertial.as_ref(),
+        let o = crate::engine::local::test_support::Options {
+            s: 0.1,
+            dynamics: Dynamics::Inertial(Default::default()),
+            reuse: true,
             rosenbrock: true,
             rest_skip,
         };
-        solve_chain(&model, opts)
+        crate::engine::local::test_support::solve_word(word, o)
     }
 
     #[test]
