@@ -8,6 +8,8 @@ use std::f64::consts::{PI, TAU};
 
 use kurbo::{Point, Vec2};
 
+use crate::Pose;
+
 /// A tile's pose with the sine and cosine of its heading.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Frame {
@@ -34,6 +36,23 @@ impl Frame {
         sin: 0.0,
         cos: 1.0,
     };
+
+    /// The frame of a pose (one `sin_cos`).
+    pub(crate) fn from_pose(p: &Pose) -> Frame {
+        let (sin, cos) = p.angle.sin_cos();
+        Frame {
+            x: p.x,
+            y: p.y,
+            angle: p.angle,
+            sin,
+            cos,
+        }
+    }
+
+    /// The frame as a pose.
+    pub(crate) fn to_pose(self) -> Pose {
+        Pose::new(self.x, self.y, self.angle)
+    }
 
     /// A point of the tile's frame in the world (as [`crate::Pose::transform_point`]).
     pub(crate) fn point(&self, p: (f64, f64)) -> Point {

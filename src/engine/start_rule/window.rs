@@ -16,11 +16,12 @@
 //! ago is put at its path end without calling its speed law (the law's own clamp puts it
 //! there too).
 
-use kurbo::{Point, Vec2};
+use kurbo::Point;
 
 use crate::engine::fold_law::fold_angle_from;
 use crate::engine::progress::Progress;
 use crate::engine::speed::Motion;
+use crate::frame::Frame;
 use crate::kinematics::joint_transform;
 use crate::magnet_path::MagnetPath;
 use crate::physics::{along_path, reach, ForceLaw, Pole};
@@ -57,36 +58,6 @@ struct Joint<'a> {
     transform: Pose,
 }
 
-/// One tile's pose in the window's frame, with the sine and cosine of its angle.
-#[derive(Clone, Copy, Debug)]
-struct Frame {
-    pose: Pose,
-    sin: f64,
-    cos: f64,
-}
-
-impl Frame {
-    fn new(pose: Pose) -> Frame {
-        let (sin, cos) = pose.angle.sin_cos();
-        Frame { pose, sin, cos }
-    }
-
-    /// [`Pose::transform_point`] with the sine and cosine kept.
-    fn point(&self, p: (f64, f64)) -> Point {
-        let (s, c) = (self.sin, self.cos);
-        Point::new(
-            self.pose.x + c * p.0 - s * p.1,
-            self.pose.y + s * p.0 + c * p.1,
-        )
-    }
-
-    /// [`Pose::transform_vector`] with the sine and cosine kept.
-    fn vector(&self, v: (f64, f64)) -> Vec2 {
-        let (s, c) = (self.sin, self.cos);
-        Vec2::new(c * v.0 - s * v.1, s * v.0 + c * v.1)
-    }
-}
-
 /// Magnet `m`'s neighbourhood, ready to give the drive on `m` at any time of its search.
 pub(super) struct Window<'a> {
     progress: Progress<'a>,
@@ -97,6 +68,7 @@ pub(super) struct Window<'a> {
     lo: usize,
     sources: Vec<Source>,
     joints: Vec<Joint<'a>>,
+    /// Each tile's pose in the window's frame, with the sine and cosine of its angle.
     frames: Vec<Frame>,
     /// The RI (tile 0's frame) when within reach: position and moment.
     ri: Option<(Point, f64)>,
@@ -158,7 +130,7 @@ impl<'a> Window<'a> {
             lo,
             sources,
             joints,
-            frames: vec![Frame::new(Pose::IDENTITY); thi - tlo + 1],
+            frames: vec![Frame::IDENTITY; thi - tlo + 1],
             ri,
             tangent: g.path(m).tangent_at(0.0),
             primed: false,
@@ -205,8 +177,8 @@ impl<'a> Window<'a> {
         }
         if let Some(from) = changed {
             for n in from..self.joints.len() {
-                let pose = self.frames[n].pose.then(&self.joints[n].transform);
-                self.frames[n + 1] = Frame::new(pose);
+                let pose = self.frames[n].to_pose().then(&self.joints[n].transform);
+                self.frames[n + 1] = Frame::from_pose(&pose);
             }
         }
         let at = |s: &Source| self.frames[s.tile].point(s.local);
