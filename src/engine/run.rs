@@ -57,6 +57,11 @@ pub struct EngineOptions {
     pub start: StartRule,
     /// The pair law of the kinematic force start rule and the energy curve.
     pub force_law: ForceLaw,
+    /// Threads of the local solves' sweeps: 1 runs them one after the other, 2 or more
+    /// runs two at once, the later trailing the earlier (more than 2 are not used); 0, the
+    /// default: [`std::thread::available_parallelism`]. The events are the same, bit for
+    /// bit, whatever the number.
+    pub threads: usize,
 }
 
 impl Default for EngineOptions {
@@ -68,6 +73,7 @@ impl Default for EngineOptions {
             speed: SpeedLaw::default(),
             start: StartRule::default(),
             force_law: ForceLaw::default(),
+            threads: 0,
         }
     }
 }
@@ -104,6 +110,12 @@ impl EngineOptions {
     pub fn with_model(mut self, model: ModelOptions) -> EngineOptions {
         self.model = model;
         self.force_law = model.force_law;
+        self
+    }
+
+    /// Another number of threads for the local solves' sweeps (0: the machine's).
+    pub fn with_threads(mut self, threads: usize) -> EngineOptions {
+        self.threads = threads;
         self
     }
 
@@ -185,7 +197,7 @@ fn run_local_engine(
         Err(ModelError::Geometry(g)) => return Err(EngineError::Geometry(g)),
         Err(e) => return Err(EngineError::Model(Box::new(e))),
     };
-    let local = run_local(&model, opts.tolerance);
+    let local = run_local(&model, opts.tolerance, opts.threads);
     let speed = SpeedLaw::Overdamped {
         drag: opts.model.drag,
     };

@@ -16,7 +16,9 @@
 //! by a rounding-sized force; its start is reported when it has moved
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
+mod cache;
 mod solve;
+mod sweep;
 mod sweeps;
 #[cfg(test)]
 mod test_support;
@@ -82,8 +84,9 @@ pub(crate) struct LocalRun {
     pub(crate) max_moving: (usize, f64),
 }
 
-/// Solves `model`'s chain (starts reported at [`start_fraction`]).
-pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
+/// Solves `model`'s chain (starts reported at [`start_fraction`]), the sweeps on `threads`
+/// threads (0: as many as the machine has; at most 2 are used).
+pub(crate) fn run_local(model: &Model, tol: f64, threads: usize) -> LocalRun {
     let inertial = solve::InertialModel::new(model);
     let opts = solve::SolveOptions {
         tol,
@@ -93,7 +96,7 @@ pub(crate) fn run_local(model: &Model, tol: f64) -> LocalRun {
         rosenbrock: true,
         rest_skip: true,
     };
-    let chain = sweeps::solve_chain(model, opts);
+    let chain = sweeps::solve_chain(model, opts, threads);
     let g = &model.geometry;
     let n = g.magnets();
     let joints = g.tiles().saturating_sub(1);

@@ -22,19 +22,20 @@
 //! every sweep; a U-turn met before in the same state is a hit too. A chain costs the
 //! transients of its distinct turns, and a look-up per unit and sweep.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::channel;
 use std::sync::Arc;
 
-use rustc_hash::FxHashMap;
-
-use crate::engine::local::solve::{solve, Solution, SolveOptions};
-use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
-use crate::engine::local::window::{Inputs, Var, Window};
-use crate::reference::{Dynamics, Model};
+use crate::engine::local::cache::Cache;
+use crate::engine::local::solve::{Solution, SolveOptions};
+use crate::engine::local::sweep::{sweep, Ctx, SweepOut};
+use crate::engine::local::trajectory::{Shapes, Track};
+use crate::reference::Model;
 use crate::timeline::{Event, EventKind};
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
 /// path: 0.5.
-const ANCHOR_FRACTION: f64 = 0.5;
+pub(crate) const ANCHOR_FRACTION: f64 = 0.5;
 
 /// Most sweeps over the chain.
 pub const MAX_SWEEPS: usize = 8;
@@ -111,363 +112,134 @@ impl ChainSolution {
     }
 }
 
-/// Solves `model`'s chain with local solves of tolerance `opts.tol`.
-pub(crate) fn solve_chain(model: &Model, opts: SolveOptions) -> ChainSolution {
-    solve_chain_with(model, opts, true)
+/// Solves `model`'s chain with local solves of tolerance `opts.tol`, the sweeps on
+/// `threads` threads (0: as many as the machine has; more than 2 are not used).
+pub(crate) fn solve_chain(model: &Model, opts: SolveOptions, threads: usize) -> ChainSolution {
+    solve_chain_with(model, opts, true, threads)
 }
 
 /// [`solve_chain`], with or without the cache and the sharing of shapes (`reuse`).
-pub(crate) fn solve_chain_with(model: &Model, opts: SolveOptions, reuse: bool) -> ChainSolution {
-    let g = &model.geometry;
-    let n = g.magnets();
-    let tiles = g.tiles();
-    let cutoff = model.options().cutoff;
-    let quantum = OFFSET_QUANTUM * model.time_scale;
-    let mut shapes = Shapes::default();
-    let mut magnets = vec![Track::REST; n];
-    let mut joints = vec![Track::REST; tiles.saturating_sub(1)];
-    let mut cache: FxHashMap<Vec<i64>, Arc<Entry>> = FxHashMap::default();
-    let mut units: Vec<(Arc<Entry>, f64)> = Vec::new();
-    let (mut solves, mut rhs, mut sweeps) = (0, 0, 0);
-    let mut key = Vec::new();
-    let mut solves_per_sweep = Vec::new();
-    let mut saved = Saved::default();
-    let mut library = Library::default();
-    let mut anchors = Anchors::default();
-    while sweeps < MAX_SWEEPS {
-        sweeps += 1;
-        let solves_before = solves;
-        library.clear();
-        let mut moved: f64 = 0.0;
-        let mut duration: f64 = 0.0;
-        for u in 0..=tiles {
-            let j = u as isize - 1;
-            let w = Window::new(model, j, cutoff);
-            // the unit's time origin: when the magnet before it is half way (a crossing the
-            // step sizes hardly move), else when its inputs first move
-            let anchor = match w.vars.first() {
-                Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => {
-                    anchors.crossing(&shapes, magnets[a - 1])
-                }
-                _ => None,
-            };
-            // the units after this one are placed against it as they were in the sweep
-            // before (their tracks moved by as much as its origin moved since)
-            let shift = match (anchor, units.get(u)) {
-                (Some(t), Some(&(_, old))) => t - old,
-                _ => 0.0,
-            };
-            shift_downstream(&w, &mut magnets, &mut joints, shift, &mut saved);
-            let inputs = Inputs {
-                shapes: &shapes,
-                magnets: &magnets,
-                joints: &joints,
-            };
-            let tracks = w.input_tracks(&inputs);
-            let first = tracks
-                .iter()
-                .filter_map(|&t| shapes.first_move(t))
-                .fold(f64::INFINITY, f64::min);
-            let t_start = if w.lo == 0 || !first.is_finite() {
-                0.0
-            } else {
-                first
-            };
-            let t_ref = anchor.unwrap_or(t_start);
-            window_key(&w, &tracks, t_ref, quantum, &mut key);
-            let entry = match cache.get(&key).filter(|_| reuse) {
-                Some(e) => e.clone(),
-                None => {
-                    let (t0, mut sol) = solve(&w, inputs, opts);
-                    debug_assert_eq!(t0, t_start);
-                    // local times from the unit's origin
-                    let d = t0 - t_ref;
-                    for e in &mut sol.events {
-                        e.time += d;
-                    }
-                    for (_, start) in sol.shapes.iter_mut().flatten() {
-                        *start += d;
-                    }
-                    solves += 1;
-                    rhs += sol.rhs;
-                    // the unit one back, if it is the same kind of unit: its time origin
-                    let prev_ref = (u >= 1).then(|| units.get(u - 1).map(|p| p.1)).flatten();
-                    let mut ids = Vec::with_capacity(sol.shapes.len());
-                    for (i, sh) in sol.shapes.iter_mut().enumerate() {
-                        ids.push(sh.take().map(|(shape, start)| {
-                            // the same role one unit back, compared in absolute time shifted
-                            // by the difference of the two units' origins
-                            let prev = match w.vars[i] {
-                                Var::Magnet(k) if k >= 2 => Some(magnets[k - 2]),
-                                Var::Joint(jj) if jj >= 1 => Some(joints[jj - 1]),
-                                _ => None,
-                            };
-                            let kind = match w.vars[i] {
-                                Var::Magnet(k) => (false, g.path_id(k) as i64),
-                                Var::Joint(jj) => (true, g.joint_fold(jj).quarter_turns() as i64),
-                            };
-                            let dt = 0.1 * SHAPE_TOLERANCE * shape.end() + quantum;
-                            // a copy of a shape stored before (the steady shape of a straight
-                            // run, met again after a U-turn), compared from its start
-                            if !reuse {
-                                return (shapes.add(shape), start);
-                            }
-                            if let Some(id) = library.find(&shapes, kind, &shape, dt) {
-                                return (id, start);
-                            }
-                            let same = match (prev, prev_ref) {
-                                (Some(p), Some(r0)) if p.shape != REST => {
-                                    let shift = p.offset + (t_ref - r0);
-                                    let new_offset = t_ref + start;
-                                    shapes
-                                        .get(p.shape)
-                                        .close_shifted(
-                                            &shape,
-                                            new_offset - shift,
-                                            SHAPE_TOLERANCE,
-                                            dt,
-                                        )
-                                        .then_some((p.shape, shift - t_ref))
-                                }
-                                _ => None,
-                            };
-                            match same {
-                                Some(found) => found,
-                                None => {
-                                    let end = shape.end();
-                                    let id = shapes.add(shape);
-                                    library.add(kind, end, id);
-                                    (id, start)
-                                }
-                            }
-                        }));
-                    }
-                    let e = Arc::new(Entry {
-                        shapes: ids,
-                        solution: sol,
-                    });
-                    cache.insert(key.clone(), e.clone());
-                    e
-                }
-            };
-            saved.restore(&mut magnets, &mut joints);
-            for (i, sh) in entry.shapes.iter().enumerate() {
-                let track = match sh {
-                    Some((id, start)) => Track {
-                        shape: *id,
-                        offset: t_ref + start,
-                    },
-                    None => Track::REST,
-                };
-                match w.vars[i] {
-                    Var::Magnet(k) => magnets[k] = track,
-                    Var::Joint(jj) => joints[jj] = track,
-                }
-            }
-            if let Some(ev) = entry.solution.events.last() {
-                duration = duration.max(t_ref + ev.time);
-            }
-            match units.get_mut(u) {
-                Some(slot) => {
-                    moved = moved.max(change(slot, &entry, t_ref));
-                    *slot = (entry, t_ref);
-                }
-                None => {
-                    moved = f64::INFINITY;
-                    units.push((entry, t_ref));
-                }
-            }
-        }
-        solves_per_sweep.push(solves - solves_before);
-        if moved <= SWEEP_TOLERANCE * duration.max(model.time_scale) {
-            break;
-        }
-    }
-    ChainSolution {
-        shapes,
-        magnets,
-        joints,
-        units,
-        sweeps,
-        solves,
-        rhs,
-        solves_per_sweep,
-    }
-}
-
-/// Each shape's crossing of [`ANCHOR_FRACTION`] from its start, found once.
-#[derive(Default)]
-struct Anchors {
-    /// By shape id: NaN not yet found, infinite never reached.
-    local: Vec<f64>,
-}
-
-impl Anchors {
-    /// When `track` reaches [`ANCHOR_FRACTION`], if it does.
-    fn crossing(&mut self, shapes: &Shapes, track: Track) -> Option<f64> {
-        if track.shape == REST {
-            return None;
-        }
-        let id = track.shape as usize;
-        if self.local.len() <= id {
-            self.local.resize(id + 1, f64::NAN);
-        }
-        if self.local[id].is_nan() {
-            self.local[id] = shapes
-                .get(track.shape)
-                .crossing(ANCHOR_FRACTION)
-                .unwrap_or(f64::INFINITY);
-        }
-        let t = self.local[id];
-        t.is_finite().then_some(track.offset + t)
-    }
-}
-
-/// The shapes stored, by kind of unknown (a magnet's path, a joint's fold) with their ends:
-/// the shapes a new one may be a copy of.
-#[derive(Default)]
-struct Library {
-    by_kind: FxHashMap<(bool, i64), Vec<(f64, u32)>>,
-}
-
-impl Library {
-    /// A stored shape of `kind` that agrees with `shape` within [`SHAPE_TOLERANCE`] from
-    /// their starts on and ends within `dt` of it.
-    fn find(&self, shapes: &Shapes, kind: (bool, i64), shape: &Shape, dt: f64) -> Option<u32> {
-        let end = shape.end();
-        self.by_kind.get(&kind)?.iter().find_map(|&(e, id)| {
-            ((e - end).abs() <= dt
-                && shapes
-                    .get(id)
-                    .close_shifted(shape, 0.0, SHAPE_TOLERANCE, dt))
-            .then_some(id)
-        })
-    }
-
-    fn add(&mut self, kind: (bool, i64), end: f64, id: u32) {
-        self.by_kind.entry(kind).or_default().push((end, id));
-    }
-
-    /// Forgets every shape: a sweep shares only the shapes it made itself (a shape of the
-    /// sweep before, matched within the tolerance, would stop the sweeps' progress there).
-    fn clear(&mut self) {
-        self.by_kind.clear();
-    }
-}
-
-/// Downstream tracks as they were before [`shift_downstream`] moved them.
-#[derive(Default)]
-struct Saved {
-    magnets: Vec<(usize, Track)>,
-    joints: Vec<(usize, Track)>,
-}
-
-impl Saved {
-    fn restore(&mut self, magnets: &mut [Track], joints: &mut [Track]) {
-        for (k, t) in self.magnets.drain(..) {
-            magnets[k] = t;
-        }
-        for (k, t) in self.joints.drain(..) {
-            joints[k] = t;
-        }
-    }
-}
-
-/// Moves the moving tracks of unit `w`'s window after its unknowns (the magnets after its
-/// last one, the joints after its own) by `shift`, keeping what they were in `saved`.
-fn shift_downstream(
-    w: &Window,
-    magnets: &mut [Track],
-    joints: &mut [Track],
-    shift: f64,
-    saved: &mut Saved,
-) {
-    if shift == 0.0 {
-        return;
-    }
-    let last = w
-        .vars
-        .iter()
-        .filter_map(|v| match v {
-            Var::Magnet(k) => Some(*k),
-            Var::Joint(_) => None,
-        })
-        .max();
-    let Some(last) = last else {
-        return;
+pub(crate) fn solve_chain_with(
+    model: &Model,
+    opts: SolveOptions,
+    reuse: bool,
+    threads: usize,
+) -> ChainSolution {
+    // a unit's window reaches `cutoff` magnets past its own: half as many units
+    let cache = Cache::new(model.options().cutoff.div_ceil(2) + LAG_MARGIN);
+    let ctx = Ctx {
+        model,
+        opts,
+        reuse,
+        cache: &cache,
     };
-    for (k, t) in magnets.iter_mut().enumerate().take(w.hi + 1).skip(last + 1) {
-        if t.shape != REST {
-            saved.magnets.push((k, *t));
-            t.offset += shift;
-        }
-    }
-    let first_joint = (w.j + 1).max(0) as usize;
-    for (jj, t) in joints
-        .iter_mut()
-        .enumerate()
-        .take(w.hi / 2)
-        .skip(first_joint.max(w.lo / 2))
-    {
-        if t.shape != REST {
-            saved.joints.push((jj, *t));
-            t.offset += shift;
-        }
+    let threads = match threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        t => t,
+    };
+    let mut done = Done::default();
+    let last = if threads >= 2 {
+        pipelined(ctx, &mut done)
+    } else {
+        one_by_one(ctx, &mut done)
+    };
+    ChainSolution {
+        shapes: last.shapes,
+        magnets: last.magnets,
+        joints: last.joints,
+        units: last.units,
+        sweeps: done.solves_per_sweep.len(),
+        solves: done.solves_per_sweep.iter().sum(),
+        rhs: done.rhs,
+        solves_per_sweep: done.solves_per_sweep,
     }
 }
 
-/// The largest change of an event time of a unit between two sweeps (infinite when the
-/// events differ).
-fn change(old: &(Arc<Entry>, f64), new: &Arc<Entry>, t_ref: f64) -> f64 {
-    let (a, b) = (&old.0.solution.events, &new.solution.events);
-    if a.len() != b.len() {
-        return f64::INFINITY;
+/// A unit waits for, and sees the cache entries of, the sweep before's units this many
+/// past the last one its window reaches: 1.
+const LAG_MARGIN: usize = 1;
+
+/// The sweeps made so far.
+#[derive(Default)]
+struct Done {
+    solves_per_sweep: Vec<usize>,
+    rhs: u64,
+}
+
+impl Done {
+    /// Counts sweep `out`; whether it is the last (converged, or the last allowed).
+    fn add(&mut self, model: &Model, out: &SweepOut) -> bool {
+        debug_assert!(out.complete, "a sweep waited for stopped short");
+        self.solves_per_sweep.push(out.solves);
+        self.rhs += out.rhs;
+        self.solves_per_sweep.len() >= MAX_SWEEPS
+            || out.moved <= SWEEP_TOLERANCE * out.duration.max(model.time_scale)
     }
-    a.iter().zip(b).fold(0.0, |m, (x, y)| {
-        if x.kind != y.kind || x.rel != y.rel {
-            f64::INFINITY
-        } else {
-            m.max(((old.1 + x.time) - (t_ref + y.time)).abs())
+}
+
+/// The sweeps one after the other on this thread; the last.
+fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
+    let never = AtomicBool::new(false);
+    // the shapes of the sweeps before the one before the next, and before the next
+    let (mut base, mut base_next) = (Shapes::default(), Shapes::default());
+    let mut before = None;
+    loop {
+        let k = done.solves_per_sweep.len() + 1;
+        let (tx, rx) = channel();
+        let out = sweep(ctx, k, base, before.take(), tx, &never);
+        if done.add(ctx.model, &out) {
+            return out;
+        }
+        base = std::mem::replace(&mut base_next, out.shapes);
+        before = Some(rx);
+    }
+}
+
+/// The sweeps on two threads, each but the first trailing the one before; the last.
+///
+/// While sweep `k` runs, sweep `k + 1` trails it; when `k` ends it is the last if it
+/// converged (then `k + 1` is cancelled), else `k + 2` starts trailing `k + 1`.
+fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
+    let cancel: Vec<AtomicBool> = (0..=MAX_SWEEPS + 1)
+        .map(|_| AtomicBool::new(false))
+        .collect();
+    let cancel = &cancel;
+    std::thread::scope(|scope| {
+        let join = |h: std::thread::ScopedJoinHandle<'_, SweepOut>| {
+            h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
+        };
+        let (tx, mut rx) = channel();
+        let mut running =
+            scope.spawn(move || sweep(ctx, 1, Shapes::default(), None, tx, &cancel[1]));
+        // the shapes of the sweeps before the one running
+        let mut base = Shapes::default();
+        let mut k = 1;
+        loop {
+            let next = (k < MAX_SWEEPS).then(|| {
+                let (tx, next_rx) = channel();
+                let before = std::mem::replace(&mut rx, next_rx);
+                let base = std::mem::take(&mut base);
+                scope.spawn(move || sweep(ctx, k + 1, base, Some(before), tx, &cancel[k + 1]))
+            });
+            let out = join(running);
+            let last = done.add(ctx.model, &out);
+            match next {
+                Some(next) if !last => {
+                    base = out.shapes;
+                    running = next;
+                    k += 1;
+                }
+                next => {
+                    cancel[k + 1].store(true, Ordering::Relaxed);
+                    // it stops at its next unit, or when this sweep's stream runs out
+                    if let Some(next) = next {
+                        let _ = join(next);
+                    }
+                    return out;
+                }
+            }
         }
     })
-}
-
-/// The cache key of unit `w` with input tracks `tracks` and origin `t_ref`.
-fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
-    let g = &w.model.geometry;
-    key.clear();
-    let first = w.vars.iter().find_map(|v| match v {
-        Var::Magnet(k) => Some(*k as i64),
-        Var::Joint(_) => None,
-    });
-    let a = first.unwrap_or(0);
-    key.push(a - w.lo as i64);
-    key.push(w.hi as i64 - a);
-    key.push(w.vars.len() as i64);
-    if let Dynamics::Inertial(_) = w.model.options().dynamics {
-        // an inertial joint's inertia grows with the tiles it swings: its place matters
-        for v in &w.vars {
-            if let Var::Joint(jj) = v {
-                key.push((g.tiles() - 1 - jj) as i64);
-            }
-        }
-    }
-    if w.lo == 0 {
-        // the RI is in reach: the unit's place in the chain matters
-        key.push(w.j as i64);
-    }
-    for k in w.lo..=w.hi {
-        key.push(g.path_id(k) as i64);
-    }
-    for jj in w.lo / 2..w.hi / 2 {
-        key.push(g.joint_fold(jj).quarter_turns() as i64);
-    }
-    for t in tracks {
-        key.push(t.shape as i64);
-        if t.shape != REST {
-            key.push(((t.offset - t_ref) / quantum).round() as i64);
-        }
-    }
 }
 
 #[cfg(test)]
@@ -483,14 +255,58 @@ mod tests {
 
     /// [`solve_word`], with or without RODAS4 where a unit is stiff.
     fn solve_word_with(word: &str, s: f64, d: Dynamics, reuse: bool, rb: bool) -> ChainSolution {
+        solve_word_on(word, s, d, reuse, rb, 2)
+    }
+
+    /// [`solve_word_with`], the sweeps on `threads` threads.
+    fn solve_word_on(
+        word: &str,
+        s: f64,
+        d: Dynamics,
+        reuse: bool,
+        rb: bool,
+        threads: usize,
+    ) -> ChainSolution {
         let o = crate::engine::local::test_support::Options {
             s,
             dynamics: d,
             reuse,
             rosenbrock: rb,
             rest_skip: true,
+            threads,
         };
         crate::engine::local::test_support::solve_word(word, o)
+    }
+
+    #[test]
+    fn one_thread_or_two_give_the_same_solution_bit_for_bit() {
+        // two sweeps at once, the later trailing the earlier: every event time, every track
+        // and the work done the same as one sweep after the other
+        let inertial = Dynamics::Inertial(Default::default());
+        for (word, d) in [
+            ("S*30 LL S*30 RR S*30 LL S*30", inertial),
+            ("S*14 LL S*14 RR S*6", Dynamics::Overdamped),
+        ] {
+            let one = solve_word_on(word, 0.1, d, true, true, 1);
+            assert!(one.sweeps >= 3, "{word}: {:?}", one.solves_per_sweep);
+            for _ in 0..2 {
+                let two = solve_word_on(word, 0.1, d, true, true, 2);
+                let (a, b) = (one.events(), two.events());
+                assert_eq!(a.len(), b.len(), "{word}");
+                for (x, y) in a.iter().zip(&b) {
+                    assert_eq!(
+                        (x.time.to_bits(), x.kind, x.index),
+                        (y.time.to_bits(), y.kind, y.index),
+                        "{word}"
+                    );
+                }
+                assert_eq!(one.magnets, two.magnets, "{word}");
+                assert_eq!(one.joints, two.joints, "{word}");
+                assert_eq!(one.solves_per_sweep, two.solves_per_sweep, "{word}");
+                assert_eq!(one.rhs, two.rhs, "{word}");
+                assert_eq!(one.shapes.len(), two.shapes.len(), "{word}");
+            }
+        }
     }
 
     /// Solves of each sweep, shapes stored and events.

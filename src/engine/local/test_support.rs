@@ -21,6 +21,8 @@ pub(crate) struct Options {
     pub rosenbrock: bool,
     /// Units at rest checking their release only past a few input nodes.
     pub rest_skip: bool,
+    /// Threads of the sweeps.
+    pub threads: usize,
 }
 
 /// `word`'s chain solved with `o`.
@@ -44,5 +46,5 @@ pub(crate) fn solve_word(word: &str, o: Options) -> ChainSolution {
         rosenbrock: o.rosenbrock,
         rest_skip: o.rest_skip,
     };
-    solve_chain_with(&model, opts, o.reuse)
+    solve_chain_with(&model, opts, o.reuse, o.threads)
 }

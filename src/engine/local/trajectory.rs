@@ -5,6 +5,8 @@
 //! A [`Shape`] is stored once and placed in time by a [`Track`] (its offset): a run of tiles
 //! that repeat the same local solution shares one shape, shifted.
 
+use std::sync::Arc;
+
 pub(crate) use crate::timeline::hermite;
 
 /// One unknown over time, from its own time origin (`t[0] = 0`).
@@ -111,6 +113,12 @@ impl Shape {
 /// Id of the shape that is 0 at all times (a magnet at rest, a straight joint).
 pub(crate) const REST: u32 = 0;
 
+/// A shape id's bits above this one number the sweep that made it (0: [`REST`]), those
+/// below number it among that sweep's shapes, in the order the sweep made them: ids that
+/// do not depend on how the sweeps are spread over threads. 2^28 shapes a sweep, and 15
+/// sweeps at most ([`crate::engine::local::MAX_SWEEPS`] is 8).
+const SWEEP_SHIFT: u32 = 28;
+
 /// A shape placed in time: the unknown's value at `t` is `shape.at(t - offset)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Track {
@@ -128,40 +136,48 @@ impl Track {
     };
 }
 
-/// Every shape of a run, by id ([`REST`] first).
+/// Shapes by id ([`REST`] first), each sweep's in its own list: a sweep's view of the
+/// shapes it may read (those of the sweeps before it and its own). The shapes themselves
+/// are shared between views.
 #[derive(Clone, Debug)]
 pub(crate) struct Shapes {
-    list: Vec<Shape>,
+    by_sweep: Vec<Vec<Arc<Shape>>>,
 }
 
 impl Default for Shapes {
     fn default() -> Shapes {
         Shapes {
-            list: vec![Shape {
+            by_sweep: vec![vec![Arc::new(Shape {
                 t: vec![0.0],
                 y: vec![0.0],
                 dy: vec![0.0],
-            }],
+            })]],
         }
     }
 }
 
 impl Shapes {
-    /// Stores `shape`; its id.
-    pub(crate) fn add(&mut self, shape: Shape) -> u32 {
-        self.list.push(shape);
-        (self.list.len() - 1) as u32
+    /// Stores `shape` as the next shape of sweep `sweep` (from 1); its id.
+    pub(crate) fn add(&mut self, sweep: usize, shape: Arc<Shape>) -> u32 {
+        debug_assert!((1..1 << (32 - SWEEP_SHIFT)).contains(&sweep));
+        if self.by_sweep.len() <= sweep {
+            self.by_sweep.resize_with(sweep + 1, Vec::new);
+        }
+        let list = &mut self.by_sweep[sweep];
+        debug_assert!(list.len() < 1 << SWEEP_SHIFT);
+        list.push(shape);
+        ((sweep as u32) << SWEEP_SHIFT) | (list.len() - 1) as u32
     }
 
     /// How many shapes are stored.
     #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
-        self.list.len()
+        self.by_sweep.iter().map(Vec::len).sum()
     }
 
     /// The shape of id `id`.
     pub(crate) fn get(&self, id: u32) -> &Shape {
-        &self.list[id as usize]
+        &self.by_sweep[(id >> SWEEP_SHIFT) as usize][(id & ((1 << SWEEP_SHIFT) - 1)) as usize]
     }
 
     /// The value of `track` at `t`.
@@ -226,7 +242,7 @@ mod tests {
         }
         assert!(s.close_shifted(&s.clone(), 0.0, 0.0, 0.0));
         let mut shapes = Shapes::default();
-        let id = shapes.add(s);
+        let id = shapes.add(1, Arc::new(s));
         let tr = Track {
             shape: id,
             offset: 10.0,

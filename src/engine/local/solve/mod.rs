@@ -519,6 +519,7 @@ mod tests {
             reuse: true,
             rosenbrock: true,
             rest_skip,
+            threads: 2,
         };
         crate::engine::local::test_support::solve_word(word, o)
     }

@@ -1,0 +1,466 @@
+//! One sweep over the chain ([`sweep`]): every unit solved in turn from the RI end, with the
+//! units before it on this sweep's tracks and the units after it on the sweep before's
+//! ([`crate::engine::local::sweeps`] tells the method).
+//!
+//! A sweep reads the sweep before as a stream of unit results ([`UnitOut`]: the unit's
+//! entry, origin, tracks and the shapes it made), and writes its own the same way, so that
+//! the next sweep can trail it on another thread: unit `u` waits only for the sweep before's
+//! units up to `u + lag` ([`Cache::lag`]), the last ones its window reaches. Everything a
+//! unit reads (its inputs' tracks and shapes, the cache entries it sees, its sweep's own
+//! shapes) is then fixed by the sweep and the unit alone, whatever runs beside it.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, Sender};
+use std::sync::Arc;
+
+use crate::engine::local::cache::{Anchors, Cache, Library};
+use crate::engine::local::solve::{solve, SolveOptions};
+use crate::engine::local::sweeps::{Entry, ANCHOR_FRACTION, OFFSET_QUANTUM, SHAPE_TOLERANCE};
+use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
+use crate::engine::local::window::{Inputs, Var, Window};
+use crate::reference::{Dynamics, Model};
+
+/// A sweep hands its unit results on in chunks of at most this many units, or at every
+/// local solve (a chunk of look-ups is cheap to wait for; a solve is not): 64.
+const CHUNK: usize = 64;
+
+/// What the sweeps share.
+#[derive(Clone, Copy)]
+pub(crate) struct Ctx<'a> {
+    /// The chain's model.
+    pub(crate) model: &'a Model,
+    /// The local solves' options.
+    pub(crate) opts: SolveOptions<'a>,
+    /// Whether units use the cache and share shapes.
+    pub(crate) reuse: bool,
+    /// The cache of unit solutions.
+    pub(crate) cache: &'a Cache,
+}
+
+/// A unit's result as the next sweep reads it.
+pub(crate) struct UnitOut {
+    /// The unit's entry.
+    entry: Arc<Entry>,
+    /// The unit's time origin.
+    t_ref: f64,
+    /// Its unknowns' tracks.
+    tracks: Vec<(Var, Track)>,
+    /// The shapes the sweep made at this unit, in the order it made them.
+    made: Vec<Arc<Shape>>,
+}
+
+/// A sweep's result.
+pub(crate) struct SweepOut {
+    /// The shapes of this sweep and of every sweep before.
+    pub(crate) shapes: Shapes,
+    /// Each magnet's track.
+    pub(crate) magnets: Vec<Track>,
+    /// Each joint's track.
+    pub(crate) joints: Vec<Track>,
+    /// Each unit's entry and time origin.
+    pub(crate) units: Vec<(Arc<Entry>, f64)>,
+    /// The largest change of an event time since the sweep before (infinite: the first).
+    pub(crate) moved: f64,
+    /// The last event's time.
+    pub(crate) duration: f64,
+    /// Local solves made.
+    pub(crate) solves: usize,
+    /// Right-hand sides evaluated.
+    pub(crate) rhs: u64,
+    /// Whether every unit was solved (not cancelled).
+    pub(crate) complete: bool,
+}
+
+/// The sweep before, as read so far.
+struct Before {
+    rx: Option<Receiver<Vec<UnitOut>>>,
+    /// Its units' entries and origins read so far.
+    units: Vec<(Arc<Entry>, f64)>,
+}
+
+impl Before {
+    /// Reads the sweep before up to unit `need` (all of it if it has fewer), writing its
+    /// tracks and adding its shapes (sweep `k - 1`'s); false if it stopped short.
+    fn read_to(
+        &mut self,
+        need: usize,
+        k: usize,
+        shapes: &mut Shapes,
+        magnets: &mut [Track],
+        joints: &mut [Track],
+    ) -> bool {
+        let Some(rx) = &self.rx else {
+            return true;
+        };
+        while self.units.len() <= need {
+            let Ok(chunk) = rx.recv() else {
+                return false;
+            };
+            for unit in chunk {
+                for shape in unit.made {
+                    shapes.add(k - 1, shape);
+                }
+                for (v, track) in unit.tracks {
+                    match v {
+                        Var::Magnet(m) => magnets[m] = track,
+                        Var::Joint(jj) => joints[jj] = track,
+                    }
+                }
+                self.units.push((unit.entry, unit.t_ref));
+            }
+        }
+        true
+    }
+}
+
+/// The unit whose unknowns include magnet `m`.
+fn unit_of_magnet(m: usize) -> usize {
+    m.div_ceil(2)
+}
+
+/// Sweep `k` (from 1) of `ctx`'s chain: `shapes` holds every shape of the sweeps before
+/// `k - 1`, `before` streams sweep `k - 1`'s units (none for the first sweep), `out` takes
+/// this sweep's; the sweep stops short when `cancel` is set or the sweep before stopped short.
+pub(crate) fn sweep(
+    ctx: Ctx,
+    k: usize,
+    mut shapes: Shapes,
+    before: Option<Receiver<Vec<UnitOut>>>,
+    out: Sender<Vec<UnitOut>>,
+    cancel: &AtomicBool,
+) -> SweepOut {
+    let model = ctx.model;
+    let g = &model.geometry;
+    let n = g.magnets();
+    let tiles = g.tiles();
+    let cutoff = model.options().cutoff;
+    let quantum = OFFSET_QUANTUM * model.time_scale;
+    let mut magnets = vec![Track::REST; n];
+    let mut joints = vec![Track::REST; tiles.saturating_sub(1)];
+    let mut before = Before {
+        rx: before,
+        units: Vec::new(),
+    };
+    let mut units: Vec<(Arc<Entry>, f64)> = Vec::with_capacity(tiles + 1);
+    let mut library = Library::default();
+    let mut anchors = Anchors::new(ANCHOR_FRACTION);
+    let mut saved = Saved::default();
+    let mut key = Vec::new();
+    let mut chunk = Vec::new();
+    let (mut moved, mut duration, mut solves, mut rhs) = (0.0_f64, 0.0_f64, 0, 0);
+    let mut complete = true;
+    for u in 0..=tiles {
+        if cancel.load(Ordering::Relaxed) {
+            complete = false;
+            break;
+        }
+        let j = u as isize - 1;
+        let w = Window::new(model, j, cutoff);
+        let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
+        if !before.read_to(need, k, &mut shapes, &mut magnets, &mut joints) {
+            complete = false;
+            break;
+        }
+        // the unit's time origin: when the magnet before it is half way (a crossing the
+        // step sizes hardly move), else when its inputs first move
+        let anchor = match w.vars.first() {
+            Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => {
+                anchors.crossing(&shapes, magnets[a - 1])
+            }
+            _ => None,
+        };
+        // the units after this one are placed against it as they were in the sweep
+        // before (their tracks moved by as much as its origin moved since)
+        let shift = match (anchor, before.units.get(u)) {
+            (Some(t), Some(&(_, old))) => t - old,
+            _ => 0.0,
+        };
+        shift_downstream(&w, &mut magnets, &mut joints, shift, &mut saved);
+        let inputs = Inputs {
+            shapes: &shapes,
+            magnets: &magnets,
+            joints: &joints,
+        };
+        let tracks = w.input_tracks(&inputs);
+        let first = tracks
+            .iter()
+            .filter_map(|&t| shapes.first_move(t))
+            .fold(f64::INFINITY, f64::min);
+        let t_start = if w.lo == 0 || !first.is_finite() {
+            0.0
+        } else {
+            first
+        };
+        let t_ref = anchor.unwrap_or(t_start);
+        window_key(&w, &tracks, t_ref, quantum, &mut key);
+        let hit = if ctx.reuse {
+            ctx.cache.get(&key, (k, u))
+        } else {
+            None
+        };
+        let mut made = Vec::new();
+        let solved = hit.is_none();
+        let entry = match hit {
+            Some(e) => e,
+            None => {
+                let (t0, mut sol) = solve(&w, inputs, ctx.opts);
+                debug_assert_eq!(t0, t_start);
+                // local times from the unit's origin
+                let d = t0 - t_ref;
+                for e in &mut sol.events {
+                    e.time += d;
+                }
+                for (_, start) in sol.shapes.iter_mut().flatten() {
+                    *start += d;
+                }
+                solves += 1;
+                rhs += sol.rhs;
+                // the unit one back, if it is the same kind of unit: its time origin
+                let prev_ref = (u >= 1).then(|| units.get(u - 1).map(|p| p.1)).flatten();
+                let mut ids = Vec::with_capacity(sol.shapes.len());
+                for (i, sh) in sol.shapes.iter_mut().enumerate() {
+                    ids.push(sh.take().map(|(shape, start)| {
+                        let found = if ctx.reuse {
+                            shared_shape(
+                                &shapes, &library, &magnets, &joints, &w, i, &shape, start, t_ref,
+                                prev_ref, quantum,
+                            )
+                        } else {
+                            None
+                        };
+                        found.unwrap_or_else(|| {
+                            let end = shape.end();
+                            let shape = Arc::new(shape);
+                            let id = shapes.add(k, shape.clone());
+                            made.push(shape);
+                            library.add(kind(g, w.vars[i]), end, id);
+                            (id, start)
+                        })
+                    }));
+                }
+                let e = Arc::new(Entry {
+                    shapes: ids,
+                    solution: sol,
+                });
+                if ctx.reuse {
+                    ctx.cache.insert(&key, (k, u), e.clone());
+                }
+                e
+            }
+        };
+        saved.restore(&mut magnets, &mut joints);
+        let mut written = Vec::with_capacity(w.vars.len());
+        for (i, sh) in entry.shapes.iter().enumerate() {
+            let track = match sh {
+                Some((id, start)) => Track {
+                    shape: *id,
+                    offset: t_ref + start,
+                },
+                None => Track::REST,
+            };
+            match w.vars[i] {
+                Var::Magnet(m) => magnets[m] = track,
+                Var::Joint(jj) => joints[jj] = track,
+            }
+            written.push((w.vars[i], track));
+        }
+        if let Some(ev) = entry.solution.events.last() {
+            duration = duration.max(t_ref + ev.time);
+        }
+        moved = match before.units.get(u) {
+            Some(old) => moved.max(change(old, &entry, t_ref)),
+            None => f64::INFINITY,
+        };
+        units.push((entry.clone(), t_ref));
+        chunk.push(UnitOut {
+            entry,
+            t_ref,
+            tracks: written,
+            made,
+        });
+        if solved || chunk.len() >= CHUNK {
+            // the next sweep may have stopped: nothing to tell it then
+            let _ = out.send(std::mem::take(&mut chunk));
+        }
+    }
+    if !chunk.is_empty() {
+        let _ = out.send(chunk);
+    }
+    SweepOut {
+        shapes,
+        magnets,
+        joints,
+        units,
+        moved,
+        duration,
+        solves,
+        rhs,
+        complete,
+    }
+}
+
+/// The kind of unknown `v` (a magnet's path, a joint's fold): the shapes a new one may be
+/// a copy of.
+fn kind(g: &crate::timeline::Geometry, v: Var) -> (bool, i64) {
+    match v {
+        Var::Magnet(m) => (false, g.path_id(m) as i64),
+        Var::Joint(jj) => (true, g.joint_fold(jj).quarter_turns() as i64),
+    }
+}
+
+/// A stored shape that unknown `i` of unit `w`'s new `shape` (starting at `start`, local
+/// time) may be taken as, with its start: a copy of a shape this sweep stored before (the
+/// steady shape of a straight run, met again after a U-turn), compared from its start, or
+/// the same role's one unit back, compared in absolute time shifted by the difference of
+/// the two units' origins.
+#[allow(clippy::too_many_arguments)]
+fn shared_shape(
+    shapes: &Shapes,
+    library: &Library,
+    magnets: &[Track],
+    joints: &[Track],
+    w: &Window,
+    i: usize,
+    shape: &Shape,
+    start: f64,
+    t_ref: f64,
+    prev_ref: Option<f64>,
+    quantum: f64,
+) -> Option<(u32, f64)> {
+    let prev = match w.vars[i] {
+        Var::Magnet(m) if m >= 2 => Some(magnets[m - 2]),
+        Var::Joint(jj) if jj >= 1 => Some(joints[jj - 1]),
+        _ => None,
+    };
+    let dt = 0.1 * SHAPE_TOLERANCE * shape.end() + quantum;
+    let kind = kind(&w.model.geometry, w.vars[i]);
+    if let Some(id) = library.find(shapes, kind, shape, SHAPE_TOLERANCE, dt) {
+        return Some((id, start));
+    }
+    match (prev, prev_ref) {
+        (Some(p), Some(r0)) if p.shape != REST => {
+            let shift = p.offset + (t_ref - r0);
+            let new_offset = t_ref + start;
+            shapes
+                .get(p.shape)
+                .close_shifted(shape, new_offset - shift, SHAPE_TOLERANCE, dt)
+                .then_some((p.shape, shift - t_ref))
+        }
+        _ => None,
+    }
+}
+
+/// Downstream tracks as they were before [`shift_downstream`] moved them.
+#[derive(Default)]
+struct Saved {
+    magnets: Vec<(usize, Track)>,
+    joints: Vec<(usize, Track)>,
+}
+
+impl Saved {
+    fn restore(&mut self, magnets: &mut [Track], joints: &mut [Track]) {
+        for (m, t) in self.magnets.drain(..) {
+            magnets[m] = t;
+        }
+        for (jj, t) in self.joints.drain(..) {
+            joints[jj] = t;
+        }
+    }
+}
+
+/// Moves the moving tracks of unit `w`'s window after its unknowns (the magnets after its
+/// last one, the joints after its own) by `shift`, keeping what they were in `saved`.
+fn shift_downstream(
+    w: &Window,
+    magnets: &mut [Track],
+    joints: &mut [Track],
+    shift: f64,
+    saved: &mut Saved,
+) {
+    if shift == 0.0 {
+        return;
+    }
+    let last = w
+        .vars
+        .iter()
+        .filter_map(|v| match v {
+            Var::Magnet(m) => Some(*m),
+            Var::Joint(_) => None,
+        })
+        .max();
+    let Some(last) = last else {
+        return;
+    };
+    for (m, t) in magnets.iter_mut().enumerate().take(w.hi + 1).skip(last + 1) {
+        if t.shape != REST {
+            saved.magnets.push((m, *t));
+            t.offset += shift;
+        }
+    }
+    let first_joint = (w.j + 1).max(0) as usize;
+    for (jj, t) in joints
+        .iter_mut()
+        .enumerate()
+        .take(w.hi / 2)
+        .skip(first_joint.max(w.lo / 2))
+    {
+        if t.shape != REST {
+            saved.joints.push((jj, *t));
+            t.offset += shift;
+        }
+    }
+}
+
+/// The largest change of an event time of a unit between two sweeps (infinite when the
+/// events differ).
+fn change(old: &(Arc<Entry>, f64), new: &Arc<Entry>, t_ref: f64) -> f64 {
+    let (a, b) = (&old.0.solution.events, &new.solution.events);
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    a.iter().zip(b).fold(0.0, |m, (x, y)| {
+        if x.kind != y.kind || x.rel != y.rel {
+            f64::INFINITY
+        } else {
+            m.max(((old.1 + x.time) - (t_ref + y.time)).abs())
+        }
+    })
+}
+
+/// The cache key of unit `w` with input tracks `tracks` and origin `t_ref`.
+fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
+    let g = &w.model.geometry;
+    key.clear();
+    let first = w.vars.iter().find_map(|v| match v {
+        Var::Magnet(m) => Some(*m as i64),
+        Var::Joint(_) => None,
+    });
+    let a = first.unwrap_or(0);
+    key.push(a - w.lo as i64);
+    key.push(w.hi as i64 - a);
+    key.push(w.vars.len() as i64);
+    if let Dynamics::Inertial(_) = w.model.options().dynamics {
+        // an inertial joint's inertia grows with the tiles it swings: its place matters
+        for v in &w.vars {
+            if let Var::Joint(jj) = v {
+                key.push((g.tiles() - 1 - jj) as i64);
+            }
+        }
+    }
+    if w.lo == 0 {
+        // the RI is in reach: the unit's place in the chain matters
+        key.push(w.j as i64);
+    }
+    for m in w.lo..=w.hi {
+        key.push(g.path_id(m) as i64);
+    }
+    for jj in w.lo / 2..w.hi / 2 {
+        key.push(g.joint_fold(jj).quarter_turns() as i64);
+    }
+    for t in tracks {
+        key.push(t.shape as i64);
+        if t.shape != REST {
+            key.push(((t.offset - t_ref) / quantum).round() as i64);
+        }
+    }
+}
