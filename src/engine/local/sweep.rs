@@ -11,11 +11,13 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender};
-use std::sync::Arc;
+use std::sync::{Arc, Condvar, Mutex, PoisonError};
 
 use crate::engine::local::cache::{Anchors, Cache, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
-use crate::engine::local::sweeps::{Entry, ANCHOR_FRACTION, OFFSET_QUANTUM, SHAPE_TOLERANCE};
+use crate::engine::local::sweeps::{
+    Entry, ANCHOR_FRACTION, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE,
+};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::window::{Inputs, Var, Window};
 use crate::reference::{Dynamics, Model};
@@ -71,6 +73,69 @@ pub(crate) struct SweepOut {
     pub(crate) complete: bool,
 }
 
+/// When a sweep that may not be needed starts, and whether it stops short: it is needed
+/// only if the sweep it trails does not converge. That sweep opens the gate as soon as an
+/// event has moved more than the sweeps' tolerance (it will not converge, unless the run
+/// turns out much longer than the sweeps so far); the sweeps' driver opens it, or cancels
+/// the sweep, when that sweep ends. Which does it and when changes no result: only how much
+/// work is done in vain.
+#[derive(Default)]
+pub(crate) struct Gate {
+    /// Undecided, go, or never start.
+    state: Mutex<Option<bool>>,
+    changed: Condvar,
+    cancel: AtomicBool,
+}
+
+impl Gate {
+    /// A gate open from the start.
+    pub(crate) fn opened() -> Gate {
+        Gate {
+            state: Mutex::new(Some(true)),
+            ..Gate::default()
+        }
+    }
+
+    /// Lets the sweep start (if it was not cancelled).
+    pub(crate) fn open(&self) {
+        let mut state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        if state.is_none() {
+            *state = Some(true);
+            self.changed.notify_all();
+        }
+    }
+
+    /// Stops the sweep at its next unit, or before it starts.
+    pub(crate) fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+        let mut state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        if state.is_none() {
+            *state = Some(false);
+        }
+        self.changed.notify_all();
+    }
+
+    /// Waits until the sweep may start or is cancelled; whether it may start.
+    fn wait(&self) -> bool {
+        let mut state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        loop {
+            match *state {
+                Some(go) => return go,
+                None => {
+                    state = self
+                        .changed
+                        .wait(state)
+                        .unwrap_or_else(PoisonError::into_inner)
+                }
+            }
+        }
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
 /// The sweep before, as read so far.
 struct Before {
     rx: Option<Receiver<Vec<UnitOut>>>,
@@ -118,17 +183,33 @@ fn unit_of_magnet(m: usize) -> usize {
     m.div_ceil(2)
 }
 
-/// Sweep `k` (from 1) of `ctx`'s chain: `shapes` holds every shape of the sweeps before
-/// `k - 1`, `before` streams sweep `k - 1`'s units (none for the first sweep), `out` takes
-/// this sweep's; the sweep stops short when `cancel` is set or the sweep before stopped short.
-pub(crate) fn sweep(
-    ctx: Ctx,
-    k: usize,
-    mut shapes: Shapes,
-    before: Option<Receiver<Vec<UnitOut>>>,
-    out: Sender<Vec<UnitOut>>,
-    cancel: &AtomicBool,
-) -> SweepOut {
+/// Where a sweep stands among the others.
+pub(crate) struct Place<'a> {
+    /// The sweep, from 1.
+    pub(crate) k: usize,
+    /// Sweep `k - 1`'s units as it makes them (none for the first sweep).
+    pub(crate) before: Option<Receiver<Vec<UnitOut>>>,
+    /// Takes this sweep's units.
+    pub(crate) out: Sender<Vec<UnitOut>>,
+    /// This sweep's gate: it starts when the gate opens, stops short when cancelled.
+    pub(crate) gate: &'a Gate,
+    /// The next sweep's gate, opened when this sweep will not converge.
+    pub(crate) next: &'a Gate,
+    /// The run's duration in the last sweep that ended (0: none yet).
+    pub(crate) duration: f64,
+}
+
+/// Sweep `place.k` of `ctx`'s chain: `shapes` holds every shape of the sweeps before
+/// `k - 1`. It stops short when cancelled, or when the sweep before stopped short.
+pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
+    let Place {
+        k,
+        before,
+        out,
+        gate,
+        next,
+        duration: known,
+    } = place;
     let model = ctx.model;
     let g = &model.geometry;
     let n = g.magnets();
@@ -148,9 +229,10 @@ pub(crate) fn sweep(
     let mut key = Vec::new();
     let mut chunk = Vec::new();
     let (mut moved, mut duration, mut solves, mut rhs) = (0.0_f64, 0.0_f64, 0, 0);
-    let mut complete = true;
+    let mut complete = gate.wait();
+    let mut go = false;
     for u in 0..=tiles {
-        if cancel.load(Ordering::Relaxed) {
+        if !complete || gate.cancelled() {
             complete = false;
             break;
         }
@@ -271,6 +353,10 @@ pub(crate) fn sweep(
             Some(old) => moved.max(change(old, &entry, t_ref)),
             None => f64::INFINITY,
         };
+        if !go && moved > SWEEP_TOLERANCE * known.max(duration).max(model.time_scale) {
+            next.open();
+            go = true;
+        }
         units.push((entry.clone(), t_ref));
         chunk.push(UnitOut {
             entry,

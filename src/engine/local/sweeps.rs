@@ -22,13 +22,12 @@
 //! every sweep; a U-turn met before in the same state is a hit too. A chain costs the
 //! transients of its distinct turns, and a look-up per unit and sweep.
 
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::channel;
 use std::sync::Arc;
 
 use crate::engine::local::cache::Cache;
 use crate::engine::local::solve::{Solution, SolveOptions};
-use crate::engine::local::sweep::{sweep, Ctx, SweepOut};
+use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut};
 use crate::engine::local::trajectory::{Shapes, Track};
 use crate::reference::Model;
 use crate::timeline::{Event, EventKind};
@@ -179,14 +178,21 @@ impl Done {
 
 /// The sweeps one after the other on this thread; the last.
 fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
-    let never = AtomicBool::new(false);
+    let open = Gate::opened();
     // the shapes of the sweeps before the one before the next, and before the next
     let (mut base, mut base_next) = (Shapes::default(), Shapes::default());
     let mut before = None;
     loop {
-        let k = done.solves_per_sweep.len() + 1;
-        let (tx, rx) = channel();
-        let out = sweep(ctx, k, base, before.take(), tx, &never);
+        let (out, rx) = channel();
+        let place = Place {
+            k: done.solves_per_sweep.len() + 1,
+            before: before.take(),
+            out,
+            gate: &open,
+            next: &open,
+            duration: 0.0,
+        };
+        let out = sweep(ctx, place, base);
         if done.add(ctx.model, &out) {
             return out;
         }
@@ -197,41 +203,58 @@ fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
 
 /// The sweeps on two threads, each but the first trailing the one before; the last.
 ///
-/// While sweep `k` runs, sweep `k + 1` trails it; when `k` ends it is the last if it
-/// converged (then `k + 1` is cancelled), else `k + 2` starts trailing `k + 1`.
+/// While sweep `k` runs, sweep `k + 1` trails it, from when `k` shows it will not converge
+/// ([`Gate`]); when `k` ends it is the last if it converged (then `k + 1` is cancelled),
+/// else `k + 2` is readied to trail `k + 1`.
 fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
-    let cancel: Vec<AtomicBool> = (0..=MAX_SWEEPS + 1)
-        .map(|_| AtomicBool::new(false))
-        .collect();
-    let cancel = &cancel;
+    let gates: Vec<Gate> = (0..=MAX_SWEEPS + 1).map(|_| Gate::default()).collect();
+    let gates = &gates;
+    gates[1].open();
     std::thread::scope(|scope| {
         let join = |h: std::thread::ScopedJoinHandle<'_, SweepOut>| {
             h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
         };
-        let (tx, mut rx) = channel();
-        let mut running =
-            scope.spawn(move || sweep(ctx, 1, Shapes::default(), None, tx, &cancel[1]));
-        // the shapes of the sweeps before the one running
+        let (out, mut rx) = channel();
+        let place = Place {
+            k: 1,
+            before: None,
+            out,
+            gate: &gates[1],
+            next: &gates[2],
+            duration: 0.0,
+        };
+        let mut running = scope.spawn(move || sweep(ctx, place, Shapes::default()));
+        // the shapes of the sweeps before the one running, and the run's duration in the
+        // last sweep that ended
         let mut base = Shapes::default();
+        let mut duration = 0.0;
         let mut k = 1;
         loop {
             let next = (k < MAX_SWEEPS).then(|| {
-                let (tx, next_rx) = channel();
-                let before = std::mem::replace(&mut rx, next_rx);
+                let (out, next_rx) = channel();
+                let place = Place {
+                    k: k + 1,
+                    before: Some(std::mem::replace(&mut rx, next_rx)),
+                    out,
+                    gate: &gates[k + 1],
+                    next: &gates[k + 2],
+                    duration,
+                };
                 let base = std::mem::take(&mut base);
-                scope.spawn(move || sweep(ctx, k + 1, base, Some(before), tx, &cancel[k + 1]))
+                scope.spawn(move || sweep(ctx, place, base))
             });
             let out = join(running);
             let last = done.add(ctx.model, &out);
             match next {
                 Some(next) if !last => {
+                    gates[k + 1].open();
                     base = out.shapes;
+                    duration = out.duration;
                     running = next;
                     k += 1;
                 }
                 next => {
-                    cancel[k + 1].store(true, Ordering::Relaxed);
-                    // it stops at its next unit, or when this sweep's stream runs out
+                    gates[k + 1].cancel();
                     if let Some(next) = next {
                         let _ = join(next);
                     }
