@@ -19,7 +19,7 @@ use crate::engine::local::sweeps::{
     Entry, ANCHOR_FRACTION, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE,
 };
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
-use crate::engine::local::window::{Inputs, Var, Window};
+use crate::engine::local::window::{unit_vars, Inputs, Var, Window};
 use crate::reference::{Dynamics, Model};
 
 /// A sweep hands its unit results on in chunks of at most this many units, or at every
@@ -45,8 +45,6 @@ pub(crate) struct UnitOut {
     entry: Arc<Entry>,
     /// The unit's time origin.
     t_ref: f64,
-    /// Its unknowns' tracks.
-    tracks: Vec<(Var, Track)>,
     /// The shapes the sweep made at this unit, in the order it made them.
     made: Vec<Arc<Shape>>,
 }
@@ -144,10 +142,12 @@ struct Before {
 }
 
 impl Before {
-    /// Reads the sweep before up to unit `need` (all of it if it has fewer), writing its
-    /// tracks and adding its shapes (sweep `k - 1`'s); false if it stopped short.
+    /// Reads the sweep before of `model`'s chain up to unit `need` (all of it if it has
+    /// fewer), writing its tracks and adding its shapes (sweep `k - 1`'s); false if it
+    /// stopped short.
     fn read_to(
         &mut self,
+        model: &Model,
         need: usize,
         k: usize,
         shapes: &mut Shapes,
@@ -165,12 +165,14 @@ impl Before {
                 for shape in unit.made {
                     shapes.add(k - 1, shape);
                 }
-                for (v, track) in unit.tracks {
-                    match v {
-                        Var::Magnet(m) => magnets[m] = track,
-                        Var::Joint(jj) => joints[jj] = track,
-                    }
-                }
+                let j = self.units.len() as isize - 1;
+                write_tracks(
+                    &unit_vars(model, j),
+                    &unit.entry,
+                    unit.t_ref,
+                    magnets,
+                    joints,
+                );
                 self.units.push((unit.entry, unit.t_ref));
             }
         }
@@ -239,7 +241,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         let j = u as isize - 1;
         let w = Window::new(model, j, cutoff);
         let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
-        if !before.read_to(need, k, &mut shapes, &mut magnets, &mut joints) {
+        if !before.read_to(model, need, k, &mut shapes, &mut magnets, &mut joints) {
             complete = false;
             break;
         }
@@ -331,21 +333,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             }
         };
         saved.restore(&mut magnets, &mut joints);
-        let mut written = Vec::with_capacity(w.vars.len());
-        for (i, sh) in entry.shapes.iter().enumerate() {
-            let track = match sh {
-                Some((id, start)) => Track {
-                    shape: *id,
-                    offset: t_ref + start,
-                },
-                None => Track::REST,
-            };
-            match w.vars[i] {
-                Var::Magnet(m) => magnets[m] = track,
-                Var::Joint(jj) => joints[jj] = track,
-            }
-            written.push((w.vars[i], track));
-        }
+        write_tracks(&w.vars, &entry, t_ref, &mut magnets, &mut joints);
         if let Some(ev) = entry.solution.events.last() {
             duration = duration.max(t_ref + ev.time);
         }
@@ -358,12 +346,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             go = true;
         }
         units.push((entry.clone(), t_ref));
-        chunk.push(UnitOut {
-            entry,
-            t_ref,
-            tracks: written,
-            made,
-        });
+        chunk.push(UnitOut { entry, t_ref, made });
         if solved || chunk.len() >= CHUNK {
             // the next sweep may have stopped: nothing to tell it then
             let _ = out.send(std::mem::take(&mut chunk));
@@ -382,6 +365,29 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         solves,
         rhs,
         complete,
+    }
+}
+
+/// Writes the tracks of a unit with unknowns `vars`, solution `entry` and origin `t_ref`.
+fn write_tracks(
+    vars: &[Var],
+    entry: &Entry,
+    t_ref: f64,
+    magnets: &mut [Track],
+    joints: &mut [Track],
+) {
+    for (v, sh) in vars.iter().zip(&entry.shapes) {
+        let track = match sh {
+            Some((id, start)) => Track {
+                shape: *id,
+                offset: t_ref + start,
+            },
+            None => Track::REST,
+        };
+        match *v {
+            Var::Magnet(m) => magnets[m] = track,
+            Var::Joint(jj) => joints[jj] = track,
+        }
     }
 }
 

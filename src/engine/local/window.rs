@@ -84,18 +84,7 @@ impl<'a> Window<'a> {
     /// The window of unit `j` of `model` with pair cutoff `cutoff`.
     pub(crate) fn new(model: &'a Model, j: isize, cutoff: usize) -> Window<'a> {
         let n = model.geometry.magnets();
-        let mut vars = Vec::with_capacity(3);
-        for k in [2 * j + 1, 2 * j + 2] {
-            if k >= 0 && (k as usize) < n {
-                vars.push(Var::Magnet(k as usize));
-            }
-        }
-        if j >= 0
-            && (j as usize) + 1 < model.geometry.tiles()
-            && model.joint_var(j as usize).is_some()
-        {
-            vars.push(Var::Joint(j as usize));
-        }
+        let vars = unit_vars(model, j);
         let (first, last) = match (
             vars.first(),
             vars.iter().rev().find(|v| matches!(v, Var::Magnet(_))),
@@ -268,6 +257,22 @@ impl<'a> Window<'a> {
             };
         }
     }
+}
+
+/// Unit `j`'s unknowns: its magnets in chain order, then its joint if it folds.
+pub(crate) fn unit_vars(model: &Model, j: isize) -> Vec<Var> {
+    let n = model.geometry.magnets();
+    let mut vars = Vec::with_capacity(3);
+    for k in [2 * j + 1, 2 * j + 2] {
+        if k >= 0 && (k as usize) < n {
+            vars.push(Var::Magnet(k as usize));
+        }
+    }
+    if j >= 0 && (j as usize) + 1 < model.geometry.tiles() && model.joint_var(j as usize).is_some()
+    {
+        vars.push(Var::Joint(j as usize));
+    }
+    vars
 }
 
 /// Unknown `v`'s pairs in a window from magnet `lo` (see [`Window`]'s `pairs`): a magnet's
