@@ -21,6 +21,17 @@
 //! which every unit is the one before it shifted in time: a cache hit, no integration, in
 //! every sweep; a U-turn met before in the same state is a hit too. A chain costs the
 //! transients of its distinct turns, and a look-up per unit and sweep.
+//!
+//! **Two sweeps at once.** Unit `u` of sweep `k + 1` needs only that sweep's units before
+//! `u` and sweep `k`'s up to the last its window reaches (`cutoff / 2` units on): so sweep
+//! `k + 1` can run on a second thread, trailing sweep `k` by a few units
+//! ([`crate::engine::local::sweep`]). When sweep `k` ends, it is the last if it converged
+//! (sweep `k + 1` is then cancelled); if not, sweep `k + 2` trails `k + 1`. Two threads take
+//! the sweeps two by two: four sweeps cost about the wall time of two. The solution is the
+//! same, bit for bit, with one thread or two and whatever their timing: every shape's id
+//! numbers its sweep and its place among that sweep's shapes, each sweep reads the shapes it
+//! may (those of the sweeps before and its own), and a cache look-up sees exactly the entries
+//! of [`crate::engine::local::cache`]'s rule, one thread or two.
 
 use std::sync::mpsc::channel;
 use std::sync::Arc;
