@@ -35,7 +35,8 @@ mod trigger;
 
 pub use energy::energy_curve;
 pub use local::{
-    DEFAULT_LOCAL_TOLERANCE, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE,
+    AUTO_MIN_TILES, DEFAULT_LOCAL_TOLERANCE, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE,
+    SWEEP_TOLERANCE,
 };
 pub use result::{fold_angle, joint_angles_at, Timeline};
 pub use run::{run, EngineError, EngineMethod, EngineOptions};

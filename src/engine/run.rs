@@ -59,8 +59,9 @@ pub struct EngineOptions {
     pub force_law: ForceLaw,
     /// Threads of the local solves' sweeps: 1 runs them one after the other, 2 or more
     /// runs two at once, the later trailing the earlier (more than 2 are not used); 0, the
-    /// default: [`std::thread::available_parallelism`]. The events are the same, bit for
-    /// bit, whatever the number.
+    /// default: [`std::thread::available_parallelism`], but one thread for a chain of fewer
+    /// than [`crate::engine::AUTO_MIN_TILES`] tiles or when the engine runs on a rayon
+    /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
 }
 

@@ -28,7 +28,7 @@ mod window;
 use std::f64::consts::FRAC_PI_2;
 
 pub(crate) use sweeps::ChainSolution;
-pub use sweeps::{MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
+pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
 
 use crate::reference::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
@@ -85,7 +85,7 @@ pub(crate) struct LocalRun {
 }
 
 /// Solves `model`'s chain (starts reported at [`start_fraction`]), the sweeps on `threads`
-/// threads (0: as many as the machine has; at most 2 are used).
+/// threads ([`EngineOptions::threads`](crate::engine::EngineOptions::threads)).
 pub(crate) fn run_local(model: &Model, tol: f64, threads: usize) -> LocalRun {
     let inertial = solve::InertialModel::new(model);
     let opts = solve::SolveOptions {

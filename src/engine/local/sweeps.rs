@@ -122,8 +122,12 @@ impl ChainSolution {
     }
 }
 
+/// Threads 0 (the default) runs chains of fewer tiles than this on one thread: 500.
+pub const AUTO_MIN_TILES: usize = 500;
+
 /// Solves `model`'s chain with local solves of tolerance `opts.tol`, the sweeps on
-/// `threads` threads (0: as many as the machine has; more than 2 are not used).
+/// `threads` threads (more than 2 are not used; 0: as many as the machine has, but one for
+/// a chain of fewer than [`AUTO_MIN_TILES`] tiles or when called on a rayon pool's thread).
 pub(crate) fn solve_chain(model: &Model, opts: SolveOptions, threads: usize) -> ChainSolution {
     solve_chain_with(model, opts, true, threads)
 }
@@ -144,6 +148,11 @@ pub(crate) fn solve_chain_with(
         cache: &cache,
     };
     let threads = match threads {
+        // a short chain's sweeps cost less than starting threads, and a caller that runs
+        // chains on a pool's threads keeps its cores busy already
+        0 if model.geometry.tiles() < AUTO_MIN_TILES || rayon::current_thread_index().is_some() => {
+            1
+        }
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         t => t,
     };
