@@ -304,3 +304,32 @@ fn collisions_are_reported_with_time_and_tiles() {
         "{reason}"
     );
 }
+
+#[test]
+fn local_solves_on_one_thread_or_two_give_the_same_events() {
+    // the sweeps two at once, the later trailing the earlier: every event the same to the
+    // last bit (engine::local's cache rule and shape ids, not the threads' timing)
+    use foldchain::reference::{Dynamics, ModelOptions};
+    let chain = Chain::parse("S*30 LL S*30 RR S*30 LL S*30").unwrap();
+    let designs = TileDesigns::global(Design::thesis().with_s(0.1));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let on = |threads| {
+        let opts = EngineOptions::default()
+            .with_model(model)
+            .with_threads(threads);
+        run(&chain, &designs, &opts).unwrap()
+    };
+    let one = on(1);
+    assert_eq!(one.outcome, Outcome::Completed);
+    for threads in [2, 2, 0] {
+        let other = on(threads);
+        assert_eq!(one.events.len(), other.events.len());
+        for (a, b) in one.events.iter().zip(&other.events) {
+            assert_eq!(
+                (a.time.to_bits(), a.kind, a.index),
+                (b.time.to_bits(), b.kind, b.index),
+                "{threads} threads"
+            );
+        }
+    }
+}
