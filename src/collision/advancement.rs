@@ -24,6 +24,7 @@ use std::collections::HashMap;
 use super::block_pairs::near_pairs;
 use super::blocks::{Contact, Segment};
 use super::chain_tree::ChainTree;
+use super::pieces::{check_in_pieces, piece_count, Piece};
 use super::windows::{track_breakpoints, Windows};
 use super::{check_word, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError};
 
@@ -90,10 +91,45 @@ impl<'a> Walk<'a> {
         }
     }
 
+    /// Checks every segment, in [`piece_count`] pieces (see [`super::pieces`]).
     fn run(&self, shape: &ConvexPolygon, tolerance: f64) -> Result<(), ScheduleError> {
-        let Some(&t0) = self.breakpoints.first() else {
-            return Ok(());
+        let segments = self.breakpoints.len().saturating_sub(1);
+        self.run_in(shape, tolerance, piece_count(segments))
+    }
+
+    /// Checks every segment in `pieces` pieces.
+    fn run_in(
+        &self,
+        shape: &ConvexPolygon,
+        tolerance: f64,
+        pieces: usize,
+    ) -> Result<(), ScheduleError> {
+        let segments = self.breakpoints.len().saturating_sub(1);
+        check_in_pieces(segments, pieces, MAX_WORK, |from, to, budget| {
+            self.run_range(shape, tolerance, from, to, budget)
+        })
+    }
+
+    /// Checks segments `from..to` (segment `i` runs from breakpoint `i` to `i + 1`), with
+    /// `budget` pair evaluations.
+    fn run_range(
+        &self,
+        shape: &ConvexPolygon,
+        tolerance: f64,
+        from: usize,
+        to: usize,
+        budget: usize,
+    ) -> Piece {
+        let mut piece = Piece {
+            start: self.breakpoints.get(from).copied().unwrap_or(f64::INFINITY),
+            best: None,
+            inside: false,
+            undecided: None,
         };
+        let t0 = piece.start;
+        if !t0.is_finite() {
+            return piece;
+        }
         let mut angles = vec![0.0; self.joints];
         for tr in self.tracks {
             angles[tr.joint] = tr.angle_at(t0);
@@ -105,11 +141,18 @@ impl<'a> Walk<'a> {
         let mut active: Vec<usize> = Vec::new();
         let mut work = 0usize;
         let mut windows = Windows::new(self.tracks, self.joints);
+        // the tracks that ended before the piece: at their last angle, passed
+        for (i, tr) in self.tracks.iter().enumerate() {
+            if first_time(tr) <= t0 {
+                windows.pass(self.tracks, i, t0);
+            }
+        }
         // pairs of blocks (by their runs of tiles) advanced past a segment's end: clean until
         let mut certified: HashMap<Span, f64> = HashMap::new();
-        let mut best: Option<Contact> = None;
         let mut pairs = Vec::new();
-        for seg in self.breakpoints.windows(2) {
+        let mut moving: Vec<(usize, f64, f64, f64)> = Vec::new();
+        let mut turned: Vec<(usize, f64)> = Vec::new();
+        for seg in self.breakpoints[from..=to.min(self.breakpoints.len() - 1)].windows(2) {
             let (ta, tb) = (seg[0], seg[1]);
             if tb <= ta {
                 continue;
@@ -120,12 +163,13 @@ impl<'a> Walk<'a> {
             }
             // bring the tree to the angles at ta; note the joints that turn until tb, with
             // their chords' rates (kept past tb until the track's next breakpoint)
-            let mut moving: Vec<(usize, f64, f64, f64)> = Vec::new();
+            moving.clear();
+            turned.clear();
             active.retain(|&ti| {
                 let tr = &self.tracks[ti];
                 windows.pass(self.tracks, ti, ta);
                 let a0 = tr.angle_at(ta);
-                tree.set_angle(tr.joint, a0);
+                turned.push((tr.joint, a0));
                 if last_time(tr) <= ta {
                     return false;
                 }
@@ -135,13 +179,14 @@ impl<'a> Walk<'a> {
                 }
                 true
             });
+            tree.set_angles(turned.iter().copied());
             if moving.is_empty() {
                 continue;
             }
             moving.sort_by_key(|m| m.0);
             let segment = Segment::new(&tree, ta, tb, &moving, tolerance);
             for b in 1..segment.blocks() {
-                segment.rotation_contact(b, &mut best);
+                segment.rotation_contact(b, &mut piece.best);
             }
             pairs.clear();
             near_pairs(&segment, |a, b| pairs.push((a, b)));
@@ -152,31 +197,33 @@ impl<'a> Walk<'a> {
                 }
                 // the joints inside the span keep their motion until their next breakpoint
                 let until = windows.until(span.0, span.3).max(tb);
-                let clean = segment
-                    .advance(a, b, shape, until, &mut best, &mut work, MAX_WORK)
-                    .map_err(|e| ScheduleError::Undecided {
-                        steps: work,
-                        time: e.time,
-                    })?;
-                if clean > tb {
-                    certified.insert(span, clean);
+                match segment.advance(a, b, shape, until, &mut piece.best, &mut work, budget) {
+                    Ok(clean) if clean > tb => {
+                        certified.insert(span, clean);
+                    }
+                    Ok(_) => {}
+                    Err(e) => {
+                        piece.undecided = Some((ta, work, e.time));
+                        return piece;
+                    }
                 }
             }
-            if let Some(c) = best.filter(|c| c.time <= tb) {
-                return Err(collision(c));
+            if piece.best.is_some_and(|c| c.time <= tb) {
+                piece.inside = true;
+                return piece;
             }
             if certified.len() > 1 << 16 {
                 certified.retain(|_, &mut t| t > tb);
             }
         }
-        best.map_or(Ok(()), |c| Err(collision(c)))
+        piece
     }
 }
 
 /// Two blocks by their runs of tiles: first and last tile of each.
 type Span = (usize, usize, usize, usize);
 
-fn collision(c: Contact) -> ScheduleError {
+pub(super) fn collision(c: Contact) -> ScheduleError {
     ScheduleError::Collision(Collision {
         joint: Some(c.joint),
         angle_deg: c.angle_deg,
@@ -403,6 +450,60 @@ mod tests {
         None
     }
 
+    /// A random word of `tiles.0 + [0, tiles.1)` tiles, each letter straight with
+    /// probability `straight` (else L or R), and a random overlapping schedule: folding
+    /// joints through `knots` random angles on the way, some straight joints wiggling
+    /// through straight (changing hinge).
+    pub(super) fn random_case(
+        next: &mut impl FnMut() -> f64,
+        tiles: (usize, usize),
+        straight: f64,
+        knots: usize,
+    ) -> (FoldWord, FoldSchedule) {
+        let n = tiles.0 + (next() * tiles.1 as f64) as usize;
+        let folds: Vec<crate::Fold> = (0..n - 1)
+            .map(|_| {
+                if next() < straight {
+                    crate::Fold::S
+                } else {
+                    crate::Fold::ALL[1 + (next() * 2.0) as usize % 2]
+                }
+            })
+            .collect();
+        let w = FoldWord::from_folds(folds);
+        let mut tracks = Vec::new();
+        for (joint, f) in w.folds().iter().enumerate() {
+            let start = next() * n as f64 * 0.4;
+            let len = 0.3 + next();
+            let target = f.quarter_turns() as f64 * FRAC_PI_2;
+            if target != 0.0 {
+                let mut times: Vec<f64> = (0..knots).map(|_| start + len * next()).collect();
+                times.sort_by(f64::total_cmp);
+                let mut angles: Vec<f64> =
+                    (0..knots).map(|_| target * (0.2 + 0.8 * next())).collect();
+                times.insert(0, start);
+                angles.insert(0, 0.0);
+                times.push(start + len);
+                angles.push(target);
+                tracks.push(JointTrack {
+                    joint,
+                    times,
+                    angles,
+                    ended: None,
+                });
+            } else if next() < 0.3 {
+                let a = 0.4 * (next() - 0.5);
+                tracks.push(JointTrack {
+                    joint,
+                    times: vec![start, start + 0.5 * len, start + len],
+                    angles: vec![0.0, a, -a],
+                    ended: None,
+                });
+            }
+        }
+        (w, FoldSchedule { tracks })
+    }
+
     /// Random words and random overlapping schedules (folding joints through `knots` random
     /// angles on the way, some straight joints wiggling through straight, changing hinge),
     /// checked by the block check and by the plain check: the same verdict, the same tiles
@@ -419,48 +520,7 @@ mod tests {
         let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
         let (mut collided, mut clean) = (0, 0);
         for round in 0..rounds {
-            let n = tiles.0 + (next() * tiles.1 as f64) as usize;
-            let folds: Vec<crate::Fold> = (0..n - 1)
-                .map(|_| {
-                    if next() < straight {
-                        crate::Fold::S
-                    } else {
-                        crate::Fold::ALL[1 + (next() * 2.0) as usize % 2]
-                    }
-                })
-                .collect();
-            let w = FoldWord::from_folds(folds);
-            let mut tracks = Vec::new();
-            for (joint, f) in w.folds().iter().enumerate() {
-                let start = next() * n as f64 * 0.4;
-                let len = 0.3 + next();
-                let target = f.quarter_turns() as f64 * FRAC_PI_2;
-                if target != 0.0 {
-                    let mut times: Vec<f64> = (0..knots).map(|_| start + len * next()).collect();
-                    times.sort_by(f64::total_cmp);
-                    let mut angles: Vec<f64> =
-                        (0..knots).map(|_| target * (0.2 + 0.8 * next())).collect();
-                    times.insert(0, start);
-                    angles.insert(0, 0.0);
-                    times.push(start + len);
-                    angles.push(target);
-                    tracks.push(JointTrack {
-                        joint,
-                        times,
-                        angles,
-                        ended: None,
-                    });
-                } else if next() < 0.3 {
-                    let a = 0.4 * (next() - 0.5);
-                    tracks.push(JointTrack {
-                        joint,
-                        times: vec![start, start + 0.5 * len, start + len],
-                        angles: vec![0.0, a, -a],
-                        ended: None,
-                    });
-                }
-            }
-            let s = FoldSchedule { tracks };
+            let (w, s) = random_case(&mut next, tiles, straight, knots);
             let fast = match check_schedule(&w, &s, &CheckOptions::default()) {
                 Ok(()) => None,
                 Err(ScheduleError::Collision(c)) => Some((c.time.unwrap(), c.tiles)),
@@ -498,5 +558,47 @@ mod tests {
         let (collided, clean) =
             agrees_with_the_plain_check(0x0DDB_A11C_0FFE_E124, 150, (15, 20), 0.8, 8);
         assert!(collided > 25 && clean > 50, "{collided} {clean}");
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod piece_tests {
+    use super::tests::random_case;
+    use super::*;
+
+    #[test]
+    fn pieces_give_the_verdict_of_one_walk() {
+        // the same random schedules walked in one piece and cut into 2, 3 and 7 pieces
+        // (each starting afresh, without the pairs carried in): the same verdict, tiles,
+        // joint and contact time
+        let mut bits = super::super::xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
+        let shape = Octagon::new(1.0).to_parry(1e-7).unwrap();
+        let (mut collided, mut clean) = (0, 0);
+        for round in 0..120 {
+            let (w, s) = random_case(&mut next, (12, 20), 0.7, 6);
+            let mut tracks = s.clone();
+            tracks.tracks.sort_by_key(|t| t.joint);
+            let walk = Walk::new(&w, &tracks);
+            let one = walk.run_in(&shape, 1e-7, 1);
+            for pieces in [2, 3, 7] {
+                let cut = walk.run_in(&shape, 1e-7, pieces);
+                match (&one, &cut) {
+                    (Ok(()), Ok(())) => {}
+                    (Err(ScheduleError::Collision(a)), Err(ScheduleError::Collision(b))) => {
+                        assert_eq!((a.tiles, a.joint), (b.tiles, b.joint), "round {round}");
+                        let (ta, tb) = (a.time.unwrap(), b.time.unwrap());
+                        assert!((ta - tb).abs() <= 1e-9 * (1.0 + ta), "round {round}");
+                    }
+                    _ => panic!("round {round} {w} in {pieces}: {one:?} against {cut:?}"),
+                }
+            }
+            match one {
+                Ok(()) => clean += 1,
+                Err(_) => collided += 1,
+            }
+        }
+        assert!(collided > 20 && clean > 20, "{collided} {clean}");
     }
 }

@@ -56,7 +56,7 @@ pub(super) struct Contact {
 }
 
 impl Contact {
-    fn earlier_than(&self, other: &Option<Contact>) -> bool {
+    pub(super) fn earlier_than(&self, other: &Option<Contact>) -> bool {
         other.is_none_or(|o| (self.time, self.tiles) < (o.time, o.tiles))
     }
 }
@@ -99,8 +99,10 @@ pub(super) struct Segment<'a> {
     spin: Vec<f64>,
     chain: Vec<f64>,
     spin_chain: Vec<f64>,
-    /// The tree nodes making up each block.
-    covers: Vec<Vec<Part>>,
+    /// The tree nodes making up the blocks, in tile order: block `b`'s are
+    /// `parts[starts[b]..starts[b + 1]]`.
+    parts: Vec<Part>,
+    starts: Vec<usize>,
     roots: Vec<Part>,
     /// Each block's box, in world coordinates at the segment's start.
     root_boxes: Vec<(Point, Point)>,
@@ -123,36 +125,41 @@ impl<'a> Segment<'a> {
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
-        let hinges: Vec<Point> = moving
+        // every block's cover in one descent: block `b` ends at tile `moving[b].0` (the
+        // last at the chain's end)
+        let ends: Vec<usize> = moving
             .iter()
-            .map(|&(k, a0, rate, _)| {
-                let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
-                tree.pose_of(k).apply(Point::new(x, y))
-            })
+            .map(|m| m.0)
+            .chain(std::iter::once(tree.tiles() - 1))
             .collect();
-        let mut covers = Vec::with_capacity(moving.len() + 1);
-        let mut root_boxes = Vec::with_capacity(moving.len() + 1);
-        let mut roots = Vec::with_capacity(moving.len() + 1);
-        let mut lo = 0;
-        for b in 0..=moving.len() {
-            let hi = moving.get(b).map_or(tree.tiles() - 1, |m| m.0);
-            let mut nodes = Vec::new();
-            tree.cover(lo, hi, &mut nodes);
-            let parts: Vec<Part> = nodes
-                .into_iter()
-                .map(|(node, pose)| {
-                    let (c, radius) = tree.disc(node);
-                    Part {
-                        node,
-                        block: b,
-                        pose,
-                        centre: pose.apply(c),
-                        radius,
-                    }
-                })
-                .collect();
-            let (centre, radius) = enclosing(&parts);
-            root_boxes.push(world_box(tree, &parts));
+        let mut nodes = Vec::with_capacity(4 * ends.len());
+        tree.covers(&ends, &mut nodes);
+        let mut parts = Vec::with_capacity(nodes.len());
+        let mut starts = vec![0; ends.len() + 1];
+        for &(block, node, pose) in &nodes {
+            let (c, radius) = tree.disc(node);
+            starts[block + 1] = parts.len() + 1;
+            parts.push(Part {
+                node,
+                block,
+                pose,
+                centre: pose.apply(c),
+                radius,
+            });
+        }
+        // the hinge of each moving joint, on the last tile of the block before it
+        let mut hinges = Vec::with_capacity(moving.len());
+        for (b, &(_, a0, rate, _)) in moving.iter().enumerate() {
+            let last = &parts[starts[b + 1] - 1];
+            let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
+            hinges.push(tree.last_pose(last.node, &last.pose).apply(Point::new(x, y)));
+        }
+        let mut root_boxes = Vec::with_capacity(ends.len());
+        let mut roots = Vec::with_capacity(ends.len());
+        for b in 0..ends.len() {
+            let cover = &parts[starts[b]..starts[b + 1]];
+            let (centre, radius) = enclosing(cover);
+            root_boxes.push(world_box(tree, cover));
             roots.push(Part {
                 node: 0,
                 block: b,
@@ -160,8 +167,6 @@ impl<'a> Segment<'a> {
                 centre,
                 radius,
             });
-            covers.push(parts);
-            lo = hi + 1;
         }
         let rate: Vec<f64> = moving.iter().map(|m| m.2).collect();
         let (mut spin, mut chain, mut spin_chain) = (vec![0.0], vec![0.0], vec![0.0]);
@@ -185,7 +190,8 @@ impl<'a> Segment<'a> {
             spin,
             chain,
             spin_chain,
-            covers,
+            parts,
+            starts,
             roots,
             root_boxes,
             outline: o.inset_vertices(tolerance).map(Point::from),
@@ -229,7 +235,10 @@ impl<'a> Segment<'a> {
     /// Calls `f` with each part of `part` (none for a tile).
     fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
         if part.node == 0 {
-            self.covers[part.block].iter().for_each(|&c| f(c));
+            let b = part.block;
+            self.parts[self.starts[b]..self.starts[b + 1]]
+                .iter()
+                .for_each(|&c| f(c));
             return;
         }
         if self.tree.tile(part.node).is_some() {

@@ -209,6 +209,7 @@ impl ChainTree {
         };
     }
 
+    #[cfg(test)]
     /// Turns joint `k` to `angle`, updating the nodes above it.
     pub fn set_angle(&mut self, k: usize, angle: f64) {
         if self.angles[k] == angle {
@@ -269,6 +270,7 @@ impl ChainTree {
 
     /// The nodes whose runs make up tiles `lo..=hi`, fewest first-to-last, each with the world
     /// pose of its first tile (tile 0 at the origin heading +x), appended to `out`.
+    #[cfg(test)]
     pub fn cover(&self, lo: usize, hi: usize, out: &mut Vec<(usize, Rigid)>) {
         let mut stack = vec![(1usize, Rigid::IDENTITY)];
         while let Some((p, at)) = stack.pop() {
@@ -288,6 +290,71 @@ impl ChainTree {
         }
     }
 
+    /// The covers of the consecutive runs of tiles that end at `ends` (increasing, the last
+    /// the chain's last tile) in one descent: for each node, the run it falls in, the node
+    /// and the world pose of its first tile, in tile order, appended to `out`. The same nodes
+    /// as [`ChainTree::cover`] of each run, at `O(runs log(n / runs))`.
+    pub fn covers(&self, ends: &[usize], out: &mut Vec<(usize, usize, Rigid)>) {
+        let mut stack = Vec::with_capacity(64);
+        stack.push((1usize, Rigid::IDENTITY));
+        let mut run = 0;
+        while let Some((p, at)) = stack.pop() {
+            if self.nodes[p].radius < 0.0 {
+                continue;
+            }
+            let (first, last) = (self.first(p), self.last(p));
+            while run < ends.len() && ends[run] < first {
+                run += 1;
+            }
+            let Some(&end) = ends.get(run) else {
+                break;
+            };
+            if last <= end {
+                out.push((run, p, at));
+                continue;
+            }
+            // right child first: the left one is taken next
+            if self.nodes[2 * p + 1].radius >= 0.0 {
+                stack.push((2 * p + 1, at.then(&self.nodes[p].to_right)));
+            }
+            stack.push((2 * p, at));
+        }
+    }
+
+    /// The pose of node `p`'s last tile, given the pose `at` of its first.
+    pub fn last_pose(&self, p: usize, at: &Rigid) -> Rigid {
+        at.then(&self.nodes[p].to_last)
+    }
+
+    /// Turns each joint `k` of `angles` (`(k, angle)`) to its angle, then updates every node
+    /// above them once: the same nodes as [`ChainTree::set_angle`] one by one, each merged
+    /// once, children before parents (a child's index is larger than its parent's).
+    pub fn set_angles(&mut self, angles: impl Iterator<Item = (usize, f64)>) {
+        let mut dirty = Vec::new();
+        for (k, angle) in angles {
+            if self.angles[k] == angle {
+                continue;
+            }
+            self.angles[k] = angle;
+            self.turns[k] = turn_of(angle);
+            let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
+            while a != b {
+                a /= 2;
+                b /= 2;
+            }
+            while a >= 1 {
+                dirty.push(a);
+                a /= 2;
+            }
+        }
+        dirty.sort_unstable_by(|a, b| b.cmp(a));
+        dirty.dedup();
+        for p in dirty {
+            self.merge(p);
+        }
+    }
+
+    #[cfg(test)]
     /// The world pose of tile `i`.
     pub fn pose_of(&self, i: usize) -> Rigid {
         let mut out = Vec::with_capacity(1);
@@ -344,9 +411,15 @@ mod tests {
                     assert!((c - Point::new(q.x, q.y)).hypot() + r <= radius + 1e-9);
                 }
             }
+            // one joint at a time, or all at once (each node above them merged once)
             for k in [0, 5 + round, 40, 75] {
                 a[k] = -a[k] * 0.5;
-                tree.set_angle(k, a[k]);
+                if round % 2 == 0 {
+                    tree.set_angle(k, a[k]);
+                }
+            }
+            if round % 2 == 1 {
+                tree.set_angles([0, 5 + round, 40, 75].into_iter().map(|k| (k, a[k])));
             }
         }
     }
@@ -366,6 +439,35 @@ mod tests {
         // straight chain: tile i at (i, 0)
         for &(p, at) in &cover {
             assert!(close(at.apply(Point::ORIGIN), (tree.first(p) as f64, 0.0)));
+        }
+    }
+
+    #[test]
+    fn covers_of_runs_in_one_descent() {
+        let angles: Vec<f64> = (0..600).map(|k| 0.01 * ((k * 7919) % 13) as f64 - 0.06).collect();
+        let tree = ChainTree::new(angles, 1e-7);
+        for ends in [vec![600], vec![0, 600], vec![5, 6, 7, 300, 301, 599, 600]] {
+            let mut all = Vec::new();
+            tree.covers(&ends, &mut all);
+            let mut expected = Vec::new();
+            let mut lo = 0;
+            for (run, &hi) in ends.iter().enumerate() {
+                let mut one = Vec::new();
+                tree.cover(lo, hi, &mut one);
+                expected.extend(one.into_iter().map(|(p, at)| (run, p, at)));
+                lo = hi + 1;
+            }
+            assert_eq!(all.len(), expected.len(), "{ends:?}");
+            for (x, y) in all.iter().zip(&expected) {
+                assert_eq!((x.0, x.1), (y.0, y.1), "{ends:?}");
+                let (p, q) = (x.2.apply(Point::ORIGIN), y.2.apply(Point::ORIGIN));
+                assert!(close(p, (q.x, q.y)), "{ends:?}");
+            }
+            // the last tile of each run, from its last node
+            let last = all.iter().rev().find(|x| x.0 == 0).unwrap();
+            let at = tree.last_pose(last.1, &last.2).apply(Point::ORIGIN);
+            let want = tree.pose_of(ends[0]).apply(Point::ORIGIN);
+            assert!(close(at, (want.x, want.y)), "{ends:?}");
         }
     }
 

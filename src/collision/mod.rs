@@ -32,6 +32,7 @@ mod first_hit;
 pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
+mod pieces;
 mod schedule;
 mod sequential;
 mod sweep;
