@@ -154,7 +154,8 @@ fn local_check(file: &str, cache: Option<&str>) {
         None => {
             let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
             let t = Instant::now();
-            let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()));
+            let model =
+                ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()));
             let opts = EngineOptions::default().with_model(model);
             let tl = run(&chain, &designs, &opts).expect("engine");
             println!("engine: {:.2} s", t.elapsed().as_secs_f64());
@@ -178,11 +179,16 @@ fn local_check(file: &str, cache: Option<&str>) {
             .num_threads(threads)
             .build()
             .expect("pool");
-        let (s, r) = median(3, || pool.install(|| check_schedule(&word, &schedule, &opts)));
+        let (s, r) = median(3, || {
+            pool.install(|| check_schedule(&word, &schedule, &opts))
+        });
         let v = match &r {
             Ok(()) => "clean".to_string(),
             Err(e) => e.to_string(),
         };
-        println!("threads {}: {s:.3} s (median of 3): {v}", pool.current_num_threads());
+        println!(
+            "threads {}: {s:.3} s (median of 3): {v}",
+            pool.current_num_threads()
+        );
     }
 }

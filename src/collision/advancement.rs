@@ -19,7 +19,7 @@ use parry2d_f64::shape::ConvexPolygon;
 
 use crate::{FoldWord, Octagon};
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::block_pairs::near_pairs;
 use super::blocks::{Contact, Segment};
@@ -148,7 +148,7 @@ impl<'a> Walk<'a> {
             }
         }
         // pairs of blocks (by their runs of tiles) advanced past a segment's end: clean until
-        let mut certified: HashMap<Span, f64> = HashMap::new();
+        let mut certified: FxHashMap<Span, f64> = FxHashMap::default();
         let mut pairs = Vec::new();
         let mut moving: Vec<(usize, f64, f64, f64)> = Vec::new();
         let mut turned: Vec<(usize, f64)> = Vec::new();
@@ -185,8 +185,17 @@ impl<'a> Walk<'a> {
             }
             moving.sort_by_key(|m| m.0);
             let segment = Segment::new(&tree, ta, tb, &moving, tolerance);
+            // neighbouring blocks, carried like the other pairs
             for b in 1..segment.blocks() {
-                segment.rotation_contact(b, &mut piece.best);
+                let span = segment.span(b - 1, b);
+                if certified.get(&span).is_some_and(|&t| t >= tb) {
+                    continue;
+                }
+                let until = windows.until(span.0, span.3).max(tb);
+                segment.rotation_contact(b, until, &mut piece.best);
+                if until > tb {
+                    certified.insert(span, until);
+                }
             }
             pairs.clear();
             near_pairs(&segment, |a, b| pairs.push((a, b)));

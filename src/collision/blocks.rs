@@ -152,7 +152,10 @@ impl<'a> Segment<'a> {
         for (b, &(_, a0, rate, _)) in moving.iter().enumerate() {
             let last = &parts[starts[b + 1] - 1];
             let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
-            hinges.push(tree.last_pose(last.node, &last.pose).apply(Point::new(x, y)));
+            hinges.push(
+                tree.last_pose(last.node, &last.pose)
+                    .apply(Point::new(x, y)),
+            );
         }
         let mut root_boxes = Vec::with_capacity(ends.len());
         let mut roots = Vec::with_capacity(ends.len());
@@ -279,11 +282,14 @@ impl<'a> Segment<'a> {
     }
 
     /// The first contact between blocks `b - 1` and `b`, which turn about the hinge of
-    /// `joints[b - 1]` relative to each other, if earlier than `best`.
-    pub fn rotation_contact(&self, b: usize, best: &mut Option<Contact>) {
+    /// `joints[b - 1]` relative to each other, from the segment's start until `until` (at
+    /// or after its end: no joint inside the two blocks changes its motion before), if
+    /// earlier than `best`.
+    pub fn rotation_contact(&self, b: usize, until: f64, best: &mut Option<Contact>) {
         let l = b - 1;
         let (k, pivot) = (self.joints[l], self.hinges[l]);
-        let turn = self.rate[l] * (self.tb - self.ta);
+        let span = until.max(self.tb) - self.ta;
+        let turn = self.rate[l] * span;
         // pairs are tested before they are stacked
         let mut stack = Vec::new();
         let (p0, q0) = (self.roots[b - 1], self.roots[b]);
@@ -307,7 +313,7 @@ impl<'a> Segment<'a> {
             let r = self.radius;
             if let Some(phi) = first_contact_within(&moving, cq, &fixed, cp, r, pivot, turn) {
                 let c = Contact {
-                    time: self.ta + (self.tb - self.ta) * phi / turn.abs(),
+                    time: self.ta + span * phi / turn.abs(),
                     tiles: (i, j),
                     joint: k,
                     angle_deg: (self.start[l] + turn.signum() * phi).abs().to_degrees(),

@@ -134,6 +134,11 @@ pub(super) struct ChainTree {
     /// Each joint's transform at its angle (one sine and cosine per new angle, not one per
     /// node above it).
     turns: Vec<Rigid>,
+    /// [`ChainTree::set_angles`]'s scratch: the nodes queued (stamped with the call's
+    /// generation), by depth.
+    stamp: Vec<u32>,
+    generation: u32,
+    levels: Vec<Vec<usize>>,
 }
 
 impl ChainTree {
@@ -157,6 +162,9 @@ impl ChainTree {
             nodes,
             angles,
             turns,
+            stamp: vec![0; 2 * leaves],
+            generation: 0,
+            levels: Vec::new(),
         };
         for p in (1..leaves).rev() {
             tree.merge(p);
@@ -327,10 +335,15 @@ impl ChainTree {
     }
 
     /// Turns each joint `k` of `angles` (`(k, angle)`) to its angle, then updates every node
-    /// above them once: the same nodes as [`ChainTree::set_angle`] one by one, each merged
-    /// once, children before parents (a child's index is larger than its parent's).
+    /// above them once, deepest first: the same nodes as [`ChainTree::set_angle`] one by
+    /// one, each merged once.
     pub fn set_angles(&mut self, angles: impl Iterator<Item = (usize, f64)>) {
-        let mut dirty = Vec::new();
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+        let mut levels = std::mem::take(&mut self.levels);
         for (k, angle) in angles {
             if self.angles[k] == angle {
                 continue;
@@ -342,16 +355,24 @@ impl ChainTree {
                 a /= 2;
                 b /= 2;
             }
-            while a >= 1 {
-                dirty.push(a);
+            // up to the first node already queued (its ancestors are too)
+            while a >= 1 && self.stamp[a] != self.generation {
+                self.stamp[a] = self.generation;
+                let depth = (usize::BITS - 1 - a.leading_zeros()) as usize;
+                if levels.len() <= depth {
+                    levels.resize_with(depth + 1, Vec::new);
+                }
+                levels[depth].push(a);
                 a /= 2;
             }
         }
-        dirty.sort_unstable_by(|a, b| b.cmp(a));
-        dirty.dedup();
-        for p in dirty {
-            self.merge(p);
+        for level in levels.iter_mut().rev() {
+            for &p in level.iter() {
+                self.merge(p);
+            }
+            level.clear();
         }
+        self.levels = levels;
     }
 
     #[cfg(test)]
@@ -444,7 +465,9 @@ mod tests {
 
     #[test]
     fn covers_of_runs_in_one_descent() {
-        let angles: Vec<f64> = (0..600).map(|k| 0.01 * ((k * 7919) % 13) as f64 - 0.06).collect();
+        let angles: Vec<f64> = (0..600)
+            .map(|k| 0.01 * ((k * 7919) % 13) as f64 - 0.06)
+            .collect();
         let tree = ChainTree::new(angles, 1e-7);
         for ends in [vec![600], vec![0, 600], vec![5, 6, 7, 300, 301, 599, 600]] {
             let mut all = Vec::new();
