@@ -174,12 +174,20 @@ fn local_check(file: &str, cache: Option<&str>) {
         word.tiles(),
         schedule.tracks.len()
     );
-    for threads in [1, 0] {
+    // FOLDCHAIN_BENCH_THREADS=n: only that many threads, one run
+    let only: Option<usize> = std::env::var("FOLDCHAIN_BENCH_THREADS")
+        .ok()
+        .and_then(|v| v.parse().ok());
+    let (list, runs) = match only {
+        Some(n) => (vec![n], 1),
+        None => (vec![1, 0], 3),
+    };
+    for threads in list {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .expect("pool");
-        let (s, r) = median(3, || {
+        let (s, r) = median(runs, || {
             pool.install(|| check_schedule(&word, &schedule, &opts))
         });
         let v = match &r {
@@ -187,7 +195,7 @@ fn local_check(file: &str, cache: Option<&str>) {
             Err(e) => e.to_string(),
         };
         println!(
-            "threads {}: {s:.3} s (median of 3): {v}",
+            "threads {}: {s:.3} s (median of {runs}): {v}",
             pool.current_num_threads()
         );
     }

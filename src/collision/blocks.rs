@@ -24,6 +24,7 @@
 //!   joint inside its span ([`super::windows`]), and reports until when it is clean.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::rc::Rc;
 
 use kurbo::{Point, Vec2};
 use parry2d_f64::query;
@@ -31,7 +32,8 @@ use parry2d_f64::shape::ConvexPolygon;
 
 use crate::Octagon;
 
-use super::chain_tree::{ChainTree, Rigid};
+use super::block_cover::BlockCover;
+use super::chain_tree::{turn_of, ChainTree, Rigid};
 use super::sweep::first_contact_within;
 
 /// Distance (tile widths, between inset outlines) at which two tiles count as in contact.
@@ -99,13 +101,11 @@ pub(super) struct Segment<'a> {
     spin: Vec<f64>,
     chain: Vec<f64>,
     spin_chain: Vec<f64>,
-    /// The tree nodes making up the blocks, in tile order: block `b`'s are
-    /// `parts[starts[b]..starts[b + 1]]`.
-    parts: Vec<Part>,
-    starts: Vec<usize>,
+    /// Each block's cover, in the frame of its first tile.
+    covers: Vec<Rc<BlockCover>>,
+    /// Each whole block, placed in the world at the segment's start (`pose`: its first
+    /// tile's; its box is its cover's, in that frame).
     roots: Vec<Part>,
-    /// Each block's box, in world coordinates at the segment's start.
-    root_boxes: Vec<(Point, Point)>,
     /// The tile's inset outline about its centre, and the full outline's circumradius.
     outline: [Point; 8],
     radius: f64,
@@ -115,9 +115,11 @@ impl<'a> Segment<'a> {
     /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` at the
     /// rate `moving[l].2` (joints increasing, every rate nonzero, no angle crossing zero
     /// before the joint's next breakpoint), its fold ended at `moving[l].3` (infinity when
-    /// not), with the tree at the angles of `ta`; outlines inset by `tolerance`.
+    /// not); `covers` are its blocks (the runs between the moving joints, every joint inside
+    /// at its angle of `ta`); outlines inset by `tolerance`.
     pub fn new(
         tree: &'a ChainTree,
+        covers: Vec<Rc<BlockCover>>,
         ta: f64,
         tb: f64,
         moving: &[(usize, f64, f64, f64)],
@@ -125,52 +127,32 @@ impl<'a> Segment<'a> {
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
-        // every block's cover in one descent: block `b` ends at tile `moving[b].0` (the
-        // last at the chain's end)
-        let ends: Vec<usize> = moving
-            .iter()
-            .map(|m| m.0)
-            .chain(std::iter::once(tree.tiles() - 1))
-            .collect();
-        let mut nodes = Vec::with_capacity(4 * ends.len());
-        tree.covers(&ends, &mut nodes);
-        let mut parts = Vec::with_capacity(nodes.len());
-        let mut starts = vec![0; ends.len() + 1];
-        for &(block, node, pose) in &nodes {
-            let (c, radius) = tree.disc(node);
-            starts[block + 1] = parts.len() + 1;
-            parts.push(Part {
-                node,
-                block,
-                pose,
-                centre: pose.apply(c),
-                radius,
-            });
-        }
-        // the hinge of each moving joint, on the last tile of the block before it
+        // each block placed by its first tile's pose: block 0's is the world's origin, and
+        // block b + 1's is block b's last tile turned across moving joint b
+        let mut places = Vec::with_capacity(covers.len());
         let mut hinges = Vec::with_capacity(moving.len());
-        for (b, &(_, a0, rate, _)) in moving.iter().enumerate() {
-            let last = &parts[starts[b + 1] - 1];
-            let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
-            hinges.push(
-                tree.last_pose(last.node, &last.pose)
-                    .apply(Point::new(x, y)),
-            );
+        let mut at = Rigid::IDENTITY;
+        for (b, cover) in covers.iter().enumerate() {
+            places.push(at);
+            if let Some(&(_, a0, rate, _)) = moving.get(b) {
+                let last = at.then(&cover.last);
+                let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
+                hinges.push(last.apply(Point::new(x, y)));
+                at = last.then(&turn_of(a0));
+            }
         }
-        let mut root_boxes = Vec::with_capacity(ends.len());
-        let mut roots = Vec::with_capacity(ends.len());
-        for b in 0..ends.len() {
-            let cover = &parts[starts[b]..starts[b + 1]];
-            let (centre, radius) = enclosing(cover);
-            root_boxes.push(world_box(tree, cover));
-            roots.push(Part {
+        let roots: Vec<Part> = covers
+            .iter()
+            .zip(&places)
+            .enumerate()
+            .map(|(b, (cover, at))| Part {
                 node: 0,
                 block: b,
-                pose: Rigid::IDENTITY,
-                centre,
-                radius,
-            });
-        }
+                pose: *at,
+                centre: at.apply(cover.centre),
+                radius: cover.radius,
+            })
+            .collect();
         let rate: Vec<f64> = moving.iter().map(|m| m.2).collect();
         let (mut spin, mut chain, mut spin_chain) = (vec![0.0], vec![0.0], vec![0.0]);
         for l in 0..rate.len() {
@@ -193,10 +175,8 @@ impl<'a> Segment<'a> {
             spin,
             chain,
             spin_chain,
-            parts,
-            starts,
+            covers,
             roots,
-            root_boxes,
             outline: o.inset_vertices(tolerance).map(Point::from),
             radius: o.circumradius(),
         }
@@ -238,10 +218,17 @@ impl<'a> Segment<'a> {
     /// Calls `f` with each part of `part` (none for a tile).
     fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
         if part.node == 0 {
-            let b = part.block;
-            self.parts[self.starts[b]..self.starts[b + 1]]
-                .iter()
-                .for_each(|&c| f(c));
+            for &(node, rel) in &self.covers[part.block].nodes {
+                let pose = part.pose.then(&rel);
+                let (c, radius) = self.tree.disc(node);
+                f(Part {
+                    node,
+                    block: part.block,
+                    pose,
+                    centre: pose.apply(c),
+                    radius,
+                });
+            }
             return;
         }
         if self.tree.tile(part.node).is_some() {
@@ -428,10 +415,10 @@ impl<'a> Segment<'a> {
         part.node != 0 && self.tree.straight(part.node)
     }
 
-    /// A part's box, in its frame (the world's for a whole block).
+    /// A part's box, in the frame of its first tile.
     fn bounds(&self, part: &Part) -> (Point, Point) {
         if part.node == 0 {
-            self.root_boxes[part.block]
+            self.covers[part.block].boxed
         } else {
             self.tree.bounds(part.node)
         }
@@ -492,45 +479,6 @@ impl<'a> Segment<'a> {
                 .to_degrees(),
         }
     }
-}
-
-/// The box, in world coordinates, holding every part's box.
-fn world_box(tree: &ChainTree, parts: &[Part]) -> (Point, Point) {
-    let (mut lo, mut hi) = (
-        Point::new(f64::MAX, f64::MAX),
-        Point::new(f64::MIN, f64::MIN),
-    );
-    for p in parts {
-        let (a, b) = tree.bounds(p.node);
-        for c in [a, Point::new(b.x, a.y), b, Point::new(a.x, b.y)] {
-            let c = p.pose.apply(c);
-            (lo.x, lo.y) = (lo.x.min(c.x), lo.y.min(c.y));
-            (hi.x, hi.y) = (hi.x.max(c.x), hi.y.max(c.y));
-        }
-    }
-    // grown by a hair over the rounding of the turned corners
-    let grow = 1e-12 * (1.0 + lo.x.abs().max(lo.y.abs()).max(hi.x.abs()).max(hi.y.abs()));
-    (
-        Point::new(lo.x - grow, lo.y - grow),
-        Point::new(hi.x + grow, hi.y + grow),
-    )
-}
-
-/// The disc holding every part's disc (a simple bound: centred on the parts' box).
-fn enclosing(parts: &[Part]) -> (Point, f64) {
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-    for p in parts {
-        x0 = x0.min(p.centre.x - p.radius);
-        y0 = y0.min(p.centre.y - p.radius);
-        x1 = x1.max(p.centre.x + p.radius);
-        y1 = y1.max(p.centre.y + p.radius);
-    }
-    let c = Point::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
-    let r = parts
-        .iter()
-        .map(|p| (p.centre - c).hypot() + p.radius)
-        .fold(0.0, f64::max);
-    (c, r * (1.0 + 1e-12))
 }
 
 /// Half the angle a disc of radius `radius` at distance `d` spans seen from the pivot, bounded

@@ -77,7 +77,7 @@ impl Rigid {
 }
 
 /// The transform across a joint at `angle`, tile width 1.
-fn turn_of(angle: f64) -> Rigid {
+pub(super) fn turn_of(angle: f64) -> Rigid {
     Rigid::from_pose(&kinematics::joint_transform(angle, 1.0))
 }
 
@@ -298,35 +298,41 @@ impl ChainTree {
         }
     }
 
-    /// The covers of the consecutive runs of tiles that end at `ends` (increasing, the last
-    /// the chain's last tile) in one descent: for each node, the run it falls in, the node
-    /// and the world pose of its first tile, in tile order, appended to `out`. The same nodes
-    /// as [`ChainTree::cover`] of each run, at `O(runs log(n / runs))`.
-    pub fn covers(&self, ends: &[usize], out: &mut Vec<(usize, usize, Rigid)>) {
-        let mut stack = Vec::with_capacity(64);
-        stack.push((1usize, Rigid::IDENTITY));
-        let mut run = 0;
-        while let Some((p, at)) = stack.pop() {
-            if self.nodes[p].radius < 0.0 {
-                continue;
+    /// The nodes whose runs make up tiles `lo..=hi` (`hi` within the chain), fewest, in
+    /// tile order, appended to `out`.
+    pub fn cover_nodes(&self, lo: usize, hi: usize, out: &mut Vec<usize>) {
+        // a run to the chain's end takes the nodes past it too (they hold no tiles)
+        let end = if hi + 1 >= self.tiles {
+            self.leaves
+        } else {
+            hi + 1
+        };
+        let (mut l, mut r) = (lo + self.leaves, end + self.leaves);
+        let mut right = Vec::new();
+        while l < r {
+            if l & 1 == 1 {
+                out.push(l);
+                l += 1;
             }
-            let (first, last) = (self.first(p), self.last(p));
-            while run < ends.len() && ends[run] < first {
-                run += 1;
+            if r & 1 == 1 {
+                r -= 1;
+                right.push(r);
             }
-            let Some(&end) = ends.get(run) else {
-                break;
-            };
-            if last <= end {
-                out.push((run, p, at));
-                continue;
-            }
-            // right child first: the left one is taken next
-            if self.nodes[2 * p + 1].radius >= 0.0 {
-                stack.push((2 * p + 1, at.then(&self.nodes[p].to_right)));
-            }
-            stack.push((2 * p, at));
+            l /= 2;
+            r /= 2;
         }
+        out.extend(right.into_iter().rev());
+        out.retain(|&p| self.nodes[p].radius >= 0.0);
+    }
+
+    /// Joint `k`'s angle in the tree.
+    pub fn angle(&self, k: usize) -> f64 {
+        self.angles[k]
+    }
+
+    /// The transform across joint `k` at its angle in the tree.
+    pub fn turn(&self, k: usize) -> Rigid {
+        self.turns[k]
     }
 
     /// The pose of node `p`'s last tile, given the pose `at` of its first.
@@ -464,33 +470,41 @@ mod tests {
     }
 
     #[test]
-    fn covers_of_runs_in_one_descent() {
+    fn block_covers_in_their_first_tiles_frame() {
+        use crate::collision::block_cover::BlockCover;
         let angles: Vec<f64> = (0..600)
             .map(|k| 0.01 * ((k * 7919) % 13) as f64 - 0.06)
             .collect();
         let tree = ChainTree::new(angles, 1e-7);
-        for ends in [vec![600], vec![0, 600], vec![5, 6, 7, 300, 301, 599, 600]] {
-            let mut all = Vec::new();
-            tree.covers(&ends, &mut all);
-            let mut expected = Vec::new();
-            let mut lo = 0;
-            for (run, &hi) in ends.iter().enumerate() {
-                let mut one = Vec::new();
-                tree.cover(lo, hi, &mut one);
-                expected.extend(one.into_iter().map(|(p, at)| (run, p, at)));
-                lo = hi + 1;
+        for (lo, hi) in [(0, 600), (0, 0), (5, 6), (7, 300), (301, 599), (600, 600)] {
+            let cover = BlockCover::new(&tree, lo, hi);
+            let mut nodes = Vec::new();
+            tree.cover(lo, hi, &mut nodes);
+            assert_eq!(cover.nodes.len(), nodes.len(), "{lo}..={hi}");
+            let base = tree.pose_of(lo);
+            for (&(p, rel), &(q, world)) in cover.nodes.iter().zip(&nodes) {
+                assert_eq!(p, q);
+                let (a, b) = (
+                    base.then(&rel).apply(Point::ORIGIN),
+                    world.apply(Point::ORIGIN),
+                );
+                assert!(close(a, (b.x, b.y)), "{lo}..={hi}");
             }
-            assert_eq!(all.len(), expected.len(), "{ends:?}");
-            for (x, y) in all.iter().zip(&expected) {
-                assert_eq!((x.0, x.1), (y.0, y.1), "{ends:?}");
-                let (p, q) = (x.2.apply(Point::ORIGIN), y.2.apply(Point::ORIGIN));
-                assert!(close(p, (q.x, q.y)), "{ends:?}");
+            let last = base.then(&cover.last).apply(Point::ORIGIN);
+            let want = tree.pose_of(hi).apply(Point::ORIGIN);
+            assert!(close(last, (want.x, want.y)), "{lo}..={hi}");
+            // every tile inside the block's disc and box
+            for i in lo..=hi {
+                let c = tree.pose_of(i).apply(Point::ORIGIN);
+                // back into the block's frame: the inverse rotation of the offset
+                let (o, u) = (base.apply(Point::ORIGIN), base.apply(Point::new(1.0, 0.0)));
+                let (dx, dy, ux, uy) = (c.x - o.x, c.y - o.y, u.x - o.x, u.y - o.y);
+                let (x, y) = (ux * dx + uy * dy, -uy * dx + ux * dy);
+                let r = (Point::new(x, y) - cover.centre).hypot();
+                assert!(r + Octagon::new(1.0).circumradius() <= cover.radius + 1e-9);
+                let (a, b) = cover.boxed;
+                assert!(a.x <= x - 0.49 && x + 0.49 <= b.x && a.y <= y - 0.49 && y + 0.49 <= b.y);
             }
-            // the last tile of each run, from its last node
-            let last = all.iter().rev().find(|x| x.0 == 0).unwrap();
-            let at = tree.last_pose(last.1, &last.2).apply(Point::ORIGIN);
-            let want = tree.pose_of(ends[0]).apply(Point::ORIGIN);
-            assert!(close(at, (want.x, want.y)), "{ends:?}");
         }
     }
 

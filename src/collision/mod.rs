@@ -25,6 +25,7 @@
 //! physical.
 
 mod advancement;
+mod block_cover;
 mod block_pairs;
 mod blocks;
 mod chain_tree;
