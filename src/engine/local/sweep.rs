@@ -3,7 +3,8 @@
 //! ([`crate::engine::local::sweeps`] tells the method).
 //!
 //! A sweep reads the sweep before as a stream of unit results ([`UnitOut`]: the unit's
-//! entry, origin, tracks and the shapes it made), and writes its own the same way, so that
+//! entry and origin, from which its tracks follow, and the shapes it made), and writes its
+//! own the same way, so that
 //! the next sweep can trail it on another thread: unit `u` waits only for the sweep before's
 //! units up to `u + lag` ([`Cache::lag`]), the last ones its window reaches. Everything a
 //! unit reads (its inputs' tracks and shapes, the cache entries it sees, its sweep's own
