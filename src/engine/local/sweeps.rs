@@ -27,7 +27,8 @@
 //! `k + 1` can run on a second thread, trailing sweep `k` by a few units
 //! ([`crate::engine::local::sweep`]). When sweep `k` ends, it is the last if it converged
 //! (sweep `k + 1` is then cancelled); if not, sweep `k + 2` trails `k + 1`. Two threads take
-//! the sweeps two by two: four sweeps cost about the wall time of two. The solution is the
+//! the sweeps two by two: on two free cores, four sweeps take about the wall time of two
+//! (each sweep's work is the same as on one thread). The solution is the
 //! same, bit for bit, with one thread or two and whatever their timing: every shape's id
 //! numbers its sweep and its place among that sweep's shapes, each sweep reads the shapes it
 //! may (those of the sweeps before and its own), and a cache look-up sees exactly the entries
