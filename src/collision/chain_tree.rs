@@ -220,20 +220,7 @@ impl ChainTree {
     #[cfg(test)]
     /// Turns joint `k` to `angle`, updating the nodes above it.
     pub fn set_angle(&mut self, k: usize, angle: f64) {
-        if self.angles[k] == angle {
-            return;
-        }
-        self.angles[k] = angle;
-        self.turns[k] = turn_of(angle);
-        let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
-        while a != b {
-            a /= 2;
-            b /= 2;
-        }
-        while a >= 1 {
-            self.merge(a);
-            a /= 2;
-        }
+        self.set_angles(std::iter::once((k, angle)));
     }
 
     /// The first tile of node `p`'s run.
