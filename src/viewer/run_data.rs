@@ -7,8 +7,10 @@
 
 use std::collections::HashMap;
 
-use crate::kinematics::poses_at_angles;
-use crate::render::RunSource;
+use crate::kinematics::for_each_pose_at_angles;
+use rustc_hash::FxHashMap;
+
+use crate::render::{RunSource, TrackKey};
 use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
 use crate::viewer::{PathForm, RunView, Track};
 
@@ -112,9 +114,21 @@ impl RunData {
         let mut shapes = Shapes::default();
         shapes.add(&Track::constant(0.0));
         let (mut m_shape, mut m_start) = (Vec::new(), Vec::new());
+        // each travel law sampled once: the shape of the first magnet of a key serves all
+        let mut by_key: FxHashMap<TrackKey, u32> = FxHashMap::default();
         for k in 0..g.magnets() {
+            let key = src.magnet_travel_key(k);
+            if let Some(&id) = key.as_ref().and_then(|(key, _)| by_key.get(key)) {
+                m_shape.push(id);
+                m_start.push(key.map_or(0.0, |(_, start)| start));
+                continue;
+            }
             let tr = src.magnet_travel(k);
-            m_shape.push(shapes.add(&tr));
+            let id = shapes.add(&tr);
+            if let Some((key, _)) = key {
+                by_key.insert(key, id);
+            }
+            m_shape.push(id);
             m_start.push(tr.start);
         }
         let (mut joints, mut j_shape, mut j_start) = (Vec::new(), Vec::new(), Vec::new());
@@ -187,9 +201,7 @@ fn run_box(src: &dyn RunSource, joints: &[(usize, Track)], target: &[Vec<(f64, f
         for (j, tr) in joints {
             angles[*j] = tr.value_at(t);
         }
-        for p in poses_at_angles(&angles, w) {
-            grow(p.x, p.y);
-        }
+        for_each_pose_at_angles(&angles, w, |p| grow(p.x, p.y));
     }
     for &(x, y) in target.iter().flatten() {
         grow(x, y);
