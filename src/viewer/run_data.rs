@@ -174,6 +174,19 @@ impl RunData {
     }
 }
 
+impl RunData {
+    /// This data with the label, title, note and first collision of `view`, a view of the
+    /// same run: the page's data made before the run's outcome was known (the tracks, paths
+    /// and box, the bulk of the work, do not depend on it).
+    pub fn with_outcome_of(mut self, view: &RunView<'_>) -> RunData {
+        self.label = view.label.clone();
+        self.title = view.title.clone();
+        self.note = view.note.clone();
+        self.collision = view.collision;
+        self
+    }
+}
+
 /// The box holding the chain over the whole run (tile centres padded by a tile width) and
 /// the target: the chain at 129 evenly spaced times, and at the middle and end of each of the
 /// first 64 folds, whose long tails sweep the widest arcs.
