@@ -11,6 +11,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
+use foldchain::margins::Margins;
 use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
@@ -20,7 +21,7 @@ use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
-use foldchain_cli::margins_file::run_margins;
+use foldchain_cli::margins_file::MarginsJob;
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
     check_and_write_run_files, is_run_file, run_view, write_compare_page, write_run_files,
@@ -293,9 +294,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         Mode::Engine
     };
-    let run_margins = run_margins(&chain, &designs, force_law);
-    let files = RunFilesOptions {
-        margins_json: run_margins.as_ref().map(|(_, text)| text.clone()),
+    // the margins worked out on a second thread while the engine or the reference runs
+    let margins = MarginsJob::start(&chain, &designs, force_law);
+    let mut files = RunFilesOptions {
+        margins_json: None,
         name: match mode {
             Mode::Reference => format!("{name} (reference)"),
             _ => name.clone(),
@@ -392,8 +394,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
-    let say_margins = |dir: &Path| {
-        if let (false, Some((m, _))) = (args.json, &run_margins) {
+    let say_margins = |dir: &Path, run_margins: &Option<(Margins, String)>| {
+        if let (false, Some((m, _))) = (args.json, run_margins) {
             if let Some(w) = m.weakest() {
                 println!(
                     "  smallest margin {w} ({})",
@@ -406,26 +408,32 @@ fn run(args: Args) -> anyhow::Result<u8> {
         Mode::Reference => {
             let run = reference()?;
             let summary = check_reference(&run, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
             // the collision check on a second thread while the files are drawn
             let tl = foldchain::engine::run(&chain, &designs, &engine)?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             let check = CheckOptions::default();
             let mut progress = bar_progress(bar.as_ref());
             let summary = check_and_write_run_files(&tl, &check, &out_dir, &files, &mut progress)?;
             notes(&summary);
             print_summary(&name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
             let run = reference()?;
             let rs = check_reference(&run, &CheckOptions::default())?;
             let (tl, es) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             let rfiles = RunFilesOptions {
                 name: format!("{name} (reference)"),
                 ..files.clone()
@@ -449,7 +457,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
-                say_margins(&edir);
+                say_margins(&edir, &margins);
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
