@@ -156,7 +156,7 @@ fn is_step_frame(name: &str) -> bool {
 /// final frame only). `progress(stage, done, total)` is called as the work goes on.
 /// Returns the names written, in order.
 pub fn write_run_files(
-    source: &dyn RunSource,
+    source: &(dyn RunSource + Sync),
     summary: &Summary,
     dir: &Path,
     opts: &RunFilesOptions,
@@ -240,16 +240,64 @@ pub fn check_and_write_run_files(
 
 /// Writes the run's files into `dir` as [`write_run_files`] does, the parts that do not
 /// depend on the outcome taken from `prepared` (made by [`prepare_run_files`] for the same
-/// `source` and `opts`).
+/// `source` and `opts`). The text of `index.html` and `timeline.json` is made on a second
+/// thread while the frames are drawn; the files are written in the same order.
 pub fn write_prepared_run_files(
     prepared: PreparedFiles,
-    source: &dyn RunSource,
+    source: &(dyn RunSource + Sync),
     summary: &Summary,
     dir: &Path,
     opts: &RunFilesOptions,
     progress: &mut dyn FnMut(&str, usize, usize),
 ) -> Result<Vec<String>, WriteError> {
     let mut out = OutputDir::create(dir)?;
+    let PreparedFiles {
+        transition_svg,
+        energy_svg,
+        viewer,
+    } = prepared;
+    let (page, timeline_json) = std::thread::scope(|scope| {
+        let texts = scope.spawn(move || {
+            let page = viewer.map(|data| {
+                let data = data.with_outcome_of(&run_view(source, summary, opts, ""));
+                viewer_html_of(&opts.name, &[data])
+            });
+            (page, source.timeline_json())
+        });
+        let drawn = write_frames(source, summary, &mut out, opts, progress);
+        let texts = texts
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        drawn.map(|()| texts)
+    })?;
+    out.write("transition.svg", transition_svg.as_bytes())?;
+    out.write("energy.svg", energy_svg.as_bytes())?;
+    if let Some(page) = page {
+        out.write("index.html", page.as_bytes())?;
+    }
+    out.write("timeline.json", timeline_json.as_bytes())?;
+    if let Some(m) = &opts.margins_json {
+        out.write("margins.json", m.as_bytes())?;
+    }
+    // a page of an earlier, shorter run of this chain would show the wrong run
+    out.remove_stale(
+        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
+        &is_run_file,
+    )?;
+    let mut summary_json = summary.to_json();
+    summary_json.push('\n');
+    out.write("summary.json", summary_json.as_bytes())?;
+    Ok(out.written().to_vec())
+}
+
+/// Writes the step frames and `final.svg` into `out`.
+fn write_frames(
+    source: &dyn RunSource,
+    summary: &Summary,
+    out: &mut OutputDir,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<(), WriteError> {
     let collision = summary.first_collision.map(|c| (c.time, c.tiles));
     let w = source.geometry().w;
     let frames = opts
@@ -307,25 +355,7 @@ pub fn write_prepared_run_files(
     }
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
-    out.write("transition.svg", prepared.transition_svg.as_bytes())?;
-    out.write("energy.svg", prepared.energy_svg.as_bytes())?;
-    if let Some(data) = prepared.viewer {
-        let data = data.with_outcome_of(&run_view(source, summary, opts, ""));
-        out.write("index.html", viewer_html_of(&opts.name, &[data]).as_bytes())?;
-    }
-    out.write("timeline.json", source.timeline_json().as_bytes())?;
-    if let Some(m) = &opts.margins_json {
-        out.write("margins.json", m.as_bytes())?;
-    }
-    // a page of an earlier, shorter run of this chain would show the wrong run
-    out.remove_stale(
-        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
-        &is_run_file,
-    )?;
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    out.write("summary.json", summary_json.as_bytes())?;
-    Ok(out.written().to_vec())
+    Ok(())
 }
 
 /// `frames` evenly spaced times from 0 to `duration` (just `duration` for one frame), and the

@@ -487,7 +487,7 @@ const MAX_REFERENCE_TILES: usize = 2_000;
 /// Writes the run's files, with a progress bar for long runs, and warns of a simulated
 /// time far from a physical chain's.
 fn write_files(
-    source: &dyn RunSource,
+    source: &(dyn RunSource + Sync),
     s: &Summary,
     out_dir: &Path,
     files: &RunFilesOptions,
