@@ -8,12 +8,20 @@
 //!    `s = 0.1 mm` (the two folds of each U-turn overlap in time) for serpentines of 1,000 to
 //!    100,000 tiles; the engine's run is not timed.
 //!
+//! 4. `cargo bench --bench collision -- --local WORD_FILE [SCHEDULE.json]`: only the timed
+//!    check of the default engine's schedule (local solves, inertial, s = 0.1 mm) of the chain
+//!    in `WORD_FILE` (e.g. `benches/serpentine-100k.txt`), on one thread and on all; the
+//!    schedule is kept in `SCHEDULE.json` when given (read from it when it exists), so the
+//!    engine runs once.
+//!
 //! (The counting benchmark is `benches/count.rs`.)
 
 use std::time::Instant;
 
-use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions};
+use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions, FoldSchedule};
 use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
+use foldchain::physics::Inertia;
+use foldchain::reference::{Dynamics, ModelOptions};
 use foldchain::{folded_word, kinematics, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
@@ -63,6 +71,11 @@ fn verdict<E>(r: &Result<(), E>) -> &'static str {
 }
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(i) = args.iter().position(|a| a == "--local") {
+        local_check(&args[i + 1], args.get(i + 2).map(String::as_str));
+        return;
+    }
     let opts = CheckOptions::default();
     println!("Sequential check of serpentines (rows of about sqrt(n) tiles):");
     println!("| tiles | row | seconds (median of 5) | verdict |");
@@ -125,5 +138,65 @@ fn main() {
             Err(e) => e.to_string(),
         };
         println!("| {tiles} | {row} | {} | {s:.3} | {v} |", tl.folds.len());
+    }
+}
+
+/// Section 4: the timed check of the local engine's schedule of the chain in `file`.
+fn local_check(file: &str, cache: Option<&str>) {
+    let text = std::fs::read_to_string(file).expect("word file");
+    let chain = FoldWord::parse(text.trim()).expect("fold word").to_chain();
+    let cached = cache.and_then(|c| std::fs::read_to_string(c).ok());
+    let (word, schedule): (FoldWord, FoldSchedule) = match cached {
+        Some(json) => {
+            let (w, s): (String, FoldSchedule) = serde_json::from_str(&json).expect("cache");
+            (FoldWord::parse(&w).expect("cached word"), s)
+        }
+        None => {
+            let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
+            let t = Instant::now();
+            let model =
+                ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()));
+            let opts = EngineOptions::default().with_model(model);
+            let tl = run(&chain, &designs, &opts).expect("engine");
+            println!("engine: {:.2} s", t.elapsed().as_secs_f64());
+            let (w, s) = (folded_word(&tl), fold_schedule(&tl));
+            if let Some(c) = cache {
+                let json = serde_json::to_string(&(w.to_string(), &s)).expect("json");
+                std::fs::write(c, json).expect("write cache");
+            }
+            (w, s)
+        }
+    };
+    let opts = CheckOptions::default();
+    let segments: usize = schedule.tracks.iter().map(|t| t.times.len()).sum();
+    println!(
+        "{} tiles, {} folds, {segments} track points",
+        word.tiles(),
+        schedule.tracks.len()
+    );
+    // FOLDCHAIN_BENCH_THREADS=n: only that many threads, one run
+    let only: Option<usize> = std::env::var("FOLDCHAIN_BENCH_THREADS")
+        .ok()
+        .and_then(|v| v.parse().ok());
+    let (list, runs) = match only {
+        Some(n) => (vec![n], 1),
+        None => (vec![1, 0], 3),
+    };
+    for threads in list {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        let (s, r) = median(runs, || {
+            pool.install(|| check_schedule(&word, &schedule, &opts))
+        });
+        let v = match &r {
+            Ok(()) => "clean".to_string(),
+            Err(e) => e.to_string(),
+        };
+        println!(
+            "threads {}: {s:.3} s (median of {runs}): {v}",
+            pool.current_num_threads()
+        );
     }
 }

@@ -123,6 +123,7 @@ fn build(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collision::block_cover::BlockCache;
     use crate::collision::chain_tree::ChainTree;
     use crate::Octagon;
 
@@ -159,7 +160,9 @@ mod tests {
                     (k, a, rate, f64::INFINITY)
                 })
                 .collect();
-            let seg = Segment::new(&tree, 0.0, 0.05 + next() * 0.3, &moving, 1e-7);
+            let ends: Vec<usize> = joints.iter().copied().chain([299]).collect();
+            let covers = BlockCache::default().covers(&tree, &ends);
+            let seg = Segment::new(&tree, covers, 0.0, 0.05 + next() * 0.3, &moving, 1e-7);
             let mut near = Vec::new();
             near_pairs(&seg, |a, b| near.push((a, b)));
             for a in 0..seg.blocks() {

@@ -24,6 +24,7 @@
 //!   joint inside its span ([`super::windows`]), and reports until when it is clean.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::rc::Rc;
 
 use kurbo::{Point, Vec2};
 use parry2d_f64::query;
@@ -31,8 +32,10 @@ use parry2d_f64::shape::ConvexPolygon;
 
 use crate::Octagon;
 
-use super::chain_tree::{ChainTree, Rigid};
+use super::block_cover::BlockCover;
+use super::chain_tree::{turn_of, ChainTree, Rigid};
 use super::sweep::first_contact_within;
+use super::{Collision, ScheduleError};
 
 /// Distance (tile widths, between inset outlines) at which two tiles count as in contact.
 const CONTACT: f64 = 1e-12;
@@ -56,7 +59,17 @@ pub(super) struct Contact {
 }
 
 impl Contact {
-    fn earlier_than(&self, other: &Option<Contact>) -> bool {
+    /// The contact as the check's error.
+    pub(super) fn to_error(self) -> ScheduleError {
+        ScheduleError::Collision(Collision {
+            joint: Some(self.joint),
+            angle_deg: self.angle_deg,
+            time: Some(self.time),
+            tiles: self.tiles,
+        })
+    }
+
+    pub(super) fn earlier_than(&self, other: &Option<Contact>) -> bool {
         other.is_none_or(|o| (self.time, self.tiles) < (o.time, o.tiles))
     }
 }
@@ -99,11 +112,11 @@ pub(super) struct Segment<'a> {
     spin: Vec<f64>,
     chain: Vec<f64>,
     spin_chain: Vec<f64>,
-    /// The tree nodes making up each block.
-    covers: Vec<Vec<Part>>,
+    /// Each block's cover, in the frame of its first tile.
+    covers: Vec<Rc<BlockCover>>,
+    /// Each whole block, placed in the world at the segment's start (`pose`: its first
+    /// tile's; its box is its cover's, in that frame).
     roots: Vec<Part>,
-    /// Each block's box, in world coordinates at the segment's start.
-    root_boxes: Vec<(Point, Point)>,
     /// The tile's inset outline about its centre, and the full outline's circumradius.
     outline: [Point; 8],
     radius: f64,
@@ -113,9 +126,11 @@ impl<'a> Segment<'a> {
     /// The segment `[ta, tb]` in which joint `moving[l].0` turns from `moving[l].1` at the
     /// rate `moving[l].2` (joints increasing, every rate nonzero, no angle crossing zero
     /// before the joint's next breakpoint), its fold ended at `moving[l].3` (infinity when
-    /// not), with the tree at the angles of `ta`; outlines inset by `tolerance`.
+    /// not); `covers` are its blocks (the runs between the moving joints, every joint inside
+    /// at its angle of `ta`); outlines inset by `tolerance`.
     pub fn new(
         tree: &'a ChainTree,
+        covers: Vec<Rc<BlockCover>>,
         ta: f64,
         tb: f64,
         moving: &[(usize, f64, f64, f64)],
@@ -123,46 +138,32 @@ impl<'a> Segment<'a> {
     ) -> Segment<'a> {
         let o = Octagon::new(1.0);
         let span = (tb - ta).max(f64::MIN_POSITIVE);
-        let hinges: Vec<Point> = moving
-            .iter()
-            .map(|&(k, a0, rate, _)| {
+        // each block placed by its first tile's pose: block 0's is the world's origin, and
+        // block b + 1's is block b's last tile turned across moving joint b
+        let mut places = Vec::with_capacity(covers.len());
+        let mut hinges = Vec::with_capacity(moving.len());
+        let mut at = Rigid::IDENTITY;
+        for (b, cover) in covers.iter().enumerate() {
+            places.push(at);
+            if let Some(&(_, a0, rate, _)) = moving.get(b) {
+                let last = at.then(&cover.last);
                 let (x, y) = o.hinge(a0 + (a0 + rate * span) > 0.0);
-                tree.pose_of(k).apply(Point::new(x, y))
-            })
-            .collect();
-        let mut covers = Vec::with_capacity(moving.len() + 1);
-        let mut root_boxes = Vec::with_capacity(moving.len() + 1);
-        let mut roots = Vec::with_capacity(moving.len() + 1);
-        let mut lo = 0;
-        for b in 0..=moving.len() {
-            let hi = moving.get(b).map_or(tree.tiles() - 1, |m| m.0);
-            let mut nodes = Vec::new();
-            tree.cover(lo, hi, &mut nodes);
-            let parts: Vec<Part> = nodes
-                .into_iter()
-                .map(|(node, pose)| {
-                    let (c, radius) = tree.disc(node);
-                    Part {
-                        node,
-                        block: b,
-                        pose,
-                        centre: pose.apply(c),
-                        radius,
-                    }
-                })
-                .collect();
-            let (centre, radius) = enclosing(&parts);
-            root_boxes.push(world_box(tree, &parts));
-            roots.push(Part {
+                hinges.push(last.apply(Point::new(x, y)));
+                at = last.then(&turn_of(a0));
+            }
+        }
+        let roots: Vec<Part> = covers
+            .iter()
+            .zip(&places)
+            .enumerate()
+            .map(|(b, (cover, at))| Part {
                 node: 0,
                 block: b,
-                pose: Rigid::IDENTITY,
-                centre,
-                radius,
-            });
-            covers.push(parts);
-            lo = hi + 1;
-        }
+                pose: *at,
+                centre: at.apply(cover.centre),
+                radius: cover.radius,
+            })
+            .collect();
         let rate: Vec<f64> = moving.iter().map(|m| m.2).collect();
         let (mut spin, mut chain, mut spin_chain) = (vec![0.0], vec![0.0], vec![0.0]);
         for l in 0..rate.len() {
@@ -187,7 +188,6 @@ impl<'a> Segment<'a> {
             spin_chain,
             covers,
             roots,
-            root_boxes,
             outline: o.inset_vertices(tolerance).map(Point::from),
             radius: o.circumradius(),
         }
@@ -228,22 +228,27 @@ impl<'a> Segment<'a> {
 
     /// Calls `f` with each part of `part` (none for a tile).
     fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
+        let child = |node: usize, pose: Rigid| {
+            let (c, radius) = self.tree.disc(node);
+            Part {
+                node,
+                block: part.block,
+                pose,
+                centre: pose.apply(c),
+                radius,
+            }
+        };
         if part.node == 0 {
-            self.covers[part.block].iter().for_each(|&c| f(c));
+            for &(node, rel) in &self.covers[part.block].nodes {
+                f(child(node, part.pose.then(&rel)));
+            }
             return;
         }
         if self.tree.tile(part.node).is_some() {
             return;
         }
         for (node, pose) in self.tree.children(part.node, &part.pose) {
-            let (c, radius) = self.tree.disc(node);
-            f(Part {
-                node,
-                block: part.block,
-                pose,
-                centre: pose.apply(c),
-                radius,
-            });
+            f(child(node, pose));
         }
     }
 
@@ -270,11 +275,14 @@ impl<'a> Segment<'a> {
     }
 
     /// The first contact between blocks `b - 1` and `b`, which turn about the hinge of
-    /// `joints[b - 1]` relative to each other, if earlier than `best`.
-    pub fn rotation_contact(&self, b: usize, best: &mut Option<Contact>) {
+    /// `joints[b - 1]` relative to each other, from the segment's start until `until` (at
+    /// or after its end: no joint inside the two blocks changes its motion before), if
+    /// earlier than `best`.
+    pub fn rotation_contact(&self, b: usize, until: f64, best: &mut Option<Contact>) {
         let l = b - 1;
         let (k, pivot) = (self.joints[l], self.hinges[l]);
-        let turn = self.rate[l] * (self.tb - self.ta);
+        let span = until.max(self.tb) - self.ta;
+        let turn = self.rate[l] * span;
         // pairs are tested before they are stacked
         let mut stack = Vec::new();
         let (p0, q0) = (self.roots[b - 1], self.roots[b]);
@@ -298,7 +306,7 @@ impl<'a> Segment<'a> {
             let r = self.radius;
             if let Some(phi) = first_contact_within(&moving, cq, &fixed, cp, r, pivot, turn) {
                 let c = Contact {
-                    time: self.ta + (self.tb - self.ta) * phi / turn.abs(),
+                    time: self.ta + span * phi / turn.abs(),
                     tiles: (i, j),
                     joint: k,
                     angle_deg: (self.start[l] + turn.signum() * phi).abs().to_degrees(),
@@ -413,10 +421,10 @@ impl<'a> Segment<'a> {
         part.node != 0 && self.tree.straight(part.node)
     }
 
-    /// A part's box, in its frame (the world's for a whole block).
+    /// A part's box, in the frame of its first tile.
     fn bounds(&self, part: &Part) -> (Point, Point) {
         if part.node == 0 {
-            self.root_boxes[part.block]
+            self.covers[part.block].boxed
         } else {
             self.tree.bounds(part.node)
         }
@@ -477,45 +485,6 @@ impl<'a> Segment<'a> {
                 .to_degrees(),
         }
     }
-}
-
-/// The box, in world coordinates, holding every part's box.
-fn world_box(tree: &ChainTree, parts: &[Part]) -> (Point, Point) {
-    let (mut lo, mut hi) = (
-        Point::new(f64::MAX, f64::MAX),
-        Point::new(f64::MIN, f64::MIN),
-    );
-    for p in parts {
-        let (a, b) = tree.bounds(p.node);
-        for c in [a, Point::new(b.x, a.y), b, Point::new(a.x, b.y)] {
-            let c = p.pose.apply(c);
-            (lo.x, lo.y) = (lo.x.min(c.x), lo.y.min(c.y));
-            (hi.x, hi.y) = (hi.x.max(c.x), hi.y.max(c.y));
-        }
-    }
-    // grown by a hair over the rounding of the turned corners
-    let grow = 1e-12 * (1.0 + lo.x.abs().max(lo.y.abs()).max(hi.x.abs()).max(hi.y.abs()));
-    (
-        Point::new(lo.x - grow, lo.y - grow),
-        Point::new(hi.x + grow, hi.y + grow),
-    )
-}
-
-/// The disc holding every part's disc (a simple bound: centred on the parts' box).
-fn enclosing(parts: &[Part]) -> (Point, f64) {
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
-    for p in parts {
-        x0 = x0.min(p.centre.x - p.radius);
-        y0 = y0.min(p.centre.y - p.radius);
-        x1 = x1.max(p.centre.x + p.radius);
-        y1 = y1.max(p.centre.y + p.radius);
-    }
-    let c = Point::new(0.5 * (x0 + x1), 0.5 * (y0 + y1));
-    let r = parts
-        .iter()
-        .map(|p| (p.centre - c).hypot() + p.radius)
-        .fold(0.0, f64::max);
-    (c, r * (1.0 + 1e-12))
 }
 
 /// Half the angle a disc of radius `radius` at distance `d` spans seen from the pivot, bounded

@@ -77,7 +77,7 @@ impl Rigid {
 }
 
 /// The transform across a joint at `angle`, tile width 1.
-fn turn_of(angle: f64) -> Rigid {
+pub(super) fn turn_of(angle: f64) -> Rigid {
     Rigid::from_pose(&kinematics::joint_transform(angle, 1.0))
 }
 
@@ -134,6 +134,11 @@ pub(super) struct ChainTree {
     /// Each joint's transform at its angle (one sine and cosine per new angle, not one per
     /// node above it).
     turns: Vec<Rigid>,
+    /// [`ChainTree::set_angles`]'s scratch: the nodes queued (stamped with the call's
+    /// generation), by depth.
+    stamp: Vec<u32>,
+    generation: u32,
+    levels: Vec<Vec<usize>>,
 }
 
 impl ChainTree {
@@ -157,6 +162,9 @@ impl ChainTree {
             nodes,
             angles,
             turns,
+            stamp: vec![0; 2 * leaves],
+            generation: 0,
+            levels: Vec::new(),
         };
         for p in (1..leaves).rev() {
             tree.merge(p);
@@ -209,22 +217,10 @@ impl ChainTree {
         };
     }
 
+    #[cfg(test)]
     /// Turns joint `k` to `angle`, updating the nodes above it.
     pub fn set_angle(&mut self, k: usize, angle: f64) {
-        if self.angles[k] == angle {
-            return;
-        }
-        self.angles[k] = angle;
-        self.turns[k] = turn_of(angle);
-        let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
-        while a != b {
-            a /= 2;
-            b /= 2;
-        }
-        while a >= 1 {
-            self.merge(a);
-            a /= 2;
-        }
+        self.set_angles(std::iter::once((k, angle)));
     }
 
     /// The first tile of node `p`'s run.
@@ -269,6 +265,7 @@ impl ChainTree {
 
     /// The nodes whose runs make up tiles `lo..=hi`, fewest first-to-last, each with the world
     /// pose of its first tile (tile 0 at the origin heading +x), appended to `out`.
+    #[cfg(test)]
     pub fn cover(&self, lo: usize, hi: usize, out: &mut Vec<(usize, Rigid)>) {
         let mut stack = vec![(1usize, Rigid::IDENTITY)];
         while let Some((p, at)) = stack.pop() {
@@ -288,6 +285,90 @@ impl ChainTree {
         }
     }
 
+    /// The nodes whose runs make up tiles `lo..=hi` (`hi` within the chain), fewest, in
+    /// tile order, appended to `out`.
+    pub fn cover_nodes(&self, lo: usize, hi: usize, out: &mut Vec<usize>) {
+        // a run to the chain's end takes the nodes past it too (they hold no tiles)
+        let end = if hi + 1 >= self.tiles {
+            self.leaves
+        } else {
+            hi + 1
+        };
+        let (mut l, mut r) = (lo + self.leaves, end + self.leaves);
+        let mut right = Vec::new();
+        while l < r {
+            if l & 1 == 1 {
+                out.push(l);
+                l += 1;
+            }
+            if r & 1 == 1 {
+                r -= 1;
+                right.push(r);
+            }
+            l /= 2;
+            r /= 2;
+        }
+        out.extend(right.into_iter().rev());
+        out.retain(|&p| self.nodes[p].radius >= 0.0);
+    }
+
+    /// Joint `k`'s angle in the tree.
+    pub fn angle(&self, k: usize) -> f64 {
+        self.angles[k]
+    }
+
+    /// The transform across joint `k` at its angle in the tree.
+    pub fn turn(&self, k: usize) -> Rigid {
+        self.turns[k]
+    }
+
+    /// The pose of node `p`'s last tile, given the pose `at` of its first.
+    pub fn last_pose(&self, p: usize, at: &Rigid) -> Rigid {
+        at.then(&self.nodes[p].to_last)
+    }
+
+    /// Turns each joint `k` of `angles` (`(k, angle)`) to its angle, then updates every node
+    /// above them once, deepest first: the same nodes as [`ChainTree::set_angle`] one by
+    /// one, each merged once.
+    pub fn set_angles(&mut self, angles: impl Iterator<Item = (usize, f64)>) {
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+        let mut levels = std::mem::take(&mut self.levels);
+        for (k, angle) in angles {
+            if self.angles[k] == angle {
+                continue;
+            }
+            self.angles[k] = angle;
+            self.turns[k] = turn_of(angle);
+            let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
+            while a != b {
+                a /= 2;
+                b /= 2;
+            }
+            // up to the first node already queued (its ancestors are too)
+            while a >= 1 && self.stamp[a] != self.generation {
+                self.stamp[a] = self.generation;
+                let depth = (usize::BITS - 1 - a.leading_zeros()) as usize;
+                if levels.len() <= depth {
+                    levels.resize_with(depth + 1, Vec::new);
+                }
+                levels[depth].push(a);
+                a /= 2;
+            }
+        }
+        for level in levels.iter_mut().rev() {
+            for &p in level.iter() {
+                self.merge(p);
+            }
+            level.clear();
+        }
+        self.levels = levels;
+    }
+
+    #[cfg(test)]
     /// The world pose of tile `i`.
     pub fn pose_of(&self, i: usize) -> Rigid {
         let mut out = Vec::with_capacity(1);
@@ -344,9 +425,15 @@ mod tests {
                     assert!((c - Point::new(q.x, q.y)).hypot() + r <= radius + 1e-9);
                 }
             }
+            // one joint at a time, or all at once (each node above them merged once)
             for k in [0, 5 + round, 40, 75] {
                 a[k] = -a[k] * 0.5;
-                tree.set_angle(k, a[k]);
+                if round % 2 == 0 {
+                    tree.set_angle(k, a[k]);
+                }
+            }
+            if round % 2 == 1 {
+                tree.set_angles([0, 5 + round, 40, 75].into_iter().map(|k| (k, a[k])));
             }
         }
     }
@@ -366,6 +453,45 @@ mod tests {
         // straight chain: tile i at (i, 0)
         for &(p, at) in &cover {
             assert!(close(at.apply(Point::ORIGIN), (tree.first(p) as f64, 0.0)));
+        }
+    }
+
+    #[test]
+    fn block_covers_in_their_first_tiles_frame() {
+        use crate::collision::block_cover::BlockCover;
+        let angles: Vec<f64> = (0..600)
+            .map(|k| 0.01 * ((k * 7919) % 13) as f64 - 0.06)
+            .collect();
+        let tree = ChainTree::new(angles, 1e-7);
+        for (lo, hi) in [(0, 600), (0, 0), (5, 6), (7, 300), (301, 599), (600, 600)] {
+            let cover = BlockCover::new(&tree, lo, hi);
+            let mut nodes = Vec::new();
+            tree.cover(lo, hi, &mut nodes);
+            assert_eq!(cover.nodes.len(), nodes.len(), "{lo}..={hi}");
+            let base = tree.pose_of(lo);
+            for (&(p, rel), &(q, world)) in cover.nodes.iter().zip(&nodes) {
+                assert_eq!(p, q);
+                let (a, b) = (
+                    base.then(&rel).apply(Point::ORIGIN),
+                    world.apply(Point::ORIGIN),
+                );
+                assert!(close(a, (b.x, b.y)), "{lo}..={hi}");
+            }
+            let last = base.then(&cover.last).apply(Point::ORIGIN);
+            let want = tree.pose_of(hi).apply(Point::ORIGIN);
+            assert!(close(last, (want.x, want.y)), "{lo}..={hi}");
+            // every tile inside the block's disc and box
+            for i in lo..=hi {
+                let c = tree.pose_of(i).apply(Point::ORIGIN);
+                // back into the block's frame: the inverse rotation of the offset
+                let (o, u) = (base.apply(Point::ORIGIN), base.apply(Point::new(1.0, 0.0)));
+                let (dx, dy, ux, uy) = (c.x - o.x, c.y - o.y, u.x - o.x, u.y - o.y);
+                let (x, y) = (ux * dx + uy * dy, -uy * dx + ux * dy);
+                let r = (Point::new(x, y) - cover.centre).hypot();
+                assert!(r + Octagon::new(1.0).circumradius() <= cover.radius + 1e-9);
+                let (a, b) = cover.boxed;
+                assert!(a.x <= x - 0.49 && x + 0.49 <= b.x && a.y <= y - 0.49 && y + 0.49 <= b.y);
+            }
         }
     }
 

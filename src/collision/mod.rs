@@ -25,6 +25,7 @@
 //! physical.
 
 mod advancement;
+mod block_cover;
 mod block_pairs;
 mod blocks;
 mod chain_tree;
@@ -32,6 +33,7 @@ mod first_hit;
 pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
+mod pieces;
 mod schedule;
 mod sequential;
 mod sweep;

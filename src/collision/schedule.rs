@@ -51,6 +51,42 @@ impl JointTrack {
         a[i - 1] + (a[i] - a[i - 1]) * (t - t0) / (t1 - t0)
     }
 
+    /// [`JointTrack::angle_at`] `t`, and the rate of the chord that runs from `t` on (0
+    /// outside the track), the search starting from `hint` (the count of times at or before
+    /// the last `t` asked, kept up to date): constant time for a walk forward in time.
+    pub(super) fn chord_at(&self, t: f64, hint: &mut usize) -> (f64, f64) {
+        let (ts, a) = (&self.times, &self.angles);
+        let n = ts.len();
+        let mut i = (*hint).min(n);
+        while i < n && ts[i] <= t {
+            i += 1;
+        }
+        while i > 0 && ts[i - 1] > t {
+            i -= 1;
+        }
+        *hint = i;
+        if n == 0 {
+            return (0.0, 0.0);
+        }
+        let inside = i > 0 && i < n && ts[i] > ts[i - 1];
+        let rate = if inside {
+            (a[i] - a[i - 1]) / (ts[i] - ts[i - 1])
+        } else {
+            0.0
+        };
+        let angle = if t <= ts[0] {
+            a[0]
+        } else if i >= n {
+            a[n - 1]
+        } else if !inside {
+            a[i]
+        } else {
+            let (t0, t1) = (ts[i - 1], ts[i]);
+            a[i - 1] + (a[i] - a[i - 1]) * (t - t0) / (t1 - t0)
+        };
+        (angle, rate)
+    }
+
     /// The first time at which the track has turned `|angle|` radians from its start
     /// (the tracks of a sequential schedule are monotone), or its end.
     pub(super) fn time_at_turn(&self, turn: f64) -> f64 {
@@ -221,6 +257,34 @@ mod tests {
         assert!((tr.angle_at(2.0) - FRAC_PI_2 / 2.0).abs() < 1e-15);
         assert_eq!(tr.angle_at(9.0), FRAC_PI_2);
         assert!((tr.time_at_turn(FRAC_PI_2 / 4.0) - 1.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn chords_from_a_hint_are_those_of_a_search() {
+        // a track with a repeated time (a jump) walked forward, back and across its ends
+        let tr = JointTrack {
+            joint: 0,
+            times: vec![1.0, 2.0, 2.0, 3.5, 4.0],
+            angles: vec![0.0, 0.4, 0.5, -0.2, 1.0],
+            ended: None,
+        };
+        let rate = |t: f64| {
+            let i = tr.times.partition_point(|&x| x <= t);
+            if i == 0 || i >= tr.times.len() || tr.times[i] <= tr.times[i - 1] {
+                0.0
+            } else {
+                (tr.angles[i] - tr.angles[i - 1]) / (tr.times[i] - tr.times[i - 1])
+            }
+        };
+        let mut hint = 0;
+        for t in [
+            0.0, 1.0, 1.5, 2.0, 2.5, 3.5, 3.9, 4.0, 5.0, 1.2, 3.7, 0.5, 2.0,
+        ] {
+            let (a, r) = tr.chord_at(t, &mut hint);
+            assert_eq!(a.to_bits(), tr.angle_at(t).to_bits(), "{t}");
+            assert_eq!(r.to_bits(), rate(t).to_bits(), "{t}");
+        }
+        assert_eq!(rate(1.5), 0.4);
     }
 
     #[test]
