@@ -12,7 +12,8 @@
 //! What does not depend on the collision check's verdict (the transition diagram, the energy
 //! plot, the viewer's tracks) can be made first, in memory
 //! ([`prepare_run_files`]): [`check_and_write_run_files`] makes it while the check runs on a
-//! second thread.
+//! second thread. The text of `index.html` and `timeline.json` is made on a second thread
+//! while the frames are drawn ([`write_prepared_run_files`]).
 
 use std::path::Path;
 
@@ -451,6 +452,42 @@ mod tests {
             assert!(!is_step_frame(n), "{n}");
         }
         assert!(is_run_file("summary.json") && !is_run_file("notes.txt"));
+    }
+
+    #[test]
+    fn checking_beside_the_drawing_writes_the_files_of_simulate_then_write() {
+        use foldchain::engine::{EngineOptions, TileDesigns};
+        use foldchain::{simulate, Chain};
+        // a clean serpentine and one that collides (its frames marked from the contact on)
+        for word in ["S*8 LL S*8 RR S*8", "LLLLLLLL S*6"] {
+            let chain = Chain::parse(word).unwrap();
+            let (designs, engine) = (TileDesigns::default(), EngineOptions::default());
+            let check = CheckOptions::default();
+            let opts = RunFilesOptions {
+                name: word.into(),
+                frames: Some(5),
+                transition_tiles: None,
+                target: Vec::new(),
+                frames_view: FramesView::Auto,
+                margins_json: None,
+            };
+            let base =
+                std::env::temp_dir().join(format!("foldchain-runfiles-{}", std::process::id()));
+            let (one, two) = (base.join("one"), base.join("two"));
+            let (tl, summary) = simulate(&chain, &designs, &engine, &check).unwrap();
+            let names = write_run_files(&tl, &summary, &one, &opts, &mut |_, _, _| {}).unwrap();
+            let tl = foldchain::engine::run(&chain, &designs, &engine).unwrap();
+            let checked =
+                check_and_write_run_files(&tl, &check, &two, &opts, &mut |_, _, _| {}).unwrap();
+            assert_eq!(checked, summary, "{word}");
+            assert_eq!(summary.first_collision.is_some(), word.starts_with('L'));
+            assert!(names.contains(&"index.html".to_string()) && names.len() > 8);
+            for name in &names {
+                let (a, b) = (std::fs::read(one.join(name)), std::fs::read(two.join(name)));
+                assert_eq!(a.unwrap(), b.unwrap(), "{word}: {name}");
+            }
+            let _ = std::fs::remove_dir_all(&base);
+        }
     }
 
     #[test]

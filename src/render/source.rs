@@ -41,8 +41,9 @@ pub trait RunSource {
     fn joint_angle(&self, j: usize) -> Track;
     /// Which magnets travel alike, so that a caller samples each such track once: a key and
     /// magnet `k`'s [`RunSource::magnet_travel`] start, where magnets of equal keys have the
-    /// same travel law from their starts on, over the same duration (their tracks' points
-    /// differ by the rounding of their absolute times only, some 1e-12 of a millimetre).
+    /// same travel law from their starts on, over the same duration (their tracks differ by
+    /// the rounding of their absolute times only: some 1e-13 s, far below
+    /// [`TRAVEL_TOLERANCE`] at any speed a magnet has).
     /// `None` (the default) when the source cannot tell.
     fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
         let _ = k;
