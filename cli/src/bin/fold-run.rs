@@ -11,6 +11,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
+use foldchain::margins::Margins;
 use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
@@ -19,15 +20,15 @@ use foldchain::reference::{
 use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
-use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
-use foldchain_cli::margins_file::run_margins;
+use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
+use foldchain_cli::margins_file::MarginsJob;
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
-    is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
-    MAX_FRAMES, MAX_VIEWER_TILES,
+    check_and_write_run_files, is_run_file, run_view, write_compare_page, write_run_files,
+    FramesView, RunFilesOptions, MAX_FRAMES, MAX_VIEWER_TILES,
 };
 use foldchain_cli::run_name::{inline_name, stem};
-use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
+use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
@@ -293,9 +294,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         Mode::Engine
     };
-    let run_margins = run_margins(&chain, &designs, force_law);
-    let files = RunFilesOptions {
-        margins_json: run_margins.as_ref().map(|(_, text)| text.clone()),
+    // the margins worked out on a second thread while the engine or the reference runs
+    let margins = MarginsJob::start(&chain, &designs, force_law);
+    let mut files = RunFilesOptions {
+        margins_json: None,
         name: match mode {
             Mode::Reference => format!("{name} (reference)"),
             _ => name.clone(),
@@ -392,8 +394,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
-    let say_margins = |dir: &Path| {
-        if let (false, Some((m, _))) = (args.json, &run_margins) {
+    let say_margins = |dir: &Path, run_margins: &Option<(Margins, String)>| {
+        if let (false, Some((m, _))) = (args.json, run_margins) {
             if let Some(w) = m.weakest() {
                 println!(
                     "  smallest margin {w} ({})",
@@ -406,22 +408,32 @@ fn run(args: Args) -> anyhow::Result<u8> {
         Mode::Reference => {
             let run = reference()?;
             let summary = check_reference(&run, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
-            let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
-            write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
+            // the collision check on a second thread while the files are drawn
+            let tl = foldchain::engine::run(&chain, &designs, &engine)?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
+            let check = CheckOptions::default();
+            let mut progress = bar_progress(bar.as_ref());
+            let summary = check_and_write_run_files(&tl, &check, &out_dir, &files, &mut progress)?;
+            notes(&summary);
             print_summary(&name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
             let run = reference()?;
             let rs = check_reference(&run, &CheckOptions::default())?;
             let (tl, es) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             let rfiles = RunFilesOptions {
                 name: format!("{name} (reference)"),
                 ..files.clone()
@@ -445,7 +457,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
-                say_margins(&edir);
+                say_margins(&edir, &margins);
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
@@ -475,20 +487,31 @@ const MAX_REFERENCE_TILES: usize = 2_000;
 /// Writes the run's files, with a progress bar for long runs, and warns of a simulated
 /// time far from a physical chain's.
 fn write_files(
-    source: &dyn RunSource,
+    source: &(dyn RunSource + Sync),
     s: &Summary,
     out_dir: &Path,
     files: &RunFilesOptions,
     bar: Option<&indicatif::ProgressBar>,
 ) -> anyhow::Result<()> {
-    let mut progress = |stage: &str, done: usize, total: usize| {
+    write_run_files(source, s, out_dir, files, &mut bar_progress(bar))?;
+    notes(s);
+    Ok(())
+}
+
+/// Reports the stages of writing a run's files on the progress bar, if any.
+fn bar_progress(bar: Option<&indicatif::ProgressBar>) -> impl FnMut(&str, usize, usize) + '_ {
+    move |stage: &str, done: usize, total: usize| {
         if let Some(b) = bar {
             b.set_message(stage.to_string());
             b.set_length(total as u64);
             b.set_position(done as u64);
         }
-    };
-    write_run_files(source, s, out_dir, files, &mut progress)?;
+    }
+}
+
+/// Notes on a run's files: no viewer for a long chain, a simulated time far from a physical
+/// chain's.
+fn notes(s: &Summary) {
     if s.tiles > MAX_VIEWER_TILES {
         eprintln!(
             "fold-run: note: no index.html: the viewer takes at most {MAX_VIEWER_TILES} tiles ({} here)",
@@ -501,7 +524,6 @@ fn write_files(
             "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
         );
     }
-    Ok(())
 }
 
 /// The summary as JSON with the directory its files went to.
@@ -546,53 +568,4 @@ fn exit_code(summaries: &[&Summary]) -> u8 {
     } else {
         1
     }
-}
-
-/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
-fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read plan file {}", path.display()))?;
-    let plan = Plan::from_json(&text).map_err(|e| {
-        anyhow!(
-            "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
-            path.display()
-        )
-    })?;
-    let word = plan
-        .fold_word()
-        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
-    let chain = word.to_chain();
-    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
-        bail!(
-            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
-            path.display(),
-            chain.len(),
-            plan.tiles
-        );
-    }
-    Ok((chain, plan))
-}
-
-/// The outline of the shape in `shape_path` in the chain's own frame, in tile widths (tile
-/// 0 at the origin heading +x, y up): the plan's `chain_to_svg` map inverted. `None` when
-/// the file cannot be read again or the map is singular.
-fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>> {
-    let data = std::fs::read(shape_path).ok()?;
-    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string()).ok()?;
-    let [a, b, c, d, e, f] = plan.chain_to_svg;
-    let det = a * d - b * c;
-    if !det.is_finite() || det.abs() < 1e-300 {
-        return None;
-    }
-    // the shape's rings are y up; SVG user units are y down
-    let to_chain = |(x, y): (f64, f64)| {
-        let (sx, sy) = (x - e, -y - f);
-        ((d * sx - c * sy) / det, (a * sy - b * sx) / det)
-    };
-    Some(
-        shape
-            .rings()
-            .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
-            .collect(),
-    )
 }
