@@ -27,6 +27,46 @@ impl DynamicsChoice {
     }
 }
 
+/// How `fold-run`'s event engine times its events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EngineChoice {
+    /// The local solves up to 2,000 distinct joint neighbourhoods, the kinematic baseline
+    /// beyond.
+    Auto,
+    /// Local solves of the reference's physics, one joint at a time from the RI end.
+    Local,
+    /// The kinematic baseline: a start rule and a closed-form speed law.
+    Kinematic,
+}
+
+/// The kinematic baseline's speed law.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SpeedChoice {
+    /// Overdamped magnets under drag `--drag` (seconds).
+    Overdamped,
+    /// 1 mm/s, the thesis' transition diagram's timeline.
+    Unit,
+}
+
+/// The kinematic baseline's start rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StartRuleChoice {
+    /// The thesis' path-length inequalities, nearest neighbours.
+    Distance,
+    /// The pair forces of every magnet within 3 in chain index.
+    Force,
+}
+
+/// How step frames are framed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FramesViewChoice {
+    /// Each frame on the chain as it stands, or on the part that moves when a long chain
+    /// seen whole would be a hairline.
+    Auto,
+    /// Every frame in one view holding the whole run.
+    Fixed,
+}
+
 /// The printer whose tolerances are the defaults of printed dimensions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PrinterChoice {
@@ -60,7 +100,14 @@ macro_rules! display_by_name {
     )*};
 }
 
-display_by_name!(DynamicsChoice, PrinterChoice);
+display_by_name!(
+    DynamicsChoice,
+    PrinterChoice,
+    EngineChoice,
+    SpeedChoice,
+    StartRuleChoice,
+    FramesViewChoice
+);
 
 #[cfg(test)]
 mod tests {

@@ -12,13 +12,16 @@ use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
 use foldchain::margins::Margins;
-use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
+use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
-    run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
 };
 use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
+use foldchain_cli::choices::{
+    DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
+};
 use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
 use foldchain_cli::margins_file::MarginsJob;
@@ -78,8 +81,8 @@ struct Args {
     /// How step frames are framed: auto (each on the chain as it stands, or on the part
     /// that moves when a long chain seen whole would be a hairline) or fixed (every frame in
     /// one view holding the whole run).
-    #[arg(long, value_name = "VIEW", default_value = "auto", value_parser = ["auto", "fixed"])]
-    frames_view: String,
+    #[arg(long, value_name = "VIEW", value_enum, default_value_t = FramesViewChoice::Auto)]
+    frames_view: FramesViewChoice,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -90,18 +93,18 @@ struct Args {
     /// and a closed-form speed law, --speed and --start-rule; microseconds per tile, its times
     /// 7-9x early and folds that overlap in time), or auto (local up to 2,000 distinct joint
     /// neighbourhoods, as in a 2,000-tile random word, kinematic beyond, said on stderr).
-    #[arg(long, default_value = "auto", value_parser = ["auto", "local", "kinematic"])]
-    engine: String,
+    #[arg(long, value_enum, default_value_t = EngineChoice::Auto)]
+    engine: EngineChoice,
     /// The kinematic baseline's speed law: overdamped (seconds) or unit (1 mm/s, the
     /// transition diagram's timeline; implies --engine kinematic).
-    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
-    speed: String,
+    #[arg(long, value_enum, default_value_t = SpeedChoice::Overdamped)]
+    speed: SpeedChoice,
     /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
     /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
     /// reference integrator weighs them; about 0.4 us per tile). Default distance; giving it
     /// selects the kinematic engine (refused with --engine local).
-    #[arg(long, value_parser = ["distance", "force"])]
-    start_rule: Option<String>,
+    #[arg(long, value_enum)]
+    start_rule: Option<StartRuleChoice>,
     /// The pair law of the reference and of the force start rule (and the energy plot):
     /// dipole (point dipoles, thesis 6.11/6.12) or cylinder (the design's magnets as
     /// uniformly magnetised cylinders, tabulated).
@@ -112,8 +115,8 @@ struct Args {
     /// tiles with rotational inertia, bouncing at path ends; README, "Physical parameters")
     /// or overdamped (first order, drag --drag: the stiff limit of negligible mass, the one
     /// fold-validate uses by default). The kinematic engine ignores it.
-    #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
-    dynamics: String,
+    #[arg(long, value_enum, default_value_t = DynamicsChoice::Inertial)]
+    dynamics: DynamicsChoice,
     /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
     /// apart in chain index (a ring's first and last tiles); default: none, pairs up to 3
     /// apart in chain index only.
@@ -179,7 +182,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
     // the target outline, in tile widths, when the chain was planned from a shape
     let mut target = Vec::new();
-    if args.engine == "local" && args.start_rule.is_some() {
+    if args.engine == EngineChoice::Local && args.start_rule.is_some() {
         bail!("--start-rule is the kinematic engine's option; the local solves start magnets from the reference's forces (use --engine kinematic, or leave --start-rule out)");
     }
     let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
@@ -253,13 +256,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 args.force_law
             )
         })?;
-    let dynamics = match args.dynamics.as_str() {
-        "inertial" => Dynamics::Inertial(Inertia::default()),
-        _ => Dynamics::Overdamped,
-    };
-    let speed = match args.speed.as_str() {
-        "unit" => SpeedLaw::Unit,
-        _ => {
+    let dynamics = args.dynamics.to_dynamics();
+    let speed = match args.speed {
+        SpeedChoice::Unit => SpeedLaw::Unit,
+        SpeedChoice::Overdamped => {
             if !args.drag.is_finite() || args.drag <= 0.0 {
                 bail!("--drag {}: expected a finite number > 0 (N s/m)", args.drag);
             }
@@ -305,9 +305,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
         frames: args.frames,
         transition_tiles,
         target,
-        frames_view: match args.frames_view.as_str() {
-            "fixed" => FramesView::Fixed,
-            _ => FramesView::Auto,
+        frames_view: match args.frames_view {
+            FramesViewChoice::Fixed => FramesView::Fixed,
+            FramesViewChoice::Auto => FramesView::Auto,
         },
     };
     let out_dir = args.out.clone().unwrap_or_else(|| {
@@ -350,10 +350,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
             });
         Ok(run_reference(&chain, &designs, &ro)?)
     };
-    let kinematic = match args.engine.as_str() {
-        "kinematic" => true,
+    let kinematic = match args.engine {
+        EngineChoice::Kinematic => true,
         _ if args.start_rule.is_some() => true,
-        "auto"
+        EngineChoice::Auto
             if speed != SpeedLaw::Unit
                 && distinct_neighbourhoods(&chain, &designs) > LOCAL_ENGINE_MAX_NEIGHBOURHOODS =>
         {
@@ -370,11 +370,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
         EngineOptions::default()
             .with_speed(speed)
             .with_force_law(force_law)
-            .with_start_rule(match args.start_rule.as_deref().unwrap_or("distance") {
-                "force" => StartRule::Force {
+            .with_start_rule(match args.start_rule {
+                Some(StartRuleChoice::Force) => StartRule::Force {
                     cutoff: foldchain::physics::DEFAULT_CUTOFF,
                 },
-                _ => StartRule::Distance,
+                Some(StartRuleChoice::Distance) | None => StartRule::Distance,
             })
     } else {
         // the local solves follow --dynamics, as the reference does (--drag is the
