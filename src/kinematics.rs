@@ -9,6 +9,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+use crate::pose::wrap_angle;
 use crate::{Fold, FoldWord, Octagon, Pose};
 
 /// The offset from one tile centre to the next in the first tile's frame, exactly.
@@ -70,13 +71,51 @@ pub fn joint_transform(angle: f64, w: f64) -> Pose {
 /// each within `[-pi/2, pi/2]`), composing `f64` transforms from tile 0 at the origin.
 pub fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
     let mut poses = Vec::with_capacity(angles.len() + 1);
-    let mut pose = Pose::IDENTITY;
-    poses.push(pose);
-    for &a in angles {
-        pose = pose.then(&joint_transform(a, w));
-        poses.push(pose);
-    }
+    for_each_pose_at_angles(angles, w, |p| poses.push(p));
     poses
+}
+
+/// The poses of [`poses_at_angles`] handed to `each` in tile order, without storing them:
+/// the same numbers bit for bit (`Pose::then` of [`joint_transform`]s), but a joint's
+/// transform and a heading's sine and cosine are computed again only when the angle changes,
+/// which along a straight run it does not.
+pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+    each(Pose::IDENTITY);
+    compose_poses(Pose::IDENTITY, angles, w, each);
+}
+
+/// The poses of the tiles after one at `pose`, whose joints turn by `angles`, handed to
+/// `each` in order: from tile 0's pose, [`for_each_pose_at_angles`] less tile 0; from a
+/// later tile's pose, the same numbers as from tile 0.
+pub(crate) fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+    // the last joint angle and its transform, the last heading and its sine and cosine
+    let mut joint: Option<(u64, Pose)> = None;
+    let mut heading: Option<(u64, f64, f64)> = None;
+    for &a in angles {
+        let step = match joint {
+            Some((bits, t)) if bits == a.to_bits() => t,
+            _ => {
+                let t = joint_transform(a, w);
+                joint = Some((a.to_bits(), t));
+                t
+            }
+        };
+        let (s, c) = match heading {
+            Some((bits, s, c)) if bits == pose.angle.to_bits() => (s, c),
+            _ => {
+                let (s, c) = pose.angle.sin_cos();
+                heading = Some((pose.angle.to_bits(), s, c));
+                (s, c)
+            }
+        };
+        // Pose::then with the sine and cosine above (Pose::transform_point's arithmetic)
+        pose = Pose::new(
+            pose.x + c * step.x - s * step.y,
+            pose.y + s * step.x + c * step.y,
+            wrap_angle(pose.angle + step.angle),
+        );
+        each(pose);
+    }
 }
 
 /// The final headings as exact quarter turns, for callers that need only headings.
@@ -161,6 +200,34 @@ mod tests {
         assert_eq!(shared, 2);
         let (x, y) = d.to_f64(w);
         assert!(((x * x + y * y).sqrt() - w).abs() < 1e-15);
+    }
+
+    #[test]
+    fn poses_are_the_composed_transforms_bit_for_bit() {
+        // straight runs, folds part way, signed zeros, full turns past pi
+        let mut angles = Vec::new();
+        for i in 0..400 {
+            angles.push(match i % 7 {
+                0..=2 => 0.0,
+                3 => -0.0,
+                4 => 0.3 * (i as f64).sin(),
+                5 => FRAC_PI_2,
+                _ => -FRAC_PI_2 * 0.999,
+            });
+        }
+        let w = 30.0;
+        let fast = poses_at_angles(&angles, w);
+        let mut pose = Pose::IDENTITY;
+        let mut slow = vec![pose];
+        for &a in &angles {
+            pose = pose.then(&joint_transform(a, w));
+            slow.push(pose);
+        }
+        assert_eq!(fast.len(), slow.len());
+        for (i, (f, s)) in fast.iter().zip(&slow).enumerate() {
+            let bits = |p: &Pose| (p.x.to_bits(), p.y.to_bits(), p.angle.to_bits());
+            assert_eq!(bits(f), bits(s), "tile {i}");
+        }
     }
 
     #[test]

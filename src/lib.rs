@@ -75,7 +75,8 @@ pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
 pub use simulation::{
-    check_reference, folded_word, simulate, timeline_json, SimulateError, MAX_TIMELINE_EVENTS,
+    check_engine_run, check_reference, folded_word, simulate, timeline_json, SimulateError,
+    MAX_TIMELINE_EVENTS,
 };
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

@@ -16,7 +16,7 @@ pub struct Pose {
 
 /// An angle brought into `[-pi, pi)`, so that composing many turns keeps the angle's
 /// magnitude, and with it the rounding of its sine and cosine, bounded.
-fn wrap_angle(a: f64) -> f64 {
+pub(crate) fn wrap_angle(a: f64) -> f64 {
     if (-std::f64::consts::PI..std::f64::consts::PI).contains(&a) {
         a
     } else {

@@ -1,5 +1,6 @@
 //! A simulation as one call: the event engine's timeline of a chain, its fold schedule
-//! checked for self-intersection, and the summary of both ([`simulate`]); the timeline as
+//! checked for self-intersection, and the summary of both ([`simulate`], or its two steps:
+//! [`crate::engine::run`] then [`check_engine_run`]); the timeline as
 //! JSON ([`timeline_json`]).
 
 use crate::collision::{
@@ -107,9 +108,17 @@ pub fn simulate(
     check: &CheckOptions,
 ) -> Result<(Timeline, Summary), SimulateError> {
     let tl = run(chain, designs, engine)?;
-    let (collision, undecided) = check_timeline(&tl, check)?;
+    let summary = check_engine_run(&tl, check)?;
+    Ok((tl, summary))
+}
+
+/// [`simulate`]'s second step: the engine's timeline `tl` checked for collisions, and its
+/// summary with the verdict. For callers that do other work with the timeline while the
+/// check runs (`fold-run` draws the run's files on a second thread).
+pub fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, SimulateError> {
+    let (collision, undecided) = check_timeline(tl, check)?;
     let mut summary = tl.summary();
-    if let Some(why) = solve_stopped(&tl) {
+    if let Some(why) = solve_stopped(tl) {
         // a stall's reason already ends with it
         if summary.reason.as_deref().is_some_and(|r| r.contains(&why)) {
             summary.result = "stopped";
@@ -118,8 +127,7 @@ pub fn simulate(
             summary = summary.overruled("stopped", why);
         }
     }
-    let summary = overrule(summary, collision, undecided);
-    Ok((tl, summary))
+    Ok(overrule(summary, collision, undecided))
 }
 
 /// Why a local solve of the engine gave up (its step limit), if one did: the run is

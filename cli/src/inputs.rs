@@ -1,12 +1,14 @@
 //! Reading what a user names on the command line, and guarding their files: a chain given
-//! inline or as a file (with a clear message when it is neither), and the refusal to write
-//! an output over an input.
+//! inline or as a file (with a clear message when it is neither), a chain from fold-plan's
+//! JSON and the outline of the shape it was planned for, and the refusal to write an output
+//! over an input.
 
 use std::path::{Path, PathBuf};
 
-use anyhow::bail;
+use anyhow::{anyhow, bail, Context};
 use foldchain::input::read_chain_arg;
 use foldchain::Chain;
+use foldchain_planner::{Plan, Shape};
 
 /// Reads a chain argument: a fold word, a tile list, JSON, or a file holding one. A name that
 /// looks like a file (it has an extension or a directory) but is not there gets "no such
@@ -94,6 +96,55 @@ pub fn refuse_overwrite_in(
         }
     }
     Ok(())
+}
+
+/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
+pub fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read plan file {}", path.display()))?;
+    let plan = Plan::from_json(&text).map_err(|e| {
+        anyhow!(
+            "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
+            path.display()
+        )
+    })?;
+    let word = plan
+        .fold_word()
+        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
+    let chain = word.to_chain();
+    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
+        bail!(
+            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
+            path.display(),
+            chain.len(),
+            plan.tiles
+        );
+    }
+    Ok((chain, plan))
+}
+
+/// The outline of the shape in `shape_path` in the chain's own frame, in tile widths (tile
+/// 0 at the origin heading +x, y up): the plan's `chain_to_svg` map inverted. `None` when
+/// the file cannot be read again or the map is singular.
+pub fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>> {
+    let data = std::fs::read(shape_path).ok()?;
+    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string()).ok()?;
+    let [a, b, c, d, e, f] = plan.chain_to_svg;
+    let det = a * d - b * c;
+    if !det.is_finite() || det.abs() < 1e-300 {
+        return None;
+    }
+    // the shape's rings are y up; SVG user units are y down
+    let to_chain = |(x, y): (f64, f64)| {
+        let (sx, sy) = (x - e, -y - f);
+        ((d * sx - c * sy) / det, (a * sy - b * sx) / det)
+    };
+    Some(
+        shape
+            .rings()
+            .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
+            .collect(),
+    )
 }
 
 #[cfg(test)]

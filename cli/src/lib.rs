@@ -6,11 +6,12 @@
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
 //! a run's margins ([`margins_file`]), its name ([`run_name`]), `fold-run --engine auto`'s choice
-//! ([`engine_choice`]) and error messages ([`report`]). The libraries `foldchain` and
+//! ([`engine_choice`]), the named choices of the options ([`choices`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all six tools with `cargo install --path cli` from the repository root.
 
+pub mod choices;
 pub mod engine_choice;
 pub mod experiments;
 pub mod inputs;

@@ -59,3 +59,24 @@ pub fn run_margins(
     text.push('\n');
     Some((m, text))
 }
+
+/// [`run_margins`] on a second thread, so that a run's margins are worked out while the
+/// engine runs: started with the chain, finished when the run's files are written.
+pub struct MarginsJob(std::thread::JoinHandle<Option<(Margins, String)>>);
+
+impl MarginsJob {
+    /// Starts [`run_margins`] of `chain` with `designs` under `law`.
+    pub fn start(chain: &Chain, designs: &TileDesigns, law: ForceLaw) -> MarginsJob {
+        let (chain, designs) = (chain.clone(), designs.clone());
+        MarginsJob(std::thread::spawn(move || {
+            run_margins(&chain, &designs, law)
+        }))
+    }
+
+    /// What [`run_margins`] returned (waiting for it; a panic there is raised here).
+    pub fn finish(self) -> Option<(Margins, String)> {
+        self.0
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    }
+}

@@ -8,15 +8,23 @@
 //! user keeps there ([`OutputDir`]): only the files named here are replaced, and step frames
 //! of an earlier run with more frames are removed (they carry this tool's names).
 //! `summary.json` is written last: when it is present and new, so is everything else.
+//!
+//! What does not depend on the collision check's verdict (the transition diagram, the energy
+//! plot, the viewer's tracks) can be made first, in memory
+//! ([`prepare_run_files`]): [`check_and_write_run_files`] makes it while the check runs on a
+//! second thread. The text of `index.html` and `timeline.json` is made on a second thread
+//! while the frames are drawn ([`write_prepared_run_files`]).
 
 use std::path::Path;
 
-use foldchain::engine::Summary;
+use foldchain::check_engine_run;
+use foldchain::collision::CheckOptions;
+use foldchain::engine::{Summary, Timeline};
 use foldchain::render::{
     energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, RunSource,
     DETAIL_TILES,
 };
-use foldchain::viewer::{viewer_html, RunView};
+use foldchain::viewer::{viewer_html, viewer_html_of, RunData, RunView};
 use kurbo::Point;
 
 use crate::output::{OutputDir, WriteError};
@@ -76,20 +84,24 @@ pub fn run_view<'a>(
     opts: &RunFilesOptions,
     label: &str,
 ) -> RunView<'a> {
-    let w = source.geometry().w;
-    let mut view = RunView::new(source, opts.name.clone())
+    let mut view = outcome_free_view(source, opts)
         .with_label(label)
-        .with_note(final_note(summary))
-        .with_target(
-            opts.target
-                .iter()
-                .map(|ring| ring.iter().map(|&(x, y)| (x * w, y * w)).collect())
-                .collect(),
-        );
+        .with_note(final_note(summary));
     if let Some(c) = summary.first_collision {
         view = view.with_collision(c.time, c.tiles);
     }
     view
+}
+
+/// The viewer's view of a run before its outcome is known: its title and target outline.
+fn outcome_free_view<'a>(source: &'a dyn RunSource, opts: &RunFilesOptions) -> RunView<'a> {
+    let w = source.geometry().w;
+    RunView::new(source, opts.name.clone()).with_target(
+        opts.target
+            .iter()
+            .map(|ring| ring.iter().map(|&(x, y)| (x * w, y * w)).collect())
+            .collect(),
+    )
 }
 
 /// Writes `index.html` into `dir` (created if needed): the page playing `views` side by
@@ -145,13 +157,148 @@ fn is_step_frame(name: &str) -> bool {
 /// final frame only). `progress(stage, done, total)` is called as the work goes on.
 /// Returns the names written, in order.
 pub fn write_run_files(
+    source: &(dyn RunSource + Sync),
+    summary: &Summary,
+    dir: &Path,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<Vec<String>, WriteError> {
+    let prepared = prepare_run_files(source, opts, progress);
+    write_prepared_run_files(prepared, source, summary, dir, opts, progress)
+}
+
+/// What a run's files hold that does not depend on the collision check's verdict: the
+/// transition diagram, the energy plot and the viewer's data (tracks, paths, box: the bulk of
+/// `index.html`). Made by [`prepare_run_files`], written by [`write_prepared_run_files`].
+/// (`timeline.json` is not held: it is quick to make and large, 27 MB at 100,000 tiles.)
+pub struct PreparedFiles {
+    transition_svg: String,
+    energy_svg: String,
+    viewer: Option<RunData>,
+}
+
+/// The parts of the run's files that do not depend on its outcome, made in memory (nothing
+/// is written): so that they can be made while the collision check runs.
+pub fn prepare_run_files(
     source: &dyn RunSource,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> PreparedFiles {
+    let tiles = source.tiles();
+    let (a, b) = opts
+        .transition_tiles
+        .unwrap_or((0, 5.min(tiles.saturating_sub(1))));
+    let title = format!(
+        "{}: transition diagram, tiles {a} to {}",
+        opts.name,
+        b.min(tiles.saturating_sub(1))
+    );
+    let transition_svg = transition_svg(source.geometry(), &source.transition(a, b), &title);
+    progress("energy", 0, 1);
+    let samples = if tiles <= 10_000 { 400 } else { 100 };
+    let title = format!("{}: total dipole energy", opts.name);
+    let energy_svg = energy_svg(source.folds(), &source.energy(samples), &title);
+    progress("energy", 1, 1);
+    let viewer = (tiles <= MAX_VIEWER_TILES).then(|| {
+        progress("viewer", 0, 1);
+        let data = RunData::from_view(&outcome_free_view(source, opts));
+        progress("viewer", 1, 1);
+        data
+    });
+    PreparedFiles {
+        transition_svg,
+        energy_svg,
+        viewer,
+    }
+}
+
+/// Checks the engine's timeline `tl` for collisions ([`check_engine_run`]) on a second
+/// thread while this one makes the parts of its files that do not depend on the verdict
+/// ([`prepare_run_files`]), then writes the files into `dir`
+/// ([`write_prepared_run_files`]): the summary and files of [`foldchain::simulate`] then
+/// [`write_run_files`], with the drawing done in the check's time on a second core.
+pub fn check_and_write_run_files(
+    tl: &Timeline,
+    check: &CheckOptions,
+    dir: &Path,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> anyhow::Result<Summary> {
+    let (summary, prepared) = std::thread::scope(|scope| {
+        let checking = scope.spawn(|| check_engine_run(tl, check));
+        let prepared = prepare_run_files(tl, opts, progress);
+        progress("collision check", 0, 1);
+        let summary = checking
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        progress("collision check", 1, 1);
+        (summary, prepared)
+    });
+    let summary = summary?;
+    write_prepared_run_files(prepared, tl, &summary, dir, opts, progress)?;
+    Ok(summary)
+}
+
+/// Writes the run's files into `dir` as [`write_run_files`] does, the parts that do not
+/// depend on the outcome taken from `prepared` (made by [`prepare_run_files`] for the same
+/// `source` and `opts`). The text of `index.html` and `timeline.json` is made on a second
+/// thread while the frames are drawn; the files are written in the same order.
+pub fn write_prepared_run_files(
+    prepared: PreparedFiles,
+    source: &(dyn RunSource + Sync),
     summary: &Summary,
     dir: &Path,
     opts: &RunFilesOptions,
     progress: &mut dyn FnMut(&str, usize, usize),
 ) -> Result<Vec<String>, WriteError> {
     let mut out = OutputDir::create(dir)?;
+    let PreparedFiles {
+        transition_svg,
+        energy_svg,
+        viewer,
+    } = prepared;
+    let (page, timeline_json) = std::thread::scope(|scope| {
+        let texts = scope.spawn(move || {
+            let page = viewer.map(|data| {
+                let data = data.with_outcome_of(&run_view(source, summary, opts, ""));
+                viewer_html_of(&opts.name, &[data])
+            });
+            (page, source.timeline_json())
+        });
+        let drawn = write_frames(source, summary, &mut out, opts, progress);
+        let texts = texts
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        drawn.map(|()| texts)
+    })?;
+    out.write("transition.svg", transition_svg.as_bytes())?;
+    out.write("energy.svg", energy_svg.as_bytes())?;
+    if let Some(page) = page {
+        out.write("index.html", page.as_bytes())?;
+    }
+    out.write("timeline.json", timeline_json.as_bytes())?;
+    if let Some(m) = &opts.margins_json {
+        out.write("margins.json", m.as_bytes())?;
+    }
+    // a page of an earlier, shorter run of this chain would show the wrong run
+    out.remove_stale(
+        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
+        &is_run_file,
+    )?;
+    let mut summary_json = summary.to_json();
+    summary_json.push('\n');
+    out.write("summary.json", summary_json.as_bytes())?;
+    Ok(out.written().to_vec())
+}
+
+/// Writes the step frames and `final.svg` into `out`.
+fn write_frames(
+    source: &dyn RunSource,
+    summary: &Summary,
+    out: &mut OutputDir,
+    opts: &RunFilesOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<(), WriteError> {
     let collision = summary.first_collision.map(|c| (c.time, c.tiles));
     let w = source.geometry().w;
     let frames = opts
@@ -209,42 +356,7 @@ pub fn write_run_files(
     }
     let svg = frame_svg(source.geometry(), &final_state, &final_view, &fo);
     out.write("final.svg", svg.as_bytes())?;
-    let tiles = source.tiles();
-    let (a, b) = opts
-        .transition_tiles
-        .unwrap_or((0, 5.min(tiles.saturating_sub(1))));
-    let title = format!(
-        "{}: transition diagram, tiles {a} to {}",
-        opts.name,
-        b.min(tiles.saturating_sub(1))
-    );
-    let svg = transition_svg(source.geometry(), &source.transition(a, b), &title);
-    out.write("transition.svg", svg.as_bytes())?;
-    progress("energy", 0, 1);
-    let samples = if tiles <= 10_000 { 400 } else { 100 };
-    let title = format!("{}: total dipole energy", opts.name);
-    let svg = energy_svg(source.folds(), &source.energy(samples), &title);
-    out.write("energy.svg", svg.as_bytes())?;
-    progress("energy", 1, 1);
-    if tiles <= MAX_VIEWER_TILES {
-        progress("viewer", 0, 1);
-        let view = run_view(source, summary, opts, "");
-        out.write("index.html", viewer_html(&opts.name, &[view]).as_bytes())?;
-        progress("viewer", 1, 1);
-    }
-    out.write("timeline.json", source.timeline_json().as_bytes())?;
-    if let Some(m) = &opts.margins_json {
-        out.write("margins.json", m.as_bytes())?;
-    }
-    // a page of an earlier, shorter run of this chain would show the wrong run
-    out.remove_stale(
-        &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
-        &is_run_file,
-    )?;
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    out.write("summary.json", summary_json.as_bytes())?;
-    Ok(out.written().to_vec())
+    Ok(())
 }
 
 /// `frames` evenly spaced times from 0 to `duration` (just `duration` for one frame), and the
@@ -340,6 +452,42 @@ mod tests {
             assert!(!is_step_frame(n), "{n}");
         }
         assert!(is_run_file("summary.json") && !is_run_file("notes.txt"));
+    }
+
+    #[test]
+    fn checking_beside_the_drawing_writes_the_files_of_simulate_then_write() {
+        use foldchain::engine::{EngineOptions, TileDesigns};
+        use foldchain::{simulate, Chain};
+        // a clean serpentine and one that collides (its frames marked from the contact on)
+        for word in ["S*8 LL S*8 RR S*8", "LLLLLLLL S*6"] {
+            let chain = Chain::parse(word).unwrap();
+            let (designs, engine) = (TileDesigns::default(), EngineOptions::default());
+            let check = CheckOptions::default();
+            let opts = RunFilesOptions {
+                name: word.into(),
+                frames: Some(5),
+                transition_tiles: None,
+                target: Vec::new(),
+                frames_view: FramesView::Auto,
+                margins_json: None,
+            };
+            let base =
+                std::env::temp_dir().join(format!("foldchain-runfiles-{}", std::process::id()));
+            let (one, two) = (base.join("one"), base.join("two"));
+            let (tl, summary) = simulate(&chain, &designs, &engine, &check).unwrap();
+            let names = write_run_files(&tl, &summary, &one, &opts, &mut |_, _, _| {}).unwrap();
+            let tl = foldchain::engine::run(&chain, &designs, &engine).unwrap();
+            let checked =
+                check_and_write_run_files(&tl, &check, &two, &opts, &mut |_, _, _| {}).unwrap();
+            assert_eq!(checked, summary, "{word}");
+            assert_eq!(summary.first_collision.is_some(), word.starts_with('L'));
+            assert!(names.contains(&"index.html".to_string()) && names.len() > 8);
+            for name in &names {
+                let (a, b) = (std::fs::read(one.join(name)), std::fs::read(two.join(name)));
+                assert_eq!(a.unwrap(), b.unwrap(), "{word}: {name}");
+            }
+            let _ = std::fs::remove_dir_all(&base);
+        }
     }
 
     #[test]

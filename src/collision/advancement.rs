@@ -23,11 +23,11 @@ use rustc_hash::FxHashMap;
 
 use super::block_cover::BlockCache;
 use super::block_pairs::near_pairs;
-use super::blocks::{Contact, Segment};
+use super::blocks::Segment;
 use super::chain_tree::ChainTree;
 use super::pieces::{check_in_pieces, piece_count, Piece};
 use super::windows::{track_breakpoints, Windows};
-use super::{check_word, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError};
+use super::{check_word, CheckOptions, FoldSchedule, JointTrack, ScheduleError};
 
 /// Checks a chain folding along `schedule`: every pair of tiles with a moving joint between
 /// them, at every moment (or the exact sweep check for a sequential schedule). Returns the
@@ -247,15 +247,6 @@ impl<'a> Walk<'a> {
 
 /// Two blocks by their runs of tiles: first and last tile of each.
 type Span = (usize, usize, usize, usize);
-
-pub(super) fn collision(c: Contact) -> ScheduleError {
-    ScheduleError::Collision(Collision {
-        joint: Some(c.joint),
-        angle_deg: c.angle_deg,
-        time: Some(c.time),
-        tiles: c.tiles,
-    })
-}
 
 #[cfg(test)]
 mod tests;

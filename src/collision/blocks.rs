@@ -35,6 +35,7 @@ use crate::Octagon;
 use super::block_cover::BlockCover;
 use super::chain_tree::{turn_of, ChainTree, Rigid};
 use super::sweep::first_contact_within;
+use super::{Collision, ScheduleError};
 
 /// Distance (tile widths, between inset outlines) at which two tiles count as in contact.
 const CONTACT: f64 = 1e-12;
@@ -58,6 +59,16 @@ pub(super) struct Contact {
 }
 
 impl Contact {
+    /// The contact as the check's error.
+    pub(super) fn to_error(self) -> ScheduleError {
+        ScheduleError::Collision(Collision {
+            joint: Some(self.joint),
+            angle_deg: self.angle_deg,
+            time: Some(self.time),
+            tiles: self.tiles,
+        })
+    }
+
     pub(super) fn earlier_than(&self, other: &Option<Contact>) -> bool {
         other.is_none_or(|o| (self.time, self.tiles) < (o.time, o.tiles))
     }
@@ -217,17 +228,19 @@ impl<'a> Segment<'a> {
 
     /// Calls `f` with each part of `part` (none for a tile).
     fn each_child(&self, part: &Part, mut f: impl FnMut(Part)) {
+        let child = |node: usize, pose: Rigid| {
+            let (c, radius) = self.tree.disc(node);
+            Part {
+                node,
+                block: part.block,
+                pose,
+                centre: pose.apply(c),
+                radius,
+            }
+        };
         if part.node == 0 {
             for &(node, rel) in &self.covers[part.block].nodes {
-                let pose = part.pose.then(&rel);
-                let (c, radius) = self.tree.disc(node);
-                f(Part {
-                    node,
-                    block: part.block,
-                    pose,
-                    centre: pose.apply(c),
-                    radius,
-                });
+                f(child(node, part.pose.then(&rel)));
             }
             return;
         }
@@ -235,14 +248,7 @@ impl<'a> Segment<'a> {
             return;
         }
         for (node, pose) in self.tree.children(part.node, &part.pose) {
-            let (c, radius) = self.tree.disc(node);
-            f(Part {
-                node,
-                block: part.block,
-                pose,
-                centre: pose.apply(c),
-                radius,
-            });
+            f(child(node, pose));
         }
     }
 

@@ -10,7 +10,7 @@
 
 use kurbo::{Point, Vec2};
 
-use crate::{kinematics, Octagon, Pose};
+use crate::{Octagon, Pose};
 
 /// A rigid motion: rotation with cosine `c` and sine `s`, then translation `(x, y)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +31,7 @@ impl Rigid {
     };
 
     /// The motion of a pose (its frame placed in the world).
+    #[cfg(test)]
     pub fn from_pose(p: &Pose) -> Rigid {
         let (s, c) = p.angle.sin_cos();
         Rigid {
@@ -78,7 +79,16 @@ impl Rigid {
 
 /// The transform across a joint at `angle`, tile width 1.
 pub(super) fn turn_of(angle: f64) -> Rigid {
-    Rigid::from_pose(&kinematics::joint_transform(angle, 1.0))
+    // `kinematics::joint_transform` with one sine and cosine for the pose and its rotation
+    let (hx, hy) = Octagon::new(1.0).hinge(angle >= 0.0);
+    let (s, c) = angle.sin_cos();
+    let (dx, dy) = (0.5, -hy);
+    Rigid {
+        c,
+        s,
+        x: hx + c * dx - s * dy,
+        y: hy + s * dx + c * dy,
+    }
 }
 
 /// The smallest disc holding two discs.
@@ -220,20 +230,7 @@ impl ChainTree {
     #[cfg(test)]
     /// Turns joint `k` to `angle`, updating the nodes above it.
     pub fn set_angle(&mut self, k: usize, angle: f64) {
-        if self.angles[k] == angle {
-            return;
-        }
-        self.angles[k] = angle;
-        self.turns[k] = turn_of(angle);
-        let (mut a, mut b) = (self.leaves + k, self.leaves + k + 1);
-        while a != b {
-            a /= 2;
-            b /= 2;
-        }
-        while a >= 1 {
-            self.merge(a);
-            a /= 2;
-        }
+        self.set_angles(std::iter::once((k, angle)));
     }
 
     /// The first tile of node `p`'s run.
@@ -418,7 +415,7 @@ mod tests {
         let mut tree = ChainTree::new(a.clone(), 1e-7);
         let r = Octagon::new(1.0).circumradius();
         for round in 0..4 {
-            let poses = kinematics::poses_at_angles(&a, 1.0);
+            let poses = crate::kinematics::poses_at_angles(&a, 1.0);
             for (i, p) in poses.iter().enumerate() {
                 let at = tree.pose_of(i);
                 assert!(close(at.apply(Point::ORIGIN), (p.x, p.y)), "tile {i}");
@@ -505,6 +502,28 @@ mod tests {
                 let (a, b) = cover.boxed;
                 assert!(a.x <= x - 0.49 && x + 0.49 <= b.x && a.y <= y - 0.49 && y + 0.49 <= b.y);
             }
+        }
+    }
+
+    #[test]
+    fn a_turn_is_the_joint_transform() {
+        for a in [
+            -std::f64::consts::FRAC_PI_2,
+            -0.7,
+            -1e-9,
+            0.0,
+            3e-5,
+            0.4,
+            std::f64::consts::FRAC_PI_2,
+        ] {
+            let (t, k) = (
+                turn_of(a),
+                Rigid::from_pose(&crate::kinematics::joint_transform(a, 1.0)),
+            );
+            assert_eq!(
+                [t.c, t.s, t.x, t.y].map(f64::to_bits),
+                [k.c, k.s, k.x, k.y].map(f64::to_bits)
+            );
         }
     }
 

@@ -14,7 +14,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 
-use super::advancement::collision;
 use super::blocks::Contact;
 use super::ScheduleError;
 
@@ -88,7 +87,7 @@ fn combine(pieces: &[Option<Piece>]) -> Result<(), ScheduleError> {
     for piece in pieces.iter().flatten() {
         // a contact found before this piece: everything before it is clean
         if let Some(c) = best.filter(|c| c.time <= piece.start) {
-            return Err(collision(c));
+            return Err(c.to_error());
         }
         if let Some(c) = piece.best {
             if c.earlier_than(&best) {
@@ -101,10 +100,10 @@ fn combine(pieces: &[Option<Piece>]) -> Result<(), ScheduleError> {
         if let Some((ta, steps, time)) = piece.undecided {
             // clean up to the segment where the work ran out
             return match best.filter(|c| c.time <= ta) {
-                Some(c) => Err(collision(c)),
+                Some(c) => Err(c.to_error()),
                 None => Err(ScheduleError::Undecided { steps, time }),
             };
         }
     }
-    best.map_or(Ok(()), |c| Err(collision(c)))
+    best.map_or(Ok(()), |c| Err(c.to_error()))
 }

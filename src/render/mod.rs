@@ -18,7 +18,7 @@ mod transition;
 pub use frame::{frame_svg, FrameOptions, FrameView, DETAIL_TILES};
 pub use pair_energy::pair_energy_svg;
 pub use plot::energy_svg;
-pub use source::RunSource;
+pub use source::{RunSource, TrackKey};
 pub use state::ChainState;
 pub use transition::{transition_svg, MagnetTrack, TransitionData};
 

@@ -39,7 +39,21 @@ pub trait RunSource {
     /// Joint `j`'s signed angle (radians, positive = left) against time, within
     /// [`ANGLE_TOLERANCE`]: what the viewer turns the tiles by.
     fn joint_angle(&self, j: usize) -> Track;
+    /// Which magnets travel alike, so that a caller samples each such track once: a key and
+    /// magnet `k`'s [`RunSource::magnet_travel`] start, where magnets of equal keys have the
+    /// same travel law from their starts on, over the same duration (their tracks differ by
+    /// the rounding of their absolute times only: some 1e-13 s, far below
+    /// [`TRAVEL_TOLERANCE`] at any speed a magnet has).
+    /// `None` (the default) when the source cannot tell.
+    fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
+        let _ = k;
+        None
+    }
 }
+
+/// Names a magnet's travel law ([`RunSource::magnet_travel_key`]); its meaning is the
+/// source's own, and only equality counts.
+pub type TrackKey = [u64; 4];
 
 impl RunSource for Timeline {
     fn tiles(&self) -> usize {
@@ -77,6 +91,22 @@ impl RunSource for Timeline {
                 Track::sample(s, a - s, TRAVEL_TOLERANCE, |dt| self.travel_at(k, s + dt))
             }
         }
+    }
+    /// The motion law (its address in the run's table: one per distinct path, partner and
+    /// fold), the local solves' shape of the magnet and its start against that shape's origin
+    /// (the local solves repeat a few shapes shifted in time), and the track's duration.
+    fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
+        let s = self.start_of(k)?;
+        let a = self.arrival_of(k).unwrap_or(s).max(s);
+        let motion = self.motion(k) as *const _ as usize as u64;
+        let (shape, lag) = match self.solved.as_deref() {
+            Some(solved) => {
+                let tr = solved.chain.magnets[k];
+                (u64::from(tr.shape), (s - tr.offset).to_bits())
+            }
+            None => (u64::MAX, 0),
+        };
+        Some(([motion, shape, lag, (a - s).to_bits()], s))
     }
     fn joint_angle(&self, j: usize) -> Track {
         match self.fold_at(j) {

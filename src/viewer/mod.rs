@@ -110,6 +110,13 @@ impl<'a> RunView<'a> {
 /// The page playing `runs` side by side on one clock, titled `title`.
 pub fn viewer_html(title: &str, runs: &[RunView<'_>]) -> String {
     let data: Vec<RunData> = runs.iter().map(RunData::from_view).collect();
+    viewer_html_of(title, &data)
+}
+
+/// The page playing the runs of `data` side by side on one clock, titled `title`: the page
+/// of [`viewer_html`] from data made beforehand ([`RunData::from_view`], with
+/// [`RunData::with_outcome_of`] once the outcome is known).
+pub fn viewer_html_of(title: &str, data: &[RunData]) -> String {
     let json = serde_json::to_string(&data).unwrap_or_else(|_| "[]".to_string());
     // inside <script>, "</" could close the element: JSON allows "<\/" for it
     let json = json.replace("</", "<\\/");

@@ -7,8 +7,11 @@
 
 use std::collections::HashMap;
 
-use crate::kinematics::poses_at_angles;
-use crate::render::RunSource;
+use crate::kinematics::{compose_poses, for_each_pose_at_angles};
+use crate::Pose;
+use rustc_hash::FxHashMap;
+
+use crate::render::{RunSource, TrackKey};
 use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
 use crate::viewer::{PathForm, RunView, Track};
 
@@ -112,9 +115,21 @@ impl RunData {
         let mut shapes = Shapes::default();
         shapes.add(&Track::constant(0.0));
         let (mut m_shape, mut m_start) = (Vec::new(), Vec::new());
+        // each travel law sampled once: the shape of the first magnet of a key serves all
+        let mut by_key: FxHashMap<TrackKey, u32> = FxHashMap::default();
         for k in 0..g.magnets() {
+            let key = src.magnet_travel_key(k);
+            if let Some(&id) = key.as_ref().and_then(|(key, _)| by_key.get(key)) {
+                m_shape.push(id);
+                m_start.push(key.map_or(0.0, |(_, start)| start));
+                continue;
+            }
             let tr = src.magnet_travel(k);
-            m_shape.push(shapes.add(&tr));
+            let id = shapes.add(&tr);
+            if let Some((key, _)) = key {
+                by_key.insert(key, id);
+            }
+            m_shape.push(id);
             m_start.push(tr.start);
         }
         let (mut joints, mut j_shape, mut j_start) = (Vec::new(), Vec::new(), Vec::new());
@@ -160,12 +175,38 @@ impl RunData {
     }
 }
 
+impl RunData {
+    /// This data with the label, title, note and first collision of `view`, a view of the
+    /// same run: the page's data made before the run's outcome was known (the tracks, paths
+    /// and box, the bulk of the work, do not depend on it).
+    pub fn with_outcome_of(mut self, view: &RunView<'_>) -> RunData {
+        self.label = view.label.clone();
+        self.title = view.title.clone();
+        self.note = view.note.clone();
+        self.collision = view.collision;
+        self
+    }
+}
+
 /// The box holding the chain over the whole run (tile centres padded by a tile width) and
-/// the target: the chain at 129 evenly spaced times, and at the middle and end of each of the
-/// first 64 folds, whose long tails sweep the widest arcs.
+/// the target: the chain at [`box_times`].
 fn run_box(src: &dyn RunSource, joints: &[(usize, Track)], target: &[Vec<(f64, f64)>]) -> [f64; 4] {
-    let end = src.end_time();
     let w = src.geometry().w;
+    let times = box_times(src.end_time(), joints);
+    let mut b = centres_box(src.tiles(), w, joints, times);
+    for &(x, y) in target.iter().flatten() {
+        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    }
+    if !b[0].is_finite() {
+        b = [0.0; 4];
+    }
+    let pad = 1.2 * w;
+    [b[0] - 2.0 * pad, b[1] - pad, b[2] + pad, b[3] + pad]
+}
+
+/// The times the run's box looks at: 129 evenly spaced from 0 to `end`, and the middle and
+/// end of each of the first 64 folds, whose long tails sweep the widest arcs.
+fn box_times(end: f64, joints: &[(usize, Track)]) -> Vec<f64> {
     let mut times: Vec<f64> = (0..=128).map(|i| end * i as f64 / 128.0).collect();
     let mut by_start: Vec<&Track> = joints.iter().map(|(_, t)| t).collect();
     by_start.sort_by(|a, b| a.start.total_cmp(&b.start));
@@ -173,30 +214,95 @@ fn run_box(src: &dyn RunSource, joints: &[(usize, Track)], target: &[Vec<(f64, f
         times.push(0.5 * (tr.start + tr.end()));
         times.push(tr.end());
     }
+    times
+}
+
+/// The box `[min x, min y, max x, max y]` of the centres of `tiles` tiles of width `w` at
+/// `times`, the joints that turn following `joints` (the rest straight): the box of
+/// [`crate::kinematics::poses_at_angles`] at every time, bit for bit, without every pass.
+fn centres_box(tiles: usize, w: f64, joints: &[(usize, Track)], mut times: Vec<f64>) -> [f64; 4] {
     let mut b = [
         f64::INFINITY,
         f64::INFINITY,
         f64::NEG_INFINITY,
         f64::NEG_INFINITY,
     ];
-    let mut grow = |x: f64, y: f64| {
-        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    let mut grow = |p: Pose| {
+        b = [b[0].min(p.x), b[1].min(p.y), b[2].max(p.x), b[3].max(p.y)];
     };
-    let mut angles = vec![0.0; src.tiles().saturating_sub(1)];
+    // the times in order, so that a pass changes few joints: it recomputes only the tiles
+    // after the first joint that turned since the pass before, the tiles up to it being where
+    // they were then (their poses depend on the joints before them only), already in the box
+    times.sort_by(f64::total_cmp);
+    let mut angles = vec![0.0_f64; tiles.saturating_sub(1)];
+    let mut poses: Vec<Pose> = Vec::new();
     for t in times {
+        let mut first = poses.is_empty().then_some(0);
         for (j, tr) in joints {
-            angles[*j] = tr.value_at(t);
+            let a = tr.value_at(t);
+            if a.to_bits() != angles[*j].to_bits() {
+                angles[*j] = a;
+                first = Some(first.map_or(*j, |f: usize| f.min(*j)));
+            }
         }
-        for p in poses_at_angles(&angles, w) {
-            grow(p.x, p.y);
+        match first {
+            None => {}
+            Some(_) if poses.is_empty() => for_each_pose_at_angles(&angles, w, |p| {
+                grow(p);
+                poses.push(p);
+            }),
+            Some(first) => {
+                let mut i = first;
+                compose_poses(poses[first], &angles[first..], w, |p| {
+                    i += 1;
+                    grow(p);
+                    poses[i] = p;
+                });
+            }
         }
     }
-    for &(x, y) in target.iter().flatten() {
-        grow(x, y);
+    b
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+    use crate::kinematics::poses_at_angles;
+
+    #[test]
+    fn the_box_is_every_passes_poses_bit_for_bit() {
+        for word in ["S*30 LL S*30 RR S*30", "LSLLSR", "S*12 L S*5 R S*12", "S"] {
+            let tl = crate::engine::thesis_timeline(word);
+            let tiles = tl.tiles();
+            let joints: Vec<(usize, Track)> = (0..tiles.saturating_sub(1))
+                .map(|j| (j, RunSource::joint_angle(&tl, j)))
+                .filter(|(_, tr)| !tr.is_constant())
+                .collect();
+            let w = tl.geometry.w;
+            let times = box_times(tl.duration(), &joints);
+            let mut expect = [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            for &t in &times {
+                let mut angles = vec![0.0; tiles.saturating_sub(1)];
+                for (j, tr) in &joints {
+                    angles[*j] = tr.value_at(t);
+                }
+                for p in poses_at_angles(&angles, w) {
+                    expect = [
+                        expect[0].min(p.x),
+                        expect[1].min(p.y),
+                        expect[2].max(p.x),
+                        expect[3].max(p.y),
+                    ];
+                }
+            }
+            let got = centres_box(tiles, w, &joints, times);
+            assert_eq!(got.map(f64::to_bits), expect.map(f64::to_bits), "{word}");
+        }
     }
-    if !b[0].is_finite() {
-        b = [0.0; 4];
-    }
-    let pad = 1.2 * w;
-    [b[0] - 2.0 * pad, b[1] - pad, b[2] + pad, b[3] + pad]
 }

@@ -11,23 +11,27 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
-use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
+use foldchain::margins::Margins;
+use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{
-    run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
 };
 use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
+use foldchain_cli::choices::{
+    DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
+};
 use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
-use foldchain_cli::inputs::{read_chain, refuse_overwrite_in};
-use foldchain_cli::margins_file::run_margins;
+use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
+use foldchain_cli::margins_file::MarginsJob;
 use foldchain_cli::report::print_error;
 use foldchain_cli::run_files::{
-    is_run_file, run_view, write_compare_page, write_run_files, FramesView, RunFilesOptions,
-    MAX_FRAMES, MAX_VIEWER_TILES,
+    check_and_write_run_files, is_run_file, run_view, write_compare_page, write_run_files,
+    FramesView, RunFilesOptions, MAX_FRAMES, MAX_VIEWER_TILES,
 };
 use foldchain_cli::run_name::{inline_name, stem};
-use foldchain_planner::{plan_svg_file, Plan, PlanOptions, Shape, Turns};
+use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
@@ -77,8 +81,8 @@ struct Args {
     /// How step frames are framed: auto (each on the chain as it stands, or on the part
     /// that moves when a long chain seen whole would be a hairline) or fixed (every frame in
     /// one view holding the whole run).
-    #[arg(long, value_name = "VIEW", default_value = "auto", value_parser = ["auto", "fixed"])]
-    frames_view: String,
+    #[arg(long, value_name = "VIEW", value_enum, default_value_t = FramesViewChoice::Auto)]
+    frames_view: FramesViewChoice,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -89,18 +93,18 @@ struct Args {
     /// and a closed-form speed law, --speed and --start-rule; microseconds per tile, its times
     /// 7-9x early and folds that overlap in time), or auto (local up to 2,000 distinct joint
     /// neighbourhoods, as in a 2,000-tile random word, kinematic beyond, said on stderr).
-    #[arg(long, default_value = "auto", value_parser = ["auto", "local", "kinematic"])]
-    engine: String,
+    #[arg(long, value_enum, default_value_t = EngineChoice::Auto)]
+    engine: EngineChoice,
     /// The kinematic baseline's speed law: overdamped (seconds) or unit (1 mm/s, the
     /// transition diagram's timeline; implies --engine kinematic).
-    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "unit"])]
-    speed: String,
+    #[arg(long, value_enum, default_value_t = SpeedChoice::Overdamped)]
+    speed: SpeedChoice,
     /// The kinematic baseline's start rule: distance (the thesis' inequalities, nearest
     /// neighbours) or force (the pair forces of every magnet within 3 in chain index, as the
     /// reference integrator weighs them; about 0.4 us per tile). Default distance; giving it
     /// selects the kinematic engine (refused with --engine local).
-    #[arg(long, value_parser = ["distance", "force"])]
-    start_rule: Option<String>,
+    #[arg(long, value_enum)]
+    start_rule: Option<StartRuleChoice>,
     /// The pair law of the reference and of the force start rule (and the energy plot):
     /// dipole (point dipoles, thesis 6.11/6.12) or cylinder (the design's magnets as
     /// uniformly magnetised cylinders, tabulated).
@@ -111,8 +115,8 @@ struct Args {
     /// tiles with rotational inertia, bouncing at path ends; README, "Physical parameters")
     /// or overdamped (first order, drag --drag: the stiff limit of negligible mass, the one
     /// fold-validate uses by default). The kinematic engine ignores it.
-    #[arg(long, default_value = "inertial", value_parser = ["overdamped", "inertial"])]
-    dynamics: String,
+    #[arg(long, value_enum, default_value_t = DynamicsChoice::Inertial)]
+    dynamics: DynamicsChoice,
     /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
     /// apart in chain index (a ring's first and last tiles); default: none, pairs up to 3
     /// apart in chain index only.
@@ -178,7 +182,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let shape_opts_given = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
     // the target outline, in tile widths, when the chain was planned from a shape
     let mut target = Vec::new();
-    if args.engine == "local" && args.start_rule.is_some() {
+    if args.engine == EngineChoice::Local && args.start_rule.is_some() {
         bail!("--start-rule is the kinematic engine's option; the local solves start magnets from the reference's forces (use --engine kinematic, or leave --start-rule out)");
     }
     let (chain, name): (Chain, String) = match (&args.chain, &args.plan) {
@@ -252,13 +256,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 args.force_law
             )
         })?;
-    let dynamics = match args.dynamics.as_str() {
-        "inertial" => Dynamics::Inertial(Inertia::default()),
-        _ => Dynamics::Overdamped,
-    };
-    let speed = match args.speed.as_str() {
-        "unit" => SpeedLaw::Unit,
-        _ => {
+    let dynamics = args.dynamics.to_dynamics();
+    let speed = match args.speed {
+        SpeedChoice::Unit => SpeedLaw::Unit,
+        SpeedChoice::Overdamped => {
             if !args.drag.is_finite() || args.drag <= 0.0 {
                 bail!("--drag {}: expected a finite number > 0 (N s/m)", args.drag);
             }
@@ -293,9 +294,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         Mode::Engine
     };
-    let run_margins = run_margins(&chain, &designs, force_law);
-    let files = RunFilesOptions {
-        margins_json: run_margins.as_ref().map(|(_, text)| text.clone()),
+    // the margins worked out on a second thread while the engine or the reference runs
+    let margins = MarginsJob::start(&chain, &designs, force_law);
+    let mut files = RunFilesOptions {
+        margins_json: None,
         name: match mode {
             Mode::Reference => format!("{name} (reference)"),
             _ => name.clone(),
@@ -303,9 +305,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
         frames: args.frames,
         transition_tiles,
         target,
-        frames_view: match args.frames_view.as_str() {
-            "fixed" => FramesView::Fixed,
-            _ => FramesView::Auto,
+        frames_view: match args.frames_view {
+            FramesViewChoice::Fixed => FramesView::Fixed,
+            FramesViewChoice::Auto => FramesView::Auto,
         },
     };
     let out_dir = args.out.clone().unwrap_or_else(|| {
@@ -348,10 +350,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
             });
         Ok(run_reference(&chain, &designs, &ro)?)
     };
-    let kinematic = match args.engine.as_str() {
-        "kinematic" => true,
+    let kinematic = match args.engine {
+        EngineChoice::Kinematic => true,
         _ if args.start_rule.is_some() => true,
-        "auto"
+        EngineChoice::Auto
             if speed != SpeedLaw::Unit
                 && distinct_neighbourhoods(&chain, &designs) > LOCAL_ENGINE_MAX_NEIGHBOURHOODS =>
         {
@@ -368,11 +370,11 @@ fn run(args: Args) -> anyhow::Result<u8> {
         EngineOptions::default()
             .with_speed(speed)
             .with_force_law(force_law)
-            .with_start_rule(match args.start_rule.as_deref().unwrap_or("distance") {
-                "force" => StartRule::Force {
+            .with_start_rule(match args.start_rule {
+                Some(StartRuleChoice::Force) => StartRule::Force {
                     cutoff: foldchain::physics::DEFAULT_CUTOFF,
                 },
-                _ => StartRule::Distance,
+                Some(StartRuleChoice::Distance) | None => StartRule::Distance,
             })
     } else {
         // the local solves follow --dynamics, as the reference does (--drag is the
@@ -392,8 +394,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
         );
         b
     });
-    let say_margins = |dir: &Path| {
-        if let (false, Some((m, _))) = (args.json, &run_margins) {
+    let say_margins = |dir: &Path, run_margins: &Option<(Margins, String)>| {
+        if let (false, Some((m, _))) = (args.json, run_margins) {
             if let Some(w) = m.weakest() {
                 println!(
                     "  smallest margin {w} ({})",
@@ -406,22 +408,32 @@ fn run(args: Args) -> anyhow::Result<u8> {
         Mode::Reference => {
             let run = reference()?;
             let summary = check_reference(&run, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Engine => {
-            let (tl, summary) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
-            write_files(&tl, &summary, &out_dir, &files, bar.as_ref())?;
+            // the collision check on a second thread while the files are drawn
+            let tl = foldchain::engine::run(&chain, &designs, &engine)?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
+            let check = CheckOptions::default();
+            let mut progress = bar_progress(bar.as_ref());
+            let summary = check_and_write_run_files(&tl, &check, &out_dir, &files, &mut progress)?;
+            notes(&summary);
             print_summary(&name, &summary, &out_dir, args.json)?;
-            say_margins(&out_dir);
+            say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
         }
         Mode::Compare => {
             let run = reference()?;
             let rs = check_reference(&run, &CheckOptions::default())?;
             let (tl, es) = simulate(&chain, &designs, &engine, &CheckOptions::default())?;
+            let margins = margins.finish();
+            files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             let rfiles = RunFilesOptions {
                 name: format!("{name} (reference)"),
                 ..files.clone()
@@ -445,7 +457,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
-                say_margins(&edir);
+                say_margins(&edir, &margins);
                 println!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
@@ -475,20 +487,31 @@ const MAX_REFERENCE_TILES: usize = 2_000;
 /// Writes the run's files, with a progress bar for long runs, and warns of a simulated
 /// time far from a physical chain's.
 fn write_files(
-    source: &dyn RunSource,
+    source: &(dyn RunSource + Sync),
     s: &Summary,
     out_dir: &Path,
     files: &RunFilesOptions,
     bar: Option<&indicatif::ProgressBar>,
 ) -> anyhow::Result<()> {
-    let mut progress = |stage: &str, done: usize, total: usize| {
+    write_run_files(source, s, out_dir, files, &mut bar_progress(bar))?;
+    notes(s);
+    Ok(())
+}
+
+/// Reports the stages of writing a run's files on the progress bar, if any.
+fn bar_progress(bar: Option<&indicatif::ProgressBar>) -> impl FnMut(&str, usize, usize) + '_ {
+    move |stage: &str, done: usize, total: usize| {
         if let Some(b) = bar {
             b.set_message(stage.to_string());
             b.set_length(total as u64);
             b.set_position(done as u64);
         }
-    };
-    write_run_files(source, s, out_dir, files, &mut progress)?;
+    }
+}
+
+/// Notes on a run's files: no viewer for a long chain, a simulated time far from a physical
+/// chain's.
+fn notes(s: &Summary) {
     if s.tiles > MAX_VIEWER_TILES {
         eprintln!(
             "fold-run: note: no index.html: the viewer takes at most {MAX_VIEWER_TILES} tiles ({} here)",
@@ -501,7 +524,6 @@ fn write_files(
             "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
         );
     }
-    Ok(())
 }
 
 /// The summary as JSON with the directory its files went to.
@@ -546,53 +568,4 @@ fn exit_code(summaries: &[&Summary]) -> u8 {
     } else {
         1
     }
-}
-
-/// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
-fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read plan file {}", path.display()))?;
-    let plan = Plan::from_json(&text).map_err(|e| {
-        anyhow!(
-            "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
-            path.display()
-        )
-    })?;
-    let word = plan
-        .fold_word()
-        .with_context(|| format!("{}: bad fold word in the plan", path.display()))?;
-    let chain = word.to_chain();
-    if chain.to_tile_list() != plan.tile_list.trim() || chain.len() != plan.tiles {
-        bail!(
-            "{}: the plan's word ({} tiles) and its tile_list/tiles ({} tiles) disagree: the file was edited by hand or is damaged",
-            path.display(),
-            chain.len(),
-            plan.tiles
-        );
-    }
-    Ok((chain, plan))
-}
-
-/// The outline of the shape in `shape_path` in the chain's own frame, in tile widths (tile
-/// 0 at the origin heading +x, y up): the plan's `chain_to_svg` map inverted. `None` when
-/// the file cannot be read again or the map is singular.
-fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>> {
-    let data = std::fs::read(shape_path).ok()?;
-    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string()).ok()?;
-    let [a, b, c, d, e, f] = plan.chain_to_svg;
-    let det = a * d - b * c;
-    if !det.is_finite() || det.abs() < 1e-300 {
-        return None;
-    }
-    // the shape's rings are y up; SVG user units are y down
-    let to_chain = |(x, y): (f64, f64)| {
-        let (sx, sy) = (x - e, -y - f);
-        ((d * sx - c * sy) / det, (a * sy - b * sx) / det)
-    };
-    Some(
-        shape
-            .rings()
-            .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
-            .collect(),
-    )
 }

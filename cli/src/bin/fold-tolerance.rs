@@ -16,9 +16,10 @@ use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
     candidate_design_json, candidate_designs, optimize, sensitivities, study, tradeoff_svg,
-    Candidate, Parameter, Printer, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    Candidate, Parameter, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
+use foldchain_cli::choices::PrinterChoice;
 use foldchain_cli::inputs::read_chain;
 use foldchain_cli::report::print_error;
 use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
@@ -55,8 +56,8 @@ struct Args {
     #[arg(long = "tol", value_name = "KEY=VALUE")]
     tol: Vec<String>,
     /// The printer whose tolerances are the defaults of printed dimensions: fdm or resin.
-    #[arg(long, default_value = "fdm", value_parser = ["fdm", "resin"])]
-    printer: String,
+    #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
+    printer: PrinterChoice,
     /// The seed of the study's draws.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -142,10 +143,7 @@ fn read_input(args: &Args) -> anyhow::Result<(Chain, String)> {
 
 fn run(args: &Args) -> anyhow::Result<u8> {
     let (chain, name) = read_input(args)?;
-    let printer = match args.printer.as_str() {
-        "resin" => Printer::Resin,
-        _ => Printer::Fdm,
-    };
+    let printer = args.printer.to_printer();
     let mut tolerances = Tolerances::printed(printer);
     for t in &args.tol {
         tolerances.set(t)?;

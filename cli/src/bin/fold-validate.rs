@@ -13,13 +13,13 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::{CommandFactory, FromArgMatches, Parser};
-use foldchain::physics::{ForceLaw, Inertia, FORCE_LAW_NAMES};
+use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::stiff::{run_stiff_study, select_cases};
 use foldchain::reference::validate::{validate, ValidateOptions};
-use foldchain::reference::Dynamics;
 use foldchain::reference::STIFF_CASES;
 use foldchain::Design;
+use foldchain_cli::choices::DynamicsChoice;
 use foldchain_cli::experiments::experiments;
 use foldchain_cli::output::OutputDir;
 use foldchain_cli::report::print_error;
@@ -70,8 +70,8 @@ struct Args {
     force_law: String,
     /// The reference's dynamics: overdamped (first order, the stiff limit) or inertial
     /// (mass, drag, bouncing walls; README, "Physical parameters").
-    #[arg(long, default_value = "overdamped", value_parser = ["overdamped", "inertial"])]
-    dynamics: String,
+    #[arg(long, value_enum, default_value_t = DynamicsChoice::Overdamped)]
+    dynamics: DynamicsChoice,
 }
 
 fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
@@ -81,9 +81,7 @@ fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
     }
     let mut o = ValidateOptions::default().with_scenes(args.scenes.clone());
     o.model.force_law = force_law(&args.force_law)?;
-    if args.dynamics == "inertial" {
-        o.model.dynamics = Dynamics::Inertial(Inertia::default());
-    }
+    o.model.dynamics = args.dynamics.to_dynamics();
     o.reference_tolerance = t;
     if args.quick {
         o.dopri5 = vec![1e-3, 1e-4, 1e-5, 1e-6];
