@@ -448,3 +448,21 @@ fn a_start_rule_with_the_local_engine_is_refused() {
     );
     assert!(!d.join("out").exists());
 }
+
+#[test]
+fn one_thread_or_two_write_the_same_timeline() {
+    // the local solves' sweeps one after the other or two at once: the same events, bit for
+    // bit, so the same timeline.json byte for byte
+    let d = tmp("threads");
+    let timeline = |threads: &str| {
+        let out = d.join(threads);
+        let o = bin()
+            .args(["S*300 LL S*300", "--threads", threads, "--frames", "1"])
+            .args(["--json", "--out", out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{o:?}");
+        std::fs::read(out.join("timeline.json")).unwrap()
+    };
+    assert_eq!(timeline("1"), timeline("2"));
+}

@@ -125,6 +125,11 @@ struct Args {
     /// Drag coefficient of the overdamped law, N s/m.
     #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
     drag: f64,
+    /// Threads of the local solves' sweeps: 1 one sweep after the other, 2 two at once (the
+    /// events are the same to the last bit); default: the machine's cores, one thread under
+    /// 500 tiles
+    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true)]
+    threads: usize,
     /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
     #[arg(long, value_name = "A..B")]
     transition: Option<String>,
@@ -379,12 +384,14 @@ fn run(args: Args) -> anyhow::Result<u8> {
     } else {
         // the local solves follow --dynamics, as the reference does (--drag is the
         // overdamped model's drag)
-        EngineOptions::default().with_model(
-            ModelOptions::default()
-                .with_force_law(force_law)
-                .with_drag(args.drag)
-                .with_dynamics(dynamics),
-        )
+        EngineOptions::default()
+            .with_model(
+                ModelOptions::default()
+                    .with_force_law(force_law)
+                    .with_drag(args.drag)
+                    .with_dynamics(dynamics),
+            )
+            .with_threads(args.threads)
     };
     let bar = (chain.len() > 2000).then(|| {
         let b = indicatif::ProgressBar::new(1);
