@@ -23,8 +23,6 @@
 
 use std::f64::consts::SQRT_2;
 
-use kurbo::Point;
-
 use crate::{Design, PathKind};
 
 /// Which end of its tile a path lies at.
@@ -166,25 +164,37 @@ impl MagnetPath {
     }
 
     /// The unit tangent (tile frame) along which a magnet at arc length `u` moves forwards.
-    /// On the straight part it is the direction away from the tile centre, exactly; on the
-    /// arc, the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept on the arc, which
-    /// is parallel to the arc's tangent at `u`.
+    /// On the straight part it is the direction away from the tile centre; on the arc, the
+    /// derivative of [`MagnetPath::point_at`] by the arc length (exact: the arc is
+    /// parametrised by its length). At the junction itself (`u` = the straight part's
+    /// length) it is the arc's.
     pub fn tangent_at(&self, u: f64) -> (f64, f64) {
-        let len = self.length();
-        let along = (self.sign(), 0.0);
-        if self.arc.is_none() || u < self.straight {
-            return along;
-        }
-        let h = 1e-6 * len;
-        let lo = (u - h).max(self.straight.min(len));
-        let hi = (u + h).min(len);
-        let (a, b) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
-        let d = Point::from(self.point_at(b)) - Point::from(self.point_at(a));
-        let norm = d.hypot();
-        if norm > 0.0 {
-            (d.x / norm, d.y / norm)
-        } else {
-            along
+        self.point_and_tangent_at(u).1
+    }
+
+    /// [`MagnetPath::point_at`] and [`MagnetPath::tangent_at`] together, from one sine and
+    /// cosine.
+    pub fn point_and_tangent_at(&self, u: f64) -> ((f64, f64), (f64, f64)) {
+        let u = u.clamp(0.0, self.length());
+        let sign = self.sign();
+        let along = (sign, 0.0);
+        let straight = (self.rest_x + sign * u.min(self.straight), 0.0);
+        match self.arc {
+            Some(a) if u >= self.straight => {
+                let phi = a.start + (u - self.straight) / a.radius;
+                let lateral = a.cy.signum();
+                let (sin, cos) = phi.sin_cos();
+                let point = if u == self.straight {
+                    straight
+                } else {
+                    (
+                        a.cx + sign * a.radius * cos,
+                        a.cy + lateral * a.radius * sin,
+                    )
+                };
+                (point, (-sign * sin, lateral * cos))
+            }
+            _ => (straight, along),
         }
     }
 
@@ -221,6 +231,7 @@ impl MagnetPath {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
+    use kurbo::Point;
 
     fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
         Point::from(a).distance(Point::from(b))
@@ -328,6 +339,33 @@ mod tests {
                         let step = (b.0 - a.0, b.1 - a.1);
                         let cos = (step.0 * t.0 + step.1 * t.1) / step.0.hypot(step.1);
                         assert!(cos > 0.999, "{kind:?} {end:?} s {s} u {u}: {cos}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_tangent_is_the_derivative_and_the_point_is_point_at() {
+        let d = Design::thesis();
+        for s in [0.0, 0.3] {
+            for kind in [PathKind::L, PathKind::R] {
+                for end in [PathEnd::First, PathEnd::Second] {
+                    let p = MagnetPath::new(kind, end, &d.with_s(s)).unwrap();
+                    let len = p.length();
+                    for i in 0..=40 {
+                        let u = len * i as f64 / 40.0;
+                        let (point, t) = p.point_and_tangent_at(u);
+                        assert_eq!(point, p.point_at(u), "{kind:?} {end:?} s {s} u {u}");
+                        assert_eq!(t, p.tangent_at(u));
+                        // a chord centred on u, on the arc, is parallel to the tangent
+                        let h = 1e-5 * len;
+                        if u - h > s && u + h < len {
+                            let (a, b) = (p.point_at(u - h), p.point_at(u + h));
+                            let chord = ((b.0 - a.0) / (2.0 * h), (b.1 - a.1) / (2.0 * h));
+                            let err = (chord.0 - t.0).hypot(chord.1 - t.1);
+                            assert!(err < 1e-8, "{kind:?} {end:?} s {s} u {u}: {err}");
+                        }
                     }
                 }
             }
