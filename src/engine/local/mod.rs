@@ -97,12 +97,6 @@ pub(crate) fn run_local(model: &Model, tol: f64, threads: usize) -> LocalRun {
         rest_skip: true,
     };
     let chain = sweeps::solve_chain(model, opts, threads);
-    if std::env::var_os("FOLDCHAIN_STATS").is_some() {
-        eprintln!(
-            "sweeps {} solves {:?} rhs {}",
-            chain.sweeps, chain.solves_per_sweep, chain.rhs
-        );
-    }
     let g = &model.geometry;
     let n = g.magnets();
     let joints = g.tiles().saturating_sub(1);
