@@ -164,38 +164,49 @@ impl MagnetPath {
     }
 
     /// The unit tangent (tile frame) along which a magnet at arc length `u` moves forwards.
-    /// On the straight part it is the direction away from the tile centre; on the arc, the
-    /// derivative of [`MagnetPath::point_at`] by the arc length (exact: the arc is
-    /// parametrised by its length). At the junction itself (`u` = the straight part's
-    /// length) it is the arc's.
+    /// On the straight part it is the direction away from the tile centre, exactly; on the
+    /// arc, the direction of the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept
+    /// on the arc: the arc's tangent at the chord's middle, which is `u` itself but within
+    /// `h` of the arc's ends (where it is `h / 2` inside them).
     pub fn tangent_at(&self, u: f64) -> (f64, f64) {
         self.point_and_tangent_at(u).1
     }
 
-    /// [`MagnetPath::point_at`] and [`MagnetPath::tangent_at`] together, from one sine and
-    /// cosine.
+    /// [`MagnetPath::point_at`] and [`MagnetPath::tangent_at`] together: one sine and
+    /// cosine away from the arc's ends.
     pub fn point_and_tangent_at(&self, u: f64) -> ((f64, f64), (f64, f64)) {
-        let u = u.clamp(0.0, self.length());
-        let sign = self.sign();
-        let along = (sign, 0.0);
-        let straight = (self.rest_x + sign * u.min(self.straight), 0.0);
-        match self.arc {
-            Some(a) if u >= self.straight => {
-                let phi = a.start + (u - self.straight) / a.radius;
-                let lateral = a.cy.signum();
-                let (sin, cos) = phi.sin_cos();
-                let point = if u == self.straight {
-                    straight
-                } else {
-                    (
-                        a.cx + sign * a.radius * cos,
-                        a.cy + lateral * a.radius * sin,
-                    )
-                };
-                (point, (-sign * sin, lateral * cos))
+        let point = |u: f64, sin_cos: Option<(f64, f64)>| -> (f64, f64) {
+            match (self.arc, sin_cos) {
+                (Some(a), Some((sin, cos))) if u > self.straight => (
+                    a.cx + self.sign() * a.radius * cos,
+                    a.cy + a.cy.signum() * a.radius * sin,
+                ),
+                _ => self.point_at(u),
             }
-            _ => (straight, along),
+        };
+        let Some(a) = self.arc.filter(|_| u >= self.straight) else {
+            return (self.point_at(u), (self.sign(), 0.0));
+        };
+        let len = self.length();
+        let uc = u.clamp(0.0, len);
+        let phi = |u: f64| a.start + (u - self.straight) / a.radius;
+        // the chord's ends, kept on the arc, and its middle
+        let h = 1e-6 * len;
+        let lo = (u - h).max(self.straight.min(len));
+        let hi = (u + h).min(len);
+        let (c0, c1) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        if c0.min(len) >= c1.min(len) {
+            // no chord on the path
+            return (self.point_at(u), (self.sign(), 0.0));
         }
+        let here = phi(uc).sin_cos();
+        let (sin, cos) = if c0 == u - h && c1 == u + h {
+            here
+        } else {
+            phi(0.5 * (c0 + c1)).sin_cos()
+        };
+        let lateral = a.cy.signum();
+        (point(uc, Some(here)), (-self.sign() * sin, lateral * cos))
     }
 
     /// Points along the path for drawing, at most `max_step` mm apart.
@@ -346,7 +357,7 @@ mod tests {
     }
 
     #[test]
-    fn the_tangent_is_the_derivative_and_the_point_is_point_at() {
+    fn the_tangent_is_the_arcs_and_the_point_is_point_at() {
         let d = Design::thesis();
         for s in [0.0, 0.3] {
             for kind in [PathKind::L, PathKind::R] {
@@ -358,7 +369,8 @@ mod tests {
                         let (point, t) = p.point_and_tangent_at(u);
                         assert_eq!(point, p.point_at(u), "{kind:?} {end:?} s {s} u {u}");
                         assert_eq!(t, p.tangent_at(u));
-                        // a chord centred on u, on the arc, is parallel to the tangent
+                        // a chord centred on u, on the arc, is parallel to the tangent (the
+                        // tangent itself is the direction of such a chord 1e-6 long)
                         let h = 1e-5 * len;
                         if u - h > s && u + h < len {
                             let (a, b) = (p.point_at(u - h), p.point_at(u + h));
