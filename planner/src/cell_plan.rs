@@ -7,9 +7,12 @@
 
 use std::f64::consts::PI;
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 use crate::assembly::Assembly;
+use crate::cell_search::{route_searches, CellSearch, RoutedWidth, CELL_WORK_BUDGET};
 use crate::cells::{decompose_merging, Branch, Cells, Merge};
 use crate::check::{check_folds, CheckMemo};
 use crate::empty::empty_part;
@@ -21,7 +24,7 @@ use crate::plan::Plan;
 use crate::route::{route_order, Route, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
-use crate::sizing::{width_for, Attempt, SizeSearch};
+use crate::sizing::{tiles_for, width_for, Attempt, SizeSearch};
 
 /// Cells are split where an end of the sweep interval jumps by more than a tile width. Up
 /// to this many such jumps, every way of merging the cells across some of them is routed
@@ -59,18 +62,23 @@ pub(crate) type CellFailure = (String, Option<Box<Rejected>>);
 type Why = String;
 
 /// Reasons why axes gave no route, each with the axes it holds for (SVG degrees).
-type Reasons = Vec<(Why, Vec<String>)>;
+pub(crate) type Reasons = Vec<(Why, Vec<String>)>;
 
 /// The best routes over the cells of `axis_shape` (axis frame, unit tiles), cheapest first,
-/// or why there is none. `describe` names a cell for messages.
+/// or why there is none, from at most `searches` route searches (the first decompositions,
+/// each with an equal share of cell orders, see [`crate::cell_search`]). `describe` names a
+/// cell for messages.
 fn plan_cells(
     axis_shape: &Shape,
     style: Style,
     memo: &CheckMemo,
     describe: &(dyn Fn(&Shape) -> String + Sync),
+    searches: usize,
 ) -> Result<Vec<Routed>, Why> {
     let split = decompose_merging(axis_shape, 1.0, 1.0, Merge::default());
-    let merges = merges(&split);
+    let mut merges = merges(&split);
+    merges.truncate(searches.max(1));
+    let max_orders = (searches / merges.len().max(1)).clamp(1, MAX_ORDERS);
     let per_mask: Vec<Result<Vec<Routed>, Why>> = merges
         .par_iter()
         .map(|(m, b)| {
@@ -87,7 +95,13 @@ fn plan_cells(
                     },
                 ))
             };
-            route_cells(cells.as_ref().unwrap_or(&split), style, memo, describe)
+            route_cells(
+                cells.as_ref().unwrap_or(&split),
+                style,
+                memo,
+                describe,
+                max_orders,
+            )
         })
         .collect();
     let mut routed: Vec<Routed> = Vec::new();
@@ -171,12 +185,14 @@ fn pinwheel_rank(branches: &[Branch], c: &[usize]) -> usize {
     }
 }
 
-/// The best routes through `cells`, cheapest first, or why there is none.
+/// The best routes through `cells` over at most `max_orders` cell orders, cheapest first, or
+/// why there is none.
 fn route_cells(
     cells: &Cells,
     style: Style,
     memo: &CheckMemo,
     describe: &(dyn Fn(&Shape) -> String + Sync),
+    max_orders: usize,
 ) -> Result<Vec<Routed>, Why> {
     let n = cells.cells.len();
     if n == 0 {
@@ -193,7 +209,7 @@ fn route_cells(
             "the shape is in {parts} separate parts at this tile size; one chain would have to cross the gap between them"
         ));
     }
-    let orders = cells.orders(MAX_ORDERS, MAX_ORDER_STEPS);
+    let orders = cells.orders(max_orders, MAX_ORDER_STEPS);
     if orders.is_empty() {
         let (deg, c) = cells.max_degree();
         return Err(format!(
@@ -253,6 +269,7 @@ pub(crate) fn plan_by_cells(
     style: Style,
     name: &str,
     retry: bool,
+    cell_search: &CellSearch,
 ) -> Result<Plan, CellFailure> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let w0 = opts
@@ -294,8 +311,15 @@ pub(crate) fn plan_by_cells(
     // the best route rejected for an empty part (the smallest part), with its message
     let mut rejected: Option<(String, Box<Rejected>)> = None;
     let found = search.run_checked(target, w0, |w| {
-        let (mut routes, reasons) = route_axes(shape, &axes, style, w);
-        why = reasons;
+        // a serpentine's count at this width sets how many route searches it gets
+        let searches = route_searches(tiles_for(shape.area(), w, style.pitch), axes.len());
+        let Some(routed) =
+            cell_search.routes_at(w, || route_axes(shape, &axes, style, w, searches))
+        else {
+            return Attempt::Nothing;
+        };
+        why.clone_from(&routed.why);
+        let mut routes = routed.routes.clone();
         // routes whose count is within the tolerance first, each group cheapest first
         if opts.tile_size.is_none() {
             routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
@@ -323,13 +347,24 @@ pub(crate) fn plan_by_cells(
             ),
         }),
         None => {
-            let text: Vec<String> = why
+            let mut text: Vec<String> = why
                 .iter()
                 .map(|(r, axes)| format!("along axes {} deg: {r}", axes.join(", ")))
                 .collect();
+            if cell_search.exhausted() {
+                text.push(budget_note(cell_search));
+            }
             Err((text.join("; "), None))
         }
     }
+}
+
+/// Says that the search budget stopped the width search (see [`crate::cell_search`]).
+fn budget_note(cell_search: &CellSearch) -> String {
+    format!(
+        "the search budget ({CELL_WORK_BUDGET} units of work per turn style) ran out after {} units, so fewer widths were routed",
+        cell_search.spent()
+    )
 }
 
 /// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`) that fold
@@ -340,7 +375,7 @@ fn checked_plans(
     style: Style,
     w: f64,
     name: &str,
-    routes: &[(f64, Routed)],
+    routes: &[(f64, Arc<Routed>)],
     collide: &mut String,
     rejected: &mut Option<(String, Box<Rejected>)>,
 ) -> Vec<Plan> {
@@ -387,9 +422,10 @@ fn checked_plans(
     plans
 }
 
-/// Routes every axis at tile width `w` (in parallel): the routes with their axis, cheapest
-/// first, and why the other axes gave none (each reason with the axes, SVG degrees).
-fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, Routed)>, Reasons) {
+/// Routes every axis at tile width `w` (in parallel, at most `searches` route searches per
+/// axis): the routes with their axis, cheapest first, why the other axes gave none (each
+/// reason with the axes, SVG degrees), and the work spent.
+fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64, searches: usize) -> RoutedWidth {
     // one memo of fold checks for every axis at this width (a check depends on the word)
     let memo = CheckMemo::default();
     let per_axis: Vec<(f64, Result<Vec<Routed>, Why>)> = axes
@@ -397,14 +433,17 @@ fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, R
         .map(|&a| {
             let axis_shape = Orientation::along(a).work_shape(shape, w);
             let describe = |cell: &Shape| describe_cell(cell, a, w);
-            (a, plan_cells(&axis_shape, style, &memo, &describe))
+            (
+                a,
+                plan_cells(&axis_shape, style, &memo, &describe, searches),
+            )
         })
         .collect();
-    let mut routes: Vec<(f64, Routed)> = Vec::new();
+    let mut routes: Vec<(f64, Arc<Routed>)> = Vec::new();
     let mut why: Reasons = Vec::new();
     for (a, r) in per_axis {
         match r {
-            Ok(v) => routes.extend(v.into_iter().map(|x| (a, x))),
+            Ok(v) => routes.extend(v.into_iter().map(|x| (a, Arc::new(x)))),
             Err(e) => {
                 let deg = format!("{:.0}", stacking_axis_deg(a).round() % 180.0 + 0.0);
                 match why.iter_mut().find(|(r, _)| *r == e) {
@@ -415,7 +454,11 @@ fn route_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> (Vec<(f64, R
         }
     }
     routes.sort_by(|x, y| x.1.cost.total_cmp(&y.1.cost));
-    (routes, why)
+    RoutedWidth {
+        routes,
+        why,
+        work: memo.work(),
+    }
 }
 
 /// A cell (axis frame of row angle `a`, tiles of width `w`) by its bounding box in SVG user
@@ -441,11 +484,42 @@ mod tests {
         Shape::from_svg_data(&std::fs::read(path).unwrap(), name).unwrap()
     }
 
+    /// The work of routing one width stays about flat as the tiles grow: the route searches
+    /// fall as the tiles grow ([`route_searches`]), where before every width routed every
+    /// decomposition and order, each search costing in proportion to the tiles (two holes
+    /// at 300 tiles: 2e7 units per width and style, 20 widths, minutes). Counted, not timed.
+    #[test]
+    fn a_widths_work_stays_flat_as_the_tiles_grow() {
+        let shape = sample("two-holes.svg");
+        let axes = axes(&shape);
+        let work = |n: usize| {
+            let w = width_for(shape.area(), n, TIGHT.pitch);
+            let searches = route_searches(tiles_for(shape.area(), w, TIGHT.pitch), axes.len());
+            route_axes(&shape, &axes, TIGHT, w, searches).work
+        };
+        let (small, large) = (work(300), work(1200));
+        // the work of a route search grows with the tiles: 4 times the tiles would be 4
+        // times the work without the bound
+        assert!(
+            large < 2 * small,
+            "{small} units at 300 tiles, {large} at 1200"
+        );
+        assert!(large <= CELL_WORK_BUDGET, "{large}");
+    }
+
     /// The thesis key by cells: head and shaft as separate cells, every route folds.
     #[test]
     fn key_by_cells() {
         let opts = PlanOptions::default().with_tiles(171);
-        let p = plan_by_cells(&sample("key.svg"), &opts, TIGHT, "key.svg", false).unwrap();
+        let p = plan_by_cells(
+            &sample("key.svg"),
+            &opts,
+            TIGHT,
+            "key.svg",
+            false,
+            &CellSearch::default(),
+        )
+        .unwrap();
         assert!(p.cells >= 2, "{}", p.summary());
         let w = p.fold_word().unwrap();
         assert!(w.first_opposite_pair().is_none());

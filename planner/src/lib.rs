@@ -34,6 +34,7 @@
 
 mod assembly;
 mod cell_plan;
+mod cell_search;
 mod cells;
 mod centre_grid;
 mod check;

@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::cell_plan::{axes, plan_by_cells, CellFailure};
+use crate::cell_search::CellSearch;
 use crate::cells::cells_of;
 use crate::empty::empty_part;
 use crate::error::{PlanError, Rejected};
@@ -110,7 +111,8 @@ pub(crate) fn plan_shape(
         // when no plan within the count's tolerance is found, the routes are searched again
         // with widths a little either side of those whose routes were all rejected (the
         // cells then meet the rows at other phases); a shape that plans keeps the first
-        // search's plan
+        // search's plan. Both searches of a style share its budget and routed widths.
+        let searches: Vec<CellSearch> = styles.iter().map(|_| CellSearch::default()).collect();
         for retry in [false, true] {
             if retry && best.as_ref().is_some_and(|b| miss(b) == 0) {
                 break;
@@ -118,7 +120,8 @@ pub(crate) fn plan_shape(
             progress("planning by cells", 0, 1);
             let by_cells: Vec<Result<Plan, CellFailure>> = styles
                 .par_iter()
-                .map(|&style| plan_by_cells(shape, opts, style, name, retry))
+                .zip(&searches)
+                .map(|(&style, search)| plan_by_cells(shape, opts, style, name, retry, search))
                 .collect();
             progress("planning by cells", 1, 1);
             for r in by_cells {

@@ -187,7 +187,12 @@ fn overlaps(old: &[Arc<Vec<Point>>], new: &[Point]) -> bool {
 
 /// The first leg: a free serpentine over the cell, rows along either axis, any corner and
 /// phase; the best few by cost.
-fn first_legs(shape: &Shape, style: Style, toward: Option<Rect>) -> Vec<(f64, f64, Leg)> {
+fn first_legs(
+    shape: &Shape,
+    style: Style,
+    toward: Option<Rect>,
+    memo: &CheckMemo,
+) -> Vec<(f64, f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
     for d in [
@@ -204,6 +209,7 @@ fn first_legs(shape: &Shape, style: Style, toward: Option<Rect>) -> Vec<(f64, f6
             };
             let work = frame.work(shape);
             for lat in Lattice::phased(work.bbox(), p) {
+                memo.spend(lat.nrows * lat.cols);
                 let sol = solve_rows(&work, style, lat, None, None);
                 for (cost, look, k, e) in ends(&sol, lat, p, frame, toward) {
                     let serp = sol.serpentine(lat, p, k, e);
@@ -290,6 +296,7 @@ fn next_legs(
     shape: &Shape,
     style: Style,
     toward: Option<Rect>,
+    memo: &CheckMemo,
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
     // only tiles near the cell can block its rows
     let cell_box = shape.bbox().inflate(2.0, 2.0);
@@ -326,6 +333,7 @@ fn next_legs(
                     && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
                         || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
+            memo.spend(lat.nrows * lat.cols);
             let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
                 let leg = Leg {
@@ -364,7 +372,7 @@ pub(crate) fn route_order(
     memo: &CheckMemo,
 ) -> Vec<Route> {
     let centre = |i: usize| order.get(i).map(|&c| cells.cells[c].shape.bbox());
-    let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style, centre(1))
+    let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style, centre(1), memo)
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
@@ -384,7 +392,8 @@ pub(crate) fn route_order(
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
             let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
-            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward) {
+            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward, memo)
+            {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }
         }
