@@ -497,12 +497,12 @@ mod tests {
             let searches = route_searches(tiles_for(shape.area(), w, TIGHT.pitch), axes.len());
             route_axes(&shape, &axes, TIGHT, w, searches).work
         };
-        let (small, large) = (work(300), work(1200));
+        let (small, large) = (work(600), work(2400));
         // the work of a route search grows with the tiles: 4 times the tiles would be 4
         // times the work without the bound
         assert!(
             large < 2 * small,
-            "{small} units at 300 tiles, {large} at 1200"
+            "{small} units at 600 tiles, {large} at 2400"
         );
         assert!(large <= CELL_WORK_BUDGET, "{large}");
     }

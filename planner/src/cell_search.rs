@@ -23,11 +23,11 @@ use std::sync::{Arc, Mutex};
 use crate::cell_plan::Reasons;
 use crate::route::Routed;
 
-/// Route searches per width (over all axes) times the tile count: with two axes, 96
-/// searches per axis (8 decompositions x 12 orders, the most any shape gets) up to 208
-/// tiles, 20 at 1000, 5 at 4000. A route search's work grows with the tiles, so this keeps
-/// a width's work about constant.
-pub(crate) const ROUTE_SEARCH_TILES: usize = 40_000;
+/// Route searches per width (over all axes) times the tile count: 96 searches per axis (8
+/// decompositions x 12 orders, the most any shape gets) up to 625 tiles with two axes and
+/// 208 with six (a letter O), 30 at 2000 tiles with two axes. A route search's work grows
+/// with the tiles, so this keeps a width's work about constant beyond.
+pub(crate) const ROUTE_SEARCH_TILES: usize = 120_000;
 
 /// The fewest route searches per axis and width.
 const MIN_ROUTE_SEARCHES: usize = 2;
@@ -144,7 +144,8 @@ mod tests {
     /// The searches per axis fall with the tiles, so their product stays bounded.
     #[test]
     fn route_searches_times_tiles_is_bounded() {
-        assert!(route_searches(200, 2) >= 96);
+        assert!(route_searches(600, 2) >= 96);
+        assert!(route_searches(200, 6) >= 96);
         for axes in [1, 2, 6] {
             for n in [100, 300, 1000, 2000, 5000, 20_000] {
                 let r = route_searches(n, axes);
