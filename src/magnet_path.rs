@@ -23,8 +23,6 @@
 
 use std::f64::consts::SQRT_2;
 
-use kurbo::Point;
-
 use crate::{Design, PathKind};
 
 /// Which end of its tile a path lies at.
@@ -167,25 +165,48 @@ impl MagnetPath {
 
     /// The unit tangent (tile frame) along which a magnet at arc length `u` moves forwards.
     /// On the straight part it is the direction away from the tile centre, exactly; on the
-    /// arc, the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept on the arc, which
-    /// is parallel to the arc's tangent at `u`.
+    /// arc, the direction of the chord over `[u - h, u + h]` (`h` = 1e-6 of the length) kept
+    /// on the arc: the arc's tangent at the chord's middle, which is `u` itself but within
+    /// `h` of the arc's ends (where it is `h / 2` inside them).
     pub fn tangent_at(&self, u: f64) -> (f64, f64) {
+        self.point_and_tangent_at(u).1
+    }
+
+    /// [`MagnetPath::point_at`] and [`MagnetPath::tangent_at`] together: one sine and
+    /// cosine away from the arc's ends.
+    pub fn point_and_tangent_at(&self, u: f64) -> ((f64, f64), (f64, f64)) {
+        let point = |u: f64, sin_cos: Option<(f64, f64)>| -> (f64, f64) {
+            match (self.arc, sin_cos) {
+                (Some(a), Some((sin, cos))) if u > self.straight => (
+                    a.cx + self.sign() * a.radius * cos,
+                    a.cy + a.cy.signum() * a.radius * sin,
+                ),
+                _ => self.point_at(u),
+            }
+        };
+        let Some(a) = self.arc.filter(|_| u >= self.straight) else {
+            return (self.point_at(u), (self.sign(), 0.0));
+        };
         let len = self.length();
-        let along = (self.sign(), 0.0);
-        if self.arc.is_none() || u < self.straight {
-            return along;
-        }
+        let uc = u.clamp(0.0, len);
+        let phi = |u: f64| a.start + (u - self.straight) / a.radius;
+        // the chord's ends, kept on the arc, and its middle
         let h = 1e-6 * len;
         let lo = (u - h).max(self.straight.min(len));
         let hi = (u + h).min(len);
-        let (a, b) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
-        let d = Point::from(self.point_at(b)) - Point::from(self.point_at(a));
-        let norm = d.hypot();
-        if norm > 0.0 {
-            (d.x / norm, d.y / norm)
-        } else {
-            along
+        let (c0, c1) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        if c0.min(len) >= c1.min(len) {
+            // no chord on the path
+            return (self.point_at(u), (self.sign(), 0.0));
         }
+        let here = phi(uc).sin_cos();
+        let (sin, cos) = if c0 == u - h && c1 == u + h {
+            here
+        } else {
+            phi(0.5 * (c0 + c1)).sin_cos()
+        };
+        let lateral = a.cy.signum();
+        (point(uc, Some(here)), (-self.sign() * sin, lateral * cos))
     }
 
     /// Points along the path for drawing, at most `max_step` mm apart.
@@ -221,6 +242,7 @@ impl MagnetPath {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
+    use kurbo::Point;
 
     fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
         Point::from(a).distance(Point::from(b))
@@ -328,6 +350,34 @@ mod tests {
                         let step = (b.0 - a.0, b.1 - a.1);
                         let cos = (step.0 * t.0 + step.1 * t.1) / step.0.hypot(step.1);
                         assert!(cos > 0.999, "{kind:?} {end:?} s {s} u {u}: {cos}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_tangent_is_the_arcs_and_the_point_is_point_at() {
+        let d = Design::thesis();
+        for s in [0.0, 0.3] {
+            for kind in [PathKind::L, PathKind::R] {
+                for end in [PathEnd::First, PathEnd::Second] {
+                    let p = MagnetPath::new(kind, end, &d.with_s(s)).unwrap();
+                    let len = p.length();
+                    for i in 0..=40 {
+                        let u = len * i as f64 / 40.0;
+                        let (point, t) = p.point_and_tangent_at(u);
+                        assert_eq!(point, p.point_at(u), "{kind:?} {end:?} s {s} u {u}");
+                        assert_eq!(t, p.tangent_at(u));
+                        // a chord centred on u, on the arc, is parallel to the tangent (the
+                        // tangent itself is the direction of such a chord 1e-6 long)
+                        let h = 1e-5 * len;
+                        if u - h > s && u + h < len {
+                            let (a, b) = (p.point_at(u - h), p.point_at(u + h));
+                            let chord = ((b.0 - a.0) / (2.0 * h), (b.1 - a.1) / (2.0 * h));
+                            let err = (chord.0 - t.0).hypot(chord.1 - t.1);
+                            assert!(err < 1e-8, "{kind:?} {end:?} s {s} u {u}: {err}");
+                        }
                     }
                 }
             }

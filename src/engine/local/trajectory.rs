@@ -89,8 +89,33 @@ impl Shape {
     }
 
     /// The first node after `t`, if any.
+    #[cfg(test)]
     pub(crate) fn next_node_after(&self, t: f64) -> Option<f64> {
         let i = self.t.partition_point(|&x| x <= t);
+        self.t.get(i).copied()
+    }
+
+    /// [`Shape::next_node_after`], starting the search at `hint` (the node found last, kept
+    /// up to date): the same node, in constant time while `t` moves forwards by few nodes
+    /// between calls.
+    pub(crate) fn next_node_after_hinted(&self, t: f64, hint: &mut usize) -> Option<f64> {
+        let n = self.t.len();
+        let mut i = (*hint).min(n);
+        if i > 0 && self.t[i - 1] > t {
+            // t went back: search
+            i = self.t.partition_point(|&x| x <= t);
+        } else {
+            let mut steps = 0;
+            while i < n && self.t[i] <= t {
+                i += 1;
+                steps += 1;
+                if steps == 8 {
+                    i = self.t.partition_point(|&x| x <= t);
+                    break;
+                }
+            }
+        }
+        *hint = i;
         self.t.get(i).copied()
     }
 
@@ -206,13 +231,13 @@ impl Shapes {
         (track.shape != REST).then(|| track.offset + self.get(track.shape).end())
     }
 
-    /// The first node of `track` after `t`, if any.
-    pub(crate) fn next_node(&self, track: Track, t: f64) -> Option<f64> {
+    /// The first node of `track` after `t`, if any, by [`Shape::next_node_after_hinted`].
+    pub(crate) fn next_node_hinted(&self, track: Track, t: f64, hint: &mut usize) -> Option<f64> {
         if track.shape == REST {
             return None;
         }
         self.get(track.shape)
-            .next_node_after(t - track.offset)
+            .next_node_after_hinted(t - track.offset, hint)
             .map(|x| x + track.offset)
     }
 }
@@ -241,6 +266,14 @@ mod tests {
             assert_eq!(s.at_hinted(t, &mut hint), s.at(t), "{t}");
         }
         assert!(s.close_shifted(&s.clone(), 0.0, 0.0, 0.0));
+        let mut hint = 0;
+        for t in [-1.0, 0.0, 0.5, 1.0, 2.0, 3.0, 4.0, 0.2, 1.0, -3.0, 2.5] {
+            assert_eq!(
+                s.next_node_after_hinted(t, &mut hint),
+                s.next_node_after(t),
+                "{t}"
+            );
+        }
         let mut shapes = Shapes::default();
         let id = shapes.add(1, Arc::new(s));
         let tr = Track {

@@ -51,11 +51,17 @@ pub(crate) struct Scratch {
     /// Each magnet's arc length along its path and its point there, tile frame (a magnet
     /// at rest is not placed again).
     local: Vec<(f64, (f64, f64))>,
-    /// Each unknown magnet's arc length and its path's tangent there.
-    tangents: Vec<(f64, (f64, f64))>,
+    /// Each unknown magnet's path tangent where `local` has it, tile frame.
+    tangents: Vec<(f64, f64)>,
     positions: Vec<Point>,
     /// Where each input's last look-up fell in its shape (magnets `lo..=hi`, then joints).
     hints: Vec<usize>,
+    /// The time the inputs were last read at, and their values there (by slot, as
+    /// `hints`): a Jacobian's columns read the same instant again.
+    inputs_at: Option<f64>,
+    inputs: Vec<f64>,
+    /// Each pair's force on its downstream pole.
+    forces: Vec<Vec2>,
 }
 
 /// One unit's window on the chain.
@@ -74,10 +80,17 @@ pub(crate) struct Window<'a> {
     hinge_right: Point,
     /// The moments of magnets `lo..=hi`, A m^2.
     moments: Vec<f64>,
-    /// Each unknown's pairs, in the order [`crate::physics`]'s neighbour sets give them:
-    /// the magnet acted on and the pole acting (slots from `lo`; `None`: the RI), and
-    /// whether they attract.
-    pairs: Vec<Vec<(usize, Option<usize>, bool)>>,
+    /// Every pair an unknown's drive reads, once: the upstream pole (slot from `lo`;
+    /// `None`: the RI), the downstream magnet's slot and whether they attract. Its force
+    /// is the one on the downstream magnet, the upstream one's is its opposite (as the
+    /// reference sums them).
+    pairs: Vec<(Option<usize>, usize, bool)>,
+    /// Each unknown's terms, in the order [`crate::physics`]'s neighbour sets give them: a
+    /// pair and whether the unknown's force is the pair's opposite (a magnet's), or a pair
+    /// whose force turns the joint (a joint's).
+    terms: Vec<Vec<(usize, bool)>>,
+    /// Which unknown each slot is (magnets `lo..=hi`, then joints), if any.
+    var_of_slot: Vec<Option<usize>>,
 }
 
 impl<'a> Window<'a> {
@@ -94,7 +107,16 @@ impl<'a> Window<'a> {
         };
         let oct = Octagon::new(model.geometry.w);
         let (lo, hi) = (first.saturating_sub(cutoff), (last + cutoff).min(n - 1));
-        let pairs: Vec<_> = vars.iter().map(|&v| pairs(v, lo, cutoff, n)).collect();
+        let mut pairs = Vec::new();
+        let terms = vars
+            .iter()
+            .map(|&v| unit_terms(v, lo, cutoff, n, &mut pairs))
+            .collect();
+        let (t0, t1) = (lo / 2, hi / 2);
+        let var_of_slot = (lo..=hi)
+            .map(|k| vars.iter().position(|&v| v == Var::Magnet(k)))
+            .chain((t0..t1).map(|jj| vars.iter().position(|&v| v == Var::Joint(jj))))
+            .collect();
         Window {
             model,
             j,
@@ -107,6 +129,8 @@ impl<'a> Window<'a> {
                 .map(|k| model.geometry.design(k / 2).moment())
                 .collect(),
             pairs,
+            terms,
+            var_of_slot,
         }
     }
 
@@ -141,15 +165,23 @@ impl<'a> Window<'a> {
         out
     }
 
-    fn value(&self, var: Var, y: &[f64], t: f64, inputs: &Inputs, hints: &mut [usize]) -> f64 {
-        if let Some(i) = self.vars.iter().position(|&v| v == var) {
-            return y[i];
+    /// Reads every input at `t` into `s.inputs` (by slot), unless they were read there.
+    fn read_inputs(&self, t: f64, inputs: &Inputs, s: &mut Scratch) {
+        if s.inputs_at.map(f64::to_bits) == Some(t.to_bits()) {
+            return;
         }
-        let (track, slot) = match var {
-            Var::Magnet(k) => (inputs.magnets[k], k - self.lo),
-            Var::Joint(j) => (inputs.joints[j], self.hi - self.lo + 1 + j - self.lo / 2),
-        };
-        inputs.shapes.value_hinted(track, t, &mut hints[slot])
+        s.inputs_at = Some(t);
+        let magnets = self.hi - self.lo + 1;
+        for (slot, var) in self.var_of_slot.iter().enumerate() {
+            if var.is_none() {
+                let track = if slot < magnets {
+                    inputs.magnets[self.lo + slot]
+                } else {
+                    inputs.joints[self.lo / 2 + slot - magnets]
+                };
+                s.inputs[slot] = inputs.shapes.value_hinted(track, t, &mut s.hints[slot]);
+            }
+        }
     }
 
     /// The drive of each unknown (N along a magnet's path, N m towards the fold) at time `t`
@@ -166,24 +198,30 @@ impl<'a> Window<'a> {
         let g = &m.geometry;
         let (t0, t1) = self.tiles();
         let magnets = self.hi - self.lo + 1;
-        s.hints.resize(magnets + t1 - t0, 0);
         if s.poses.len() != t1 - t0 + 1 {
             s.poses = vec![Frame::IDENTITY; t1 - t0 + 1];
             s.angles = vec![f64::NAN; t1 - t0];
             s.local = vec![(f64::NAN, (0.0, 0.0)); magnets];
-            s.tangents = vec![(f64::NAN, (0.0, 0.0)); self.vars.len()];
+            s.tangents = vec![(0.0, 0.0); self.vars.len()];
+            s.hints = vec![0; self.var_of_slot.len()];
+            s.inputs = vec![0.0; self.var_of_slot.len()];
+            s.inputs_at = None;
         }
+        self.read_inputs(t, inputs, s);
+        let value = |slot: usize, s: &Scratch| match self.var_of_slot[slot] {
+            Some(i) => y[i],
+            None => s.inputs[slot],
+        };
         let half = 0.5 * g.w;
         let mut changed = false;
         for tile in t0..t1 {
             let sign = m.joint_sign(tile);
+            let slot = tile - t0;
             let angle = if sign != 0.0 {
-                let x = self.value(Var::Joint(tile), y, t, inputs, &mut s.hints);
-                sign * x.clamp(0.0, 1.0) * FRAC_PI_2
+                sign * value(magnets + slot, s).clamp(0.0, 1.0) * FRAC_PI_2
             } else {
                 0.0
             };
-            let slot = tile - t0;
             // the same angle after the same poses gives the same pose
             changed |= angle.to_bits() != s.angles[slot].to_bits();
             if changed {
@@ -199,42 +237,47 @@ impl<'a> Window<'a> {
         s.positions.clear();
         for k in self.lo..=self.hi {
             let len = m.path_length(k);
-            let x = self.value(Var::Magnet(k), y, t, inputs, &mut s.hints);
-            let u = (x * len).clamp(0.0, len);
+            let u = (value(k - self.lo, s) * len).clamp(0.0, len);
             let cached = &mut s.local[k - self.lo];
             if u.to_bits() != cached.0.to_bits() {
-                *cached = (u, g.path(k).point_at(u));
+                let path = g.path(k);
+                *cached = match self.var_of_slot[k - self.lo] {
+                    Some(i) => {
+                        let (p, tangent) = path.point_and_tangent_at(u);
+                        s.tangents[i] = tangent;
+                        (u, p)
+                    }
+                    None => (u, path.point_at(u)),
+                };
             }
             let p = cached.1;
             s.positions.push(s.poses[k / 2 - t0].point(p));
         }
         let law = m.options().force_law;
         let ri = g.ri();
-        let pole = |a: Option<usize>, s: &Scratch| -> (Point, f64) {
-            match a {
+        s.forces.clear();
+        for &(a, b, attract) in &self.pairs {
+            let (pa, ma) = match a {
                 // the RI is fixed in tile 0's frame, which is the window's when it is in reach
                 None => (ri.position, ri.moment),
                 Some(a) => (s.positions[a], self.moments[a]),
-            }
-        };
+            };
+            let f = law.force(pa, s.positions[b], ma, self.moments[b], attract);
+            s.forces.push(f);
+        }
         for (i, var) in self.vars.iter().enumerate() {
+            let terms = &self.terms[i];
             out[i] = match *var {
                 Var::Magnet(k) => {
-                    let on = s.positions[k - self.lo];
-                    let mk = self.moments[k - self.lo];
                     let mut f = Vec2::ZERO;
-                    for &(_, a, attract) in &self.pairs[i] {
-                        let (pa, ma) = pole(a, s);
-                        f += law.force(pa, on, ma, mk, attract);
+                    for &(p, opposite) in terms {
+                        if opposite {
+                            f -= s.forces[p];
+                        } else {
+                            f += s.forces[p];
+                        }
                     }
-                    let len = m.path_length(k);
-                    let x = y[i];
-                    let u = (x * len).clamp(0.0, len);
-                    let cached = &mut s.tangents[i];
-                    if u.to_bits() != cached.0.to_bits() {
-                        *cached = (u, g.path(k).tangent_at(u));
-                    }
-                    let tan = s.poses[k / 2 - t0].vector(cached.1);
+                    let tan = s.poses[k / 2 - t0].vector(s.tangents[i]);
                     along_path(f, tan)
                 }
                 Var::Joint(j) => {
@@ -246,11 +289,9 @@ impl<'a> Window<'a> {
                     };
                     let hinge: Point = s.poses[j - t0].point(h.into());
                     let mut tau = 0.0;
-                    for &(b, a, attract) in &self.pairs[i] {
-                        let (on, mb) = (s.positions[b], self.moments[b]);
-                        let (pa, ma) = pole(a, s);
-                        let f = law.force(pa, on, ma, mb, attract);
-                        tau += sign * torque_about(hinge, on, f);
+                    for &(p, _) in terms {
+                        let on = s.positions[self.pairs[p].1];
+                        tau += sign * torque_about(hinge, on, s.forces[p]);
                     }
                     tau
                 }
@@ -275,17 +316,38 @@ pub(crate) fn unit_vars(model: &Model, j: isize) -> Vec<Var> {
     vars
 }
 
-/// Unknown `v`'s pairs in a window from magnet `lo` (see [`Window`]'s `pairs`): a magnet's
-/// neighbours within `cutoff`, or the pairs across a joint whose torque turns it (a pole up
-/// to the joint's first magnet on a magnet after it, within `cutoff` of the joint).
-fn pairs(v: Var, lo: usize, cutoff: usize, n: usize) -> Vec<(usize, Option<usize>, bool)> {
+/// Unknown `v`'s terms in a window from magnet `lo` (see [`Window`]'s `terms`), its pairs
+/// added to `pairs` where they are not there yet: a magnet's neighbours within `cutoff`, or
+/// the pairs across a joint whose torque turns it (a pole up to the joint's first magnet on
+/// a magnet after it, within `cutoff` of the joint).
+fn unit_terms(
+    v: Var,
+    lo: usize,
+    cutoff: usize,
+    n: usize,
+    pairs: &mut Vec<(Option<usize>, usize, bool)>,
+) -> Vec<(usize, bool)> {
     let slot = |p: Pole| match p {
         Pole::Ri => None,
         Pole::Magnet(a) => Some(a - lo),
     };
+    // the pair of upstream pole `a` and downstream magnet `b`, once
+    let mut index = |a: Pole, b: usize| {
+        let pair = (slot(a), b - lo, a.attracts(Pole::Magnet(b)));
+        match pairs.iter().position(|&q| q == pair) {
+            Some(i) => i,
+            None => {
+                pairs.push(pair);
+                pairs.len() - 1
+            }
+        }
+    };
     match v {
         Var::Magnet(k) => neighbours(k, cutoff, n)
-            .map(|p| (k - lo, slot(p), p.attracts(Pole::Magnet(k))))
+            .map(|p| match p {
+                Pole::Magnet(a) if a > k => (index(Pole::Magnet(k), a), true),
+                _ => (index(p, k), false),
+            })
             .collect(),
         Var::Joint(j) => {
             let last = (2 * j + 1 + cutoff).min(n - 1);
@@ -295,7 +357,7 @@ fn pairs(v: Var, lo: usize, cutoff: usize, n: usize) -> Vec<(usize, Option<usize
                     if matches!(a, Pole::Magnet(ai) if ai > 2 * j + 1) {
                         continue;
                     }
-                    out.push((b - lo, slot(a), a.attracts(Pole::Magnet(b))));
+                    out.push((index(a, b), false));
                 }
             }
             out

@@ -271,13 +271,16 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
     // RODAS4 instead of Dormand-Prince while the unit is stiff, and how many steps in a row
     // asked for the other method
     let (mut stiff, mut streak) = (false, 0usize);
-    let next_input_node = |tau: f64| -> Option<f64> {
+    // where each input's last node search ended
+    let mut node_hints = vec![0; tracks.len()];
+    let mut next_input_node = |tau: f64| -> Option<f64> {
         // strictly later than tau, whatever the rounding of the offsets
         let t = t_ref + tau;
         let t = t + 1e-13 * t.abs().max(scale);
         tracks
             .iter()
-            .filter_map(|&tr| inputs.shapes.next_node(tr, t))
+            .zip(node_hints.iter_mut())
+            .filter_map(|(&tr, hint)| inputs.shapes.next_node_hinted(tr, t, hint))
             .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.min(b))))
             .map(|t| t - t_ref)
     };
