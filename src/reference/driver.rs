@@ -57,6 +57,8 @@ struct Driver {
     log: EventLog,
     stats: StepStats,
     work: Forces,
+    /// The wall contacts of [`ReferenceRun::walls`], when recording.
+    walls: Option<Vec<(f64, usize, f64)>>,
 }
 
 impl Driver {
@@ -74,6 +76,7 @@ impl Driver {
             ),
             stats: StepStats::default(),
             work: Forces::default(),
+            walls: (opts.record != Recording::Off).then(Vec::new),
             model,
             opts: *opts,
         }
@@ -93,6 +96,9 @@ impl Driver {
                 Mode::AtEnd => self.y[i] = 1.0,
                 Mode::AtStart => self.y[i] = 0.0,
                 Mode::Free => {}
+            }
+            if let Some(walls) = self.walls.as_mut().filter(|_| prev == Mode::Free) {
+                walls.push((self.t, i, self.y[i]));
             }
             self.log
                 .note(&self.model, i, prev, next, self.t, &self.modes, &self.y);
@@ -314,6 +320,7 @@ impl Driver {
             end_time: self.t,
             final_state: self.y,
             states,
+            walls: self.walls.unwrap_or_default(),
             model: self.model,
             options: self.opts,
             events,

@@ -17,8 +17,13 @@
 //! of the range against the drive pressing it on (`v^2 < 2 a 1e-3`) or the restitution is 0,
 //! the unknown stays at the wall: that is its arrival (or a fold's end), and its start when
 //! its drive pulls it off again by more than the static threshold, as in the overdamped
-//! model. The run ends when every free unknown has come to rest (speed under 1e-7 of its
-//! range per inertial time, acceleration likewise) or nothing is free.
+//! model. A step in which a clamped unknown's pull crosses that threshold is cut to end
+//! there (within 1e-3 of the step, the pull taken linear over it), so a start is not up to a
+//! step late: at `s = 0`, where a start hangs on a rounding-sized balance, a step's lag on a
+//! fold's start (5e-4 s at tolerance 1e-8) left SLRRRL's folds 2e-4 rad behind the event
+//! engine's for the rest of the run. The run ends when every free unknown has come to rest
+//! (speed under 1e-7 of its range per inertial time, acceleration likewise) or nothing is
+//! free. When states are recorded, so is every wall contact ([`ReferenceRun::walls`]).
 
 use crate::physics::Inertia;
 use crate::reference::dynamics::{Mode, Model, Unknown};
@@ -164,6 +169,40 @@ fn release(
     log.close(t);
 }
 
+/// A release found within the last this fraction of a step is taken at the step's end.
+const RELEASE_SLACK: f64 = 1e-3;
+
+/// The fraction of a step from drives `drive0` to positions `y1` at which the first clamped
+/// unknown is pulled off its wall by more than its threshold (as [`release`] asks), its
+/// pull taken linear in between; 1 when none is. Leaves the drives at `y1` in `work`.
+fn release_within(
+    model: &Model,
+    c: &Coefficients,
+    modes: &[Mode],
+    drive0: &[f64],
+    y1: &[f64],
+    work: &mut Forces,
+) -> f64 {
+    if modes.iter().all(|&m| m == Mode::Free) {
+        return 1.0;
+    }
+    model.forces(y1, work);
+    let mut theta: f64 = 1.0;
+    for (i, &mode) in modes.iter().enumerate() {
+        let th = model.threshold(i).max(c.coulomb[i]);
+        let pull = |d: f64| match mode {
+            Mode::AtStart => d - th,
+            Mode::AtEnd => -d - th,
+            Mode::Free => f64::NAN,
+        };
+        let (p0, p1) = (pull(drive0[i]), pull(work.drive[i]));
+        if p1 > 0.0 && p0 <= 0.0 {
+            theta = theta.min(p0 / (p0 - p1));
+        }
+    }
+    theta
+}
+
 /// Runs the inertial model (the driver of [`crate::reference::run_reference`] for
 /// [`crate::reference::Dynamics::Inertial`]).
 pub(crate) fn run_inertial(
@@ -201,9 +240,13 @@ pub(crate) fn run_inertial(
             &positions(&z),
         )),
     };
+    // the wall contacts of ReferenceRun::walls, when recording
+    let mut walls = Vec::new();
     let mut f = vec![0.0; 2 * n];
     let mut z1 = vec![0.0; 2 * n];
     release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+    // the drives at the step's start (the clamped unknowns' pulls off their walls)
+    let mut drive0 = work.drive.clone();
     loop {
         let free: Vec<usize> = (0..n).filter(|&i| modes[i] == Mode::Free).collect();
         if free.is_empty() {
@@ -286,6 +329,17 @@ pub(crate) fn run_inertial(
                 continue;
             }
         }
+        // a clamped unknown pulled off its wall inside the step: cut the step to end at
+        // that moment (the pull taken linear over the step), so that it starts there and
+        // not up to a step late
+        let theta = release_within(&model, &c, &modes, &drive0, &positions(&z1), &mut work);
+        if theta < 1.0 - RELEASE_SLACK {
+            let cut = h * theta.max(1e-6);
+            if cut > 1e-14 * t.max(scale) {
+                h = cut;
+                continue;
+            }
+        }
         stats.accepted += 1;
         let grow = if err > 0.0 {
             (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
@@ -309,6 +363,9 @@ pub(crate) fn run_inertial(
                 Some(&velocities(&z)),
             );
         }
+        // the step's own end rates, for the recorded states inside it (a bounce below
+        // reverses the velocity at its end)
+        let v_end = velocities(&z);
         // walls: bounce or stay
         let y_now = positions(&z);
         model.forces(&y_now, &mut work);
@@ -327,6 +384,9 @@ pub(crate) fn run_inertial(
             z[2 * i] = wall;
             if !inward {
                 continue;
+            }
+            if rec.is_some() {
+                walls.push((t, i, wall));
             }
             let rebound = -inertia.restitution * v;
             // the drive pressing it on against the wall, as an acceleration
@@ -356,6 +416,7 @@ pub(crate) fn run_inertial(
         }
         let before = modes.clone();
         release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+        drive0.clone_from(&work.drive);
         if before != modes || switched {
             stepper.invalidate();
         }
@@ -366,7 +427,7 @@ pub(crate) fn run_inertial(
                 &velocities(z0),
                 t,
                 &positions(&z),
-                Some(&velocities(&z)),
+                Some(&v_end),
             );
         }
         h *= grow;
@@ -388,6 +449,7 @@ pub(crate) fn run_inertial(
         end_time: t,
         final_state: y,
         states,
+        walls,
         model,
         options: *opts,
         events,

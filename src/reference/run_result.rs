@@ -32,6 +32,12 @@ pub struct ReferenceRun {
     /// Recorded `(time s, state)` pairs in time order, the last one the final state
     /// ([`ReferenceOptions::record`]; empty when off).
     pub states: Vec<(f64, Vec<f64>)>,
+    /// Every moment a free unknown met one of its walls while states were recorded (a
+    /// bounce, an arrival, a fold closing): `(time s, state index, the wall 0 or 1)`, in
+    /// time order (empty when not recording). An even grid of states straddles such a
+    /// corner and cuts it (a fold's bounce by up to its speed times the grid spacing): the
+    /// tracks drawn from the states ([`crate::render::RunSource`]) keep these points too.
+    pub walls: Vec<(f64, usize, f64)>,
     /// When the chain came to rest (or integration stopped), s.
     pub end_time: f64,
     /// The most magnets moving at once, and when first.

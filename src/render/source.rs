@@ -148,28 +148,56 @@ impl RunSource for ReferenceRun {
     }
     fn magnet_travel(&self, k: usize) -> Track {
         let (v, len) = (self.model.magnet_var(k), self.model.path_length(k));
-        reference_track(self, TRAVEL_TOLERANCE, |y| y[v].clamp(0.0, 1.0) * len)
+        reference_track(self, v, TRAVEL_TOLERANCE, |x| x.clamp(0.0, 1.0) * len)
     }
     fn joint_angle(&self, j: usize) -> Track {
         match self.model.joint_var(j) {
             None => Track::constant(0.0),
             Some(v) => {
                 let sign = self.model.joint_sign(j);
-                reference_track(self, ANGLE_TOLERANCE, |y| {
-                    sign * y[v].clamp(0.0, 1.0) * FRAC_PI_2
+                reference_track(self, v, ANGLE_TOLERANCE, |x| {
+                    sign * x.clamp(0.0, 1.0) * FRAC_PI_2
                 })
             }
         }
     }
 }
 
-/// One quantity of the reference's recorded states (the final state alone when none were
-/// recorded), thinned within `tolerance`.
-fn reference_track(run: &ReferenceRun, tolerance: f64, value: impl Fn(&[f64]) -> f64) -> Track {
-    let samples: Vec<(f64, f64)> = if run.states.is_empty() {
-        vec![(run.end_time, value(&run.final_state))]
-    } else {
-        run.states.iter().map(|(t, y)| (*t, value(y))).collect()
-    };
+/// Unknown `v` of the reference's recorded states (the final state alone when none were
+/// recorded) as `value` gives it, with the moments it met a wall
+/// ([`ReferenceRun::walls`]: a bounce's peak or an arrival's corner, which the grid of
+/// states straddles), thinned within `tolerance`.
+fn reference_track(
+    run: &ReferenceRun,
+    v: usize,
+    tolerance: f64,
+    value: impl Fn(f64) -> f64,
+) -> Track {
+    if run.states.is_empty() {
+        return Track::from_samples(&[(run.end_time, value(run.final_state[v]))], tolerance);
+    }
+    let mut walls = run
+        .walls
+        .iter()
+        .filter(|w| w.1 == v)
+        .map(|&(t, _, x)| (t, value(x)))
+        .peekable();
+    let mut samples = Vec::with_capacity(run.states.len());
+    for (t, y) in &run.states {
+        while let Some(&w) = walls.peek() {
+            if w.0 >= *t {
+                break;
+            }
+            // a contact at a time already sampled is that sample
+            if samples
+                .last()
+                .is_none_or(|&(last, _): &(f64, f64)| last < w.0)
+            {
+                samples.push(w);
+            }
+            walls.next();
+        }
+        samples.push((*t, value(y[v])));
+    }
     Track::from_samples(&samples, tolerance)
 }
