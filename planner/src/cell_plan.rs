@@ -339,13 +339,19 @@ pub(crate) fn plan_by_cells(
     });
     match found {
         Some(found) => Ok(found.plans),
-        None if !collide.is_empty() || rejected.is_some() => Err(match rejected {
-            Some((text, r)) => (text, Some(r)),
-            None => (
-                format!("every cell route collides when folded (first: {collide})"),
-                None,
-            ),
-        }),
+        None if !collide.is_empty() || rejected.is_some() => {
+            let (mut text, r) = match rejected {
+                Some((text, r)) => (text, Some(r)),
+                None => (
+                    format!("every cell route collides when folded (first: {collide})"),
+                    None,
+                ),
+            };
+            if cell_search.exhausted() {
+                text = format!("{text} ({})", budget_note(cell_search));
+            }
+            Err((text, r))
+        }
         None => {
             let mut text: Vec<String> = why
                 .iter()
