@@ -12,7 +12,7 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use crate::assembly::Assembly;
-use crate::cell_search::{route_searches, CellSearch, RoutedWidth, CELL_WORK_BUDGET};
+use crate::cell_search::{route_searches, CellSearch, Reasons, RoutedWidth, CELL_WORK_BUDGET};
 use crate::cells::{decompose_merging, Branch, Cells, Merge};
 use crate::check::{check_folds, CheckMemo};
 use crate::empty::empty_part;
@@ -60,9 +60,6 @@ pub(crate) type CellFailure = (String, Option<Box<Rejected>>);
 
 /// Why an axis gave no route.
 type Why = String;
-
-/// Reasons why axes gave no route, each with the axes it holds for (SVG degrees).
-pub(crate) type Reasons = Vec<(Why, Vec<String>)>;
 
 /// The best routes over the cells of `axis_shape` (axis frame, unit tiles), cheapest first,
 /// or why there is none, from at most `searches` route searches (the first decompositions,

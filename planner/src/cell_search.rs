@@ -20,8 +20,11 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use crate::cell_plan::Reasons;
 use crate::route::Routed;
+
+/// Reasons why axes gave no route (each an axis's message), each with the axes it holds
+/// for (SVG degrees).
+pub(crate) type Reasons = Vec<(String, Vec<String>)>;
 
 /// Route searches per width (over all axes) times the tile count: 96 searches per axis (8
 /// decompositions x 12 orders, the most any shape gets) up to 625 tiles with two axes and

@@ -14,8 +14,17 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use rustc_hash::FxHashMap;
 
-use crate::engine::local::sweeps::Entry;
+use crate::engine::local::solve::Solution;
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
+
+/// A unit's solution as the cache keeps it: shape ids instead of shapes.
+#[derive(Debug)]
+pub(crate) struct Entry {
+    /// Each unknown's shape id and start (local time), if it moved.
+    pub(crate) shapes: Vec<Option<(u32, f64)>>,
+    /// The solution, shapes taken out.
+    pub(crate) solution: Solution,
+}
 
 /// The sweep (from 1) and the unit that made an entry: entries sort in the order a single
 /// thread makes them.
@@ -141,7 +150,6 @@ impl Library {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::local::solve::Solution;
 
     #[test]
     fn a_look_up_sees_the_entries_its_tag_allows_the_earliest_first() {

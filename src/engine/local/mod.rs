@@ -27,8 +27,9 @@ mod window;
 
 use std::f64::consts::FRAC_PI_2;
 
+pub use sweep::{OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
 pub(crate) use sweeps::ChainSolution;
-pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
+pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS};
 
 use crate::reference::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};

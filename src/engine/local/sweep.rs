@@ -14,14 +14,26 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 
-use crate::engine::local::cache::{Anchors, Cache, Library};
+use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
-use crate::engine::local::sweeps::{
-    Entry, ANCHOR_FRACTION, OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE,
-};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::window::{unit_vars, Inputs, Var, Window};
 use crate::reference::{Dynamics, Model};
+
+/// A unit's time origin is when the magnet before it has travelled this fraction of its
+/// path: 0.5.
+pub(crate) const ANCHOR_FRACTION: f64 = 0.5;
+
+/// Sweeps stop when no event moved by more than this fraction of the run's duration: 1e-6.
+pub const SWEEP_TOLERANCE: f64 = 1e-6;
+/// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-7.
+pub const OFFSET_QUANTUM: f64 = 1e-7;
+/// A new shape within this (fraction of a path or fold, and fraction of its duration for
+/// its end) of the same unknown's one unit back, shifted by the difference of the two
+/// units' origins, is stored as that one: 1e-4, 0.5 um on a 5 mm path. Two solves of the
+/// same steady motion on different steps differ by some 1e-5: a magnet that creeps off a
+/// near balance amplifies the interpolation error of its inputs.
+pub const SHAPE_TOLERANCE: f64 = 1e-4;
 
 /// A sweep hands its unit results on in chunks of at most this many units, or at every
 /// local solve (a chunk of look-ups is cheap to wait for; a solve is not): 64.

@@ -2,7 +2,7 @@
 //! first, every unit sees the units before it on their solved tracks and the units after it
 //! at rest; each later sweep solves every unit again with the units after it on their
 //! tracks of the sweep before (a Gauss-Seidel waveform relaxation), until no event moves by
-//! more than [`SWEEP_TOLERANCE`] of the run's duration, or [`MAX_SWEEPS`] sweeps.
+//! more than [`SWEEP_TOLERANCE`](crate::engine::SWEEP_TOLERANCE) of the run's duration, or [`MAX_SWEEPS`] sweeps.
 //!
 //! **Relative placement.** In a later sweep the units after unit `u` are placed against `u`
 //! as they were in the sweep before: their tracks move by as much as `u`'s time origin moved
@@ -13,8 +13,8 @@
 //!
 //! **Cache.** A unit's solution depends only on the geometry of its window and on its
 //! inputs' shapes and offsets relative to its own time origin. Those are the key of a cache
-//! (offsets rounded to [`OFFSET_QUANTUM`] time scales). A new solution's shape that agrees
-//! within [`SHAPE_TOLERANCE`] with a stored shape of the same kind of unknown (the same path,
+//! (offsets rounded to [`OFFSET_QUANTUM`](crate::engine::OFFSET_QUANTUM) time scales). A new solution's shape that agrees
+//! within [`SHAPE_TOLERANCE`](crate::engine::SHAPE_TOLERANCE) with a stored shape of the same kind of unknown (the same path,
 //! the same fold) is stored as that one, and so is one that agrees with the same unknown's one
 //! unit back: a steady straight run settles on the same shapes after every U-turn. Along a
 //! steady run the transient from the RI (or from a U-turn) dies out in a few tiles, after
@@ -37,38 +37,15 @@
 use std::sync::mpsc::channel;
 use std::sync::Arc;
 
-use crate::engine::local::cache::Cache;
-use crate::engine::local::solve::{Solution, SolveOptions};
-use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut};
+use crate::engine::local::cache::{Cache, Entry};
+use crate::engine::local::solve::SolveOptions;
+use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut, SWEEP_TOLERANCE};
 use crate::engine::local::trajectory::{Shapes, Track};
 use crate::reference::Model;
 use crate::timeline::{Event, EventKind};
 
-/// A unit's time origin is when the magnet before it has travelled this fraction of its
-/// path: 0.5.
-pub(crate) const ANCHOR_FRACTION: f64 = 0.5;
-
 /// Most sweeps over the chain.
 pub const MAX_SWEEPS: usize = 8;
-/// Sweeps stop when no event moved by more than this fraction of the run's duration: 1e-6.
-pub const SWEEP_TOLERANCE: f64 = 1e-6;
-/// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-7.
-pub const OFFSET_QUANTUM: f64 = 1e-7;
-/// A new shape within this (fraction of a path or fold, and fraction of its duration for
-/// its end) of the same unknown's one unit back, shifted by the difference of the two
-/// units' origins, is stored as that one: 1e-4, 0.5 um on a 5 mm path. Two solves of the
-/// same steady motion on different steps differ by some 1e-5: a magnet that creeps off a
-/// near balance amplifies the interpolation error of its inputs.
-pub const SHAPE_TOLERANCE: f64 = 1e-4;
-
-/// A unit's solution as the cache keeps it: shape ids instead of shapes.
-#[derive(Debug)]
-pub(crate) struct Entry {
-    /// Each unknown's shape id and start (local time), if it moved.
-    pub(crate) shapes: Vec<Option<(u32, f64)>>,
-    /// The solution, shapes taken out.
-    pub(crate) solution: Solution,
-}
 
 /// The chain's solution.
 #[derive(Debug)]
