@@ -170,15 +170,11 @@ impl MagnetPath {
     /// middle). Taken as the difference of the chord's two points, it carries their rounding
     /// (about 1e-10); [`MagnetPath::point_and_tangent_at`] gives the same direction without it.
     pub fn tangent_at(&self, u: f64) -> (f64, f64) {
-        let len = self.length();
         let along = (self.sign(), 0.0);
         if self.arc.is_none() || u < self.straight {
             return along;
         }
-        let h = 1e-6 * len;
-        let lo = (u - h).max(self.straight.min(len));
-        let hi = (u + h).min(len);
-        let (a, b) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        let (a, b) = self.chord_ends(u);
         let (pa, pb) = (self.point_at(a), self.point_at(b));
         let d = (pb.0 - pa.0, pb.1 - pa.1);
         let norm = d.0.hypot(d.1);
@@ -194,38 +190,50 @@ impl MagnetPath {
     /// tangent at its middle (the same within about 1e-10, without the rounding of two nearby
     /// points). The event engine's drives use it; the reference keeps `tangent_at`.
     pub fn point_and_tangent_at(&self, u: f64) -> ((f64, f64), (f64, f64)) {
-        let point = |u: f64, sin_cos: Option<(f64, f64)>| -> (f64, f64) {
-            match (self.arc, sin_cos) {
-                (Some(a), Some((sin, cos))) if u > self.straight => (
-                    a.cx + self.sign() * a.radius * cos,
-                    a.cy + a.cy.signum() * a.radius * sin,
-                ),
-                _ => self.point_at(u),
-            }
-        };
+        let along = (self.sign(), 0.0);
         let Some(a) = self.arc.filter(|_| u >= self.straight) else {
-            return (self.point_at(u), (self.sign(), 0.0));
+            return (self.point_at(u), along);
         };
         let len = self.length();
-        let uc = u.clamp(0.0, len);
-        let phi = |u: f64| a.start + (u - self.straight) / a.radius;
-        // the chord's ends, kept on the arc, and its middle
-        let h = 1e-6 * len;
-        let lo = (u - h).max(self.straight.min(len));
-        let hi = (u + h).min(len);
-        let (c0, c1) = if hi > lo { (lo, hi) } else { (lo - h, lo) };
+        let (c0, c1) = self.chord_ends(u);
         if c0.min(len) >= c1.min(len) {
             // no chord on the path
-            return (self.point_at(u), (self.sign(), 0.0));
+            return (self.point_at(u), along);
         }
-        let here = phi(uc).sin_cos();
+        let uc = u.clamp(0.0, len);
+        let phi = |u: f64| a.start + (u - self.straight) / a.radius;
+        let lateral = a.cy.signum();
+        let (sin_u, cos_u) = phi(uc).sin_cos();
+        // the arc's tangent at the chord's middle: `u` itself away from the arc's ends
+        let h = 1e-6 * len;
         let (sin, cos) = if c0 == u - h && c1 == u + h {
-            here
+            (sin_u, cos_u)
         } else {
             phi(0.5 * (c0 + c1)).sin_cos()
         };
-        let lateral = a.cy.signum();
-        (point(uc, Some(here)), (-self.sign() * sin, lateral * cos))
+        let point = if uc > self.straight {
+            (
+                a.cx + self.sign() * a.radius * cos_u,
+                a.cy + lateral * a.radius * sin_u,
+            )
+        } else {
+            self.point_at(u)
+        };
+        (point, (-self.sign() * sin, lateral * cos))
+    }
+
+    /// The ends of the chord [`MagnetPath::tangent_at`] takes at `u` on the arc: `u - h` and
+    /// `u + h` (`h` = 1e-6 of the length), kept on the arc.
+    fn chord_ends(&self, u: f64) -> (f64, f64) {
+        let len = self.length();
+        let h = 1e-6 * len;
+        let lo = (u - h).max(self.straight.min(len));
+        let hi = (u + h).min(len);
+        if hi > lo {
+            (lo, hi)
+        } else {
+            (lo - h, lo)
+        }
     }
 
     /// Points along the path for drawing, at most `max_step` mm apart.
