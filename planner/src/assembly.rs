@@ -108,6 +108,7 @@ impl Assembly<'_> {
             metrics,
             chain_to_svg: c2s.as_coeffs(),
             poses,
+            warnings: Vec::new(),
         }
     }
 }

@@ -32,6 +32,12 @@ pub struct Metrics {
     pub shape_area: f64,
     /// The chain's area (tiles times the octagon area), SVG user units squared.
     pub chain_area: f64,
+    /// The largest part of the shape the plan leaves empty, in tile areas: a connected
+    /// region at least half a tile inside the outline and farther than 0.95 tile widths
+    /// from every tile centre ([`crate::EmptyPart`]); 0 when there is none larger than two
+    /// tile areas.
+    #[serde(default)]
+    pub largest_empty_tiles: f64,
 }
 
 impl Metrics {
@@ -89,6 +95,10 @@ pub struct Plan {
     pub chain_to_svg: [f64; 6],
     /// One pose per tile centre, SVG user units.
     pub poses: Vec<PlanPose>,
+    /// What the plan falls short in (a part of the shape left empty, a tile count outside
+    /// the asked tolerance), one sentence each; empty for a plan that meets every aim.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
