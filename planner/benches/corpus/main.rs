@@ -11,7 +11,7 @@
 //! prints the plan's JSON. Its CPU time (user + system, all its threads) is the growth of
 //! `getrusage(RUSAGE_CHILDREN)` across the child's life. A child that has used more than
 //! the CPU limit (`--timeout`, seconds of CPU read from `/proc/PID/stat` while it runs, so
-//! that the limit does not depend on how loaded the machine is), or five times that in
+//! that the limit does not depend on how loaded the machine is), or twenty times that in
 //! wall-clock time, is killed and reported as a timeout. The empty-region measure is this
 //! report's own ([`empty_region`]), not the planner's.
 //!
@@ -32,12 +32,12 @@ use nix::sys::resource::{getrusage, UsageWho};
 
 /// Tile counts asked by default.
 const TILES: [usize; 4] = [100, 300, 1000, 3000];
-/// Per-plan time limit by default, seconds of CPU time (and five times that of wall-clock
+/// Per-plan time limit by default, seconds of CPU time (and twenty times that of wall-clock
 /// time).
 const TIMEOUT_S: f64 = 30.0;
 /// The wall-clock limit as a multiple of the CPU limit: a child that sleeps cannot hang the
 /// report.
-const WALL_FACTOR: f64 = 5.0;
+const WALL_FACTOR: f64 = 20.0;
 /// An empty region larger than this (tile areas) counts against a plan (issue 26).
 const EMPTY_LIMIT: f64 = 2.0;
 /// A tile count farther than this share from the request counts against a plan.
