@@ -18,20 +18,28 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod assembly;
 mod channel;
 mod error;
+mod job;
 mod mark;
 mod mesh;
 mod options;
 mod picture;
+mod plate;
 pub mod region;
 mod solid;
 mod stl;
 mod threemf;
 mod tile_part;
 
+pub use assembly::{assembly_svg, SheetTile, SHEET_COLUMNS};
 pub use channel::Channel;
 pub use error::PrintError;
+pub use job::{
+    estimate_basis, is_job_file, print_job, Magnets, OutputFile, PartEntry, PartsReport,
+    PlateEntry, PrintJob, Source, FDM_RATE_MM3_PER_S, RESIN_LAYER_MM, RESIN_SECONDS_PER_LAYER,
+};
 pub use mesh::{Mesh, MeshBuilder, Pt3, Topology};
 pub use options::{
     default_clearance, Bed, Format, PartOptions, PrintOptions, DEFAULT_ARC_TOLERANCE,
@@ -39,7 +47,8 @@ pub use options::{
     THESIS_HEIGHT,
 };
 pub use picture::{mesh_svg, View};
+pub use plate::{grid, lay_out, Placement};
 pub use solid::{prism_with_pockets, triangulate, FaceError, Pocket};
 pub use stl::{from_stl, to_stl};
-pub use threemf::{model_xml, to_3mf, Item, Object};
+pub use threemf::{model_xml, read_3mf, to_3mf, Item, Model, Object};
 pub use tile_part::{TilePart, Wall, MIN_MARK_HEIGHT};

@@ -210,7 +210,7 @@ pub struct Bed {
     pub width: f64,
     /// Depth (y). Default 210.
     pub depth: f64,
-    /// Gap between neighbouring parts and from the bed's edges. Default 5.
+    /// Gap between neighbouring parts (the grid is centred on the bed). Default 5.
     pub spacing: f64,
 }
 

@@ -142,3 +142,86 @@ pub fn to_3mf(
     let cursor = zip.finish().map_err(|e| fail(&e))?;
     Ok(cursor.into_inner())
 }
+
+/// A 3MF model read back: its objects and build items.
+#[derive(Clone, Debug, Default)]
+pub struct Model {
+    /// Objects: name and mesh.
+    pub objects: Vec<(String, Mesh)>,
+    /// Build items (angle from the transform's first row).
+    pub items: Vec<Item>,
+}
+
+/// The value of attribute `name` in a tag's text.
+fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
+    let key = format!(" {name}=\"");
+    let start = tag.find(&key)? + key.len();
+    let end = tag[start..].find('"')?;
+    Some(&tag[start..start + end])
+}
+
+/// Reads a 3MF file as this module writes it (one model part; objects with meshes; build
+/// items with transforms): for checking written files.
+pub fn read_3mf(bytes: &[u8]) -> Result<Model, String> {
+    use std::io::Read as _;
+    let mut zip =
+        zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| format!("not a zip: {e}"))?;
+    let mut xml = String::new();
+    zip.by_name("3D/3dmodel.model")
+        .map_err(|e| format!("no 3D/3dmodel.model: {e}"))?
+        .read_to_string(&mut xml)
+        .map_err(|e| e.to_string())?;
+    if !xml.contains("unit=\"millimeter\"") {
+        return Err("the model's unit is not millimetre".into());
+    }
+    let mut model = Model::default();
+    let mut ids: Vec<String> = Vec::new();
+    let num = |t: &str, n: &str| -> Result<f64, String> {
+        attr(t, n)
+            .and_then(|v| v.parse::<f64>().ok())
+            .ok_or_else(|| format!("bad {n} in {t}"))
+    };
+    for tag in xml.split('<').skip(1) {
+        let tag = tag.split('>').next().unwrap_or("");
+        if tag.starts_with("object ") {
+            ids.push(attr(tag, "id").unwrap_or("").to_string());
+            let name = attr(tag, "name").unwrap_or("").to_string();
+            model.objects.push((name, Mesh::default()));
+        } else if tag.starts_with("vertex ") {
+            let v = [num(tag, "x")?, num(tag, "y")?, num(tag, "z")?];
+            let (_, m) = model
+                .objects
+                .last_mut()
+                .ok_or("a vertex outside an object")?;
+            m.vertices.push(v);
+        } else if tag.starts_with("triangle ") {
+            let t = [num(tag, "v1")?, num(tag, "v2")?, num(tag, "v3")?].map(|x| x as u32);
+            let (_, m) = model
+                .objects
+                .last_mut()
+                .ok_or("a triangle outside an object")?;
+            m.triangles.push(t);
+        } else if tag.starts_with("item ") {
+            let id = attr(tag, "objectid").unwrap_or("");
+            let object = ids
+                .iter()
+                .position(|i| i == id)
+                .ok_or_else(|| format!("item of unknown object {id}"))?;
+            let m: Vec<f64> = attr(tag, "transform")
+                .unwrap_or("1 0 0 0 1 0 0 0 1 0 0 0")
+                .split_whitespace()
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            if m.len() != 12 {
+                return Err(format!("bad transform in {tag}"));
+            }
+            model.items.push(Item {
+                object,
+                angle: m[1].atan2(m[0]),
+                x: m[9],
+                y: m[10],
+            });
+        }
+    }
+    Ok(model)
+}
