@@ -20,12 +20,13 @@
 
 use kurbo::Point;
 
+use crate::model::Dynamics;
+use crate::model::ModelOptions;
 use crate::physics::Pole;
-use crate::reference::dynamics::ModelOptions;
 use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::pictures::state_energy;
+use crate::reference::run_reference;
 use crate::reference::run_result::ReferenceRun;
-use crate::reference::{run_reference, Dynamics};
 use crate::timeline::TileDesigns;
 use crate::{Chain, ChainError, FoldWord};
 

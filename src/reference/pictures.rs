@@ -8,8 +8,8 @@
 //! recorded state nearest its time (stamped with that state's own time); the final frame
 //! shows the final state at [`ReferenceRun::end_time`], when the chain came to rest or the
 //! integration stopped. Tile poses come from the joint angles and magnets from their paths,
-//! as the integrator had them ([`crate::reference::Model::poses`],
-//! [`crate::reference::Model::positions`]).
+//! as the integrator had them ([`crate::model::Model::poses`],
+//! [`crate::model::Model::positions`]).
 
 use kurbo::Point;
 

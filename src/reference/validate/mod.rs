@@ -19,9 +19,9 @@ use std::time::Instant;
 
 use crate::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
 use crate::kinematics::poses_at_angles;
+use crate::model::ModelOptions;
+use crate::ode::Method;
 use crate::reference::driver::run_reference;
-use crate::reference::dynamics::ModelOptions;
-use crate::reference::integrators::Method;
 use crate::reference::options::{ReferenceError, ReferenceOptions};
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::scenes::{all_scenes, Scene};
