@@ -64,6 +64,7 @@ mod simulation;
 mod tile;
 pub mod timeline;
 pub mod tolerance;
+pub mod validation;
 pub mod viewer;
 mod word;
 

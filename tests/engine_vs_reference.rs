@@ -6,14 +6,14 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
+use foldchain::engine::{energy_curve, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
 use foldchain::physics::DEFAULT_CUTOFF;
-use foldchain::reference::scenes::all_scenes;
-use foldchain::reference::validate::compare_events;
-use foldchain::reference::{run_reference, ReferenceOptions};
+use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
+use foldchain::validation::compare_events;
+use foldchain::validation::scenes::all_scenes;
 use foldchain::{Chain, Design};
 
 fn only(events: &[Event], kinds: &[EventKind]) -> Vec<Event> {
@@ -197,4 +197,25 @@ fn inertial_engine_events_are_the_inertial_references() {
             );
         }
     }
+}
+
+#[test]
+fn energy_matches_the_engine_at_rest_and_folded() {
+    let chain = Chain::parse("SSLLSS").unwrap();
+    let designs = TileDesigns::default();
+    let tl = run(&chain, &designs, &EngineOptions::default()).unwrap();
+    let engine = energy_curve(&tl, 10);
+    let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 50 });
+    let r = run_reference(&chain, &designs, &opts).unwrap();
+    assert_eq!(r.outcome, Outcome::Completed);
+    let curve = reference_energy(&r, 10);
+    let (e0, r0) = (engine[0].energy_j, curve[0].energy_j);
+    assert!((e0 - r0).abs() < 1e-9 * e0.abs(), "{e0} {r0}");
+    let (e1, r1) = (
+        engine.last().unwrap().energy_j,
+        curve.last().unwrap().energy_j,
+    );
+    // both end with every magnet arrived and both folds closed
+    assert!((e1 - r1).abs() < 1e-6 * e1.abs(), "{e1} {r1}");
+    assert!(r1 < r0);
 }

@@ -4,11 +4,10 @@
 //! - [`integral`]: the classical law, `h * clamp(0.9 * e^-(1/(q+1)), 0.2, 5)` after an accepted
 //!   step (5 when `e` is 0), `clamp(0.9 * e^-(1/(q+1)), 0.1, 0.9)` after a rejected one (0.1
 //!   when `e` is not finite): the inertial reference and the event engine's units.
-//! - [`StepControl`]: the overdamped reference's PI controller (Gustafsson;
-//! Hairer and Wanner, *Solving ODEs II*, IV.2; `dopri5.f`'s `BETA`) on the error estimate
-//! of an embedded solution of order `q`.
+//! - [`StepControl`]: the overdamped reference's PI controller (Gustafsson; Hairer and
+//!   Wanner, *Solving ODEs II*, IV.2; `dopri5.f`'s `BETA`).
 //!
-//! After an accepted step with error `e` (previous accepted error `e_old`) the next step is
+//! **The PI controller.** After an accepted step with error `e` (previous accepted error `e_old`) the next step is
 //! `h * clamp(0.9 * e^-(1/(q+1) - 0.75 beta) * e_old^beta, 0.2, 5)`, `beta = 0.2 / (q + 1)`
 //! (0.04 for Dormand-Prince, as in `dopri5.f`): the integral term alone is the classical
 //! law, the proportional one damps the accept-reject-accept oscillation that law falls into

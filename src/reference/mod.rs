@@ -9,8 +9,7 @@
 //! - [`run_reference`]: the hybrid driver, which locates every event on real integrator steps
 //!   and switches the unknowns' modes there; its result ([`ReferenceRun`]) carries the
 //!   engine's event kinds and summary fields.
-//! - [`scenes`]: the scenes `fold-validate` runs; [`validate`]: errors against run time (the
-//!   work-precision table and plot); [`stiff`]: the stiff cases and their study.
+//! - [`stiff`]: the stiff cases and the study of both integrators on them.
 //! - The pictures' data from the reference's recorded states ([`reference_state`],
 //!   [`reference_energy`], [`reference_transition`]).
 //!
@@ -31,23 +30,20 @@
 
 mod driver;
 mod event_log;
-pub mod experiments;
 pub(crate) mod inertial;
 mod locate;
 mod options;
 mod pictures;
 mod recorder;
 mod run_result;
-pub mod scenes;
 pub mod stiff;
-pub mod validate;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{
-    reference_energy, reference_final_state, reference_state, reference_state_near,
-    reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
+    pair_energies, reference_energy, reference_final_state, reference_state, reference_state_near,
+    reference_transition, state_budget, state_energy, PairEnergies, STATE_BUDGET_BYTES,
 };
 pub use run_result::ReferenceRun;
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};
