@@ -86,13 +86,14 @@ pub(crate) struct LocalRun {
 }
 
 /// Solves `model`'s chain (starts reported at [`start_fraction`]), the sweeps on `threads`
-/// threads ([`EngineOptions::threads`](crate::engine::EngineOptions::threads)).
-pub(crate) fn run_local(model: &Model, tol: f64, threads: usize) -> LocalRun {
+/// threads ([`EngineOptions::threads`](crate::engine::EngineOptions::threads)), each solve
+/// at most `max_steps` steps.
+pub(crate) fn run_local(model: &Model, tol: f64, threads: usize, max_steps: usize) -> LocalRun {
     let inertial = solve::InertialModel::new(model);
     let opts = solve::SolveOptions {
         tol,
         start_fraction: start_fraction(&model.geometry),
-        max_steps: 1_000_000,
+        max_steps,
         inertial: inertial.as_ref(),
         rosenbrock: true,
         rest_skip: true,
