@@ -158,6 +158,12 @@ impl MagnetPath {
         self.point_at(self.length())
     }
 
+    /// The length of the straight part that leaves the rest point, mm: `s` on a curved
+    /// path, the whole path when straight.
+    pub fn straight_length(&self) -> f64 {
+        self.straight
+    }
+
     /// Whether the path is curved.
     pub fn is_curved(&self) -> bool {
         self.arc.is_some()

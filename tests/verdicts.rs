@@ -15,10 +15,9 @@ use rayon::prelude::*;
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::EngineOptions;
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::reference::{
-    run_reference, state_budget, Dynamics, ModelOptions, Recording, ReferenceOptions,
-};
+use foldchain::reference::{run_reference, state_budget, Recording, ReferenceOptions};
 use foldchain::timeline::{Summary, TileDesigns};
 use foldchain::{check_reference, simulate, Chain, Design};
 
@@ -216,9 +215,33 @@ const S0_SOLVE_CASES: [&str; 4] = ["LRSSS", "LRSLR", "RLSRL", "LRSLLL"];
 fn a_local_solve_that_gives_up_is_stopped_not_stalled() {
     // a stall is the physics at rest short of a trigger (the reference's); a solve that runs
     // out of steps is `stopped`, as a reference run whose integration stopped early. LRSSS
-    // at s = 0 ran out of steps before the step floor: it must not read as a stall
-    let (e, _, _) = verdicts(S0_SOLVE_CASES[0], 0.0, inertial());
-    assert_ne!(e.result, "stalled", "{:?}", e.reason);
+    // at s = 0 ran out of its million steps before the step floor; a limit of 20 steps makes
+    // every solve give up
+    let chain = Chain::parse(S0_SOLVE_CASES[0]).unwrap();
+    let designs = TileDesigns::global(Design::thesis().with_s(0.0));
+    let model = ModelOptions::default().with_dynamics(inertial());
+    let run = |max_steps: usize| {
+        let engine = EngineOptions::default()
+            .with_model(model)
+            .with_max_steps(max_steps);
+        simulate(&chain, &designs, &engine, &CheckOptions::default())
+            .unwrap()
+            .1
+    };
+    let stopped = run(20);
+    let reason = stopped.reason.clone().unwrap_or_default();
+    assert_eq!(stopped.result, "stopped", "{reason}");
+    assert!(!stopped.completed);
+    assert!(reason.contains("gave up after 20 steps"), "{reason}");
+    // with the default limit the step floor lets every solve finish: neither stopped nor a
+    // stall
+    let e = run(EngineOptions::default().max_steps);
+    assert!(
+        !["stopped", "stalled"].contains(&e.result),
+        "{}: {:?}",
+        e.result,
+        e.reason
+    );
 }
 
 #[test]

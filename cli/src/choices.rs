@@ -4,8 +4,8 @@
 use std::fmt;
 
 use clap::ValueEnum;
+use foldchain::model::Dynamics;
 use foldchain::physics::Inertia;
-use foldchain::reference::Dynamics;
 use foldchain::tolerance::Printer;
 
 /// The physics of the local solves and of the reference.
@@ -86,6 +86,26 @@ impl PrinterChoice {
     }
 }
 
+/// The file format of printed parts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatChoice {
+    /// 3MF: named objects in mm, plates as one file each (what slicers prefer).
+    #[value(name = "3mf")]
+    ThreeMf,
+    /// Binary STL: one mesh per file.
+    Stl,
+}
+
+impl FormatChoice {
+    /// The library's format.
+    pub fn to_format(self) -> foldchain_print::Format {
+        match self {
+            FormatChoice::ThreeMf => foldchain_print::Format::ThreeMf,
+            FormatChoice::Stl => foldchain_print::Format::Stl,
+        }
+    }
+}
+
 /// Shows a choice by its name on the command line.
 macro_rules! display_by_name {
     ($($t:ty),*) => {$(
@@ -106,7 +126,8 @@ display_by_name!(
     EngineChoice,
     SpeedChoice,
     StartRuleChoice,
-    FramesViewChoice
+    FramesViewChoice,
+    FormatChoice
 );
 
 #[cfg(test)]

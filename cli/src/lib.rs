@@ -1,7 +1,7 @@
 //! # foldchain-cli
 //!
 //! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`,
-//! `fold-validate` and `fold-tolerance` (in `src/bin/`), and the pieces they share: writing outputs without
+//! `fold-validate`, `fold-tolerance` and `fold-print` (in `src/bin/`), and the pieces they share: writing outputs without
 //! touching anything the tools did not write ([`output`]), writing a run's pictures and JSON
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
@@ -9,15 +9,18 @@
 //! ([`engine_choice`]), the named choices of the options ([`choices`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
-//! Install all six tools with `cargo install --path cli` from the repository root.
+//! Install all seven tools with `cargo install --path cli` from the repository root.
 
 pub mod choices;
 pub mod engine_choice;
 pub mod experiments;
 pub mod inputs;
 pub mod margins_file;
+pub mod numbers;
 pub mod output;
 pub mod progress;
 pub mod report;
+pub mod run_dir;
 pub mod run_files;
 pub mod run_name;
+pub mod stdout;

@@ -121,54 +121,80 @@ fn collision_verdicts_are_unchanged() {
     }
 }
 
+/// The square planned with options: the recorded file and the options.
+const OPTION_PLANS: [(&str, [&str; 6]); 2] = [
+    (
+        "plan-square-107-tight.json",
+        [
+            "--tiles",
+            "107",
+            "--turns",
+            "tight",
+            "--tiles-tolerance",
+            "0",
+        ],
+    ),
+    (
+        "plan-square-82-loose.json",
+        [
+            "--tiles",
+            "82",
+            "--turns",
+            "loose",
+            "--tiles-tolerance",
+            "0",
+        ],
+    ),
+];
+
+/// `fold-plan --json` of `shapes/{stem}.svg` with `args`, against `tests/golden/{file}`; an
+/// unplannable shape is recorded as its exit code (the reason goes to stderr).
+fn assert_plan_unchanged(stem: &str, args: &[&str], file: &str) {
+    let relative = format!("shapes/{stem}.svg");
+    let mut a = vec![relative.as_str(), "--json", "--quiet"];
+    a.extend(args);
+    let (code, out) = run(env!("CARGO_BIN_EXE_fold-plan"), &a);
+    let out = if out.trim().is_empty() {
+        format!("{{\"exit\": {}}}", code.unwrap_or(-1))
+    } else {
+        assert_eq!(code, Some(0), "{file}");
+        out
+    };
+    assert_same(file, &golden(file), &out);
+}
+
+/// The binary's plans of the square (quick): the planner's own golden test
+/// (`planner/tests/plan_golden.rs`) compares every sample through the library.
 #[test]
-fn plans_are_unchanged() {
-    let plan = env!("CARGO_BIN_EXE_fold-plan");
-    let shapes = std::fs::read_dir(root().join("shapes")).unwrap();
-    let mut n = 0;
-    for entry in shapes {
-        let path = entry.unwrap().path();
-        let stem = path.file_stem().unwrap().to_str().unwrap().to_string();
-        let relative = format!("shapes/{stem}.svg");
-        let (code, out) = run(plan, &[&relative, "--json", "--quiet"]);
-        // an unplannable shape is recorded as its exit code (the reason goes to stderr)
-        let out = if out.trim().is_empty() {
-            format!("{{\"exit\": {}}}", code.unwrap_or(-1))
-        } else {
-            out
-        };
-        assert_same(&stem, &golden(&format!("plan-{stem}.json")), &out);
-        n += 1;
+fn plans_of_the_square_are_unchanged() {
+    assert_plan_unchanged("square", &[], "plan-square.json");
+    for (file, args) in OPTION_PLANS {
+        assert_plan_unchanged("square", &args, file);
     }
-    assert!(n >= 7, "{n} sample shapes");
-    for (file, args) in [
-        (
-            "plan-square-107-tight.json",
-            [
-                "--tiles",
-                "107",
-                "--turns",
-                "tight",
-                "--tiles-tolerance",
-                "0",
-            ],
-        ),
-        (
-            "plan-square-82-loose.json",
-            [
-                "--tiles",
-                "82",
-                "--turns",
-                "loose",
-                "--tiles-tolerance",
-                "0",
-            ],
-        ),
-    ] {
-        let mut a = vec!["shapes/square.svg", "--json"];
-        a.extend(args);
-        let (_, out) = run(plan, &a);
-        assert_same(file, &golden(file), &out);
+}
+
+/// Every sample shape has its recorded plan and every recorded plan its shape, and the
+/// binary plans each as recorded.
+#[test]
+#[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
+fn plans_of_every_sample_are_unchanged() {
+    let mut stems: Vec<String> = std::fs::read_dir(root().join("shapes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "svg"))
+        .map(|p| p.file_stem().unwrap().to_str().unwrap().to_string())
+        .collect();
+    stems.sort();
+    let mut recorded: Vec<String> = std::fs::read_dir(root().join("tests/golden"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_str().unwrap().to_string())
+        .filter(|f| !OPTION_PLANS.iter().any(|(o, _)| *o == f.as_str()))
+        .filter_map(|f| Some(f.strip_prefix("plan-")?.strip_suffix(".json")?.to_string()))
+        .collect();
+    recorded.sort();
+    assert_eq!(stems, recorded, "sample shapes against recorded plans");
+    for stem in &stems {
+        assert_plan_unchanged(stem, &[], &format!("plan-{stem}.json"));
     }
 }
 
@@ -202,6 +228,7 @@ fn runs_are_unchanged() {
 }
 
 #[test]
+#[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn validation_is_unchanged() {
     let dir =
         std::env::temp_dir().join(format!("foldchain-golden-validate-{}", std::process::id()));

@@ -16,8 +16,9 @@ use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions};
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
 use foldchain::render::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
@@ -333,47 +334,5 @@ fn compare_shows_engine_and_reference_side_by_side() {
         let folds = summary(&d.join(run))["folds"].as_array().unwrap().len();
         assert_eq!(attr(&panel, "data-folded"), folds.to_string(), "{run}");
     }
-    std::fs::remove_dir_all(&d).unwrap();
-}
-
-/// The frame budget (30 frames per second) on a 10^4-tile serpentine, every part of
-/// every tile drawn: loose, on the median of 10 frames each flushed to pixels (the first
-/// frames pay for compiling the page's script). A timed test, so opt-in
-/// (`cargo test --release -p foldchain-cli --test viewer_browser -- --ignored`): on a
-/// shared two-core machine under a load of 8 the median was 8 to 12 ms alone and 49 to 67 ms
-/// beside other work. `cargo bench -p foldchain-cli --bench viewer` has the figures.
-#[test]
-#[ignore = "timed: run on an idle machine"]
-fn a_ten_thousand_tile_serpentine_draws_within_a_frame_budget() {
-    let Some(exe) = browser() else { return };
-    let d = tmp("budget");
-    let mut word = Vec::new();
-    let mut left = true;
-    // 99 rows of 99 straight letters and a U-turn: 9,999 letters, 10,000 tiles
-    while word.len() < 99 {
-        word.push(format!("S*99 {0} {0}", if left { "L" } else { "R" }));
-        left = !left;
-    }
-    let chain = d.join("serpentine.txt");
-    std::fs::write(&chain, word.join(" ")).unwrap();
-    let out = d.join("out");
-    let o = fold_run(&[
-        chain.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--frames",
-        "1",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(summary(&out)["tiles"], 10_000);
-    // real time, not the virtual time the other tests let the page run on
-    let dom = chromium(
-        &exe,
-        &url(&out.join("index.html"), "t=end&bench=10&detail=all"),
-        &["--dump-dom".into()],
-    );
-    let b = attributes(&dom, "body", "data-time");
-    let median: f64 = attr(&b, "data-render-ms-median").parse().unwrap();
-    assert!(median < 33.0, "median frame {median} ms");
     std::fs::remove_dir_all(&d).unwrap();
 }

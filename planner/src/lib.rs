@@ -38,6 +38,7 @@ mod caps;
 mod cell_plan;
 mod centre_grid;
 mod check;
+mod clip;
 mod drawing;
 mod empty;
 mod error;

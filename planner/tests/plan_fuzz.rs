@@ -1,31 +1,64 @@
 //! Property tests of the SVG-facing code: arbitrary text and arbitrary polygons never
-//! panic; star-shaped polygons plan, to chains whose tiles do not overlap.
+//! panic, and are read as a shape with area or refused as bad input naming the file;
+//! star-shaped polygons plan, to chains whose tiles do not overlap.
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 mod common;
 
 use common::assert_sound;
-use foldchain_planner::{plan_svg_str, PlanOptions, Shape};
+use foldchain_planner::{plan_svg_str, PlanError, PlanOptions, Shape};
 use proptest::prelude::*;
+
+/// What reading any text must give: a shape with filled area inside a finite box, or an
+/// error for bad input (exit 2, never "unplannable") whose message names the file.
+fn assert_read_or_refused(read: Result<Shape, PlanError>) -> Result<(), TestCaseError> {
+    match read {
+        Ok(shape) => {
+            let b = shape.bbox();
+            prop_assert!(
+                [b.x0, b.y0, b.x1, b.y1].iter().all(|v| v.is_finite()),
+                "{b:?}"
+            );
+            prop_assert!(shape.edge_count() >= 3, "{} edges", shape.edge_count());
+            prop_assert!(shape.area() > 0.0, "area {}", shape.area());
+        }
+        Err(e) => {
+            prop_assert!(e.is_bad_input(), "{e}");
+            prop_assert_eq!(e.exit_code(), 2);
+            prop_assert!(e.to_string().contains("fuzz.svg"), "{e}");
+        }
+    }
+    Ok(())
+}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn arbitrary_text_never_panics(s in "\\PC{0,200}") {
-        let _ = Shape::from_svg_data(s.as_bytes(), "fuzz.svg");
+    fn arbitrary_text_is_read_or_refused(s in "\\PC{0,200}") {
+        assert_read_or_refused(Shape::from_svg_data(s.as_bytes(), "fuzz.svg"))?;
     }
 
     #[test]
-    fn arbitrary_svg_fragments_never_panic(
+    fn arbitrary_svg_fragments_are_read_or_refused(
         d in "[MLHVCQAZmlhvcqaz0-9 .,-]{0,80}",
         rule in prop_oneof![Just("nonzero"), Just("evenodd")],
     ) {
         let svg = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><path fill-rule="{rule}" d="{d}"/></svg>"#);
-        let _ = Shape::from_svg_data(svg.as_bytes(), "fuzz.svg");
+        assert_read_or_refused(Shape::from_svg_data(svg.as_bytes(), "fuzz.svg"))?;
     }
 
+    /// Arbitrary polygons, most of which cross themselves: read with area, or refused
+    /// naming the file (a crossing names its edges).
+    #[test]
+    fn arbitrary_polygons_are_read_or_refused(
+        pts in proptest::collection::vec((0.0f64..100.0, 0.0f64..100.0), 3..9),
+    ) {
+        let points: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let svg = format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><polygon points="{}"/></svg>"#, points.join(" "));
+        assert_read_or_refused(Shape::from_svg_data(svg.as_bytes(), "fuzz.svg"))?;
+    }
 }
 
 /// A star-shaped polygon around (50, 50) with these radii at equal angles: it never crosses

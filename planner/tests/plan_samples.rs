@@ -68,6 +68,7 @@ fn square_at_the_thesis_sizes() {
 }
 
 #[test]
+#[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn every_sample_plans_and_folds() {
     for name in [
         "square.svg",

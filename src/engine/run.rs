@@ -18,8 +18,8 @@ use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
+use crate::model::{Dynamics, Model, ModelError, ModelOptions};
 use crate::physics::ForceLaw;
-use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,
@@ -63,6 +63,11 @@ pub struct EngineOptions {
     /// than [`crate::engine::AUTO_MIN_TILES`] tiles or when the engine runs on a rayon
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
+    /// Most steps of one local solve (one joint's unit over one window) before it gives up:
+    /// the run is then `stopped`, as a reference run that reaches its step limit
+    /// ([`crate::reference::ReferenceOptions::max_steps`]). Default 1,000,000: far above
+    /// the steps a unit takes on any chain the tests and benchmarks run.
+    pub max_steps: usize,
 }
 
 impl Default for EngineOptions {
@@ -75,6 +80,7 @@ impl Default for EngineOptions {
             start: StartRule::default(),
             force_law: ForceLaw::default(),
             threads: 0,
+            max_steps: 1_000_000,
         }
     }
 }
@@ -117,6 +123,12 @@ impl EngineOptions {
     /// Another number of threads for the local solves' sweeps (0: the machine's).
     pub fn with_threads(mut self, threads: usize) -> EngineOptions {
         self.threads = threads;
+        self
+    }
+
+    /// Another step limit for each local solve.
+    pub fn with_max_steps(mut self, max_steps: usize) -> EngineOptions {
+        self.max_steps = max_steps;
         self
     }
 
@@ -198,7 +210,7 @@ fn run_local_engine(
         Err(ModelError::Geometry(g)) => return Err(EngineError::Geometry(g)),
         Err(e) => return Err(EngineError::Model(Box::new(e))),
     };
-    let local = run_local(&model, opts.tolerance, opts.threads);
+    let local = run_local(&model, opts.tolerance, opts.threads, opts.max_steps);
     let speed = SpeedLaw::Overdamped {
         drag: opts.model.drag,
     };

@@ -1,0 +1,286 @@
+//! `fold-print`: from a chain, a plan or a shape to printable tiles, plates and an assembly
+//! sheet. Exit 0 with the files written, 1 when a shape cannot be planned, 2 for bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{bail, Context};
+use clap::Parser;
+use foldchain::timeline::TileDesigns;
+use foldchain_cli::choices::{FormatChoice, PrinterChoice};
+use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
+use foldchain_cli::output::{create_dir_all, OutputDir};
+use foldchain_cli::report::print_error;
+use foldchain_cli::run_name::{inline_name, stem};
+use foldchain_planner::{PlanOptions, Turns};
+use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
+
+/// Printable tiles, plates and an assembly sheet for a chain, a plan or a shape.
+#[derive(Parser, Debug)]
+#[command(
+    name = "fold-print",
+    version,
+    after_help = "Examples:
+  fold-print SLLS --out u-turn                   the four parts of a tight U-turn
+  fold-print shapes/key.svg --tiles 171 --out print
+  fold-print --plan key-plan.json --printer resin --format stl --out key-resin
+  fold-print S*40 --bed 180,180 --spacing 4 --out strip
+
+Writes into --out DIR: parts/PART.3mf (one per part the chain uses: SS, RS, SR, RR, LR, RL;
+a part turned by 180 degrees is the other tile type it reads as) with a picture parts/PART.svg,
+plates/plate-K.3mf (the bill of materials laid out on the bed), assembly.svg (the chain tile by
+tile: type, part, orientation, the RI's side and the magnets' poles) and parts.json (counts,
+volumes, printing time estimates and their basis). Only these names are replaced; anything
+else in DIR is left alone.
+
+Channels are the magnet's diameter plus --clearance wide (default: twice the printer's
+tolerance plus the magnet's, 0.25 mm FDM, 0.15 mm resin). See docs/printing.md.
+
+Exit codes: 0 written, 1 the shape cannot be planned, 2 bad input."
+)]
+struct Args {
+    /// The chain: a tile list, a fold word, a file holding one, or a target shape SHAPE.svg.
+    chain: Option<String>,
+    /// Read the chain from fold-plan's JSON.
+    #[arg(long, value_name = "PLAN.json")]
+    plan: Option<PathBuf>,
+    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
+    /// thesis design.
+    #[arg(long, value_name = "DESIGN.json")]
+    design: Option<PathBuf>,
+    /// The printer: its tolerance sets the default clearance.
+    #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
+    printer: PrinterChoice,
+    /// Channel width minus magnet diameter, mm (default from --printer).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    clearance: Option<f64>,
+    /// Tile height, mm (the thesis' 7.5 by default).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    height: Option<f64>,
+    /// Floor under the channels, mm (default 1.2).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    floor: Option<f64>,
+    /// The output directory (created if needed).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// The parts' and plates' file format.
+    #[arg(long, value_enum, default_value_t = FormatChoice::ThreeMf)]
+    format: FormatChoice,
+    /// The print bed, mm: W,H.
+    #[arg(long, value_name = "W,H", default_value = "250,210")]
+    bed: String,
+    /// Gap between neighbouring tiles on a plate, mm.
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 5.0,
+        allow_hyphen_values = true
+    )]
+    spacing: f64,
+    /// Print parts.json on stdout instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// SHAPE.svg only: about this many tiles.
+    #[arg(long)]
+    tiles: Option<usize>,
+    /// SHAPE.svg only: tight, loose or auto.
+    #[arg(long)]
+    turns: Option<Turns>,
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            print_error("fold-print", &e);
+            let unplannable = matches!(
+                e.downcast_ref::<PrintError>(),
+                Some(PrintError::Plan(p)) if !p.is_bad_input()
+            );
+            ExitCode::from(if unplannable { 1 } else { 2 })
+        }
+    }
+}
+
+/// `W,H` in mm.
+fn bed_size(text: &str) -> anyhow::Result<(f64, f64)> {
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v > 0.0)
+    };
+    match text.split_once(',') {
+        Some((w, h)) => match (parse(w), parse(h)) {
+            (Some(w), Some(h)) => Ok((w, h)),
+            _ => bail!("--bed {text:?}: expected W,H in mm, two numbers > 0, e.g. 250,210"),
+        },
+        None => bail!("--bed {text:?}: expected W,H in mm, e.g. 250,210"),
+    }
+}
+
+/// The checked options and the chain's source, from the arguments.
+fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Vec<PathBuf>)> {
+    let mut inputs: Vec<PathBuf> = Vec::new();
+    let shape_opts = args.tiles.is_some() || args.turns.is_some();
+    let source = match (&args.chain, &args.plan) {
+        (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
+        (None, None) => bail!(
+            "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
+        ),
+        (None, Some(p)) => {
+            if shape_opts {
+                bail!("--tiles and --turns apply only to a SHAPE.svg");
+            }
+            let (_, plan) = read_plan_file(p)?;
+            inputs.push(p.clone());
+            Source::Plan {
+                plan: Box::new(plan),
+                name: stem(p),
+            }
+        }
+        (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
+            let mut po = PlanOptions::default();
+            if let Some(n) = args.tiles {
+                po = po.with_tiles(n);
+            }
+            if let Some(t) = args.turns {
+                po = po.with_turns(t);
+            }
+            inputs.push(PathBuf::from(arg));
+            Source::Shape {
+                path: PathBuf::from(arg),
+                options: po,
+            }
+        }
+        (Some(arg), None) => {
+            if shape_opts {
+                bail!("--tiles and --turns apply only to a SHAPE.svg");
+            }
+            let chain = read_chain(arg)?;
+            let name = if Path::new(arg).is_file() {
+                inputs.push(PathBuf::from(arg));
+                stem(Path::new(arg))
+            } else {
+                inline_name(arg, &chain)
+            };
+            Source::Chain { chain, name }
+        }
+    };
+    let designs = match &args.design {
+        Some(p) => {
+            inputs.push(p.clone());
+            TileDesigns::from_file(p)?
+        }
+        None => TileDesigns::default(),
+    };
+    let mut part = PartOptions::for_printer(args.printer.to_printer());
+    if let Some(c) = args.clearance {
+        part = part.with_clearance(c);
+    }
+    if let Some(h) = args.height {
+        part = part.with_height(h);
+    }
+    if let Some(f) = args.floor {
+        part = part.with_floor(f);
+    }
+    part.validate().context("--clearance/--height/--floor")?;
+    let (width, depth) = bed_size(&args.bed)?;
+    let bed = Bed {
+        width,
+        depth,
+        spacing: args.spacing,
+    };
+    bed.validate().context("--bed/--spacing")?;
+    let opts = PrintOptions {
+        part,
+        bed,
+        format: args.format.to_format(),
+    };
+    Ok((source, designs, opts, inputs))
+}
+
+fn run(args: &Args) -> anyhow::Result<()> {
+    let (source, designs, opts, inputs) = options(args)?;
+    let input_refs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let out = &args.out;
+    refuse_overwrite_in(&input_refs, out, &is_job_file, "--out")?;
+    for sub in ["parts", "plates"] {
+        let owned = |n: &str| is_job_file(&format!("{sub}/{n}"));
+        refuse_overwrite_in(&input_refs, &out.join(sub), &owned, "--out")?;
+    }
+    let job = print_job(&source, &designs, &opts)?;
+    let mut root = OutputDir::create(out)?;
+    create_dir_all(&out.join("parts"))?;
+    create_dir_all(&out.join("plates"))?;
+    for f in &job.files {
+        root.write(&f.path, &f.bytes)?;
+    }
+    // files of an earlier run under our names that this run did not write (a sixth plate
+    // when there are five now), and torn temporary files of ours
+    for sub in ["parts", "plates"] {
+        let dir = OutputDir::create(&out.join(sub))?;
+        let written: Vec<String> = root
+            .written()
+            .iter()
+            .filter_map(|w| w.strip_prefix(&format!("{sub}/")).map(str::to_string))
+            .collect();
+        let stale = |n: &str| is_job_file(&format!("{sub}/{n}")) && !written.iter().any(|w| w == n);
+        let ours = |n: &str| is_job_file(&format!("{sub}/{n}"));
+        dir.remove_stale(&stale, &ours)?;
+    }
+    let r = &job.report;
+    if args.json {
+        let text = String::from_utf8_lossy(
+            &job.files
+                .iter()
+                .find(|f| f.path == "parts.json")
+                .map(|f| f.bytes.clone())
+                .unwrap_or_default(),
+        )
+        .into_owned();
+        print!("{text}");
+        return Ok(());
+    }
+    println!(
+        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {} mm ({})",
+        r.name,
+        r.tiles,
+        r.parts.len(),
+        r.plates.len(),
+        opts.bed.width,
+        opts.bed.depth,
+        r.clearance_mm,
+        args.printer
+    );
+    for p in &r.parts {
+        println!(
+            "  {:<6} x{:<5} reads {}/{}  {:>7.0} mm3  thinnest wall {:.2} mm  {}",
+            p.label, p.count, p.reads[0], p.reads[1], p.volume_mm3, p.thinnest_wall_mm, p.file
+        );
+    }
+    for p in &r.plates {
+        println!(
+            "  {}: {} tiles, {:.0} mm3, about {:.0} min",
+            p.file, p.tiles, p.volume_mm3, p.print_minutes
+        );
+    }
+    println!(
+        "  magnets: {} ({} x {} mm); total {:.0} mm3, about {:.1} h of printing (parts.json says how it is estimated)",
+        r.magnets.count,
+        r.magnets.diameter_mm,
+        r.magnets.height_mm,
+        r.total_volume_mm3,
+        r.total_print_minutes / 60.0
+    );
+    println!(
+        "  wrote {} files into {}",
+        root.written().len(),
+        out.display()
+    );
+    for w in &r.design_warnings {
+        eprintln!("fold-print: warning: {w}");
+    }
+    Ok(())
+}

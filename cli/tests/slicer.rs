@@ -1,0 +1,127 @@
+//! A real slicer takes what `fold-print` writes: PrusaSlicer's command line slices every
+//! tile type of the thesis design (nine 3MF files) and a plate written by the binary, each
+//! to G-code, with exit 0 and no error in its output.
+//!
+//! Without `prusa-slicer` on PATH this test prints a note and passes, except under
+//! `CI=true`, where it fails (`.ci/run` installs Debian's `prusa-slicer`).
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use foldchain::{Design, Tile};
+use foldchain_print::{to_3mf, Item, Object, PartOptions, TilePart};
+
+/// The slicer, or `None` (with a note) when there is none outside CI.
+fn slicer() -> Option<PathBuf> {
+    let found = std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|d| d.join("prusa-slicer"))
+            .find(|p| p.is_file())
+    });
+    if found.is_none() {
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "no prusa-slicer on PATH: CI must have it (.ci/run installs it with apt-get)"
+        );
+        eprintln!("note: no prusa-slicer on PATH; slicer test skipped");
+    }
+    found
+}
+
+/// Slices `model` to G-code next to it and returns the G-code; fails the test on a non-zero
+/// exit, a missing or empty G-code file or an error in the slicer's output.
+fn slice(exe: &Path, model: &Path, extra: &[&str]) -> String {
+    let gcode = model.with_extension("gcode");
+    let o = Command::new(exe)
+        .arg("--export-gcode")
+        .args(extra)
+        .arg("--output")
+        .arg(&gcode)
+        .arg(model)
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    let log = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        o.status.success(),
+        "{}: prusa-slicer exit {:?}\n{log}",
+        model.display(),
+        o.status.code()
+    );
+    let errors: Vec<&str> = log
+        .lines()
+        .filter(|l| l.to_ascii_lowercase().contains("error"))
+        .collect();
+    assert!(errors.is_empty(), "{}: {errors:?}", model.display());
+    let text = std::fs::read_to_string(&gcode).unwrap();
+    assert!(text.lines().filter(|l| l.starts_with("G1 ")).count() > 100);
+    text
+}
+
+/// A G-code comment's value (`; key = value`).
+fn comment<'a>(gcode: &'a str, key: &str) -> &'a str {
+    gcode
+        .lines()
+        .find_map(|l| l.strip_prefix(&format!("; {key} = ")))
+        .unwrap_or("?")
+}
+
+#[test]
+fn prusaslicer_slices_every_tile_type_and_a_plate() {
+    let Some(exe) = slicer() else { return };
+    let dir = std::env::temp_dir().join(format!("fold-print-slicer-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let opts = PartOptions::default();
+    for tile in Tile::ALL {
+        let part = TilePart::new(tile, &Design::thesis(), &opts).unwrap();
+        let file = dir.join(format!("{tile}.3mf"));
+        let bytes = to_3mf(
+            &file.display().to_string(),
+            &tile.to_string(),
+            &[Object {
+                name: tile.to_string(),
+                mesh: &part.mesh,
+            }],
+            &[Item {
+                object: 0,
+                angle: 0.0,
+                x: 125.0,
+                y: 105.0,
+            }],
+        )
+        .unwrap();
+        std::fs::write(&file, bytes).unwrap();
+        let g = slice(&exe, &file, &[]);
+        println!(
+            "{tile}: mesh {:.0} mm3; PrusaSlicer: {} cm3 of filament, {}",
+            part.volume(),
+            comment(&g, "filament used [cm3]"),
+            comment(&g, "estimated printing time (normal mode)")
+        );
+    }
+    // a plate the binary writes (a tight U-turn: five tiles of four parts)
+    let out = dir.join("u");
+    let o = Command::new(env!("CARGO_BIN_EXE_fold-print"))
+        .args(["SLLS", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let g = slice(
+        &exe,
+        &out.join("plates/plate-1.3mf"),
+        &["--bed-shape", "0x0,250x0,250x210,0x210"],
+    );
+    println!(
+        "plate-1 of SLLS: PrusaSlicer: {} cm3 of filament, {}",
+        comment(&g, "filament used [cm3]"),
+        comment(&g, "estimated printing time (normal mode)")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,119 @@
+//! A picture of a part drawn from its mesh: an orthographic view from above and in front,
+//! flat shaded, back faces left out and the rest painted far to near (an SVG that any
+//! browser or `rsvg-convert` shows).
+
+use std::fmt::Write as _;
+
+use crate::Mesh;
+
+/// The view: where from, and the picture's size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Turn about z, degrees (0 looks along +y).
+    pub azimuth_deg: f64,
+    /// Height of the eye above the bed plane, degrees.
+    pub elevation_deg: f64,
+    /// Pixels per mm.
+    pub scale: f64,
+}
+
+impl Default for View {
+    /// From the front left and 40 degrees up, 12 px per mm.
+    fn default() -> View {
+        View {
+            azimuth_deg: -25.0,
+            elevation_deg: 40.0,
+            scale: 12.0,
+        }
+    }
+}
+
+/// The mesh drawn as an SVG document, `title` written under it.
+pub fn mesh_svg(mesh: &Mesh, title: &str, view: &View) -> String {
+    let (az, el) = (
+        view.azimuth_deg.to_radians(),
+        view.elevation_deg.to_radians(),
+    );
+    // camera axes: right, up, and the direction the eye looks along
+    let right = [az.cos(), az.sin(), 0.0];
+    let fwd = [-az.sin() * el.cos(), az.cos() * el.cos(), -el.sin()];
+    let up = [
+        right[1] * fwd[2] - right[2] * fwd[1],
+        right[2] * fwd[0] - right[0] * fwd[2],
+        right[0] * fwd[1] - right[1] * fwd[0],
+    ];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let light = {
+        let l = [-0.4, -0.6, 0.9];
+        let n = dot(l, l).sqrt();
+        l.map(|x| x / n)
+    };
+    let s = view.scale;
+    let mut faces: Vec<(f64, [[f64; 2]; 3], f64)> = Vec::new();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = dot(n, n).sqrt();
+        if len == 0.0 {
+            continue;
+        }
+        let n = n.map(|x| x / len);
+        let p = [a, b, c].map(|q| [s * dot(q, right), -s * dot(q, up)]);
+        for q in &p {
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+        }
+        if dot(n, fwd) >= 0.0 {
+            continue;
+        }
+        let depth = (dot(a, fwd) + dot(b, fwd) + dot(c, fwd)) / 3.0;
+        let shade = 0.35 + 0.65 * dot(n, light).max(0.0);
+        faces.push((depth, p, shade));
+    }
+    faces.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let pad = 10.0;
+    let (w, h) = (hi[0] - lo[0] + 2.0 * pad, hi[1] - lo[1] + 2.0 * pad + 24.0);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.1} {h:.1}\">"
+    );
+    let _ = writeln!(
+        out,
+        "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>"
+    );
+    let (ox, oy) = (pad - lo[0], pad - lo[1]);
+    for (_, p, shade) in &faces {
+        // a warm grey-blue like a printed PLA part
+        let col = |base: f64| (base * shade).round().clamp(0.0, 255.0) as u8;
+        let (r, g, b) = (col(150.0), col(180.0), col(225.0));
+        let _ = writeln!(
+            out,
+            "<polygon points=\"{:.2},{:.2} {:.2},{:.2} {:.2},{:.2}\" fill=\"rgb({r},{g},{b})\" stroke=\"rgb({r},{g},{b})\" stroke-width=\"0.5\" stroke-linejoin=\"round\"/>",
+            p[0][0] + ox,
+            p[0][1] + oy,
+            p[1][0] + ox,
+            p[1][1] + oy,
+            p[2][0] + ox,
+            p[2][1] + oy
+        );
+    }
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"sans-serif\" font-size=\"14\" text-anchor=\"middle\" fill=\"#333\">{}</text>",
+        0.5 * w,
+        h - 8.0,
+        title.replace('&', "&amp;").replace('<', "&lt;")
+    );
+    out.push_str("</svg>\n");
+    out
+}
