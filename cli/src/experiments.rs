@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 use foldchain::physics::{ForceLaw, Inertia};
 use foldchain::reference::experiments::{pair_energies, run_experiments, ExperimentResult};
 use foldchain::reference::{Dynamics, ModelOptions};
-use foldchain::render::pair_energy_svg;
 use foldchain::Design;
+use foldchain_render::pair_energy_svg;
 
 use crate::output::OutputDir;
 

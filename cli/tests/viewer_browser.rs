@@ -18,7 +18,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions};
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
 /// The page's background colour.

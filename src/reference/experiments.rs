@@ -26,6 +26,7 @@ use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::pictures::state_energy;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::{run_reference, Dynamics};
+pub use crate::timeline::PairEnergies;
 use crate::timeline::TileDesigns;
 use crate::{Chain, ChainError, FoldWord};
 
@@ -167,21 +168,6 @@ pub fn run_experiments(
 
 fn dynamics_name(d: Dynamics) -> &'static str {
     d.name()
-}
-
-/// The energy curves of a run (thesis figures 7.7, 7.8), one point per recorded state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PairEnergies {
-    /// The times, s.
-    pub times: Vec<f64>,
-    /// Per adjacent pair (the RI with magnet 0, then magnet `k` with `k + 1`), its energy at
-    /// each time, J.
-    pub pairs: Vec<Vec<f64>>,
-    /// The chain's total dipole energy at each time, J.
-    pub total: Vec<f64>,
-    /// The phase boundaries: the times a magnet started or arrived, or a fold started or
-    /// ended, s.
-    pub phases: Vec<f64>,
 }
 
 /// The energy curves of `run` from its recorded states (or its final state alone).

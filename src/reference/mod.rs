@@ -47,6 +47,7 @@ mod options;
 mod pictures;
 mod recorder;
 mod run_result;
+mod run_source;
 pub mod scenes;
 pub mod stiff;
 pub mod validate;
@@ -64,4 +65,5 @@ pub use pictures::{
     reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
 };
 pub use run_result::ReferenceRun;
+pub(crate) use run_source::joint_angle_samples;
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

@@ -1,7 +1,7 @@
 //! The reference run as pictures: the chain's state (tile poses, magnet positions, what is
 //! moving) at a recorded time, the energy curve and the transition diagram's data, drawn from
 //! the reference's own recorded states, in the shapes the event engine's pictures take
-//! ([`crate::render`]).
+//! (the `foldchain-render` crate reads them through [`crate::timeline::RunSource`]).
 //!
 //! The reference records its state on an evenly spaced time grid
 //! ([`Recording::Grid`], at most [`STATE_BUDGET_BYTES`] of states). A step frame shows the
@@ -17,7 +17,7 @@ use crate::physics::{EnergyUnit, Pole};
 #[cfg(doc)]
 use crate::reference::options::Recording;
 use crate::reference::run_result::ReferenceRun;
-use crate::render::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
+use crate::timeline::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
 use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096

@@ -17,7 +17,7 @@ use foldchain::reference::Recording;
 use foldchain::reference::{
     run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
 };
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
