@@ -27,7 +27,7 @@ use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, Prin
   fold-print S*40 --bed 180,180 --spacing 4 --out strip
 
 Writes into --out DIR: parts/PART.3mf (one per part the chain uses: SS, RS, SR, RR, LR, RL;
-a part turned by 180 degrees is the other tile type it reads as) with a picture parts/PART.svg,
+a part turned by 180 degrees is the other tile type it reads as) with a picture parts/PART.png,
 plates/plate-K.3mf (the bill of materials laid out on the bed), assembly.svg (the chain tile by
 tile: type, part, orientation, the RI's side and the magnets' poles) and parts.json (counts,
 volumes, printing time estimates and their basis). Only these names are replaced; anything
@@ -244,7 +244,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         return Ok(());
     }
     println!(
-        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {} mm ({})",
+        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {:.3} mm ({})",
         r.name,
         r.tiles,
         r.parts.len(),
