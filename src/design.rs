@@ -80,14 +80,16 @@ impl Default for Design {
 #[non_exhaustive]
 pub enum DesignError {
     /// A parameter that is not a finite number in its allowed range.
-    #[error("design parameter `{name}` = {value}: expected {expected}")]
+    #[error("design parameter `{name}` = {} {unit}: expected {expected}", short(*value))]
     BadParameter {
         /// The parameter's name.
         name: &'static str,
         /// The value given.
         value: f64,
-        /// What was expected.
-        expected: &'static str,
+        /// Its unit (`mm`, `T`, `g`).
+        unit: &'static str,
+        /// What was expected: the range, and why.
+        expected: String,
     },
     /// An inequality of thesis chapter 6 that does not hold.
     #[error(
@@ -141,6 +143,79 @@ pub struct InequalityCheck {
     pub relative_margin: f64,
     /// Whether it holds.
     pub standing: Standing,
+}
+
+/// The physical range of one design field that a design file or a command line may give
+/// ([`Design::check_ranges`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldRange {
+    /// The field's name in the design JSON.
+    pub name: &'static str,
+    /// The smallest value.
+    pub min: f64,
+    /// The largest value (times the tile width when `relative_to_width`).
+    pub max: f64,
+    /// Whether `max` is a multiple of the tile width.
+    pub relative_to_width: bool,
+    /// The unit.
+    pub unit: &'static str,
+    /// Why this range.
+    pub why: &'static str,
+}
+
+/// The physical ranges of the design fields held to a fixed range; the lengths inside a tile
+/// (`d`, `s`, `e`, `c`, `magnet_diameter`) are bounded by the tile's own size
+/// ([`Design::validate`]).
+pub const RANGES: [FieldRange; 5] = [
+    FieldRange {
+        name: "tile_width",
+        min: 0.01,
+        max: 1000.0,
+        relative_to_width: false,
+        unit: "mm",
+        why: "from micrometre-scale tiles (thesis 8.2.1) to a metre",
+    },
+    FieldRange {
+        name: "magnet_height",
+        min: 0.0,
+        max: 1.0,
+        relative_to_width: true,
+        unit: "mm",
+        why: "a magnet standing in the tile",
+    },
+    FieldRange {
+        name: "remanence",
+        min: 0.01,
+        max: 2.0,
+        relative_to_width: false,
+        unit: "T",
+        why: "sintered NdFeB is 1.1-1.5 T, ferrites about 0.4 T",
+    },
+    FieldRange {
+        name: "magnet_mass",
+        min: 0.0,
+        max: 1000.0,
+        relative_to_width: false,
+        unit: "g",
+        why: "a magnet lighter than a kilogram",
+    },
+    FieldRange {
+        name: "wall",
+        min: 0.0,
+        max: 0.25,
+        relative_to_width: true,
+        unit: "mm",
+        why: "a wall inside the tile's corner",
+    },
+];
+
+/// The widest values [`Design::validate`] takes for any field, in the field's unit (zero
+/// aside, where a field may be zero): far beyond any tile or magnet, so that no product of
+/// them overflows or vanishes.
+pub const NUMERIC_RANGE: (f64, f64) = (1e-9, 1e9);
+
+fn short(v: f64) -> String {
+    crate::short_number(v)
 }
 
 /// Relative tolerance under which two sides count as equal (so `s = e/3` given as a fraction
@@ -219,64 +294,238 @@ impl Design {
         self.remanence * self.magnet_volume_m3() / MU0
     }
 
-    /// Checks that every parameter is a finite number in range.
+    /// Checks that every parameter is a finite number of the right sign, that the lengths
+    /// make a tile that can be built (the path inside the tile's half, the tile's two magnets
+    /// at rest at least a magnet diameter apart), and that no value is so large or small
+    /// that the arithmetic overflows ([`NUMERIC_RANGE`]). A design file or command line is
+    /// held to the narrower physical ranges of [`Design::check_ranges`] as well.
     pub fn validate(&self) -> Result<(), DesignError> {
-        let positive: [(&'static str, f64); 7] = [
-            ("tile_width", self.tile_width),
-            ("d", self.d),
-            ("e", self.e),
-            ("magnet_diameter", self.magnet_diameter),
-            ("magnet_height", self.magnet_height),
-            ("remanence", self.remanence),
-            ("magnet_mass", self.magnet_mass),
-        ];
-        for (name, value) in positive {
+        let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
+            Err(DesignError::BadParameter {
+                name,
+                value,
+                unit,
+                expected,
+            })
+        };
+        self.check_signs()?;
+        self.check_geometry()?;
+        let (lo, hi) = NUMERIC_RANGE;
+        for (name, value, unit) in self
+            .positive_fields()
+            .into_iter()
+            .chain(self.non_negative_fields())
+        {
+            if value > hi || (value > 0.0 && value < lo) {
+                return bad(
+                    name,
+                    value,
+                    unit,
+                    format!("a number from {} to {} {unit}", short(lo), short(hi)),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Every field a finite number of the right sign, field by field, so that a NaN or a
+    /// negative value is what is named.
+    fn check_signs(&self) -> Result<(), DesignError> {
+        for (name, value, unit) in self.positive_fields() {
             if !value.is_finite() || value <= 0.0 {
                 return Err(DesignError::BadParameter {
                     name,
                     value,
-                    expected: "a finite number > 0",
+                    unit,
+                    expected: "a finite number > 0".into(),
                 });
             }
         }
-        if !self.s.is_finite() || self.s < 0.0 {
-            return Err(DesignError::BadParameter {
-                name: "s",
-                value: self.s,
-                expected: "a finite number >= 0",
-            });
-        }
-        if let Some(c) = self.c {
-            if !c.is_finite() || c < 0.0 {
+        for (name, value, unit) in self.non_negative_fields() {
+            if !value.is_finite() || value < 0.0 {
                 return Err(DesignError::BadParameter {
-                    name: "c",
-                    value: c,
-                    expected: "a finite number >= 0",
+                    name,
+                    value,
+                    unit,
+                    expected: "a finite number >= 0".into(),
                 });
             }
-        }
-        if !self.wall.is_finite() || self.wall < 0.0 {
-            return Err(DesignError::BadParameter {
-                name: "wall",
-                value: self.wall,
-                expected: "a finite number >= 0",
-            });
-        }
-        if 2.0 * self.d > self.tile_width * (1.0 + EQUALITY_TOLERANCE) {
-            return Err(DesignError::BadParameter {
-                name: "d",
-                value: self.d,
-                expected: "at most half the tile width (the magnets' track lies inside the tile)",
-            });
-        }
-        if self.magnet_diameter >= self.tile_width {
-            return Err(DesignError::BadParameter {
-                name: "magnet_diameter",
-                value: self.magnet_diameter,
-                expected: "less than the tile width",
-            });
         }
         Ok(())
+    }
+
+    /// The lengths make a tile that can be built.
+    fn check_geometry(&self) -> Result<(), DesignError> {
+        let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
+            Err(DesignError::BadParameter {
+                name,
+                value,
+                unit,
+                expected,
+            })
+        };
+        if 2.0 * self.d > self.tile_width * (1.0 + EQUALITY_TOLERANCE) {
+            return bad(
+                "d",
+                self.d,
+                "mm",
+                format!(
+                    "at most half the tile width, {} mm (the magnets' track lies inside the tile)",
+                    short(0.5 * self.tile_width)
+                ),
+            );
+        }
+        if self.magnet_diameter >= self.tile_width {
+            return bad(
+                "magnet_diameter",
+                self.magnet_diameter,
+                "mm",
+                format!("less than the tile width, {} mm", short(self.tile_width)),
+            );
+        }
+        if self.e >= self.d {
+            return bad(
+                "e",
+                self.e,
+                "mm",
+                format!(
+                    "less than d = {} mm (the path's outer part lies in the tile's half)",
+                    short(self.d)
+                ),
+            );
+        }
+        if let Some(c) = self.c {
+            if c >= self.d {
+                return bad("c", c, "mm", format!("less than d = {} mm", short(self.d)));
+            }
+        }
+        // magnets that meet across a joint end 2c apart: at least a diameter, or they overlap
+        let r = 0.5 * self.magnet_diameter;
+        if self.c() < r * (1.0 - EQUALITY_TOLERANCE) {
+            return match self.c {
+                Some(c) => bad(
+                    "c",
+                    c,
+                    "mm",
+                    format!(
+                        "at least the magnet radius, {} mm (magnets meeting at a joint end 2c apart and would overlap)",
+                        short(r)
+                    ),
+                ),
+                None => bad(
+                    "e",
+                    self.e,
+                    "mm",
+                    format!(
+                        "at most d/2 - r = {} mm, so that c = d/2 - e keeps the magnets meeting at a joint a diameter apart (thesis (6.10): e < d/2)",
+                        short(0.5 * self.d - r)
+                    ),
+                ),
+            };
+        }
+        // the rest distance of the tile's two magnets at s = 0; s moves each one s inwards
+        let b0 = 2.0 * self.d - 2.0 * self.c() - 2.0 * self.e;
+        if b0 < self.magnet_diameter {
+            let (name, value) = match self.c {
+                Some(c) => ("c", c),
+                None => ("e", self.e),
+            };
+            return bad(
+                name,
+                value,
+                "mm",
+                format!(
+                    "smaller: the tile's two magnets would rest {} mm apart, less than their diameter {} mm",
+                    short(b0),
+                    short(self.magnet_diameter)
+                ),
+            );
+        }
+        let s_max = self.s_max();
+        if self.s > s_max * (1.0 + EQUALITY_TOLERANCE) {
+            return bad(
+                "s",
+                self.s,
+                "mm",
+                format!(
+                    "0 to {} mm (at most e, and the tile's two magnets at rest at least a diameter apart; the thesis' inequality (6.9) wants s < e/3 = {} mm)",
+                    short(s_max),
+                    short(self.e / 3.0)
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// The largest `s` a tile of this design can be built with, mm: at most `e`, and the
+    /// tile's two magnets at rest at least a magnet diameter apart.
+    pub fn s_max(&self) -> f64 {
+        let b0 = 2.0 * self.d - 2.0 * self.c() - 2.0 * self.e;
+        self.e.min(0.5 * (b0 - self.magnet_diameter)).max(0.0)
+    }
+
+    /// Checks [`Design::validate`] and the physical ranges a design file or a command line
+    /// is held to ([`RANGES`]): values outside them are almost certainly a typing error
+    /// (a tile 30 m wide, a magnet of 100 T), and far outside them the models have not been
+    /// tried. The library's own studies (moments scaled by 10^6, micrometre tiles) use
+    /// [`Design::validate`] alone.
+    pub fn check_ranges(&self) -> Result<(), DesignError> {
+        self.check_signs()?;
+        for range in RANGES {
+            let value = match range.name {
+                "tile_width" => self.tile_width,
+                "magnet_height" => self.magnet_height,
+                "remanence" => self.remanence,
+                "magnet_mass" => self.magnet_mass,
+                "wall" => self.wall,
+                _ => continue,
+            };
+            let max = if range.relative_to_width {
+                range.max * self.tile_width
+            } else {
+                range.max
+            };
+            if value < range.min || value > max {
+                let lower = if range.min == 0.0 {
+                    "more than 0".to_string()
+                } else {
+                    format!("from {} {}", short(range.min), range.unit)
+                };
+                let upper = if range.relative_to_width {
+                    format!("{} mm, {} x the tile width", short(max), short(range.max))
+                } else {
+                    format!("{} {}", short(max), range.unit)
+                };
+                return Err(DesignError::BadParameter {
+                    name: range.name,
+                    value,
+                    unit: range.unit,
+                    expected: format!("{lower} up to {upper} ({})", range.why),
+                });
+            }
+        }
+        self.validate()
+    }
+
+    fn positive_fields(&self) -> [(&'static str, f64, &'static str); 7] {
+        [
+            ("tile_width", self.tile_width, "mm"),
+            ("d", self.d, "mm"),
+            ("e", self.e, "mm"),
+            ("magnet_diameter", self.magnet_diameter, "mm"),
+            ("magnet_height", self.magnet_height, "mm"),
+            ("remanence", self.remanence, "T"),
+            ("magnet_mass", self.magnet_mass, "g"),
+        ]
+    }
+
+    fn non_negative_fields(&self) -> Vec<(&'static str, f64, &'static str)> {
+        let mut v = vec![("s", self.s, "mm")];
+        if let Some(c) = self.c {
+            v.push(("c", c, "mm"));
+        }
+        v.push(("wall", self.wall, "mm"));
+        v
     }
 
     /// Every inequality (6.1) to (6.10), evaluated. Parameters are not validated here.

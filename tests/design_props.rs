@@ -133,7 +133,7 @@ proptest! {
         let name = FIELDS[field];
         set_field(&mut d, name, bad);
         match d.check() {
-            Err(DesignError::BadParameter { name: got, value, expected }) => {
+            Err(DesignError::BadParameter { name: got, value, expected, .. }) => {
                 prop_assert_eq!(got, name);
                 prop_assert!(value.to_bits() == bad.to_bits(), "{value} vs {bad}");
                 prop_assert!(!expected.is_empty());

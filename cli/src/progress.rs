@@ -11,6 +11,8 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::errln;
+
 /// The least time between two plain progress lines (the environment variable
 /// `FOLDCHAIN_PROGRESS_SECONDS` sets another, e.g. for tests).
 pub const PLAIN_INTERVAL: Duration = Duration::from_secs(5);
@@ -112,7 +114,7 @@ impl Progress {
                 };
                 if due && done < total {
                     plain.last = Some(now);
-                    eprintln!(
+                    errln!(
                         "{}",
                         self.line(stage, done, total, now.duration_since(self.start))
                     );

@@ -182,7 +182,7 @@ fn bad_numbers_get_our_messages() {
     assert!(!stderr(&o).contains("min"), "{}", stderr(&o));
     bad(
         &run("fold-run", &["SLLS", "--frames", "100001"]),
-        &["--frames 100001", "at most 100000"],
+        &["--frames 100001", "from 1 to 100,000"],
     );
     // 1e-3 is a number of millimetres, not the design parameter e
     let d = tmp("s");
@@ -278,9 +278,26 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
     );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["out_dir"], out.to_str().unwrap());
-    // an absurd remanence folds in no time: say so
+    // an absurd remanence is refused with its range
     let design = d.join("absurd.json");
     std::fs::write(&design, r#"{"s": 0.3, "remanence": 1e300}"#).unwrap();
+    let o = run(
+        "fold-run",
+        &[
+            "SLLS",
+            "--design",
+            design.to_str().unwrap(),
+            "--out",
+            d.join("a").to_str().unwrap(),
+        ],
+    );
+    bad(&o, &["absurd.json", "`remanence` = 1e300 T", "up to 2 T"]);
+    // 10 um tiles under the 30 mm tiles' drag take years of simulated time: say so
+    std::fs::write(
+        &design,
+        r#"{"tile_width": 0.01, "d": 0.005, "e": 0.0015, "s": 0.0001, "magnet_diameter": 0.001, "magnet_height": 0.0015, "wall": 0.0002}"#,
+    )
+    .unwrap();
     let o = run(
         "fold-run",
         &[

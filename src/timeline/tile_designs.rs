@@ -200,7 +200,7 @@ impl TileDesigns {
         } else {
             TileDesigns::global(serde_json::from_value(value).map_err(json_err)?)
         };
-        designs.validate(origin)?;
+        designs.check_ranges(origin)?;
         Ok(designs)
     }
 
@@ -239,14 +239,26 @@ impl TileDesigns {
     }
 
     /// Checks every parameter of every design (not the inequalities: a design that breaks
-    /// them runs and stalls where the geometry says).
+    /// them runs and stalls where the geometry says): [`Design::validate`].
     pub fn validate(&self, origin: &str) -> Result<(), DesignsError> {
-        self.global_design()
-            .validate()
-            .map_err(|source| DesignsError::Parameter {
-                origin: origin.to_string(),
-                source,
-            })?;
+        self.check_each(origin, Design::validate)
+    }
+
+    /// [`TileDesigns::validate`] and the physical ranges of a design file or a command line
+    /// ([`Design::check_ranges`]); [`TileDesigns::from_json`] applies it.
+    pub fn check_ranges(&self, origin: &str) -> Result<(), DesignsError> {
+        self.check_each(origin, Design::check_ranges)
+    }
+
+    fn check_each(
+        &self,
+        origin: &str,
+        check: fn(&Design) -> Result<(), DesignError>,
+    ) -> Result<(), DesignsError> {
+        check(&self.global_design()).map_err(|source| DesignsError::Parameter {
+            origin: origin.to_string(),
+            source,
+        })?;
         for o in &self.overrides {
             if o.from > o.to {
                 return Err(DesignsError::BadRange {
@@ -255,12 +267,12 @@ impl TileDesigns {
                     to: o.to,
                 });
             }
-            self.apply(self.global_design(), o)
-                .validate()
-                .map_err(|source| DesignsError::Parameter {
+            check(&self.apply(self.global_design(), o)).map_err(|source| {
+                DesignsError::Parameter {
                     origin: format!("{origin}: tiles {}..={}", o.from, o.to),
                     source,
-                })?;
+                }
+            })?;
         }
         Ok(())
     }

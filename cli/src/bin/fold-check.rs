@@ -7,7 +7,9 @@ use std::process::ExitCode;
 use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
 use foldchain_cli::inputs::read_chain;
-use foldchain_cli::report::print_error;
+use foldchain_cli::numbers::number_in;
+use foldchain_cli::outln;
+use foldchain_cli::report::{finish, parse_args};
 
 /// Checks that a chain of tiles folds sequentially from the reaction-initiator end without
 /// any two tiles overlapping, at every moment of every fold and in the final shape.
@@ -33,7 +35,7 @@ struct Args {
     #[arg(long)]
     final_only: bool,
     /// Overlap depth, in tile widths, below which tiles count as touching.
-    #[arg(long, default_value_t = CheckOptions::default().tolerance)]
+    #[arg(long, default_value_t = CheckOptions::default().tolerance, value_parser = tolerance_arg, allow_hyphen_values = true)]
     tolerance: f64,
     /// Print the verdict as JSON.
     #[arg(long)]
@@ -41,23 +43,21 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(&args) {
-        Ok(code) => code,
-        Err(e) => {
-            print_error("fold-check", &e);
-            ExitCode::from(2)
-        }
+    match parse_args::<Args>("fold-check") {
+        Ok(args) => finish("fold-check", run(&args)),
+        Err(code) => code,
     }
 }
 
-fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    if !(args.tolerance.is_finite() && args.tolerance >= 0.0 && args.tolerance < 0.01) {
-        anyhow::bail!(
-            "--tolerance {}: expected a number from 0 up to 0.01 tile widths",
-            args.tolerance
-        );
+fn tolerance_arg(s: &str) -> Result<f64, String> {
+    match number_in(s, 0.0, 0.01, "tile widths", "") {
+        Ok(t) if t < 0.01 => Ok(t),
+        Ok(_) => Err("expected a number from 0 up to (not including) 0.01 tile widths".into()),
+        Err(e) => Err(e),
     }
+}
+
+fn run(args: &Args) -> anyhow::Result<u8> {
     let chain = read_chain(&args.chain)?;
     let opts = CheckOptions::default()
         .with_final_only(args.final_only)
@@ -65,22 +65,18 @@ fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let verdict = check_chain(&chain, &opts);
     if args.json {
         let out = serde_json::json!({ "tiles": chain.len(), "final_only": args.final_only, "result": verdict });
-        println!("{out}");
+        outln!("{out}");
     } else {
         match &verdict {
-            Verdict::Valid => println!("valid"),
+            Verdict::Valid => outln!("valid"),
             Verdict::Inhibited { joint } => {
-                println!(
+                outln!(
                     "inhibited: propagation stops at joint {joint} (tiles {joint} and {})",
                     joint + 1
                 )
             }
-            Verdict::Collides(c) => println!("collision: {c}"),
+            Verdict::Collides(c) => outln!("collision: {c}"),
         }
     }
-    Ok(if verdict == Verdict::Valid {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(if verdict == Verdict::Valid { 0 } else { 1 })
 }

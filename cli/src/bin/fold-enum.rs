@@ -12,8 +12,10 @@ use foldchain::count::{
     count_valid, estimate_random, merge_reports, CountOptions, CountReport, CountRow, Shard,
     MAX_COUNT_TILES,
 };
+use foldchain_cli::numbers::count_in;
 use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
-use foldchain_cli::report::print_error;
+use foldchain_cli::report::{finish, parse_args};
+use foldchain_cli::{errln, outln};
 
 /// Counts, for each chain length, the candidate fold words (3^(n-1)) and those that fold
 /// sequentially without any two tiles overlapping, from the geometry and the sweep check.
@@ -54,7 +56,7 @@ struct Args {
     #[arg(long)]
     random: bool,
     /// Longest chain for which the random-chain probability is computed exactly.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = tiles_arg)]
     random_exact_max: usize,
     /// With --random: chains sampled per length beyond exact reach (default 200000; 1e6
     /// is accepted).
@@ -81,19 +83,12 @@ struct Args {
 
 /// A chain length on the command line: a whole number of tiles.
 fn tiles_arg(s: &str) -> Result<usize, String> {
-    s.trim()
-        .parse::<usize>()
-        .map_err(|_| format!("expected a whole number of tiles from 2 to {MAX_COUNT_TILES}"))
+    count_in(s, 2, MAX_COUNT_TILES as u64, "tiles").map(|n| n as usize)
 }
 
 /// A sample count: a whole number, also written as 1e6.
 fn samples_arg(s: &str) -> Result<u64, String> {
-    let bad = || "expected a whole number of samples >= 1 (e.g. 200000 or 1e6)".to_string();
-    let v: f64 = s.trim().parse().map_err(|_| bad())?;
-    if !(v >= 1.0 && v.fract() == 0.0 && v < 1.8e19) {
-        return Err(bad());
-    }
-    Ok(v as u64)
+    count_in(s, 1, 1_000_000_000, "samples")
 }
 
 /// Chains sampled per length beyond exact reach, by default.
@@ -103,13 +98,9 @@ const DEFAULT_SAMPLES: u64 = 200_000;
 const WARN_SECONDS: f64 = 180.0;
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            print_error("fold-enum", &e);
-            ExitCode::from(2)
-        }
+    match parse_args::<Args>("fold-enum") {
+        Ok(args) => finish("fold-enum", run(&args).map(|()| 0)),
+        Err(code) => code,
     }
 }
 
@@ -151,14 +142,14 @@ fn merge(args: &Args) -> anyhow::Result<()> {
     }
     let merged = merge_reports(&files)?;
     if args.json {
-        println!("{}", serde_json::to_string(&merged)?);
+        outln!("{}", serde_json::to_string(&merged)?);
     } else {
         let (allow_lr, final_only) = merged
             .options
             .map_or((false, false), |o| (o.allow_opposite, o.final_only));
         let label = format!(", merged from {} parts", files.len());
         print_table(&merged.rows, allow_lr, final_only, &label, false);
-        eprintln!("{:.2} s in all parts", merged.seconds);
+        errln!("{:.2} s in all parts", merged.seconds);
     }
     Ok(())
 }
@@ -200,7 +191,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
     if mode != ProgressMode::Quiet {
         if let Some((nodes, secs)) = estimate_seconds(&opts, max_tiles)? {
             if secs > WARN_SECONDS {
-                eprintln!(
+                errln!(
                     "fold-enum: counting up to {} tiles finds about {nodes:.1e} valid words: roughly {} on this machine (from a timed calibration run to 22 tiles); --shard K/M splits the work",
                     max_tiles,
                     duration_words(secs)
@@ -234,7 +225,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             let secs =
                 t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
             if secs > WARN_SECONDS {
-                eprintln!(
+                errln!(
                     "fold-enum: sampling {samples} chains at each of {sampled} lengths takes roughly {} on this machine",
                     duration_words(secs)
                 );
@@ -261,11 +252,11 @@ fn run(args: &Args) -> anyhow::Result<()> {
             shard,
             options: shard.map(|_| opts),
         };
-        println!("{}", serde_json::to_string(&report)?);
+        outln!("{}", serde_json::to_string(&report)?);
     } else {
         let label = shard.map(|s| format!(", shard {s}")).unwrap_or_default();
         print_table(&rows, args.allow_lr, args.final_only, &label, args.random);
-        eprintln!("{:.2} s", seconds);
+        errln!("{:.2} s", seconds);
     }
     Ok(())
 }
@@ -277,21 +268,29 @@ fn print_table(rows: &[CountRow], allow_lr: bool, final_only: bool, label: &str,
         (false, true) => "adjacent LR/RL not used, final shape only",
         (true, true) => "adjacent LR/RL allowed, final shape only",
     };
-    println!("# valid fold words ({mode}){label}");
+    outln!("# valid fold words ({mode}){label}");
     if random {
-        println!(
+        outln!(
             "{:>5} {:>22} {:>16} {:>16} {:>12} {:>12}  exact",
-            "tiles", "candidates", "searched", "valid", "p_random", "(7/9)^(n-1)"
+            "tiles",
+            "candidates",
+            "searched",
+            "valid",
+            "p_random",
+            "(7/9)^(n-1)"
         );
     } else {
-        println!(
+        outln!(
             "{:>5} {:>22} {:>16} {:>16}",
-            "tiles", "candidates", "searched", "valid"
+            "tiles",
+            "candidates",
+            "searched",
+            "valid"
         );
     }
     for r in rows {
         if random {
-            println!(
+            outln!(
                 "{:>5} {:>22} {:>16} {:>16} {:>12.8} {:>12.8}  {}",
                 r.tiles,
                 r.candidates,
@@ -302,9 +301,12 @@ fn print_table(rows: &[CountRow], allow_lr: bool, final_only: bool, label: &str,
                 r.p_random_exact.as_deref().unwrap_or("")
             );
         } else {
-            println!(
+            outln!(
                 "{:>5} {:>22} {:>16} {:>16}",
-                r.tiles, r.candidates, r.searched, r.valid
+                r.tiles,
+                r.candidates,
+                r.searched,
+                r.valid
             );
         }
     }

@@ -9,8 +9,10 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::inputs::refuse_overwrite;
+use foldchain_cli::numbers::{count_in, number_in};
+use foldchain_cli::outln;
 use foldchain_cli::progress::{Progress, ProgressMode};
-use foldchain_cli::report::message;
+use foldchain_cli::report::{finish, parse_args};
 use foldchain_planner::{
     plan_svg_file_reporting, preview_svg_file, preview_svg_rejected, PlanError, PlanOptions, Turns,
     DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
@@ -40,17 +42,17 @@ struct Args {
     #[arg(long, conflicts_with_all = ["tile_size", "tile_mm"], value_parser = tiles_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
     /// The share by which the tile count may miss --tiles when that buys a better fit.
-    #[arg(long, default_value_t = DEFAULT_TILES_TOLERANCE, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DEFAULT_TILES_TOLERANCE, allow_hyphen_values = true, value_parser = tiles_tolerance_arg)]
     tiles_tolerance: f64,
     /// Tile width (across flats) in SVG user units.
-    #[arg(long, conflicts_with = "tile_mm", allow_hyphen_values = true)]
+    #[arg(long, conflicts_with = "tile_mm", allow_hyphen_values = true, value_parser = tile_size_arg)]
     tile_size: Option<f64>,
     /// Tile width (across flats) in millimetres, by the drawing's width/height units and
     /// viewBox (96 user units per inch when it states none); the thesis' tiles are 30 mm.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = tile_mm_arg)]
     tile_mm: Option<f64>,
-    /// The price of a U-turn or quarter turn, in tile areas of misfit.
-    #[arg(long, default_value_t = DEFAULT_TURN_COST, allow_hyphen_values = true)]
+    /// The price of a U-turn or quarter turn, in tile areas of misfit (0 to 10).
+    #[arg(long, default_value_t = DEFAULT_TURN_COST, allow_hyphen_values = true, value_parser = turn_cost_arg)]
     turn_cost: f64,
     /// U-turn style: tight (LL/RR tiles), loose (no LL/RR tiles) or auto (better fit).
     #[arg(long, default_value = "auto")]
@@ -70,35 +72,61 @@ struct Args {
     quiet: bool,
 }
 
-/// A tile count on the command line: a whole number >= 1.
 fn tiles_arg(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err("expected a whole number of tiles >= 1".into()),
+    count_in(s, 1, 2_000_000, "tiles").map(|n| n as usize)
+}
+
+fn tiles_tolerance_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 0.5, "", "a share of --tiles")
+}
+
+fn tile_size_arg(s: &str) -> Result<f64, String> {
+    match number_in(s, 0.0, 1e9, "SVG user units", "") {
+        Ok(w) if w > 0.0 => Ok(w),
+        Ok(_) => Err("expected a tile width above 0 SVG user units".into()),
+        Err(e) => Err(e),
     }
 }
 
+fn tile_mm_arg(s: &str) -> Result<f64, String> {
+    number_in(
+        s,
+        0.01,
+        1000.0,
+        "mm",
+        "tiles from 10 um to 1 m; the thesis' are 30 mm",
+    )
+}
+
+fn turn_cost_arg(s: &str) -> Result<f64, String> {
+    number_in(
+        s,
+        0.0,
+        10.0,
+        "tile areas",
+        "above 10 a turn outweighs any misfit and the search only grows",
+    )
+}
+
 fn main() -> ExitCode {
-    let args = match Args::try_parse() {
-        Ok(a) => a,
-        Err(e) => {
-            let _ = e.print();
-            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
-        }
-    };
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("fold-plan: {}", message(&e));
-            let code = e
-                .downcast_ref::<PlanError>()
-                .map_or(2, |p| p.exit_code() as u8);
-            ExitCode::from(code)
-        }
+    match parse_args::<Args>("fold-plan") {
+        Ok(args) => finish("fold-plan", run(&args).map(|()| 0)),
+        Err(code) => code,
     }
 }
 
 fn run(args: &Args) -> anyhow::Result<()> {
+    if args
+        .shape
+        .extension()
+        .is_some_and(|x| x.eq_ignore_ascii_case("svgz"))
+    {
+        anyhow::bail!(
+            "{}: a compressed SVG; decompress it first (gunzip -c {} > shape.svg) and plan the .svg",
+            args.shape.display(),
+            args.shape.display()
+        );
+    }
     if let Some(out) = &args.out {
         refuse_overwrite(&[&args.shape], out, "--out")?;
     }
@@ -157,10 +185,10 @@ fn run(args: &Args) -> anyhow::Result<()> {
         foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
     if args.json {
-        println!("{}", plan.to_json());
+        outln!("{}", plan.to_json());
     } else {
-        println!("{}", plan.tile_list);
-        println!("{}", plan.summary());
+        outln!("{}", plan.tile_list);
+        outln!("{}", plan.summary());
     }
     Ok(())
 }

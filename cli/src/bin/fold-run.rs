@@ -25,12 +25,14 @@ use foldchain_cli::choices::{
 use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEIGHBOURHOODS};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
 use foldchain_cli::margins_file::MarginsJob;
-use foldchain_cli::report::print_error;
+use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_files::{
     check_and_write_run_files, is_run_file, run_view, write_compare_page, write_run_files,
     FramesView, RunFilesOptions, MAX_FRAMES, MAX_VIEWER_TILES,
 };
 use foldchain_cli::run_name::{inline_name, stem};
+use foldchain_cli::{errln, outln};
 use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
@@ -76,7 +78,7 @@ struct Args {
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Number of step frames (default: 40, fewer for long chains; at most 100000).
-    #[arg(long, value_name = "N", value_parser = count_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "N", value_parser = frames_arg, allow_hyphen_values = true)]
     frames: Option<usize>,
     /// How step frames are framed: auto (each on the chain as it stands, or on the part
     /// that moves when a long chain seen whole would be a hairline) or fixed (every frame in
@@ -120,15 +122,16 @@ struct Args {
     /// The reference's distance cutoff, mm: pairs nearer than this interact too, however far
     /// apart in chain index (a ring's first and last tiles); default: none, pairs up to 3
     /// apart in chain index only.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", value_parser = cutoff_arg, allow_hyphen_values = true)]
     distance_cutoff: Option<f64>,
-    /// Drag coefficient of the overdamped law, N s/m.
-    #[arg(long, default_value_t = DEFAULT_DRAG, allow_hyphen_values = true)]
-    drag: f64,
+    /// Drag coefficient of the overdamped law, N s/m (0.001 to 10000; default 5): the
+    /// kinematic engine's speed law and --dynamics overdamped.
+    #[arg(long, value_name = "N_S_PER_M", value_parser = drag_arg, allow_hyphen_values = true)]
+    drag: Option<f64>,
     /// Threads of the local solves' sweeps: 1 one sweep after the other, 2 two at once (the
     /// events are the same to the last bit); default: the machine's cores, one thread under
     /// 500 tiles
-    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true)]
+    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true, value_parser = threads_arg)]
     threads: usize,
     /// Tiles shown in the transition diagram, `A..B` (inclusive; default 0..5).
     #[arg(long, value_name = "A..B")]
@@ -147,10 +150,10 @@ struct Args {
     #[arg(long)]
     compare: bool,
     /// SHAPE.svg only: about this many tiles.
-    #[arg(long, value_parser = count_arg, allow_hyphen_values = true)]
+    #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
     /// SHAPE.svg only: tile width in SVG user units.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, value_parser = tile_size_arg, allow_hyphen_values = true)]
     tile_size: Option<f64>,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
@@ -158,22 +161,44 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(args) {
-        Ok(code) => ExitCode::from(code),
-        Err(e) => {
-            print_error("fold-run", &e);
-            ExitCode::from(2)
-        }
+    match parse_args::<Args>("fold-run") {
+        Ok(args) => finish("fold-run", run(args)),
+        Err(code) => code,
     }
 }
 
-/// A count on the command line: a whole number >= 1.
-fn count_arg(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err("expected a whole number >= 1".into()),
-    }
+/// The most tiles `fold-run` takes: its memory grows with the chain (BENCHMARKS.md), and a
+/// longer chain is refused before any work rather than left to exhaust the machine.
+const MAX_RUN_TILES: usize = 2_000_000;
+
+fn frames_arg(s: &str) -> Result<usize, String> {
+    count_in(s, 1, MAX_FRAMES as u64, "frames").map(|n| n as usize)
+}
+
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    count_in(s, 1, MAX_RUN_TILES as u64, "tiles").map(|n| n as usize)
+}
+
+fn threads_arg(s: &str) -> Result<usize, String> {
+    count_in(s, 0, 256, "threads (0: the machine's cores)").map(|n| n as usize)
+}
+
+fn cutoff_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 1e-3, 1e4, "mm", "")
+}
+
+fn drag_arg(s: &str) -> Result<f64, String> {
+    number_in(
+        s,
+        1e-3,
+        1e4,
+        "N s/m",
+        "below 0.001 the magnets' inertia matters: use --dynamics inertial",
+    )
+}
+
+fn tile_size_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 1e-9, 1e9, "SVG user units", "")
 }
 
 /// The value of `--s`: a plain number is millimetres (`1e-3` too), otherwise the forms
@@ -211,9 +236,6 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 po = po.with_tiles(n);
             }
             if let Some(w) = args.tile_size {
-                if !w.is_finite() || w <= 0.0 {
-                    bail!("--tile-size {w}: expected a finite number > 0");
-                }
                 po = po.with_tile_size(w);
             }
             if let Some(t) = args.turns {
@@ -223,7 +245,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 Ok(p) => p,
                 Err(e) if e.is_bad_input() => return Err(anyhow!(e)),
                 Err(e) => {
-                    eprintln!("fold-run: cannot plan {}: {e:#}", path.display());
+                    errln!("fold-run: cannot plan {}: {e:#}", path.display());
                     return Ok(1);
                 }
             };
@@ -246,13 +268,20 @@ fn run(args: Args) -> anyhow::Result<u8> {
             (chain, name)
         }
     };
+    if chain.len() > MAX_RUN_TILES {
+        bail!(
+            "{name}: {} tiles; fold-run takes at most {} (its memory grows with the chain; fold-check checks longer chains)",
+            thousands(chain.len() as u64),
+            thousands(MAX_RUN_TILES as u64)
+        );
+    }
     let mut designs = match &args.design {
         Some(p) => TileDesigns::from_file(p)?,
         None => TileDesigns::default(),
     };
     if let Some(s) = &args.s {
         designs = designs.with_s(s_value(s)?);
-        designs.validate("--s")?;
+        designs.check_ranges("--s")?;
     }
     let force_law =
         ForceLaw::named(&args.force_law, &designs.global_design()).ok_or_else(|| {
@@ -262,14 +291,10 @@ fn run(args: Args) -> anyhow::Result<u8> {
             )
         })?;
     let dynamics = args.dynamics.to_dynamics();
+    let drag = args.drag.unwrap_or(DEFAULT_DRAG);
     let speed = match args.speed {
         SpeedChoice::Unit => SpeedLaw::Unit,
-        SpeedChoice::Overdamped => {
-            if !args.drag.is_finite() || args.drag <= 0.0 {
-                bail!("--drag {}: expected a finite number > 0 (N s/m)", args.drag);
-            }
-            SpeedLaw::Overdamped { drag: args.drag }
-        }
+        SpeedChoice::Overdamped => SpeedLaw::Overdamped { drag },
     };
     if let Some(n) = args.frames.filter(|&n| n > MAX_FRAMES) {
         bail!("--frames {n}: at most {MAX_FRAMES} step frames (each is a full SVG of the chain)");
@@ -362,7 +387,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             if speed != SpeedLaw::Unit
                 && distinct_neighbourhoods(&chain, &designs) > LOCAL_ENGINE_MAX_NEIGHBOURHOODS =>
         {
-            eprintln!(
+            errln!(
                 "fold-run: {} tiles with {} distinct joint neighbourhoods: the kinematic engine (the local solves take a few ms for each; --engine local to use them anyway)",
                 chain.len(),
                 distinct_neighbourhoods(&chain, &designs)
@@ -388,7 +413,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_model(
                 ModelOptions::default()
                     .with_force_law(force_law)
-                    .with_drag(args.drag)
+                    .with_drag(drag)
                     .with_dynamics(dynamics),
             )
             .with_threads(args.threads)
@@ -404,7 +429,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let say_margins = |dir: &Path, run_margins: &Option<(Margins, String)>| {
         if let (false, Some((m, _))) = (args.json, run_margins) {
             if let Some(w) = m.weakest() {
-                println!(
+                outln!(
                     "  smallest margin {w} ({})",
                     dir.join("margins.json").display()
                 );
@@ -460,12 +485,12 @@ fn run(args: Args) -> anyhow::Result<u8> {
                     "reference": with_out_dir(&rs, &rdir)?,
                     "out_dir": out_dir.display().to_string(),
                 });
-                println!("{}", serde_json::to_string_pretty(&v)?);
+                outln!("{}", serde_json::to_string_pretty(&v)?);
             } else {
                 print_summary(&name, &es, &edir, false)?;
                 print_summary(&rfiles.name, &rs, &rdir, false)?;
                 say_margins(&edir, &margins);
-                println!("  side by side: {}", out_dir.join("index.html").display());
+                outln!("  side by side: {}", out_dir.join("index.html").display());
             }
             Ok(exit_code(&[&es, &rs]))
         }
@@ -520,14 +545,14 @@ fn bar_progress(bar: Option<&indicatif::ProgressBar>) -> impl FnMut(&str, usize,
 /// chain's.
 fn notes(s: &Summary) {
     if s.tiles > MAX_VIEWER_TILES {
-        eprintln!(
+        errln!(
             "fold-run: note: no index.html: the viewer takes at most {MAX_VIEWER_TILES} tiles ({} here)",
             s.tiles
         );
     }
     let d = s.duration_s;
     if s.tiles > 1 && d.is_finite() && !(1e-4..=1e8).contains(&d) {
-        eprintln!(
+        errln!(
             "fold-run: warning: the run takes {d:.3e} s of simulated time, far from the seconds to minutes a physical chain takes: check the design's parameters (remanence, drag, sizes)"
         );
     }
@@ -545,13 +570,13 @@ fn with_out_dir(s: &Summary, out_dir: &Path) -> anyhow::Result<serde_json::Value
 /// Prints a run's summary: one line (and the reason), or JSON with `out_dir`.
 fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow::Result<()> {
     if json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&with_out_dir(s, out_dir)?)?
         );
         return Ok(());
     }
-    println!(
+    outln!(
         "{}: {} tiles, {} in {:.4} s of simulated time, {} events, {} folds, at most {} magnets moving; wrote {}",
         name,
         s.tiles,
@@ -563,7 +588,7 @@ fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow:
         out_dir.display()
     );
     if let Some(r) = &s.reason {
-        println!("  {r}");
+        outln!("  {r}");
     }
     Ok(())
 }

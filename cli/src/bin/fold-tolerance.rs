@@ -21,7 +21,9 @@ use foldchain::tolerance::{
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
 use foldchain_cli::inputs::read_chain;
-use foldchain_cli::report::print_error;
+use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::outln;
+use foldchain_cli::report::{finish, parse_args};
 use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
 
 /// Will it fold when printed? Margins, manufacturing tolerances and a design search.
@@ -49,8 +51,8 @@ Exit codes: 0 report printed, 1 --optimize found no design reaching --target, 2 
 struct Args {
     /// The chain: a tile list, a fold word, a file holding one, or a target shape SHAPE.svg.
     chain: String,
-    /// Samples in the study.
-    #[arg(long, default_value_t = 10_000, value_name = "N")]
+    /// Samples in the study (1e6 is accepted), at most 1,000,000 per part (--shard).
+    #[arg(long, default_value_t = 10_000, value_name = "N", value_parser = samples_arg)]
     samples: u64,
     /// A tolerance, KEY=VALUE (repeatable), over the printer's defaults.
     #[arg(long = "tol", value_name = "KEY=VALUE")]
@@ -81,17 +83,17 @@ struct Args {
     /// assembly whose folding probability stays at or above --target.
     #[arg(long)]
     optimize: bool,
-    /// The folding probability the search must keep.
-    #[arg(long, default_value_t = 0.99)]
-    target: f64,
-    /// Samples per candidate of the search.
-    #[arg(long, default_value_t = 500, value_name = "N")]
-    search_samples: u64,
+    /// The folding probability the search must keep (0 to 1; default 0.99).
+    #[arg(long, value_parser = target_arg)]
+    target: Option<f64>,
+    /// Samples per candidate of the search (1 to 100,000; default 500).
+    #[arg(long, value_name = "N", value_parser = search_samples_arg)]
+    search_samples: Option<u64>,
     /// Where the search draws its trade-off (default out/<name>-tradeoff.svg).
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
     /// SHAPE.svg only: about this many tiles.
-    #[arg(long)]
+    #[arg(long, value_parser = tiles_arg)]
     tiles: Option<usize>,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
@@ -99,14 +101,40 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(&args) {
-        Ok(code) => ExitCode::from(code),
-        Err(e) => {
-            print_error("fold-tolerance", &e);
-            ExitCode::from(2)
-        }
+    match parse_args::<Args>("fold-tolerance") {
+        Ok(args) => finish("fold-tolerance", run(&args)),
+        Err(code) => code,
     }
+}
+
+/// The most samples one part of a study draws: each is kept until the end (for the
+/// percentiles of the smallest margin), about 50 bytes.
+/// `--target`'s default.
+const DEFAULT_TARGET: f64 = 0.99;
+
+/// `--search-samples`' default.
+const DEFAULT_SEARCH_SAMPLES: u64 = 500;
+
+const MAX_SAMPLES_PER_PART: u64 = 1_000_000;
+
+fn samples_arg(s: &str) -> Result<u64, String> {
+    count_in(s, 1, u64::MAX, "samples")
+}
+
+fn search_samples_arg(s: &str) -> Result<u64, String> {
+    count_in(s, 1, 100_000, "samples")
+}
+
+fn target_arg(s: &str) -> Result<f64, String> {
+    match number_in(s, 0.0, 1.0, "", "a probability") {
+        Ok(p) if p > 0.0 => Ok(p),
+        Ok(_) => Err("expected a probability above 0 and at most 1".into()),
+        Err(e) => Err(e),
+    }
+}
+
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    count_in(s, 1, 2_000_000, "tiles").map(|n| n as usize)
 }
 
 /// The chain and a name for it.
@@ -148,15 +176,32 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     for t in &args.tol {
         tolerances.set(t)?;
     }
-    if args.samples == 0 {
-        bail!("--samples 0: expected at least 1");
-    }
     let shard = match &args.shard {
         Some(s) => Some(s.parse::<Shard>().map_err(|_| {
             anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8")
         })?),
         None => None,
     };
+    let parts = shard.map_or(1, |s| s.m as u64);
+    if args.samples.div_ceil(parts) > MAX_SAMPLES_PER_PART {
+        bail!(
+            "--samples {}: at most {} per part (each sample is kept for the percentiles); split the study with --shard K/M, at least --shard K/{}",
+            thousands(args.samples),
+            thousands(MAX_SAMPLES_PER_PART),
+            args.samples.div_ceil(MAX_SAMPLES_PER_PART)
+        );
+    }
+    if !args.optimize {
+        for (given, flag) in [
+            (args.target.is_some(), "--target"),
+            (args.search_samples.is_some(), "--search-samples"),
+            (args.plot.is_some(), "--plot"),
+        ] {
+            if given {
+                bail!("{flag} applies only to --optimize (the design search); add --optimize or leave {flag} out");
+            }
+        }
+    }
     let mut designs = match &args.design {
         Some(p) => TileDesigns::from_file(p)?,
         None => TileDesigns::default(),
@@ -188,9 +233,6 @@ fn run(args: &Args) -> anyhow::Result<u8> {
         },
     };
     if args.optimize {
-        if !(args.target > 0.0 && args.target <= 1.0) {
-            bail!("--target {}: expected a probability in (0, 1]", args.target);
-        }
         if designs.has_overrides() {
             bail!("--optimize searches per-tile s itself: give a plain design (no \"tiles\")");
         }
@@ -215,7 +257,7 @@ fn run(args: &Args) -> anyhow::Result<u8> {
             sensitivity: &sens,
             criterion: CRITERION,
         };
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print_report(&name, &chain, &tolerances, args, &result, &sens, secs);
     }
@@ -263,24 +305,28 @@ fn print_report(
         .as_ref()
         .map(|k| format!(", shard {k}"))
         .unwrap_or_default();
-    println!(
+    outln!(
         "{name}: {} tiles, {} samples (seed {}{shard}) in {secs:.1} s",
         chain.len(),
         s.samples,
         args.seed
     );
-    println!(
+    outln!(
         "tolerances ({}, uniform, per tile): {}",
         args.printer,
         tolerance_text(tol)
     );
     match s.nominal.weakest() {
-        Some(w) => println!("nominal design: smallest margin {w}"),
-        None => println!("nominal design: nothing to start"),
+        Some(w) => outln!("nominal design: smallest margin {w}"),
+        None => outln!("nominal design: nothing to start"),
     }
-    println!(
+    outln!(
         "folds in {} of {} samples: P = {:.4} (95% interval {:.4} to {:.4})",
-        s.folded, s.samples, s.probability, s.interval.0, s.interval.1
+        s.folded,
+        s.samples,
+        s.probability,
+        s.interval.0,
+        s.interval.1
     );
     if !s.first_failures.is_empty() {
         let list: Vec<String> = s
@@ -289,15 +335,15 @@ fn print_report(
             .take(5)
             .map(|f| format!("joint {} ({})", f.joint, f.count))
             .collect();
-        println!("failures begin at: {}", list.join(", "));
+        outln!("failures begin at: {}", list.join(", "));
     }
-    println!(
+    outln!(
         "smallest margin over the samples: min {:+.2}%, 5th percentile {:+.2}%, median {:+.2}%",
         100.0 * s.smallest_margin.min,
         100.0 * s.smallest_margin.p05,
         100.0 * s.smallest_margin.median
     );
-    println!("sensitivity of the nominal smallest margin (every tile moved at once):");
+    outln!("sensitivity of the nominal smallest margin (every tile moved at once):");
     for x in sens {
         let unit = if x.parameter == Parameter::Br {
             "per 1% of Br"
@@ -309,14 +355,14 @@ fn print_report(
         } else {
             x.per_unit * 0.1
         };
-        println!(
+        outln!(
             "  {:<9} {:+8.2}% {unit:<13} (the tolerance moves it +-{:.2}%)",
             x.parameter.key(),
             100.0 * per,
             100.0 * x.over_tolerance.abs()
         );
     }
-    println!("criterion: {CRITERION}");
+    outln!("criterion: {CRITERION}");
 }
 
 fn search(
@@ -326,10 +372,11 @@ fn search(
     base: &Design,
     opts: &StudyOptions,
 ) -> anyhow::Result<u8> {
+    let target = args.target.unwrap_or(DEFAULT_TARGET);
     let so = SearchOptions {
-        target: args.target,
+        target,
         study: StudyOptions {
-            samples: args.search_samples.max(1),
+            samples: args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES),
             ..*opts
         },
         engine: EngineOptions::default().with_force_law(opts.margins.force_law),
@@ -348,37 +395,37 @@ fn search(
         "{name}: folding probability against assembly time ({} samples per design)",
         so.study.samples
     );
-    std::fs::write(&plot, tradeoff_svg(&result, args.target, &title))
+    std::fs::write(&plot, tradeoff_svg(&result, target, &title))
         .with_context(|| format!("cannot write {}", plot.display()))?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&result)?);
+        outln!("{}", serde_json::to_string_pretty(&result)?);
     } else {
-        println!(
+        outln!(
             "{name}: {} tiles, {} designs tried, {} samples each, in {:.1} s",
             chain.len(),
             result.candidates.len(),
             so.study.samples,
             started.elapsed().as_secs_f64()
         );
-        println!("trade-off over s (one s for every tile):");
-        println!("  wall     s mm   P       95% interval      assembly s  margin");
+        outln!("trade-off over s (one s for every tile):");
+        outln!("  wall     s mm   P       95% interval      assembly s  margin");
         for c in result
             .candidates
             .iter()
             .filter(|c| c.s_straight == c.s_turn)
         {
-            println!("  {}", row(c));
+            outln!("  {}", row(c));
         }
-        println!("base design:  {}", row(&result.base));
+        outln!("base design:  {}", row(&result.base));
         match &result.best {
-            Some(b) => println!(
+            Some(b) => outln!(
                 "fastest design with P >= {}: s {} mm on straight runs, {} mm on turns, wall {:+.2} mm: {}",
-                args.target, b.s_straight, b.s_turn, b.wall_step, row(b)
+                target, b.s_straight, b.s_turn, b.wall_step, row(b)
             ),
-            None => println!("no design tried reaches P >= {}", args.target),
+            None => outln!("no design tried reaches P >= {target}"),
         }
         if let Some(m) = &result.most_probable {
-            println!(
+            outln!(
                 "most probable: s {} / {} mm, wall {:+.2} mm: {}",
                 m.s_straight,
                 m.s_turn,
@@ -392,9 +439,12 @@ fn search(
             Ok(study(chain, &candidate_designs(chain, base, c), opts)?)
         };
         let b = confirm(&result.base)?;
-        println!(
+        outln!(
             "with {} samples: base design P = {:.4} ({:.4} to {:.4})",
-            b.samples, b.probability, b.interval.0, b.interval.1
+            b.samples,
+            b.probability,
+            b.interval.0,
+            b.interval.1
         );
         let stem = plot.with_extension("");
         for (label, file, c) in [
@@ -408,7 +458,7 @@ fn search(
             text.push('\n');
             std::fs::write(&path, text)
                 .with_context(|| format!("cannot write {}", path.display()))?;
-            println!(
+            outln!(
                 "with {} samples: {label} design P = {:.4} ({:.4} to {:.4}); design file {}",
                 s.samples,
                 s.probability,
@@ -417,7 +467,7 @@ fn search(
                 path.display()
             );
         }
-        println!("wrote {}", plot.display());
+        outln!("wrote {}", plot.display());
     }
     Ok(if result.best.is_some() { 0 } else { 1 })
 }

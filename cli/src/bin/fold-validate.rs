@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::bail;
-use clap::{CommandFactory, FromArgMatches, Parser};
+use clap::Parser;
 use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::scenes::all_scenes;
 use foldchain::reference::stiff::{run_stiff_study, select_cases};
@@ -21,8 +21,10 @@ use foldchain::reference::STIFF_CASES;
 use foldchain::Design;
 use foldchain_cli::choices::DynamicsChoice;
 use foldchain_cli::experiments::experiments;
+use foldchain_cli::numbers::number_in;
 use foldchain_cli::output::OutputDir;
-use foldchain_cli::report::print_error;
+use foldchain_cli::report::{finish, parse_args_with};
+use foldchain_cli::{errln, outln};
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
 /// integrator (Dormand-Prince 5(4), ROS2) along a ladder of tolerances, and reports each
@@ -44,7 +46,7 @@ struct Args {
     #[arg(long, default_value = "out/validate")]
     out: PathBuf,
     /// Tolerance of the reference run.
-    #[arg(long, default_value_t = ValidateOptions::default().reference_tolerance, conflicts_with = "quick")]
+    #[arg(long, default_value_t = ValidateOptions::default().reference_tolerance, conflicts_with = "quick", value_parser = reference_tolerance_arg)]
     reference_tolerance: f64,
     /// Quicker ladders (Dormand-Prince 1e-3 to 1e-6, ROS2 1e-2 to 1e-4; reference 1e-9).
     #[arg(long)]
@@ -74,11 +76,18 @@ struct Args {
     dynamics: DynamicsChoice,
 }
 
+fn reference_tolerance_arg(s: &str) -> Result<f64, String> {
+    number_in(
+        s,
+        1e-13,
+        1e-6,
+        "",
+        "tighter than 1e-13 is below the arithmetic's rounding",
+    )
+}
+
 fn options(args: &Args) -> anyhow::Result<ValidateOptions> {
     let t = args.reference_tolerance;
-    if !(t > 0.0 && t <= 1e-6) {
-        bail!("--reference-tolerance {t}: expected a number in (0, 1e-6]");
-    }
     let mut o = ValidateOptions::default().with_scenes(args.scenes.clone());
     o.model.force_law = force_law(&args.force_law)?;
     o.model.dynamics = args.dynamics.to_dynamics();
@@ -105,7 +114,7 @@ fn stiff(args: &Args) -> anyhow::Result<String> {
     let quiet = args.json;
     let study = run_stiff_study(&cases, &mut |case, method| {
         if !quiet {
-            eprintln!("fold-validate: stiff: {case}: {}", method.name());
+            errln!("fold-validate: stiff: {case}: {}", method.name());
         }
     })?;
     Ok(if args.json {
@@ -148,83 +157,59 @@ Exit codes: 0 done (with --experiments: every model agrees with the thesis' obse
 }
 
 fn main() -> ExitCode {
-    let matches = Args::command().after_help(after_help()).get_matches();
-    let args = match Args::from_arg_matches(&matches) {
-        Ok(a) => a,
-        Err(e) => e.exit(),
-    };
+    match parse_args_with::<Args>("fold-validate", |c| c.after_help(after_help())) {
+        Ok(args) => finish("fold-validate", run(&args)),
+        Err(code) => code,
+    }
+}
+
+fn run(args: &Args) -> anyhow::Result<u8> {
     if args.experiments {
-        return match experiments(&args.out, args.json) {
-            Ok(report) => {
-                print!("{}", report.text);
-                if !args.json {
-                    for f in &report.files {
-                        println!("wrote {}", f.display());
-                    }
-                }
-                if report.all_agree() {
-                    ExitCode::SUCCESS
-                } else {
-                    eprintln!("fold-validate: the model disagrees with an observed experiment");
-                    ExitCode::from(1)
-                }
+        let report = experiments(&args.out, args.json)?;
+        foldchain_cli::stdout::text(&report.text);
+        if !args.json {
+            for f in &report.files {
+                outln!("wrote {}", f.display());
             }
-            Err(e) => {
-                print_error("fold-validate", &e);
-                ExitCode::from(2)
-            }
-        };
+        }
+        if report.all_agree() {
+            return Ok(0);
+        }
+        errln!("fold-validate: the model disagrees with an observed experiment");
+        return Ok(1);
     }
     if args.stiff {
-        return match stiff(&args) {
-            Ok(text) => {
-                print!("{text}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                print_error("fold-validate", &e);
-                ExitCode::from(2)
-            }
-        };
+        foldchain_cli::stdout::text(&stiff(args)?);
+        return Ok(0);
     }
-    let result = options(&args).and_then(|opts| {
-        // the output is checked before the work: a file in the way fails now, not after it
-        if args.out.exists() && !args.out.is_dir() {
-            bail!(
-                "--out {}: exists and is not a directory",
-                args.out.display()
+    let opts = options(args)?;
+    // the output is checked before the work: a file in the way fails now, not after it
+    if args.out.exists() && !args.out.is_dir() {
+        bail!(
+            "--out {}: exists and is not a directory",
+            args.out.display()
+        );
+    }
+    let quiet = args.json;
+    let v = validate(&opts, &mut |scene, method, tol| {
+        if !quiet {
+            errln!(
+                "fold-validate: {scene}: {method}{}",
+                tol.map(|t| format!(" at {t:.0e}")).unwrap_or_default()
             );
         }
-        let quiet = args.json;
-        let v = validate(&opts, &mut |scene, method, tol| {
-            if !quiet {
-                eprintln!(
-                    "fold-validate: {scene}: {method}{}",
-                    tol.map(|t| format!(" at {t:.0e}")).unwrap_or_default()
-                );
-            }
-        })?;
-        let mut out = OutputDir::create(&args.out)?;
-        out.write("work-precision.svg", v.to_svg().as_bytes())?;
-        out.write("work-precision.json", v.to_json().as_bytes())?;
-        let files: Vec<_> = out.written().iter().map(|f| args.out.join(f)).collect();
-        Ok((v, files))
-    });
-    match result {
-        Ok((v, files)) => {
-            if args.json {
-                println!("{}", v.to_json());
-            } else {
-                print!("{}", v.to_table());
-                for f in files {
-                    println!("wrote {}", f.display());
-                }
-            }
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            print_error("fold-validate", &e);
-            ExitCode::from(2)
+    })?;
+    let mut out = OutputDir::create(&args.out)?;
+    out.write("work-precision.svg", v.to_svg().as_bytes())?;
+    out.write("work-precision.json", v.to_json().as_bytes())?;
+    let files: Vec<_> = out.written().iter().map(|f| args.out.join(f)).collect();
+    if args.json {
+        outln!("{}", v.to_json());
+    } else {
+        foldchain_cli::stdout::text(&v.to_table());
+        for f in files {
+            outln!("wrote {}", f.display());
         }
     }
+    Ok(0)
 }

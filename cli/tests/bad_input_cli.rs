@@ -1,0 +1,170 @@
+//! The crashes and unbounded runs of issue 29, kept as named regression tests: each is
+//! refused before any work with exit 2 and one line naming the value and its range, and a
+//! closed pipe on stdout ends a tool quietly.
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::io::Read;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+fn tool(name: &str) -> Command {
+    let path = match name {
+        "fold-run" => env!("CARGO_BIN_EXE_fold-run"),
+        "fold-tolerance" => env!("CARGO_BIN_EXE_fold-tolerance"),
+        "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
+        "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
+        "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
+        _ => env!("CARGO_BIN_EXE_fold-validate"),
+    };
+    Command::new(path)
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("foldchain-bad-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Exit 2, nothing on stdout, one line on stderr holding every one of `words`, no panic.
+fn refused(o: &Output, words: &[&str]) {
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(!e.contains("panicked"), "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "one line: {e}");
+    assert!(e.len() < 400, "short: {e}");
+    for w in words {
+        assert!(e.contains(w), "missing {w:?} in: {e}");
+    }
+}
+
+#[test]
+fn huge_s_and_tile_width_are_refused_with_their_range() {
+    let d = scratch("huge");
+    let out = d.join("out");
+    let o = tool("fold-run")
+        .args(["SLLS", "--s", "1e308", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    refused(&o, &["--s", "`s` = 1e308 mm", "0 to 4.7 mm"]);
+    let o = tool("fold-run")
+        .args(["SLLS", "--s", "100", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    refused(&o, &["`s` = 100 mm", "0 to 4.7 mm"]);
+    for (json, words) in [
+        (r#"{"s": 1e308}"#, ["`s` = 1e308 mm", "0 to 4.7 mm"]),
+        (
+            r#"{"tile_width": 1e308}"#,
+            ["`tile_width` = 1e308 mm", "1000 mm"],
+        ),
+        (r#"{"c": 0}"#, ["`c` = 0 mm", "magnet radius, 1.5 mm"]),
+        (r#"{"e": 14}"#, ["`e` = 14 mm", "at most d/2 - r = 6 mm"]),
+    ] {
+        let design = d.join("design.json");
+        std::fs::write(&design, json).unwrap();
+        for t in ["fold-run", "fold-tolerance"] {
+            let mut c = tool(t);
+            c.args(["SLLS", "--design", design.to_str().unwrap()]);
+            if t == "fold-run" {
+                c.args(["--out", out.to_str().unwrap()]);
+            }
+            refused(&c.output().unwrap(), &words);
+        }
+    }
+    // nothing was written for any of them
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn unbounded_counts_and_drags_are_refused() {
+    let o = tool("fold-tolerance")
+        .args(["SL", "--samples", "1000000000000"])
+        .output()
+        .unwrap();
+    refused(&o, &["--samples 1,000,000,000,000", "--shard"]);
+    // the same count in scientific notation is read the same way
+    let o = tool("fold-tolerance")
+        .args(["SL", "--samples", "1e12"])
+        .output()
+        .unwrap();
+    refused(&o, &["--samples 1,000,000,000,000"]);
+    let o = tool("fold-run")
+        .args(["SLLS", "--dynamics", "overdamped", "--drag", "1e-300"])
+        .output()
+        .unwrap();
+    refused(&o, &["--drag 1e-300", "0.001 to 10000 N s/m"]);
+    let o = tool("fold-run")
+        .args(["SLLS", "--distance-cutoff=-1"])
+        .output()
+        .unwrap();
+    refused(&o, &["--distance-cutoff -1", "mm"]);
+    let o = tool("fold-run").args(["S*2000001"]).output().unwrap();
+    refused(&o, &["2,000,002 tiles", "at most 2,000,000"]);
+    let o = tool("fold-tolerance")
+        .args(["SL", "--search-samples", "0"])
+        .output()
+        .unwrap();
+    refused(&o, &["--search-samples 0", "from 1 to 100,000"]);
+    let o = tool("fold-tolerance")
+        .args(["SL", "--plot", "x.svg"])
+        .output()
+        .unwrap();
+    refused(&o, &["--plot", "--optimize"]);
+    let o = tool("fold-check")
+        .args(["SLLS", "--tolerance", "1e308"])
+        .output()
+        .unwrap();
+    refused(&o, &["--tolerance 1e308", "tile widths"]);
+    let o = tool("fold-plan")
+        .args(["shape.svgz", "--tiles", "10"])
+        .output()
+        .unwrap();
+    refused(&o, &["shape.svgz", "decompress"]);
+}
+
+#[test]
+fn a_closed_pipe_ends_a_tool_quietly() {
+    let d = scratch("pipe");
+    for (t, args) in [
+        ("fold-run", vec!["SLLS", "--json", "--out", "OUT"]),
+        ("fold-check", vec!["S*40", "--json"]),
+        ("fold-enum", vec!["--max-tiles", "9", "--json"]),
+    ] {
+        let out = d.join(t);
+        let args: Vec<&str> = args
+            .iter()
+            .map(|a| {
+                if *a == "OUT" {
+                    out.to_str().unwrap()
+                } else {
+                    a
+                }
+            })
+            .collect();
+        let mut child = tool(t)
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // the reader goes before the tool writes
+        drop(child.stdout.take());
+        let mut err = String::new();
+        child
+            .stderr
+            .take()
+            .unwrap()
+            .read_to_string(&mut err)
+            .unwrap();
+        let status = child.wait().unwrap();
+        assert!(!err.contains("panicked"), "{t}: {err}");
+        assert!(
+            matches!(status.code(), Some(0 | 1)),
+            "{t}: {status:?} {err}"
+        );
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
