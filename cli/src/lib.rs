@@ -20,6 +20,7 @@ pub mod numbers;
 pub mod output;
 pub mod progress;
 pub mod report;
+pub mod run_dir;
 pub mod run_files;
 pub mod run_name;
 pub mod stdout;

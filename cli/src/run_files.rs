@@ -145,6 +145,31 @@ pub fn is_run_file(name: &str) -> bool {
     FIXED.contains(&name) || is_step_frame(name)
 }
 
+/// Is the entry at `path`, in a run's output directory, one `fold-run` owns (replaced by
+/// the next run into that directory): one of [`is_run_file`]'s names, or `engine/` or
+/// `reference/` of `--compare` holding nothing but such files. Everything else is a user's,
+/// and stays.
+pub fn owns_run_entry(path: &Path) -> bool {
+    let Some(name) = path.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+        return false;
+    };
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return false;
+    };
+    if meta.is_file() {
+        return is_run_file(&name);
+    }
+    if meta.is_dir() && (name == "engine" || name == "reference") {
+        return std::fs::read_dir(path).is_ok_and(|entries| {
+            entries.flatten().all(|e| {
+                e.file_type().is_ok_and(|t| t.is_file())
+                    && is_run_file(&e.file_name().to_string_lossy())
+            })
+        });
+    }
+    false
+}
+
 /// `step-NNNN.svg` (four or more digits), as [`write_run_files`] names its frames.
 fn is_step_frame(name: &str) -> bool {
     name.strip_prefix("step-")

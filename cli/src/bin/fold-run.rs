@@ -27,9 +27,10 @@ use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, tar
 use foldchain_cli::margins_file::MarginsJob;
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::report::{finish, parse_args};
+use foldchain_cli::run_dir::{install_interrupt_cleanup, StagedDir};
 use foldchain_cli::run_files::{
-    check_and_write_run_files, is_run_file, run_view, write_compare_page, write_run_files,
-    FramesView, RunFilesOptions, MAX_FRAMES, MAX_VIEWER_TILES,
+    check_and_write_run_files, is_run_file, owns_run_entry, run_view, write_compare_page,
+    write_run_files, FramesView, RunFilesOptions, MAX_FRAMES, MAX_VIEWER_TILES,
 };
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_cli::{errln, outln};
@@ -162,7 +163,10 @@ struct Args {
 
 fn main() -> ExitCode {
     match parse_args::<Args>("fold-run") {
-        Ok(args) => finish("fold-run", run(args)),
+        Ok(args) => {
+            install_interrupt_cleanup();
+            finish("fold-run", run(args))
+        }
         Err(code) => code,
     }
 }
@@ -361,6 +365,16 @@ fn run(args: Args) -> anyhow::Result<u8> {
             refuse_overwrite_in(&inputs, &out_dir.join(sub), &is_run_file, "--out")?;
         }
     }
+    // the run goes into a staging directory beside DIR, swapped into place at the end; a
+    // second run into DIR is refused now, before any work
+    let staged = StagedDir::open(&out_dir, owns_run_entry)?;
+    let sdir = staged.path().to_path_buf();
+    let unwritten = || {
+        format!(
+            "cannot write the run into {} (left as it was)",
+            out_dir.display()
+        )
+    };
     let reference = || -> anyhow::Result<ReferenceRun> {
         if chain.len() > MAX_REFERENCE_TILES {
             bail!(
@@ -442,7 +456,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
             let summary = check_reference(&run, &CheckOptions::default())?;
             let margins = margins.finish();
             files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
-            write_files(&run, &summary, &out_dir, &files, bar.as_ref())?;
+            write_files(&run, &summary, &sdir, &files, bar.as_ref()).with_context(unwritten)?;
+            staged.commit()?;
             print_summary(&files.name, &summary, &out_dir, args.json)?;
             say_margins(&out_dir, &margins);
             Ok(exit_code(&[&summary]))
@@ -454,7 +469,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
             files.margins_json = margins.as_ref().map(|(_, text)| text.clone());
             let check = CheckOptions::default();
             let mut progress = bar_progress(bar.as_ref());
-            let summary = check_and_write_run_files(&tl, &check, &out_dir, &files, &mut progress)?;
+            let summary = check_and_write_run_files(&tl, &check, &sdir, &files, &mut progress)
+                .with_context(unwritten)?;
+            staged.commit()?;
             notes(&summary);
             print_summary(&name, &summary, &out_dir, args.json)?;
             say_margins(&out_dir, &margins);
@@ -471,14 +488,19 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 ..files.clone()
             };
             let (edir, rdir) = (out_dir.join("engine"), out_dir.join("reference"));
-            write_files(&tl, &es, &edir, &files, bar.as_ref())?;
-            write_files(&run, &rs, &rdir, &rfiles, bar.as_ref())?;
+            (|| -> anyhow::Result<()> {
+                write_files(&tl, &es, &sdir.join("engine"), &files, bar.as_ref())?;
+                write_files(&run, &rs, &sdir.join("reference"), &rfiles, bar.as_ref())?;
+                Ok(())
+            })()
+            .with_context(unwritten)?;
             let views = [
                 run_view(&tl, &es, &files, "engine"),
                 run_view(&run, &rs, &rfiles, "reference"),
             ];
             let title = format!("{name}: event engine and reference");
-            write_compare_page(&out_dir, &title, &views)?;
+            write_compare_page(&sdir, &title, &views).with_context(unwritten)?;
+            staged.commit()?;
             if args.json {
                 let v = serde_json::json!({
                     "engine": with_out_dir(&es, &edir)?,
