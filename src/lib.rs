@@ -52,8 +52,10 @@ mod joint;
 pub mod kinematics;
 pub mod magnet_path;
 pub mod margins;
+pub mod model;
 mod number_text;
 mod octagon;
+mod ode;
 mod path_kind;
 pub mod physics;
 mod pose;
@@ -63,6 +65,7 @@ mod simulation;
 mod tile;
 pub mod timeline;
 pub mod tolerance;
+pub mod validation;
 pub mod viewer;
 mod word;
 

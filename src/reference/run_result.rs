@@ -4,10 +4,10 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::reference::dynamics::Model;
-use crate::reference::integrators::{Method, StepStats};
+use crate::model::Dynamics;
+use crate::model::Model;
+use crate::ode::{Method, StepStats};
 use crate::reference::options::ReferenceOptions;
-use crate::reference::Dynamics;
 use crate::timeline::{
     Event, FoldRecord, Outcome, RunFacts, SpeedLaw, Summary, TimelineJson, EVENT_INDEX,
 };

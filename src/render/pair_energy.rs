@@ -5,7 +5,7 @@
 use svg::node::element::{Line, Polyline, Text};
 use svg::Document;
 
-use crate::reference::experiments::PairEnergies;
+use crate::reference::PairEnergies;
 use crate::render::plot::Axes;
 use crate::render::{document, num, points, to_text};
 

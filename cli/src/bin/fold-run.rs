@@ -12,11 +12,10 @@ use foldchain::engine::{
     EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
 };
 use foldchain::margins::Margins;
+use foldchain::model::ModelOptions;
 use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
-use foldchain::reference::{
-    run_reference, state_budget, ModelOptions, ReferenceOptions, ReferenceRun,
-};
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
 use foldchain::render::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::choices::{

@@ -1,6 +1,11 @@
-//! Error against run time (`fold-validate`): for each scene a reference run at a tight
-//! tolerance, then the event engine and each integrator along a ladder of tolerances, each
-//! with its error and wall time; the table, the JSON rows and the work-precision plot.
+//! The simulations measured, above both: against each other and against the thesis.
+//!
+//! - [`scenes`]: the scenes `fold-validate` runs; [`experiments`]: the thesis' experiments
+//!   (7.3, 7.3.2) with what was observed.
+//! - [`validate`]: error against run time (`fold-validate`): for each scene a reference run
+//!   at a tight tolerance, then the event engine and each integrator along a ladder of
+//!   tolerances, each with its error and wall time; the table, the JSON rows and the
+//!   work-precision plot.
 //!
 //! How the runs' events are compared: [`compare_events`].
 //!
@@ -12,19 +17,19 @@
 //! thesis' distance rule (nearest neighbours).
 
 mod compare;
+pub mod experiments;
 mod plot;
 mod results;
+pub mod scenes;
 
 use std::time::Instant;
 
 use crate::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
 use crate::kinematics::poses_at_angles;
-use crate::reference::driver::run_reference;
-use crate::reference::dynamics::ModelOptions;
-use crate::reference::integrators::Method;
-use crate::reference::options::{ReferenceError, ReferenceOptions};
-use crate::reference::run_result::ReferenceRun;
-use crate::reference::scenes::{all_scenes, Scene};
+use crate::model::ModelOptions;
+use crate::ode::Method;
+use crate::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
+use crate::validation::scenes::{all_scenes, Scene};
 
 pub use compare::{compare_events, EventComparison};
 pub use results::{Row, SceneReport, Validation};

@@ -1,8 +1,8 @@
 //! The options of the reference model ([`ModelOptions`]): drags, friction, which pairs
 //! interact, the pair law and the dynamics.
 
+use crate::model::Dynamics;
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
-use crate::reference::dynamics_kind::Dynamics;
 
 /// Options of the reference model. Defaults: drag [`DEFAULT_DRAG`], rotational drag
 /// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`], the

@@ -1,6 +1,6 @@
 //! Which dynamics the reference integrates: overdamped (first order, the stiff limit) or
 //! inertial (second order, [`Inertia`]). A choice of its own, so that the model
-//! ([`crate::reference::Model`]) and the inertial driver both name it without importing
+//! ([`crate::model::Model`]) and the inertial driver both name it without importing
 //! each other.
 
 use crate::physics::Inertia;
@@ -10,8 +10,8 @@ use crate::physics::Inertia;
 #[non_exhaustive]
 pub enum Dynamics {
     /// First order: every velocity proportional to its drive (drag
-    /// [`crate::reference::ModelOptions::drag`] and
-    /// [`crate::reference::ModelOptions::rotational_drag`]); the limit of negligible mass,
+    /// [`crate::model::ModelOptions::drag`] and
+    /// [`crate::model::ModelOptions::rotational_drag`]); the limit of negligible mass,
     /// and the stiff case. The default.
     #[default]
     Overdamped,

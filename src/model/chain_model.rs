@@ -21,7 +21,7 @@
 //! Each unknown has a mode: at its start, free, or at its end. A clamped unknown does not
 //! move until its drive (the force along the path, or the torque towards folding) pushes it
 //! away from the end by more than the static friction threshold; the driver finds those
-//! moments, and the arrivals, as events ([`crate::reference::run_reference`]). Non-folding joints
+//! moments, and the arrivals, as events (the reference's driver). Non-folding joints
 //! are rigid: a straight or LR joint has no hinge that opens the way the pair pulls.
 
 use std::f64::consts::FRAC_PI_2;
@@ -29,9 +29,9 @@ use std::f64::consts::FRAC_PI_2;
 use kurbo::Point;
 
 use crate::magnet_path::MagnetPath;
+use crate::model::mode::Mode;
+use crate::model::{Dynamics, ModelOptions};
 use crate::physics::ReactionInitiator;
-use crate::reference::dynamics_kind::Dynamics;
-pub use crate::reference::model_options::ModelOptions;
 use crate::timeline::{Geometry, GeometryError, TileDesigns};
 use crate::{Chain, Octagon, Pose};
 
@@ -47,17 +47,6 @@ pub(crate) enum Unknown {
     Magnet(usize),
     /// Joint `j`'s fraction of fold made.
     Joint(usize),
-}
-
-/// Where an unknown is held.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Mode {
-    /// Held at 0 (magnet at rest, joint straight).
-    AtStart,
-    /// Moving freely inside `(0, 1)`.
-    Free,
-    /// Held at 1 (magnet arrived, joint closed by its walls).
-    AtEnd,
 }
 
 /// The model of one chain.

@@ -1,8 +1,13 @@
-//! The step-size controller of the reference's drivers: a PI controller (Gustafsson;
-//! Hairer and Wanner, *Solving ODEs II*, IV.2; `dopri5.f`'s `BETA`) on the error estimate
-//! of an embedded solution of order `q`.
+//! Step-size control on the error estimate `e` (in tolerances, accept when `e <= 1`) of an
+//! embedded solution of order `q`.
 //!
-//! After an accepted step with error `e` (previous accepted error `e_old`) the next step is
+//! - [`integral`]: the classical law, `h * clamp(0.9 * e^-(1/(q+1)), 0.2, 5)` after an accepted
+//!   step (5 when `e` is 0), `clamp(0.9 * e^-(1/(q+1)), 0.1, 0.9)` after a rejected one (0.1
+//!   when `e` is not finite): the inertial reference and the event engine's units.
+//! - [`StepControl`]: the overdamped reference's PI controller (Gustafsson; Hairer and
+//!   Wanner, *Solving ODEs II*, IV.2; `dopri5.f`'s `BETA`).
+//!
+//! **The PI controller.** After an accepted step with error `e` (previous accepted error `e_old`) the next step is
 //! `h * clamp(0.9 * e^-(1/(q+1) - 0.75 beta) * e_old^beta, 0.2, 5)`, `beta = 0.2 / (q + 1)`
 //! (0.04 for Dormand-Prince, as in `dopri5.f`): the integral term alone is the classical
 //! law, the proportional one damps the accept-reject-accept oscillation that law falls into
@@ -14,7 +19,23 @@
 //! the rejections the other terms would wait for.
 //! The step size is kept across events: a located event cuts the step, not the next one.
 
-/// The controller's memory.
+/// The integral controller's factor on the step with error `err` and exponent
+/// `expo = 1 / (q + 1)`: after an accepted step (`accepted`, `err <= 1`) or a rejected one.
+pub(crate) fn integral(err: f64, expo: f64, accepted: bool) -> f64 {
+    if accepted {
+        if err > 0.0 {
+            (0.9 * err.powf(-expo)).clamp(0.2, 5.0)
+        } else {
+            5.0
+        }
+    } else if err.is_finite() {
+        (0.9 * err.powf(-expo)).clamp(0.1, 0.9)
+    } else {
+        0.1
+    }
+}
+
+/// The PI controller's memory.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StepControl {
     /// `1 / (q + 1)`.

@@ -1,28 +1,90 @@
-//! How a unit's unknowns answer their drives: the overdamped model's rates (first order,
-//! [`crate::reference::Model::rate`]) or the inertial model's accelerations (second order,
-//! [`crate::reference::Dynamics::Inertial`]), with the inertial model's walls.
+//! How the model's unknowns answer their drives under inertia
+//! ([`crate::model::Dynamics::Inertial`]): per unknown its inverse effective mass, damping
+//! rate and Coulomb friction ([`Coefficients`]), and the rules at the walls of its range
+//! ([`InertialModel`]: the acceleration, a bounce or a rest at a wall, a release).
 //!
-//! **Inertial.** Each unknown carries a position and a velocity; its acceleration is
-//! `(drive - friction) / (m L) - (gamma / m) v` with the coefficients of the reference's
-//! inertial driver ([`crate::reference::inertial::Coefficients`], by the unknown's state
-//! index), so a unit's motion is the reference's equation for those unknowns. At a wall (0
-//! or 1) a free unknown moving outwards bounces with the restitution, or stays there when
-//! the rebound would rise less than [`REST_HEIGHT`] of the range against the drive pressing
-//! it on (or the restitution is 0): that is its arrival (a fold's end). A clamped unknown
-//! is released, at rest, when its drive pulls it off its wall by more than the static
-//! threshold and the Coulomb friction. The unit has settled when every free unknown is
-//! quiet on the reference's time scale (speed and acceleration under 1e-7 of the range).
+//! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
+//! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
+//! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
+//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
+//! drag of [`Inertia`] times the tiles downstream of the joint.
+//!
+//! **Walls.** At a wall (0 or 1) a free unknown moving outwards bounces with the
+//! restitution, or stays there when the rebound would rise less than [`REST_HEIGHT`] of the
+//! range against the drive pressing it on (or the restitution is 0): that is its arrival (a
+//! fold's end). A clamped unknown is released, at rest, when its drive pulls it off its wall
+//! by more than the static threshold and the Coulomb friction. An unknown is quiet on the
+//! run's time scale when its speed and acceleration are under 1e-7 of the range.
 
+use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
-use crate::reference::inertial::{Coefficients, REST_HEIGHT};
-use crate::reference::{Dynamics, Mode, Model};
+use crate::model::chain_model::Unknown;
+use crate::model::{Dynamics, Mode, Model};
+use crate::physics::Inertia;
+
+/// A rebound that would rise less than this fraction of the range ends the bouncing.
+pub(crate) const REST_HEIGHT: f64 = 1e-3;
+
+/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
+/// damping rate (1/s), and the Coulomb friction (in drive units).
+pub(crate) struct Coefficients {
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) coulomb: Vec<f64>,
+}
+
+impl Coefficients {
+    /// The run's three times, s: the inertial time of the slowest unknown, a move's time at
+    /// the bonded force, and a path's time at the bonded force against the drag alone (the
+    /// longest is the scale the rest test is measured on, the first step comes from them).
+    pub(crate) fn times(&self, model: &Model) -> (f64, f64, f64) {
+        let tau = self
+            .damping
+            .iter()
+            .filter(|d| **d > 0.0)
+            .map(|d| 1.0 / d)
+            .fold(0.0, f64::max);
+        let inv0 = self.inv_mass.first().copied().unwrap_or(1.0);
+        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
+        let drag_time = self.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
+        (tau, move_time, drag_time)
+    }
+
+    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
+        let tiles = model.geometry.tiles();
+        let n = model.len();
+        let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for (i, u) in model.unknowns.iter().enumerate() {
+            match *u {
+                Unknown::Magnet(k) => {
+                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
+                    let len = model.path_length(k) * 1e-3;
+                    inv_mass[i] = 1.0 / (m * len);
+                    damping[i] = inertia.drag / m;
+                    coulomb[i] = inertia.coulomb;
+                }
+                Unknown::Joint(j) => {
+                    let swung = (tiles - 1 - j) as f64;
+                    let inertia_j = inertia.tile_inertia * swung;
+                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
+                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
+                }
+            }
+        }
+        Coefficients {
+            inv_mass,
+            damping,
+            coulomb,
+        }
+    }
+}
 
 /// The inertial model's coefficients and time scale, for the local solves.
 pub(crate) struct InertialModel {
-    c: Coefficients,
+    pub(crate) c: Coefficients,
     restitution: f64,
-    /// The reference's time scale of the inertial run: the longest of the inertial time,
+    /// The time scale of the inertial run: the longest of the inertial time,
     /// a path's time at the bonded force from rest, and its time against the drag alone.
     pub(crate) scale: f64,
     /// The shortest of the inertial time and a path's time at the bonded force (first step).
@@ -107,10 +169,8 @@ pub(crate) fn at_wall(x: f64, v: f64) -> bool {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::engine::{run, EngineOptions};
-    use crate::physics::Inertia;
-    use crate::reference::{run_reference, ModelOptions, ReferenceOptions};
-    use crate::timeline::{EventKind, TileDesigns};
+    use crate::model::ModelOptions;
+    use crate::timeline::TileDesigns;
     use crate::{Chain, Design};
 
     fn inertial() -> ModelOptions {
@@ -147,65 +207,5 @@ mod tests {
         assert!(!im.released(&model, g, Mode::AtStart, -push));
         assert!(im.released(&model, g, Mode::AtEnd, -push));
         assert!(im.quiet(0.0, 0.0) && !im.quiet(1.0, 0.0));
-    }
-
-    #[test]
-    fn inertial_engine_events_are_the_inertial_references() {
-        // a serpentine repeats its U-turns: a cached unit must not stand for a joint that
-        // swings a different tail (its inertia grows with the tiles it swings)
-        let serpentine = "S*8 L L S*8 R R S*8 L L S*8 R R S*8";
-        for (word, s, most) in [
-            ("SL", 0.3, 1.0),
-            ("LL", 0.3, 1.0),
-            ("SSLS", 0.05, 1.0),
-            (serpentine, 0.3, 5.0),
-        ] {
-            let chain = Chain::parse(word).unwrap();
-            let designs = TileDesigns::global(Design::thesis().with_s(s));
-            let r = run_reference(
-                &chain,
-                &designs,
-                &ReferenceOptions::default().with_model(inertial()),
-            )
-            .unwrap();
-            let e = run(
-                &chain,
-                &designs,
-                &EngineOptions::default().with_model(inertial()),
-            )
-            .unwrap();
-            assert_eq!(e.outcome.name(), r.outcome.name(), "{word}");
-            let d = r.duration();
-            // seconds at most (the overdamped runs take ten times longer or more)
-            assert!(d < most, "{word}: {d}");
-            let motion = |k: EventKind| k != EventKind::RiContact;
-            let (a, b): (Vec<_>, Vec<_>) = (
-                r.events.iter().filter(|x| motion(x.kind)).collect(),
-                e.events.iter().filter(|x| motion(x.kind)).collect(),
-            );
-            assert_eq!(a.len(), b.len(), "{word}");
-            // the n-th event of a kind and index against the n-th (a magnet pulled off its
-            // end arrives twice)
-            let nth = |list: &[&crate::timeline::Event], x: &crate::timeline::Event| {
-                list.iter()
-                    .filter(|y| y.kind == x.kind && y.index == x.index && y.time < x.time)
-                    .count()
-            };
-            for x in &a {
-                let n = nth(&a, x);
-                let y = b
-                    .iter()
-                    .filter(|y| y.kind == x.kind && y.index == x.index)
-                    .nth(n)
-                    .unwrap_or_else(|| panic!("{word}: {x:?} missing"));
-                // the reference locates its starts within its steps as the engine does
-                // (measured: within 2.8e-5 of the run; 5e-3 when it noted them at the end
-                // of the step, up to a step late)
-                assert!(
-                    (x.time - y.time).abs() <= 1e-4 * d,
-                    "{word}: {x:?} vs {y:?}"
-                );
-            }
-        }
     }
 }

@@ -14,9 +14,8 @@ use std::f64::consts::FRAC_PI_2;
 use kurbo::{Point, Vec2};
 
 use crate::frame::Frame;
+use crate::model::{Mode, Model, Unknown};
 use crate::physics::{along_path, joints_between, pairs_within, torque_about, Pole};
-use crate::reference::dynamics::{Mode, Model, Unknown};
-use crate::reference::integrators::System;
 
 /// Everything the forces give at one state, with the scratch of one evaluation.
 #[derive(Clone, Debug, Default)]
@@ -351,33 +350,11 @@ impl Model {
     }
 }
 
-/// The model with its unknowns' modes: the system the integrators step.
-pub(crate) struct Moving<'a> {
-    pub(crate) model: &'a Model,
-    pub(crate) modes: &'a [Mode],
-}
-
-impl System for Moving<'_> {
-    type Work = Forces;
-
-    fn bandwidth(&self) -> usize {
-        self.model.bandwidth()
-    }
-
-    fn counts(&self, i: usize) -> bool {
-        self.modes[i] == Mode::Free
-    }
-
-    fn rhs(&self, y: &[f64], work: &mut Forces, out: &mut [f64]) {
-        self.model.rhs(y, self.modes, work, out);
-    }
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::reference::ModelOptions;
+    use crate::model::ModelOptions;
     use crate::timeline::TileDesigns;
     use crate::{Chain, Design};
 

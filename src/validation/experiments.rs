@@ -14,18 +14,12 @@
 //! propagation, is Table 7.1's geometry (the event engine and the reference both find it),
 //! not an observation with a count, and is left out here.
 //!
-//! [`pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8: each pair of
-//! adjacent magnets (the RI with magnet 0, then magnet `k` with `k + 1`) and the total
-//! ([`crate::reference::state_energy`]) against time.
+//! [`crate::reference::pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8
+//! of the runs: each pair of adjacent magnets (the RI with magnet 0, then magnet `k` with
+//! `k + 1`) and the total ([`crate::reference::state_energy`]) against time.
 
-use kurbo::Point;
-
-use crate::physics::Pole;
-use crate::reference::dynamics::ModelOptions;
-use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
-use crate::reference::pictures::state_energy;
-use crate::reference::run_result::ReferenceRun;
-use crate::reference::{run_reference, Dynamics};
+use crate::model::{Dynamics, ModelOptions};
+use crate::reference::{run_reference, Recording, ReferenceError, ReferenceOptions, ReferenceRun};
 use crate::timeline::TileDesigns;
 use crate::{Chain, ChainError, FoldWord};
 
@@ -169,76 +163,12 @@ fn dynamics_name(d: Dynamics) -> &'static str {
     d.name()
 }
 
-/// The energy curves of a run (thesis figures 7.7, 7.8), one point per recorded state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PairEnergies {
-    /// The times, s.
-    pub times: Vec<f64>,
-    /// Per adjacent pair (the RI with magnet 0, then magnet `k` with `k + 1`), its energy at
-    /// each time, J.
-    pub pairs: Vec<Vec<f64>>,
-    /// The chain's total dipole energy at each time, J.
-    pub total: Vec<f64>,
-    /// The phase boundaries: the times a magnet started or arrived, or a fold started or
-    /// ended, s.
-    pub phases: Vec<f64>,
-}
-
-/// The energy curves of `run` from its recorded states (or its final state alone).
-pub fn pair_energies(run: &ReferenceRun) -> PairEnergies {
-    let states: Vec<(f64, &[f64])> = if run.states.is_empty() {
-        vec![(run.end_time, run.final_state.as_slice())]
-    } else {
-        run.states.iter().map(|(t, y)| (*t, y.as_slice())).collect()
-    };
-    let g = &run.model.geometry;
-    let n = g.magnets();
-    let law = run.model.options().force_law;
-    let ri = g.ri();
-    let moment = |k: usize| g.design(k / 2).moment();
-    let mut pairs = vec![Vec::with_capacity(states.len()); n];
-    let mut times = Vec::with_capacity(states.len());
-    let mut total = Vec::with_capacity(states.len());
-    for (t, y) in &states {
-        let p: Vec<Point> = run
-            .model
-            .positions(y)
-            .into_iter()
-            .map(Point::from)
-            .collect();
-        times.push(*t);
-        total.push(state_energy(run, y));
-        for (k, series) in pairs.iter_mut().enumerate() {
-            let e = if k == 0 {
-                let attract = Pole::Ri.attracts(Pole::Magnet(0));
-                law.energy(ri.position, p[0], ri.moment, moment(0), attract)
-            } else {
-                let attract = Pole::Magnet(k - 1).attracts(Pole::Magnet(k));
-                law.energy(p[k - 1], p[k], moment(k - 1), moment(k), attract)
-            };
-            series.push(e);
-        }
-    }
-    let mut phases: Vec<f64> = run
-        .events
-        .iter()
-        .filter(|e| e.kind.is_motion())
-        .map(|e| e.time)
-        .collect();
-    phases.dedup();
-    PairEnergies {
-        times,
-        pairs,
-        total,
-        phases,
-    }
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
     use crate::physics::{ForceLaw, Inertia};
+    use crate::reference::pair_energies;
 
     #[test]
     fn chains_parse_and_energy_falls() {

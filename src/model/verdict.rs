@@ -8,7 +8,7 @@
 //! pair's path ends lie farther apart than the pair at rest (the geometry of Table 7.1's LR
 //! and RL), stalled otherwise, with what the dynamics left.
 
-use crate::reference::dynamics::{Mode, Model};
+use crate::model::{Mode, Model};
 use crate::timeline::{joint_of_magnet, Outcome};
 
 /// The end of a run: its modes, state and drives there.

@@ -1,22 +1,13 @@
-//! The two integrators of the reference model, each a single step with an error estimate;
-//! step-size control and events are the driver's ([`crate::reference::run_reference`]).
-//!
-//! - **Dormand-Prince 5(4)** (explicit, adaptive): seven stages, first same as last, the
-//!   fourth-order embedded solution for the error. Its stability region bounds the step by
-//!   about `3.3 / |lambda|` whatever the tolerance, so it pays for stiffness in steps.
-//! - **ROS2** (Verwer, Spee, Blom and Hundsdorfer 1999): a two-stage Rosenbrock method,
-//!   second order, L-stable, `gamma = 1 + 1/sqrt2`, the first-order `y + h k1` as the
-//!   embedded solution. It is second order for any approximation of the Jacobian (a
-//!   W-method), so the finite-difference banded Jacobian (the `banded` module) costs
-//!   no accuracy. Each step solves two band systems with one factorisation.
-//!
-//! Both are written here rather than taken from a crate: the model is small and banded, the
-//! events are the model's own (modes that clamp unknowns), and a general ODE crate (diffsol)
-//! would add minutes of build time on a two-core machine for no gain at these sizes.
+//! One step of a system of many unknowns with an error estimate ([`Stepper`]), by either
+//! integrator ([`Method`]): Dormand-Prince 5(4) ([`crate::ode::dopri`](super::dopri)) or
+//! ROS2 with a banded Jacobian ([`crate::ode::rosenbrock`](super::rosenbrock)). Step-size
+//! control ([`crate::ode::StepControl`]) and events belong to the stepping loop that calls it.
+//! Nothing is allocated per step.
 
 use std::fmt::Debug;
 
-use crate::reference::banded::{Band, Singular};
+use crate::ode::band::{Band, Singular};
+use crate::ode::dopri;
 
 /// An integrator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
@@ -63,48 +54,6 @@ pub struct StepStats {
     pub event_steps: u64,
 }
 
-/// Dormand-Prince 5(4): the stage coefficients (also the engine's local solves').
-pub(crate) const A: [[f64; 6]; 6] = [
-    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-    ],
-];
-/// Dormand-Prince 5(4): the error weights.
-pub(crate) const E: [f64; 7] = [
-    71.0 / 57600.0,
-    0.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-];
-const GAMMA: f64 = 1.0 + std::f64::consts::FRAC_1_SQRT_2;
-
 /// A system `dy/dt = f(y)` the integrators step: the reference model with its unknowns'
 /// modes, or a test problem.
 pub(crate) trait System {
@@ -124,15 +73,15 @@ pub(crate) trait System {
 pub(crate) struct Stepper<W> {
     /// The method.
     pub(crate) method: Method,
-    k: Vec<Vec<f64>>,
-    tmp: Vec<f64>,
-    work: W,
-    jac: Band,
-    lu: Band,
-    jac_fresh: bool,
+    pub(super) k: [Vec<f64>; 7],
+    pub(super) tmp: Vec<f64>,
+    pub(super) work: W,
+    pub(super) jac: Band,
+    pub(super) lu: Band,
+    pub(super) jac_fresh: bool,
     /// Scratch of the Jacobian's differences: a state and its rates.
-    jac_y: Vec<f64>,
-    jac_f: Vec<f64>,
+    pub(super) jac_y: Vec<f64>,
+    pub(super) jac_f: Vec<f64>,
 }
 
 impl<W: Default + Debug> Stepper<W> {
@@ -140,7 +89,7 @@ impl<W: Default + Debug> Stepper<W> {
     pub(crate) fn new(method: Method, n: usize, bandwidth: usize) -> Stepper<W> {
         Stepper {
             method,
-            k: vec![vec![0.0; n]; 7],
+            k: std::array::from_fn(|_| vec![0.0; n]),
             tmp: vec![0.0; n],
             work: W::default(),
             jac: Band::zeros(n, bandwidth, bandwidth),
@@ -163,7 +112,7 @@ impl<W: Default + Debug> Stepper<W> {
     }
 
     /// The scratch of `f`, to evaluate the system's forces elsewhere with it (the model's
-    /// drives near the free unknowns only, [`crate::reference::Model`]).
+    /// drives near the free unknowns only, [`crate::model::Model`]).
     pub(crate) fn work_mut(&mut self) -> &mut W {
         &mut self.work
     }
@@ -171,7 +120,7 @@ impl<W: Default + Debug> Stepper<W> {
     /// The stages of the last Dormand-Prince step (`[0]` the rates at its start, `[6]` at
     /// its end), for its dense output ([`crate::reference::dense`]).
     pub(crate) fn stages(&self) -> &[Vec<f64>] {
-        &self.k
+        &self.k[..]
     }
 
     /// `dy/dt` at `y`.
@@ -219,18 +168,11 @@ impl<W: Default + Debug> Stepper<W> {
     ) -> f64 {
         let n = y0.len();
         self.k[0].copy_from_slice(f0);
-        for (s, row) in A.iter().enumerate() {
-            for i in 0..n {
-                let mut acc = 0.0;
-                for (j, a) in row.iter().enumerate().take(s + 1) {
-                    acc += a * self.k[j][i];
-                }
-                y[i] = y0[i] + h * acc;
-            }
-            let mut out = std::mem::take(&mut self.k[s + 1]);
-            self.rhs(sys, y, &mut out, stats);
-            self.k[s + 1] = out;
-        }
+        let mut k = std::mem::take(&mut self.k);
+        dopri::stages(y0, h, &mut k, y, None, |_, y, out| {
+            self.rhs(sys, y, out, stats)
+        });
+        self.k = k;
         // y is now the fifth-order solution (row 6 of A is b)
         let mut sum = 0.0;
         let mut count = 0usize;
@@ -238,10 +180,7 @@ impl<W: Default + Debug> Stepper<W> {
             if !sys.counts(i) {
                 continue;
             }
-            let mut e = 0.0;
-            for (j, c) in E.iter().enumerate() {
-                e += c * self.k[j][i];
-            }
+            let e = dopri::error_rate(&self.k, i);
             let sc = tol * (1.0 + y0[i].abs().max(y[i].abs()));
             sum += (h * e / sc).powi(2);
             count += 1;
@@ -256,105 +195,6 @@ impl<W: Default + Debug> Stepper<W> {
     /// The last stage's derivative, `dy/dt` at the new state (Dormand-Prince only).
     pub(crate) fn last_derivative(&self) -> Option<&[f64]> {
         (self.method == Method::Dopri5).then(|| self.k[6].as_slice())
-    }
-
-    fn jacobian<S: System<Work = W>>(
-        &mut self,
-        sys: &S,
-        y0: &[f64],
-        f0: &[f64],
-        stats: &mut StepStats,
-    ) {
-        let n = y0.len();
-        let bw = sys.bandwidth();
-        let groups = (2 * bw + 1).min(n);
-        self.jac.clear();
-        stats.jacobians += 1;
-        let mut y = std::mem::take(&mut self.jac_y);
-        let mut f = std::mem::take(&mut self.jac_f);
-        let delta = |x: f64| if x > 0.5 { -1e-7 } else { 1e-7 };
-        for g in 0..groups {
-            y.copy_from_slice(y0);
-            let mut c = g;
-            while c < n {
-                y[c] += delta(y0[c]);
-                c += groups;
-            }
-            self.rhs(sys, &y, &mut f, stats);
-            let mut c = g;
-            while c < n {
-                let d = delta(y0[c]);
-                let lo = c.saturating_sub(bw);
-                let hi = (c + bw).min(n - 1);
-                for (i, fi) in f.iter().enumerate().take(hi + 1).skip(lo) {
-                    self.jac.set(i, c, (fi - f0[i]) / d);
-                }
-                c += groups;
-            }
-        }
-        self.jac_y = y;
-        self.jac_f = f;
-        self.jac_fresh = true;
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn ros2<S: System<Work = W>>(
-        &mut self,
-        sys: &S,
-        y0: &[f64],
-        f0: &[f64],
-        h: f64,
-        tol: f64,
-        stats: &mut StepStats,
-        y: &mut [f64],
-    ) -> Result<f64, Singular> {
-        let n = y0.len();
-        if !self.jac_fresh {
-            self.jacobian(sys, y0, f0, stats);
-        }
-        let bw = sys.bandwidth();
-        self.lu.clear();
-        for i in 0..n {
-            for j in i.saturating_sub(bw)..=(i + bw).min(n - 1) {
-                let id = if i == j { 1.0 } else { 0.0 };
-                self.lu.set(i, j, id - GAMMA * h * self.jac.get(i, j));
-            }
-        }
-        stats.factorisations += 1;
-        self.lu.factor()?;
-        // the two stages live in the first two of Dormand-Prince's stage vectors
-        let mut k1 = std::mem::take(&mut self.k[0]);
-        let mut k2 = std::mem::take(&mut self.k[1]);
-        k1.copy_from_slice(f0);
-        self.lu.solve(&mut k1);
-        for i in 0..n {
-            self.tmp[i] = y0[i] + h * k1[i];
-        }
-        let tmp = std::mem::take(&mut self.tmp);
-        self.rhs(sys, &tmp, &mut k2, stats);
-        self.tmp = tmp;
-        for i in 0..n {
-            k2[i] -= 2.0 * k1[i];
-        }
-        self.lu.solve(&mut k2);
-        let mut sum = 0.0;
-        let mut count = 0usize;
-        for i in 0..n {
-            y[i] = y0[i] + h * (1.5 * k1[i] + 0.5 * k2[i]);
-            if sys.counts(i) {
-                let e = 0.5 * h * (k1[i] + k2[i]);
-                let sc = tol * (1.0 + y0[i].abs().max(y[i].abs()));
-                sum += (e / sc).powi(2);
-                count += 1;
-            }
-        }
-        self.k[0] = k1;
-        self.k[1] = k2;
-        Ok(if count == 0 {
-            0.0
-        } else {
-            (sum / count as f64).sqrt()
-        })
     }
 }
 

@@ -1,26 +1,35 @@
 //! The dense output of one accepted step: the state anywhere inside it without a new step,
-//! which the driver locates events on ([`crate::reference`]'s `locate` module).
+//! which events are located on ([`crate::ode::locate`](super::locate)).
 //!
 //! - **Dormand-Prince**: its free continuous extension of order 4 (Hairer, Norsett and
-//!   Wanner, *Solving ODEs I*, II.6; the coefficients of `dopri5.f`'s `CONTD5`), built from
-//!   the seven stages the step already has, so it costs no evaluation of the right-hand
-//!   side.
-//! - **ROS2**: the cubic Hermite interpolant on the step's ends (states and rates), of order
-//!   3, above the method's 2.
+//!   Wanner, *Solving ODEs I*, II.6; the coefficients of `dopri5.f`'s `CONTD5`,
+//!   [`crate::ode::dopri::D`](super::dopri::D)), built from the seven stages the step already
+//!   has, so it costs no evaluation of the right-hand side.
+//! - **Cubic Hermite** on the step's ends (states and rates), of order 3: for the Rosenbrock
+//!   methods, and for the event engine's small units whatever their method ([`hermite`], one
+//!   component at a time; its tracks are Hermite pieces too).
 //!
-//! Both are written as `y0 + th (r1 + (1 - th) (r2 + th (r3 + (1 - th) r4)))` with
+//! [`Dense`] writes both as `y0 + th (r1 + (1 - th) (r2 + th (r3 + (1 - th) r4)))` with
 //! `th = (t - t0) / h`; the Hermite interpolant is the case `r4 = 0`.
 
-/// Dormand-Prince's dense-output weights of stages 1, 3, 4, 5, 6 and 7 (stage 2 has none).
-const D: [f64; 7] = [
-    -12715105075.0 / 11282082432.0,
-    0.0,
-    87487479700.0 / 32700410799.0,
-    -10690763975.0 / 1880347072.0,
-    701980252875.0 / 199316789632.0,
-    -1453857185.0 / 822651844.0,
-    69997945.0 / 29380423.0,
-];
+use crate::ode::dopri::D;
+
+/// The cubic Hermite interpolant through `(t0, a.0, a.1)` and `(t1, b.0, b.1)` (value,
+/// rate) at `t`; `b.0` for an empty interval.
+pub(crate) fn hermite(t0: f64, t1: f64, a: (f64, f64), b: (f64, f64), t: f64) -> f64 {
+    let h = t1 - t0;
+    if h <= 0.0 {
+        return b.0;
+    }
+    let s = (t - t0) / h;
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
+    let h10 = s3 - 2.0 * s2 + s;
+    let h01 = -2.0 * s3 + 3.0 * s2;
+    let h11 = s3 - s2;
+    h00 * a.0 + h10 * h * a.1 + h01 * b.0 + h11 * h * b.1
+}
 
 /// The interpolant of one step (its storage is kept from step to step).
 #[derive(Clone, Debug, Default)]
@@ -80,7 +89,7 @@ impl Dense {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::reference::integrators::{Method, StepStats, Stepper, System};
+    use crate::ode::{Method, StepStats, Stepper, System};
 
     /// `y' = -y + cos(3 t)` written autonomously (`t` is the second unknown): smooth, with
     /// a known solution from `y(0) = 1`.
