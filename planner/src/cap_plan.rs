@@ -51,7 +51,12 @@ fn routes_at(
             let k = w0 / w;
             let plans = plans.clone().into_iter().map(move |mut p| {
                 for c in &mut p.cells {
-                    c.rect = kurbo::Rect::new(c.rect.x0 * k, c.rect.y0 * k, c.rect.x1 * k, c.rect.y1 * k);
+                    c.rect = kurbo::Rect::new(
+                        c.rect.x0 * k,
+                        c.rect.y0 * k,
+                        c.rect.x1 * k,
+                        c.rect.y1 * k,
+                    );
                 }
                 p
             });
@@ -60,11 +65,8 @@ fn routes_at(
                 .into_iter()
                 .take(DECOMPOSITIONS)
                 .flat_map(move |p| {
-                    let cells: Vec<Shape> = p
-                        .cells
-                        .iter()
-                        .map(|c| axis_shape.clipped(c.rect))
-                        .collect();
+                    let cells: Vec<Shape> =
+                        p.cells.iter().map(|c| axis_shape.clipped(c.rect)).collect();
                     let seq: Vec<(&Shape, Need)> = cells
                         .iter()
                         .zip(&p.cells)
@@ -164,11 +166,24 @@ pub(crate) fn plan_by_caps(
             return Attempt::Nothing;
         };
         let n = first.1.word.tiles();
-        let plans = checked_plans(shape, style, w, name, &routes, &mut collide, &mut rejected);
+        let plans = checked_plans(
+            shape,
+            style,
+            w,
+            name,
+            &routes,
+            crate::empty::near(opts.turns),
+            &mut collide,
+            &mut rejected,
+        );
         // a count within the tolerance first, then no part left empty, then the fit
         match plans.into_iter().min_by(by_rank) {
             Some(p) => {
-                let lacks = if p.metrics.largest_empty_tiles > 0.0 { 1.0 } else { 0.0 };
+                let lacks = if p.metrics.largest_empty_tiles > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                };
                 Attempt::Plan(p.tiles, lacks, p)
             }
             None => Attempt::Rejected(n),

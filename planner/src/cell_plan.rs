@@ -52,6 +52,7 @@ pub(crate) fn checked_plans(
     w: f64,
     name: &str,
     routes: &[(f64, Arc<Routed>)],
+    near: f64,
     collide: &mut String,
     rejected: &mut Option<(String, Box<Rejected>)>,
 ) -> Vec<Plan> {
@@ -79,7 +80,7 @@ pub(crate) fn checked_plans(
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
-        let plan = match note_empty(shape, asm.to_plan(&r.word, name)) {
+        let plan = match note_empty(shape, asm.to_plan(&r.word, name), near) {
             Ok(plan) => plan,
             Err((part, plan)) => {
                 if rejected

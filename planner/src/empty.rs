@@ -1,6 +1,6 @@
 //! Empty parts: a plan must not leave a part of the shape that a row could fill without a
 //! tile (a ring's band below its hole skipped by one serpentine, a letter's crossbar, a
-//! key's bits). The shape is sampled on a grid of a quarter tile width; sample points at
+//! key's bits). The shape is sampled on a grid of an eighth of a tile width; points at
 //! least [`EDGE`] inside the outline and farther than [`NEAR`] tile widths from every tile
 //! centre are "empty", and a connected group of empty points (four-neighbour) larger than
 //! [`MIN_EMPTY_TILES`] tile areas is an empty part (issue 26's measure).
@@ -17,8 +17,10 @@ use crate::shape::Shape;
 /// what no row reaches (issue 26's measure).
 pub(crate) const NEAR: f64 = 0.95;
 
-/// [`NEAR`] for a chain of turn style `turns`: loose rows lie `1 + sqrt2` apart, a tile
-/// width farther than tight ones, so their bands reach half of that farther.
+/// [`NEAR`] for plans of the asked turn style `turns`: loose rows lie `1 + sqrt2` apart, a
+/// tile width farther than tight ones, so when the user asks for loose turns their bands
+/// reach half of that farther; under `auto` every plan is held to [`NEAR`], so that a loose
+/// plan is chosen only where it leaves nothing empty by the issue's measure.
 pub(crate) fn near(turns: crate::Turns) -> f64 {
     match turns {
         crate::Turns::Loose => NEAR + 0.5,
@@ -36,8 +38,13 @@ pub(crate) const MIN_EMPTY_TILES: f64 = 2.0;
 /// one that leaves a smaller part (but more than [`MIN_EMPTY_TILES`]) is returned only when
 /// no plan leaves none, with a warning saying where.
 pub(crate) const REFUSE_EMPTY_TILES: f64 = 20.0;
-/// The sample spacing, tile widths.
-const STEP: f64 = 0.25;
+/// The sample spacing, tile widths: an eighth, as the corpus report measures (a coarser
+/// grid splits a thin empty strip into pieces that each look small).
+const STEP: f64 = 0.125;
+/// The sample spacing for plans of more than [`FINE_TILES`] tiles (a bound on the work).
+const COARSE_STEP: f64 = 0.25;
+/// Plans up to this many tiles are sampled at [`STEP`].
+const FINE_TILES: usize = 30_000;
 /// Plans with more tiles than this are not checked (the grid would hold millions of
 /// points; a part left empty at that size is a small share of the shape).
 pub(crate) const MAX_CHECKED_TILES: usize = 200_000;
@@ -70,8 +77,9 @@ impl std::fmt::Display for EmptyPart {
 }
 
 /// The largest part of the shape that `plan` leaves empty (see this module's
-/// documentation), in SVG user units, if it has at least [`MIN_EMPTY_TILES`] tile areas.
-pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<EmptyPart> {
+/// documentation; points farther than `near` tile widths from every centre), in SVG user
+/// units, if it has at least [`MIN_EMPTY_TILES`] tile areas.
+pub(crate) fn empty_part(shape: &Shape, plan: &Plan, near: f64) -> Option<EmptyPart> {
     let w = plan.tile_size;
     let work = shape.scaled(1.0 / w);
     let centres: Vec<Point> = plan
@@ -79,7 +87,7 @@ pub(crate) fn empty_part(shape: &Shape, plan: &Plan) -> Option<EmptyPart> {
         .iter()
         .map(|p| Point::new(p.x / w, -p.y / w))
         .collect();
-    let (tiles, c, b) = largest_empty_part(&work, &centres, near(plan.turns))?;
+    let (tiles, c, b) = largest_empty_part(&work, &centres, near)?;
     Some(EmptyPart {
         tiles,
         centre: Point::new(c.x * w, -c.y * w),
@@ -98,7 +106,11 @@ pub(crate) fn largest_empty_part(
     if centres.is_empty() || centres.len() > MAX_CHECKED_TILES {
         return None;
     }
-    let step = STEP;
+    let step = if centres.len() <= FINE_TILES {
+        STEP
+    } else {
+        COARSE_STEP
+    };
     let b = work.bbox();
     let nx = ((b.width() / step).ceil() as usize).max(1);
     let ny = ((b.height() / step).ceil() as usize).max(1);
@@ -228,17 +240,23 @@ mod tests {
                 })
                 .collect()
         };
-        let (area, p, b) = largest_empty_part(&shape, &rows(10), NEAR).expect("the right half is empty");
+        let (area, p, b) =
+            largest_empty_part(&shape, &rows(10), NEAR).expect("the right half is empty");
         assert!(area > 40.0 && p.x > 10.0, "{area} at {p:?}");
         assert!(b.x0 > 10.0 && b.x1 < 20.0 && b.height() > 8.0, "{b:?}");
         assert!(largest_empty_part(&shape, &rows(20), NEAR).is_none());
     }
 }
 
-/// Checks `plan` for an empty part: a part larger than [`REFUSE_EMPTY_TILES`] rejects it
-/// (returned with the plan); a smaller one is noted in the plan's metrics and warnings.
-pub(crate) fn note_empty(shape: &Shape, mut plan: Plan) -> Result<Plan, (EmptyPart, Plan)> {
-    match empty_part(shape, &plan) {
+/// Checks `plan` for an empty part (points farther than `near` tile widths from every
+/// centre, see [`near`]): a part larger than [`REFUSE_EMPTY_TILES`] rejects it (returned with
+/// the plan); a smaller one is noted in the plan's metrics and warnings.
+pub(crate) fn note_empty(
+    shape: &Shape,
+    mut plan: Plan,
+    near: f64,
+) -> Result<Plan, (EmptyPart, Plan)> {
+    match empty_part(shape, &plan, near) {
         None => Ok(plan),
         Some(part) if part.tiles > REFUSE_EMPTY_TILES => Err((part, plan)),
         Some(part) => {

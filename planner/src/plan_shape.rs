@@ -8,8 +8,8 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::cap_plan::plan_by_caps;
-use crate::cell_plan::{axes, CellFailure};
 use crate::caps;
+use crate::cell_plan::{axes, CellFailure};
 use crate::empty::note_empty;
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
@@ -43,6 +43,34 @@ pub(crate) fn plan_shape(
     .into_iter()
     .map(|s| s.priced(opts.turn_cost))
     .collect();
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let tiles_est = opts
+        .tile_size
+        .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    // one chain cannot cross a gap: a drawing in separate parts is refused at once
+    let parts = separate_parts(shape, tiles_est);
+    if parts.len() > 1 {
+        let list: Vec<String> = parts
+            .iter()
+            .take(4)
+            .map(|b| {
+                format!(
+                    "x {:.0} to {:.0}, y {:.0} to {:.0}",
+                    b.x0, b.x1, -b.y1, -b.y0
+                )
+            })
+            .collect();
+        return Err(PlanError::Unplannable {
+            name: name.into(),
+            reason: format!(
+                "the drawing is in {} separate parts ({}{}); one chain cannot cross the gaps between them: join the parts in the drawing, or plan each on its own",
+                parts.len(),
+                list.join("; "),
+                if parts.len() > 4 { "; ..." } else { "" }
+            ),
+            rejected: None,
+        });
+    }
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
     let mut failures: Vec<String> = Vec::new();
@@ -55,11 +83,6 @@ pub(crate) fn plan_shape(
         &mut failures,
         progress,
     );
-    // the size a tight serpentine would have, for the questions below
-    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
-    let tiles_est = opts
-        .tile_size
-        .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
     // the best plan rejected for an empty part, for a preview of where
     let mut rejected: Option<Box<Rejected>> = None;
     let mut reject = |r: Box<Rejected>| {
@@ -71,7 +94,7 @@ pub(crate) fn plan_shape(
         }
     };
     if let Some(p) = best.take() {
-        match note_empty(shape, p) {
+        match note_empty(shape, p, crate::empty::near(opts.turns)) {
             Ok(p) => best = Some(p),
             Err((part, p)) => {
                 failures.push(format!("one serpentine {part}"));
@@ -82,8 +105,7 @@ pub(crate) fn plan_shape(
             }
         }
     }
-    let parts = separate_parts(shape, tiles_est);
-    if monotone.is_empty() || parts > 1 {
+    if monotone.is_empty() {
         // one serpentine over a shape that is monotone in no direction (or in separate
         // parts) bridges its gaps: kept only while little of the chain lies outside
         if let Some(p) = best.take() {
@@ -115,7 +137,7 @@ pub(crate) fn plan_shape(
     };
     // caps joined by quarter turns, for shapes that are not one serpentine (and, up to
     // MAX_CELL_TILES tiles, for every shape: a monotone shape keeps the better of the two)
-    if (monotone.is_empty() || parts > 1 || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
+    if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
         progress("planning by caps", 0, 1);
         let by_caps: Vec<Result<Plan, CellFailure>> = styles
             .par_iter()
@@ -141,7 +163,7 @@ pub(crate) fn plan_shape(
     }
     best.ok_or_else(|| PlanError::Unplannable {
         name: name.into(),
-        reason: unplannable_reason(shape, parts, monotone.is_empty(), failures),
+        reason: unplannable_reason(shape, monotone.is_empty(), failures),
         rejected,
     })
 }
@@ -186,18 +208,9 @@ fn best_serpentine(
 }
 
 /// Why no plan was found: what is wrong with the shape, then what each planner said.
-fn unplannable_reason(
-    shape: &Shape,
-    parts: usize,
-    nowhere_monotone: bool,
-    mut failures: Vec<String>,
-) -> String {
+fn unplannable_reason(shape: &Shape, nowhere_monotone: bool, mut failures: Vec<String>) -> String {
     let mut reason = String::new();
-    if parts > 1 {
-        reason = format!(
-            "the shape is in {parts} separate parts and one chain would have to bridge the gaps between them; "
-        );
-    } else if nowhere_monotone {
+    if nowhere_monotone {
         let pieces = (0..12)
             .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
             .min()
@@ -211,11 +224,14 @@ fn unplannable_reason(
     reason
 }
 
-/// The number of separate parts of the shape, at about `tiles` tiles (parts smaller than
-/// half a tile are not counted).
-fn separate_parts(shape: &Shape, tiles: usize) -> usize {
+/// The separate parts of the shape at about `tiles` tiles, by their bounding boxes in the
+/// physical frame (parts smaller than half a tile are not counted).
+fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
     let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
     caps::parts(&shape.scaled(1.0 / w))
+        .into_iter()
+        .map(|b| kurbo::Rect::new(b.x0 * w, b.y0 * w, b.x1 * w, b.y1 * w))
+        .collect()
 }
 
 /// True if along some sweep axis the cheapest cap decomposition at about `tiles` tiles has

@@ -405,8 +405,7 @@ pub(crate) fn route_sequence(seq: &[(&Shape, Need)], style: Style, memo: &CheckM
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
             let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
-            for (cost, look, leg, join_tiles) in
-                next_legs(prev, &laid, shape, style, toward, need)
+            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward, need)
             {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }

@@ -218,7 +218,9 @@ impl Shape {
     /// four sides: a ring that leaves the box and comes back keeps a stretch along the side,
     /// which has no area and adds no interval).
     pub(crate) fn clipped(&self, r: Rect) -> Shape {
-        let clip = |pts: Vec<Point>, inside: &dyn Fn(Point) -> bool, cross: &dyn Fn(Point, Point) -> Point| {
+        let clip = |pts: Vec<Point>,
+                    inside: &dyn Fn(Point) -> bool,
+                    cross: &dyn Fn(Point, Point) -> Point| {
             let n = pts.len();
             let mut out = Vec::with_capacity(n + 4);
             for i in 0..n {
