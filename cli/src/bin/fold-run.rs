@@ -303,6 +303,17 @@ fn run(args: Args) -> anyhow::Result<u8> {
             )
         })?;
     let dynamics = args.dynamics.to_dynamics();
+    if args.model == ReferenceModel::FreeBody {
+        if !(args.reference || args.compare) {
+            bail!("--model free-body: the reference's model; give --reference or --compare");
+        }
+        if args.dynamics == DynamicsChoice::Overdamped {
+            bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
+        }
+        if args.distance_cutoff.is_some() {
+            bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
+        }
+    }
     let drag = args.drag.unwrap_or(DEFAULT_DRAG);
     let speed = match args.speed {
         SpeedChoice::Unit => SpeedLaw::Unit,
