@@ -44,6 +44,7 @@ pub mod collision;
 pub mod count;
 pub mod design;
 pub mod engine;
+mod engine_choice;
 mod error;
 pub mod exact;
 mod frame;
@@ -57,6 +58,7 @@ mod octagon;
 mod path_kind;
 pub mod physics;
 mod pose;
+mod progress;
 pub mod reference;
 pub mod render;
 mod simulation;
@@ -69,6 +71,10 @@ mod word;
 pub use bom::BillOfMaterials;
 pub use chain::{Chain, MAX_TILES};
 pub use design::{Design, DesignError, InequalityCheck, Standing};
+pub use engine_choice::{
+    auto_engine, distinct_neighbourhoods, AutoEngine, EngineKind, LOCAL_ENGINE_MAX_NEIGHBOURHOODS,
+    NEIGHBOURHOOD_RADIUS,
+};
 pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
 pub use joint::{Fold, JointOutcome};
@@ -76,6 +82,7 @@ pub use number_text::short_number;
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
+pub use progress::{NoProgress, Progress};
 pub use simulation::{
     check_engine_run, check_reference, folded_word, simulate, timeline_json, SimulateError,
     MAX_TIMELINE_EVENTS,

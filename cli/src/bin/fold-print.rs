@@ -10,7 +10,7 @@ use foldchain::timeline::TileDesigns;
 use foldchain_cli::choices::{FormatChoice, PrinterChoice};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
 use foldchain_cli::output::{create_dir_all, OutputDir};
-use foldchain_cli::report::print_error;
+use foldchain_cli::report::{finish, parse_args, print_error};
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_planner::{PlanOptions, Turns};
 use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
@@ -89,17 +89,21 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
+    let args = match parse_args::<Args>("fold-print") {
+        Ok(args) => args,
+        Err(code) => return code,
+    };
     match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            print_error("fold-print", &e);
-            let unplannable = matches!(
+        Err(e)
+            if matches!(
                 e.downcast_ref::<PrintError>(),
                 Some(PrintError::Plan(p)) if !p.is_bad_input()
-            );
-            ExitCode::from(if unplannable { 1 } else { 2 })
+            ) =>
+        {
+            print_error("fold-print", &e);
+            ExitCode::from(1)
         }
+        result => finish("fold-print", result.map(|()| 0)),
     }
 }
 
