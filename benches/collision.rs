@@ -20,8 +20,8 @@ use std::time::Instant;
 
 use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions, FoldSchedule};
 use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::reference::{Dynamics, ModelOptions};
 use foldchain::{folded_word, kinematics, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.

@@ -14,10 +14,10 @@
 
 use std::time::Instant;
 
-use foldchain::reference::scenes::all_scenes;
-use foldchain::reference::validate::compare_events;
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::TileDesigns;
+use foldchain::validation::compare_events;
+use foldchain::validation::scenes::all_scenes;
 use foldchain::{Chain, Design};
 
 /// CPU seconds (user + system) of this process so far, from `/proc/self/stat` (fields 14

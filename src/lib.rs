@@ -13,8 +13,9 @@
 //!   coordinates in [`exact`]).
 //! - Self-intersection, exactly, during every fold and in the final shape ([`collision`]), and
 //!   the counts of chains that fold cleanly ([`count`]).
-//! - The folding run: the event engine ([`engine`]), the force-integrated reference
-//!   ([`reference`](mod@reference)) and their pictures ([`render`]).
+//! - The folding run: the event engine ([`engine`]) and the force-integrated reference
+//!   ([`reference`](mod@reference)), both read through one run abstraction
+//!   ([`timeline::RunSource`]); their pictures and viewer are the `foldchain-render` crate.
 //!
 //! ```
 //! use foldchain::collision::{check_word, CheckOptions};
@@ -53,24 +54,26 @@ mod joint;
 pub mod kinematics;
 pub mod magnet_path;
 pub mod margins;
+pub mod model;
 mod number_text;
 mod octagon;
+mod ode;
 mod path_kind;
 pub mod physics;
 mod pose;
 mod progress;
 pub mod reference;
-pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
 pub mod tolerance;
-pub mod viewer;
+pub mod validation;
 mod word;
 
 pub use bom::BillOfMaterials;
 pub use chain::{Chain, MAX_TILES};
 pub use design::{Design, DesignError, InequalityCheck, Standing};
+pub use engine::{timeline_json, MAX_TIMELINE_EVENTS};
 pub use engine_choice::{
     auto_engine, distinct_neighbourhoods, AutoEngine, EngineKind, LOCAL_ENGINE_MAX_NEIGHBOURHOODS,
     NEIGHBOURHOOD_RADIUS,
@@ -83,9 +86,6 @@ pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
 pub use progress::{NoProgress, Progress};
-pub use simulation::{
-    check_engine_run, check_reference, folded_word, simulate, timeline_json, SimulateError,
-    MAX_TIMELINE_EVENTS,
-};
+pub use simulation::{check_engine_run, check_reference, folded_word, simulate, SimulateError};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

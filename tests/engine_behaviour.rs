@@ -309,7 +309,7 @@ fn collisions_are_reported_with_time_and_tiles() {
 fn local_solves_on_one_thread_or_two_give_the_same_events() {
     // the sweeps two at once, the later trailing the earlier: every event the same to the
     // last bit (engine::local's cache rule and shape ids, not the threads' timing)
-    use foldchain::reference::{Dynamics, ModelOptions};
+    use foldchain::model::{Dynamics, ModelOptions};
     let chain = Chain::parse("S*30 LL S*30 RR S*30 LL S*30").unwrap();
     let designs = TileDesigns::global(Design::thesis().with_s(0.1));
     let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));

@@ -6,8 +6,9 @@
 
 use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::kinematics::{final_poses, poses_at_angles};
+use foldchain::model::ModelOptions;
 use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
-use foldchain::reference::{run_reference, Method, ModelOptions, ReferenceOptions, ReferenceRun};
+use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
 

@@ -6,11 +6,12 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::{ForceLaw, Inertia};
 use foldchain::reference::{
-    run_reference, state_budget, Dynamics, ModelOptions, Recording, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
 };
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
 

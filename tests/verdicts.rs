@@ -15,10 +15,9 @@ use rayon::prelude::*;
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::EngineOptions;
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::reference::{
-    run_reference, state_budget, Dynamics, ModelOptions, Recording, ReferenceOptions,
-};
+use foldchain::reference::{run_reference, state_budget, Recording, ReferenceOptions};
 use foldchain::timeline::{Summary, TileDesigns};
 use foldchain::{check_reference, simulate, Chain, Design};
 

@@ -4,8 +4,8 @@
 use std::fmt;
 
 use clap::ValueEnum;
+use foldchain::model::Dynamics;
 use foldchain::physics::Inertia;
-use foldchain::reference::Dynamics;
 use foldchain::tolerance::Printer;
 
 /// The physics of the local solves and of the reference.

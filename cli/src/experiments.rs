@@ -6,11 +6,12 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::{ForceLaw, Inertia};
-use foldchain::reference::experiments::{pair_energies, run_experiments, ExperimentResult};
-use foldchain::reference::{Dynamics, ModelOptions};
-use foldchain::render::pair_energy_svg;
+use foldchain::reference::pair_energies;
+use foldchain::validation::experiments::{run_experiments, ExperimentResult};
 use foldchain::Design;
+use foldchain_render::pair_energy_svg;
 
 use crate::output::OutputDir;
 

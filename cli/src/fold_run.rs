@@ -9,12 +9,12 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context};
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
 use foldchain::engine::{EngineOptions, StartRule, Summary, TileDesigns};
+use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 use foldchain::reference::{
-    run_reference, state_budget, ModelOptions, Recording, ReferenceOptions, ReferenceRun,
+    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
 };
-use foldchain::render::RunSource;
-use foldchain::timeline::{FoldRecord, SpeedLaw};
+use foldchain::timeline::{FoldRecord, RunSource, SpeedLaw};
 use foldchain::{auto_engine, check_reference, simulate, Chain, EngineKind};
 
 use crate::margins_file::MarginsJob;
@@ -358,7 +358,12 @@ mod tests {
     #[test]
     fn overlapping_folds_are_counted() {
         assert_eq!(most_folds_at_once(&[]), 0);
-        let f = [fold(0.0, 1.0), fold(1.0, 2.0), fold(1.5, 3.0), fold(1.6, 1.7)];
+        let f = [
+            fold(0.0, 1.0),
+            fold(1.0, 2.0),
+            fold(1.5, 3.0),
+            fold(1.6, 1.7),
+        ];
         assert_eq!(most_folds_at_once(&f), 3);
     }
 }

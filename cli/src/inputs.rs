@@ -249,7 +249,11 @@ pub fn resolve_chain(args: &ChainArgs<'_>, progress: &Progress) -> anyhow::Resul
                 },
                 chain,
                 target: Vec::new(),
-                files: if file { vec![PathBuf::from(arg)] } else { Vec::new() },
+                files: if file {
+                    vec![PathBuf::from(arg)]
+                } else {
+                    Vec::new()
+                },
             })
         }
     }

@@ -226,7 +226,9 @@ fn tick(shared: &Shared) {
                 if let Ok(style) = ProgressStyle::with_template(&template) {
                     shared.bar.set_style(style.progress_chars("=> "));
                 }
-                shared.bar.set_message(format!("{}: {}", shared.tool, s.stage));
+                shared
+                    .bar
+                    .set_message(format!("{}: {}", shared.tool, s.stage));
                 if counted {
                     shared.bar.set_length(s.total);
                     shared.bar.set_position(s.done);

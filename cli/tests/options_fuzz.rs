@@ -39,7 +39,9 @@ const fn flag(flag: &'static str, p: f64) -> Opt {
     }
 }
 
-const NUMBERS: &[&str] = &["0", "-1", "1e308", "-1e308", "NaN", "inf", "x", "", "1e-300"];
+const NUMBERS: &[&str] = &[
+    "0", "-1", "1e308", "-1e308", "NaN", "inf", "x", "", "1e-300",
+];
 
 struct Tool {
     name: &'static str,
@@ -75,11 +77,36 @@ fn tools() -> Vec<Tool> {
             bin: env!("CARGO_BIN_EXE_fold-run"),
             positional: CHAINS,
             options: vec![
-                opt("--plan", 0.05, &["@PLAN", "@PLAN", "@MISSING.json", "@CHAINFILE"]),
-                opt("--design", 0.15, &["@DESIGN", "@DESIGN", "@BADDESIGN", "@HUGEDESIGN", "@MISSING.json"]),
-                opt("--s", 0.15, &["0.3", "e/3", "0.25e", "0", "0.3mm", "4.7", "4.8", "1e308", "-1", "NaN", "x", "100"]),
+                opt(
+                    "--plan",
+                    0.05,
+                    &["@PLAN", "@PLAN", "@MISSING.json", "@CHAINFILE"],
+                ),
+                opt(
+                    "--design",
+                    0.15,
+                    &[
+                        "@DESIGN",
+                        "@DESIGN",
+                        "@BADDESIGN",
+                        "@HUGEDESIGN",
+                        "@MISSING.json",
+                    ],
+                ),
+                opt(
+                    "--s",
+                    0.15,
+                    &[
+                        "0.3", "e/3", "0.25e", "0", "0.3mm", "4.7", "4.8", "1e308", "-1", "NaN",
+                        "x", "100",
+                    ],
+                ),
                 opt("--out", 0.97, &["@DIR", "@DIR", "@DIR", "@AFILE", ""]),
-                opt("--frames", 0.9, &["1", "2", "3", "0", "-1", "1e9", "100001", "x", "1e0"]),
+                opt(
+                    "--frames",
+                    0.9,
+                    &["1", "2", "3", "0", "-1", "1e9", "100001", "x", "1e0"],
+                ),
                 opt("--frames-view", 0.1, &["auto", "fixed", "x"]),
                 flag("--json", 0.2),
                 flag("--quiet", 0.2),
@@ -88,14 +115,30 @@ fn tools() -> Vec<Tool> {
                 opt("--start-rule", 0.1, &["distance", "force", "x"]),
                 opt("--force-law", 0.1, &["dipole", "cylinder", "x"]),
                 opt("--dynamics", 0.15, &["inertial", "overdamped", "x"]),
-                opt("--distance-cutoff", 0.1, &["90", "0.001", "0", "-1", "1e308", "x"]),
-                opt("--drag", 0.15, &["5", "0.001", "10000", "1e-300", "1e5", "x", "0"]),
+                opt(
+                    "--distance-cutoff",
+                    0.1,
+                    &["90", "0.001", "0", "-1", "1e308", "x"],
+                ),
+                opt(
+                    "--drag",
+                    0.15,
+                    &["5", "0.001", "10000", "1e-300", "1e5", "x", "0"],
+                ),
                 opt("--threads", 0.1, &["1", "2", "0", "300", "x"]),
-                opt("--transition", 0.1, &["0..3", "0..100000", "3..1", "x", ".."]),
+                opt(
+                    "--transition",
+                    0.1,
+                    &["0..3", "0..100000", "3..1", "x", ".."],
+                ),
                 flag("--reference", 0.1),
                 flag("--compare", 0.05),
                 opt("--tiles", 0.15, &["10", "20", "0", "-5", "1e9", "x"]),
-                opt("--tile-size", 0.05, &["30", "20", "0", "1e-300", "1e308", "x"]),
+                opt(
+                    "--tile-size",
+                    0.05,
+                    &["30", "20", "0", "1e-300", "1e308", "x"],
+                ),
                 opt("--turns", 0.1, &["tight", "loose", "auto", "x"]),
                 flag("--bogus", 0.01),
             ],
@@ -106,7 +149,11 @@ fn tools() -> Vec<Tool> {
             positional: CHAINS,
             options: vec![
                 flag("--final-only", 0.3),
-                opt("--tolerance", 0.3, &["0", "0.001", "0.009", "0.01", "-1", "1e308", "x", "NaN"]),
+                opt(
+                    "--tolerance",
+                    0.3,
+                    &["0", "0.001", "0.009", "0.01", "-1", "1e308", "x", "NaN"],
+                ),
                 flag("--json", 0.3),
                 flag("--quiet", 0.2),
                 flag("--bogus", 0.01),
@@ -117,16 +164,28 @@ fn tools() -> Vec<Tool> {
             bin: env!("CARGO_BIN_EXE_fold-enum"),
             positional: &[],
             options: vec![
-                opt("--max-tiles", 0.9, &["2", "5", "8", "1", "41", "0", "-3", "x", "1e1"]),
+                opt(
+                    "--max-tiles",
+                    0.9,
+                    &["2", "5", "8", "1", "41", "0", "-3", "x", "1e1"],
+                ),
                 opt("--min-tiles", 0.2, &["2", "3", "9", "0", "x"]),
                 flag("--allow-lr", 0.2),
                 flag("--final-only", 0.2),
                 flag("--random", 0.3),
                 opt("--random-exact-max", 0.2, &["2", "5", "1", "41", "x"]),
                 opt("--samples", 0.3, &["10", "100", "0", "1e10", "-1", "x"]),
-                opt("--seed", 0.1, &["1", "0", "-1", "18446744073709551616", "x"]),
+                opt(
+                    "--seed",
+                    0.1,
+                    &["1", "0", "-1", "18446744073709551616", "x"],
+                ),
                 opt("--shard", 0.2, &["1/2", "2/2", "3/2", "0/1", "1/0", "x"]),
-                opt("--merge", 0.1, &["@ENUMPART", "@ENUMPART", "@MISSING.json", "@CHAINFILE"]),
+                opt(
+                    "--merge",
+                    0.1,
+                    &["@ENUMPART", "@ENUMPART", "@MISSING.json", "@CHAINFILE"],
+                ),
                 flag("--json", 0.3),
                 flag("--quiet", 0.3),
                 flag("--bogus", 0.01),
@@ -135,15 +194,48 @@ fn tools() -> Vec<Tool> {
         Tool {
             name: "fold-tolerance",
             bin: env!("CARGO_BIN_EXE_fold-tolerance"),
-            positional: &["SL", "LL", "S*3", "SLLS", "x", "", "@SQUARE", "@MISSING.svg"],
+            positional: &[
+                "SL",
+                "LL",
+                "S*3",
+                "SLLS",
+                "x",
+                "",
+                "@SQUARE",
+                "@MISSING.svg",
+            ],
             options: vec![
-                opt("--samples", 0.97, &["1", "10", "40", "0", "-1", "1e12", "x", "1e1"]),
-                opt("--tol", 0.3, &["s=0.05", "br=2%", "wall=0.1", "x=1", "s=-1", "s=1e308", "s=", "br=NaN"]),
+                opt(
+                    "--samples",
+                    0.97,
+                    &["1", "10", "40", "0", "-1", "1e12", "x", "1e1"],
+                ),
+                opt(
+                    "--tol",
+                    0.3,
+                    &[
+                        "s=0.05", "br=2%", "wall=0.1", "x=1", "s=-1", "s=1e308", "s=", "br=NaN",
+                    ],
+                ),
                 opt("--printer", 0.2, &["fdm", "resin", "x"]),
-                opt("--seed", 0.2, &["1", "0", "-1", "18446744073709551615", "18446744073709551616"]),
+                opt(
+                    "--seed",
+                    0.2,
+                    &[
+                        "1",
+                        "0",
+                        "-1",
+                        "18446744073709551615",
+                        "18446744073709551616",
+                    ],
+                ),
                 opt("--shard", 0.2, &["1/2", "2/2", "3/2", "0/1", "x"]),
                 flag("--json", 0.3),
-                opt("--design", 0.15, &["@DESIGN", "@OVERRIDES", "@BADDESIGN", "@HUGEDESIGN"]),
+                opt(
+                    "--design",
+                    0.15,
+                    &["@DESIGN", "@OVERRIDES", "@BADDESIGN", "@HUGEDESIGN"],
+                ),
                 opt("--s", 0.15, &["0.3", "e/3", "0", "4.8", "1e308", "-1", "x"]),
                 opt("--force-law", 0.1, &["dipole", "cylinder", "x"]),
                 flag("--optimize", 0.08),
@@ -159,10 +251,21 @@ fn tools() -> Vec<Tool> {
         Tool {
             name: "fold-plan",
             bin: env!("CARGO_BIN_EXE_fold-plan"),
-            positional: &["@SQUARE", "@SQUARE", "@MISSING.svg", "@CHAINFILE", "x.svgz", ""],
+            positional: &[
+                "@SQUARE",
+                "@SQUARE",
+                "@MISSING.svg",
+                "@CHAINFILE",
+                "x.svgz",
+                "",
+            ],
             options: vec![
                 opt("--tiles", 0.85, &["5", "12", "20", "0", "-5", "1e9", "x"]),
-                opt("--tiles-tolerance", 0.2, &["0", "0.03", "0.5", "0.6", "-1", "x"]),
+                opt(
+                    "--tiles-tolerance",
+                    0.2,
+                    &["0", "0.03", "0.5", "0.6", "-1", "x"],
+                ),
                 opt("--tile-size", 0.1, &["30", "0", "1e-300", "1e308", "x"]),
                 opt("--tile-mm", 0.1, &["30", "3", "0", "1e308", "x"]),
                 opt("--turn-cost", 0.2, &["1", "0", "10", "11", "-1", "x"]),
@@ -180,11 +283,19 @@ fn tools() -> Vec<Tool> {
             positional: &[],
             options: vec![
                 // always a scene: the whole validation takes minutes
-                opt("--scene", 1.0, &["3-tile SL", "3-tile LL", "3-tile SL", "nope"]),
+                opt(
+                    "--scene",
+                    1.0,
+                    &["3-tile SL", "3-tile LL", "3-tile SL", "nope"],
+                ),
                 flag("--quick", 0.4),
                 flag("--json", 0.3),
                 opt("--out", 0.9, &["@DIR", "@DIR", "@AFILE"]),
-                opt("--reference-tolerance", 0.2, &["1e-10", "1e-7", "1", "0", "-1", "x"]),
+                opt(
+                    "--reference-tolerance",
+                    0.2,
+                    &["1e-10", "1e-7", "1", "0", "-1", "x"],
+                ),
                 flag("--stiff", 0.1),
                 opt("--case", 0.1, &["SLLS control", "SLLS control", "nope"]),
                 flag("--experiments", 0.02),
@@ -197,17 +308,38 @@ fn tools() -> Vec<Tool> {
         Tool {
             name: "fold-print",
             bin: env!("CARGO_BIN_EXE_fold-print"),
-            positional: &["SL", "SLLS", "S*4", "@CHAINFILE", "LR", "x", "", "@MISSING.txt"],
+            positional: &[
+                "SL",
+                "SLLS",
+                "S*4",
+                "@CHAINFILE",
+                "LR",
+                "x",
+                "",
+                "@MISSING.txt",
+            ],
             options: vec![
                 opt("--plan", 0.05, &["@PLAN", "@PLAN", "@MISSING.json"]),
-                opt("--design", 0.1, &["@DESIGN", "@DESIGN", "@BADDESIGN", "@HUGEDESIGN"]),
+                opt(
+                    "--design",
+                    0.1,
+                    &["@DESIGN", "@DESIGN", "@BADDESIGN", "@HUGEDESIGN"],
+                ),
                 opt("--printer", 0.2, &["fdm", "resin", "x"]),
-                opt("--clearance", 0.2, &["0.25", "0.4", "0", "-1", "1e308", "x"]),
+                opt(
+                    "--clearance",
+                    0.2,
+                    &["0.25", "0.4", "0", "-1", "1e308", "x"],
+                ),
                 opt("--height", 0.2, &["7.5", "9", "0", "-1", "1e308", "x"]),
                 opt("--floor", 0.2, &["1.2", "2", "0", "-1", "1e308", "x"]),
                 opt("--out", 0.95, &["@DIR", "@DIR", "@AFILE"]),
                 opt("--format", 0.2, &["3mf", "stl", "x"]),
-                opt("--bed", 0.2, &["250,210", "180,180", "0,0", "1e308,1", "x", "100"]),
+                opt(
+                    "--bed",
+                    0.2,
+                    &["250,210", "180,180", "0,0", "1e308,1", "x", "100"],
+                ),
                 opt("--spacing", 0.2, &["5", "3", "0", "-1", "1e308", "x"]),
                 flag("--json", 0.2),
                 opt("--tiles", 0.1, &["10", "12", "0", "x"]),
@@ -241,7 +373,13 @@ impl Setup {
         );
         let square = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/square.svg");
         let plan = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
-            .args([square.to_str().unwrap(), "--tiles", "12", "--quiet", "--out"])
+            .args([
+                square.to_str().unwrap(),
+                "--tiles",
+                "12",
+                "--quiet",
+                "--out",
+            ])
             .arg(base.join("plan.json"))
             .output()
             .unwrap();
@@ -310,7 +448,10 @@ fn run_with_deadline(bin: &str, args: &[String], cwd: &Path) -> Option<(Option<i
 }
 
 fn shell_quote(a: &str) -> String {
-    if !a.is_empty() && a.bytes().all(|b| b.is_ascii_alphanumeric() || b"-_./=:,*".contains(&b)) {
+    if !a.is_empty()
+        && a.bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"-_./=:,*".contains(&b))
+    {
         a.to_string()
     } else {
         format!("'{}'", a.replace('\'', "'\\''"))
@@ -363,7 +504,10 @@ fn fuzz(name: &str, default_cases: usize) {
         let command = format!(
             "{} {}",
             name,
-            args.iter().map(|a| shell_quote(a)).collect::<Vec<_>>().join(" ")
+            args.iter()
+                .map(|a| shell_quote(a))
+                .collect::<Vec<_>>()
+                .join(" ")
         );
         let started = Instant::now();
         let ran = run_with_deadline(tool.bin, &args, &setup.base);

@@ -16,9 +16,10 @@ use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
+use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, Dynamics, ModelOptions, ReferenceOptions};
-use foldchain::render::RunSource;
+use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
 /// The page's background colour.

@@ -18,8 +18,8 @@ use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
+use crate::model::{Dynamics, Model, ModelError, ModelOptions};
 use crate::physics::ForceLaw;
-use crate::reference::{Dynamics, Model, ModelError, ModelOptions};
 use crate::timeline::{
     joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
     TileDesigns,

@@ -1,5 +1,5 @@
 //! The pair law the simulations use, as a value the callers pass
-//! ([`crate::engine::EngineOptions::force_law`], [`crate::reference::ModelOptions::force_law`]):
+//! ([`crate::engine::EngineOptions::force_law`], [`crate::model::ModelOptions::force_law`]):
 //! the point dipole of the thesis, or uniformly magnetised finite cylinders of the magnets'
 //! real shape ([`ForceLaw::cylinder`], tabulated once per shape: [`crate::physics`]'s
 //! `cylinder` module).

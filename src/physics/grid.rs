@@ -1,7 +1,7 @@
 //! Pairs of points closer than a distance, found on a uniform grid of cells of that size:
 //! each point is compared only with the points of its own and the eight neighbouring cells,
 //! so the work grows with the points and their crowding, not with their square. The
-//! reference's distance cutoff ([`crate::reference::ModelOptions::distance_cutoff`]) uses it
+//! reference's distance cutoff ([`crate::model::ModelOptions::distance_cutoff`]) uses it
 //! to keep the pairs that are far apart in chain index but near in space (a ring's first
 //! and last tiles).
 

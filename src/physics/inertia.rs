@@ -6,7 +6,7 @@
 //! With them a magnet of the thesis design has an inertial time `m / gamma` of about 5 ms,
 //! short against a move (tens of ms): its motion is inertial but well damped, and it bounces
 //! at its path's end as the thesis saw (7.3.1). The overdamped model
-//! ([`crate::reference::Dynamics::Overdamped`]) is the limit `m -> 0` at a drag large
+//! ([`crate::model::Dynamics::Overdamped`]) is the limit `m -> 0` at a drag large
 //! enough to make every move slow.
 
 /// Default magnet drag in the inertial model, N s/m: 0.05. Estimate: water pushed round a

@@ -8,7 +8,7 @@
 //! = 3, keeps the partner, the neighbour, the same-pole magnet one tile away and the next
 //! opposite pole. The first pair left out is 4 apart, two tiles (about `2w`) away in a
 //! straight run: `(b / 2w)^4` = 0.33% of the bonded rest force on the thesis design, and
-//! the left-out terms alternate in sign ([`crate::reference::Model::cutoff_error`] measures
+//! the left-out terms alternate in sign ([`crate::model::Model::cutoff_error`] measures
 //! it on a configuration).
 
 use std::ops::RangeInclusive;

@@ -16,19 +16,18 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::reference::control::StepControl;
-use crate::reference::dense::Dense;
-use crate::reference::dynamics::{Mode, Model};
-use crate::reference::dynamics_kind::Dynamics;
+use crate::model::condition;
+use crate::model::Forces;
+use crate::model::RestState;
+use crate::model::{InertialModel, Mode, Model};
+use crate::ode::System;
+use crate::ode::{Dense, Method, StepControl, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
-use crate::reference::forces::{Forces, Moving};
 use crate::reference::inertial::run_inertial;
-use crate::reference::integrators::{Method, StepStats, Stepper};
-use crate::reference::locate::{condition, events_at, StepEvents};
+use crate::reference::locate::{events_at, StepEvents};
 use crate::reference::options::{Recording, ReferenceError, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
-use crate::reference::verdict::RestState;
 use crate::timeline::{start_fraction, TileDesigns};
 use crate::Chain;
 
@@ -42,10 +41,33 @@ pub fn run_reference(
         return Err(ReferenceError::BadTolerance(opts.tolerance));
     }
     let model = Model::new(chain, designs, &opts.model)?;
-    Ok(match opts.model.dynamics {
-        Dynamics::Inertial(inertia) => run_inertial(model, inertia, opts),
-        _ => Driver::new(model, opts).run(),
+    // inertial dynamics have the model's inertial coefficients; overdamped ones none
+    Ok(match InertialModel::new(&model) {
+        Some(im) => run_inertial(model, im, opts),
+        None => Driver::new(model, opts).run(),
     })
+}
+
+/// The model with its unknowns' modes: the system the integrators step.
+pub(crate) struct Moving<'a> {
+    pub(crate) model: &'a Model,
+    pub(crate) modes: &'a [Mode],
+}
+
+impl System for Moving<'_> {
+    type Work = Forces;
+
+    fn bandwidth(&self) -> usize {
+        self.model.bandwidth()
+    }
+
+    fn counts(&self, i: usize) -> bool {
+        self.modes[i] == Mode::Free
+    }
+
+    fn rhs(&self, y: &[f64], work: &mut Forces, out: &mut [f64]) {
+        self.model.rhs(y, self.modes, work, out);
+    }
 }
 
 struct Driver {

@@ -2,7 +2,7 @@
 //! mode switch of an unknown becomes the event it means (a magnet starting or arriving, a
 //! fold starting or closing), with the fold records and the count of moving magnets.
 
-use crate::reference::dynamics::{Mode, Model, Unknown};
+use crate::model::{Mode, Model, Unknown};
 use crate::timeline::{Event, EventKind, FoldRecord};
 use crate::Fold;
 
@@ -160,9 +160,7 @@ impl EventLog {
             }
             self.reported[k] = true;
             let at = |t: f64| match (f0, f1) {
-                (Some(a), Some(b)) => {
-                    crate::timeline::hermite(t0, t1, (y0[v], a[v]), (y1[v], b[v]), t)
-                }
+                (Some(a), Some(b)) => crate::ode::hermite(t0, t1, (y0[v], a[v]), (y1[v], b[v]), t),
                 _ => y0[v] + (y1[v] - y0[v]) * (t - t0) / (t1 - t0).max(f64::MIN_POSITIVE),
             };
             let (mut lo, mut hi) = (t0, t1);

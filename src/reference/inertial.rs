@@ -1,23 +1,13 @@
-//! The inertial reference dynamics ([`crate::reference::Dynamics::Inertial`]): every magnet and folding joint
+//! The inertial reference dynamics ([`crate::model::Dynamics::Inertial`]): every magnet and folding joint
 //! of [`Model`] with mass, drag and a wall at each end of its range, integrated on
 //! positions and velocities (interleaved, so the Jacobian stays banded for ROS2) with the
 //! run's method.
 //!
-//! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
-//! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
-//! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
-//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
-//! drag of [`Inertia`] times the tiles downstream of the joint. The forces and torques are
-//! the overdamped model's ([`Model`]), so the two models differ only in how the chain
-//! answers them.
-//!
-//! **Walls.** An unknown reaching 0 or 1 bounces with the restitution of [`Inertia`]: the
-//! step is cut to end just past the wall (within 1e-9 of the range), the unknown is put on
-//! the wall and its velocity reversed and scaled. When the rebound would rise less than 1e-3
-//! of the range against the drive pressing it on (`v^2 < 2 a 1e-3`) or the restitution is 0,
-//! the unknown stays at the wall: that is its arrival (or a fold's end), and its start when
-//! its drive pulls it off again by more than the static threshold, as in the overdamped
-//! model. A step in which a clamped unknown's pull crosses that threshold is cut to end
+//! **Motion** and **walls** are the model's ([`InertialModel`]: accelerations, bounces, rests
+//! and releases). The forces and torques are the overdamped model's ([`Model`]), so the two
+//! models differ only in how the chain answers them. An unknown reaching 0 or 1: the step is
+//! cut to end just past the wall (within 1e-9 of the range), the unknown is put on the wall
+//! and bounces or stays there (its arrival, or a fold's end). A step in which a clamped unknown's pull crosses that threshold is cut to end
 //! there (within 1e-3 of the step, the pull taken linear over it), so a start is not up to a
 //! step late: at `s = 0`, where a start hangs on a rounding-sized balance, a step's lag on a
 //! fold's start (5e-4 s at tolerance 1e-8) left SLRRRL's folds 2e-4 rad behind the event
@@ -25,73 +15,12 @@
 //! (speed under 1e-7 of its range per inertial time, acceleration likewise) or nothing is
 //! free. When states are recorded, so is every wall contact ([`ReferenceRun::walls`]).
 
-use crate::physics::Inertia;
-use crate::reference::dynamics::{Mode, Model, Unknown};
+use crate::model::{at_wall, Forces, InertialModel, Mode, Model, RestState};
+use crate::ode::{integral, StepStats, Stepper, System};
 use crate::reference::event_log::EventLog;
-use crate::reference::forces::Forces;
-use crate::reference::integrators::{StepStats, Stepper, System};
 use crate::reference::options::{Recording, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
-use crate::reference::verdict::RestState;
-use std::f64::consts::FRAC_PI_2;
-
-/// A rebound that would rise less than this fraction of the range ends the bouncing.
-pub(crate) const REST_HEIGHT: f64 = 1e-3;
-
-/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
-/// damping rate (1/s), and the Coulomb friction (in drive units).
-pub(crate) struct Coefficients {
-    pub(crate) inv_mass: Vec<f64>,
-    pub(crate) damping: Vec<f64>,
-    pub(crate) coulomb: Vec<f64>,
-}
-
-impl Coefficients {
-    /// The run's three times, s: the inertial time of the slowest unknown, a move's time at
-    /// the bonded force, and a path's time at the bonded force against the drag alone (the
-    /// longest is the scale the rest test is measured on, the first step comes from them).
-    pub(crate) fn times(&self, model: &Model) -> (f64, f64, f64) {
-        let tau = self
-            .damping
-            .iter()
-            .filter(|d| **d > 0.0)
-            .map(|d| 1.0 / d)
-            .fold(0.0, f64::max);
-        let inv0 = self.inv_mass.first().copied().unwrap_or(1.0);
-        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
-        let drag_time = self.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
-        (tau, move_time, drag_time)
-    }
-
-    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
-        let tiles = model.geometry.tiles();
-        let n = model.len();
-        let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        for (i, u) in model.unknowns.iter().enumerate() {
-            match *u {
-                Unknown::Magnet(k) => {
-                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
-                    let len = model.path_length(k) * 1e-3;
-                    inv_mass[i] = 1.0 / (m * len);
-                    damping[i] = inertia.drag / m;
-                    coulomb[i] = inertia.coulomb;
-                }
-                Unknown::Joint(j) => {
-                    let swung = (tiles - 1 - j) as f64;
-                    let inertia_j = inertia.tile_inertia * swung;
-                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
-                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
-                }
-            }
-        }
-        Coefficients {
-            inv_mass,
-            damping,
-            coulomb,
-        }
-    }
-}
 
 /// Scratch of one evaluation: the positions and the drives there.
 #[derive(Debug, Default)]
@@ -104,7 +33,7 @@ pub(crate) struct Work {
 struct Inertial<'a> {
     model: &'a Model,
     modes: &'a [Mode],
-    c: &'a Coefficients,
+    im: &'a InertialModel,
 }
 
 impl System for Inertial<'_> {
@@ -130,11 +59,8 @@ impl System for Inertial<'_> {
                 continue;
             }
             let v = z[2 * i + 1];
-            let fc = self.c.coulomb[i];
-            let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
             out[2 * i] = v;
-            out[2 * i + 1] =
-                (work.forces.drive[i] - friction) * self.c.inv_mass[i] - self.c.damping[i] * v;
+            out[2 * i + 1] = self.im.acceleration(i, work.forces.drive[i], v);
         }
     }
 }
@@ -143,7 +69,7 @@ impl System for Inertial<'_> {
 /// static threshold and the Coulomb friction), at rest; notes them at time `t`.
 fn release(
     model: &Model,
-    c: &Coefficients,
+    im: &InertialModel,
     modes: &mut [Mode],
     z: &mut [f64],
     t: f64,
@@ -154,13 +80,7 @@ fn release(
     let y: Vec<f64> = (0..n).map(|i| z[2 * i]).collect();
     model.forces(&y, work);
     for i in 0..n {
-        let th = model.threshold(i).max(c.coulomb[i]);
-        let off = match modes[i] {
-            Mode::Free => false,
-            Mode::AtStart => work.drive[i] > th,
-            Mode::AtEnd => -work.drive[i] > th,
-        };
-        if off {
+        if im.released(model, i, modes[i], work.drive[i]) {
             let prev = std::mem::replace(&mut modes[i], Mode::Free);
             z[2 * i + 1] = 0.0;
             log.note(model, i, prev, Mode::Free, t, modes, &y);
@@ -177,7 +97,7 @@ const RELEASE_SLACK: f64 = 1e-3;
 /// pull taken linear in between; 1 when none is. Leaves the drives at `y1` in `work`.
 fn release_within(
     model: &Model,
-    c: &Coefficients,
+    im: &InertialModel,
     modes: &[Mode],
     drive0: &[f64],
     y1: &[f64],
@@ -189,7 +109,7 @@ fn release_within(
     model.forces(y1, work);
     let mut theta: f64 = 1.0;
     for (i, &mode) in modes.iter().enumerate() {
-        let th = model.threshold(i).max(c.coulomb[i]);
+        let th = im.threshold(model, i);
         let pull = |d: f64| match mode {
             Mode::AtStart => d - th,
             Mode::AtEnd => -d - th,
@@ -204,14 +124,13 @@ fn release_within(
 }
 
 /// Runs the inertial model (the driver of [`crate::reference::run_reference`] for
-/// [`crate::reference::Dynamics::Inertial`]).
+/// [`crate::model::Dynamics::Inertial`]).
 pub(crate) fn run_inertial(
     model: Model,
-    inertia: Inertia,
+    im: InertialModel,
     opts: &ReferenceOptions,
 ) -> ReferenceRun {
     let n = model.len();
-    let c = Coefficients::new(&model, &inertia);
     let joints = model.geometry.tiles().saturating_sub(1);
     let mut log = EventLog::new(
         joints,
@@ -223,12 +142,12 @@ pub(crate) fn run_inertial(
     let mut z = vec![0.0; 2 * n];
     let mut work = Forces::default();
     let tol = opts.tolerance;
-    let (tau, move_time, drag_time) = c.times(&model);
-    let scale = tau.max(move_time).max(drag_time);
+    let (_, move_time, drag_time) = im.c.times(&model);
+    let scale = im.scale;
     let mut stepper: Stepper<Work> = Stepper::new(opts.method, 2 * n, 2 * model.bandwidth() + 1);
-    let q = opts.method.error_order() as f64;
+    let expo = 1.0 / (opts.method.error_order() as f64 + 1.0);
     let mut t = 0.0;
-    let mut h = tau.min(move_time) * 1e-3;
+    let mut h = im.first_step * 1e-3;
     let mut stopped = None;
     let positions = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i]).collect() };
     let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
@@ -244,7 +163,7 @@ pub(crate) fn run_inertial(
     let mut walls = Vec::new();
     let mut f = vec![0.0; 2 * n];
     let mut z1 = vec![0.0; 2 * n];
-    release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+    release(&model, &im, &mut modes, &mut z, t, &mut log, &mut work);
     // the drives at the step's start (the clamped unknowns' pulls off their walls)
     let mut drive0 = work.drive.clone();
     loop {
@@ -256,13 +175,11 @@ pub(crate) fn run_inertial(
             let sys = Inertial {
                 model: &model,
                 modes: &modes,
-                c: &c,
+                im: &im,
             };
             stepper.rhs(&sys, &z, &mut f, &mut stats);
         }
-        let quiet = free.iter().all(|&i| {
-            z[2 * i + 1].abs() * scale < 1e-7 && f[2 * i + 1].abs() * scale * scale < 1e-7
-        });
+        let quiet = free.iter().all(|&i| im.quiet(z[2 * i + 1], f[2 * i + 1]));
         if quiet && t > log.last_event + scale {
             break;
         }
@@ -286,7 +203,7 @@ pub(crate) fn run_inertial(
         let sys = Inertial {
             model: &model,
             modes: &modes,
-            c: &c,
+            im: &im,
         };
         let err = match stepper.attempt(&sys, &z, &f, h, tol, &mut stats, &mut z1) {
             Ok(a) => a,
@@ -299,7 +216,7 @@ pub(crate) fn run_inertial(
         if !finite || err > 1.0 {
             stats.rejected += 1;
             h *= if finite {
-                (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.1, 0.9)
+                integral(err, expo, false)
             } else {
                 0.1
             };
@@ -332,7 +249,7 @@ pub(crate) fn run_inertial(
         // a clamped unknown pulled off its wall inside the step: cut the step to end at
         // that moment (the pull taken linear over the step), so that it starts there and
         // not up to a step late
-        let theta = release_within(&model, &c, &modes, &drive0, &positions(&z1), &mut work);
+        let theta = release_within(&model, &im, &modes, &drive0, &positions(&z1), &mut work);
         if theta < 1.0 - RELEASE_SLACK {
             let cut = h * theta.max(1e-6);
             if cut > 1e-14 * t.max(scale) {
@@ -341,11 +258,7 @@ pub(crate) fn run_inertial(
             }
         }
         stats.accepted += 1;
-        let grow = if err > 0.0 {
-            (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 5.0)
-        } else {
-            5.0
-        };
+        let grow = integral(err, expo, true);
         std::mem::swap(&mut z, &mut z1);
         // z1 keeps the step's start
         let (t0, z0) = (t, &z1);
@@ -380,23 +293,16 @@ pub(crate) fn run_inertial(
                 continue;
             };
             let v = z[2 * i + 1];
-            let inward = if wall == 1.0 { v > 0.0 } else { v < 0.0 };
             z[2 * i] = wall;
-            if !inward {
+            if !at_wall(wall, v) {
                 continue;
             }
             if rec.is_some() {
                 walls.push((t, i, wall));
             }
-            let rebound = -inertia.restitution * v;
-            // the drive pressing it on against the wall, as an acceleration
-            let press = if wall == 1.0 {
-                work.drive[i]
+            if let Some(rebound) = im.bounce(i, wall, v, work.drive[i]) {
+                z[2 * i + 1] = rebound;
             } else {
-                -work.drive[i]
-            };
-            let a = press.max(0.0) * c.inv_mass[i];
-            if inertia.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
                 let next = if wall == 1.0 {
                     Mode::AtEnd
                 } else {
@@ -407,15 +313,13 @@ pub(crate) fn run_inertial(
                 let y = positions(&z);
                 log.note(&model, i, prev, next, t, &modes, &y);
                 switched = true;
-            } else {
-                z[2 * i + 1] = rebound;
             }
         }
         if switched {
             log.close(t);
         }
         let before = modes.clone();
-        release(&model, &c, &mut modes, &mut z, t, &mut log, &mut work);
+        release(&model, &im, &mut modes, &mut z, t, &mut log, &mut work);
         drive0.clone_from(&work.drive);
         if before != modes || switched {
             stepper.invalidate();

@@ -13,21 +13,9 @@
 //! evaluation of the forces at the interpolated state, about 7 per event against the 20
 //! full steps (140 evaluations) of bisection with full steps at 1e-6.
 
-use crate::reference::dense::Dense;
-use crate::reference::dynamics::{Mode, Model};
-use crate::reference::forces::Forces;
-use crate::reference::integrators::StepStats;
-
-/// The mode unknown `i` switches to from `mode` at value `y` under `drive`, if it switches.
-pub(crate) fn condition(model: &Model, i: usize, mode: Mode, y: f64, drive: f64) -> Option<Mode> {
-    match mode {
-        Mode::AtStart if drive > model.threshold(i) => Some(Mode::Free),
-        Mode::AtEnd if -drive > model.threshold(i) => Some(Mode::Free),
-        Mode::Free if y >= 1.0 => Some(Mode::AtEnd),
-        Mode::Free if y <= 0.0 => Some(Mode::AtStart),
-        _ => None,
-    }
-}
+use crate::model::{condition, Forces, Mode, Model};
+use crate::ode::locate::illinois;
+use crate::ode::{Dense, StepStats};
 
 /// The unknowns whose condition holds at state `y` with drives `drive`, into `out`;
 /// whether there are any.
@@ -99,7 +87,7 @@ impl StepEvents<'_> {
     /// `y`: the upper end of the final bracket, where a margin is zero or negative.
     pub(crate) fn first(&self, y: &mut [f64], work: &mut Forces, stats: &mut StepStats) -> f64 {
         let width = (1e-3 * self.tol).max(1e-12);
-        let (mut lo, mut hi) = (0.0, 1.0);
+        let mut lo = 0.0;
         let mut g_lo = self.smallest(self.ends[0].0, self.ends[0].1);
         if g_lo <= 0.0 {
             // on a boundary at the start (an unknown just released from its end, which the
@@ -122,49 +110,10 @@ impl StepEvents<'_> {
             lo = th;
             g_lo = g;
         }
-        let mut g_hi = self.smallest(self.ends[1].0, self.ends[1].1).min(0.0);
-        // the side kept twice in a row, for the Illinois halving (-1 low, 1 high)
-        let mut kept = 0i32;
-        let mut iters = 0;
-        while hi - lo > width && iters < 100 {
-            iters += 1;
-            let before = hi - lo;
-            let secant = lo + (hi - lo) * g_lo / (g_lo - g_hi);
-            let mid = if secant.is_finite() && secant > lo && secant < hi {
-                secant
-            } else {
-                0.5 * (lo + hi)
-            };
-            let g = self.margin(mid, y, work, stats);
-            if g <= 0.0 {
-                hi = mid;
-                g_hi = g;
-                if kept == -1 {
-                    g_lo *= 0.5;
-                }
-                kept = -1;
-            } else {
-                lo = mid;
-                g_lo = g;
-                if kept == 1 {
-                    g_hi *= 0.5;
-                }
-                kept = 1;
-            }
-            // a bracket that did not halve: bisect once
-            if hi - lo > 0.5 * before && hi - lo > width {
-                let mid = 0.5 * (lo + hi);
-                let g = self.margin(mid, y, work, stats);
-                if g <= 0.0 {
-                    hi = mid;
-                    g_hi = g;
-                } else {
-                    lo = mid;
-                    g_lo = g;
-                }
-                kept = 0;
-            }
-        }
+        let g_hi = self.smallest(self.ends[1].0, self.ends[1].1).min(0.0);
+        let hi = illinois((lo, g_lo), (1.0, g_hi), width, |th| {
+            self.margin(th, y, work, stats)
+        });
         self.dense.at(hi, y);
         hi
     }
@@ -174,10 +123,9 @@ impl StepEvents<'_> {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::reference::control::StepControl;
-    use crate::reference::forces::Moving;
-    use crate::reference::integrators::{Method, Stepper};
-    use crate::reference::ModelOptions;
+    use crate::model::ModelOptions;
+    use crate::ode::{Method, StepControl, Stepper};
+    use crate::reference::driver::Moving;
     use crate::timeline::TileDesigns;
     use crate::{Chain, Design};
 

@@ -1,8 +1,8 @@
 //! The options of a reference run: the integrator and its tolerance, the model, the step
 //! limit and the states kept for pictures; and why a run could not be made.
 
-use crate::reference::dynamics::{ModelError, ModelOptions};
-use crate::reference::integrators::Method;
+use crate::model::{ModelError, ModelOptions};
+use crate::ode::Method;
 
 /// Which states a reference run keeps besides the final one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -1,15 +1,15 @@
 //! The reference run as pictures: the chain's state (tile poses, magnet positions, what is
 //! moving) at a recorded time, the energy curve and the transition diagram's data, drawn from
 //! the reference's own recorded states, in the shapes the event engine's pictures take
-//! ([`crate::render`]).
+//! (the `foldchain-render` crate reads them through [`crate::timeline::RunSource`]).
 //!
 //! The reference records its state on an evenly spaced time grid
 //! ([`Recording::Grid`], at most [`STATE_BUDGET_BYTES`] of states). A step frame shows the
 //! recorded state nearest its time (stamped with that state's own time); the final frame
 //! shows the final state at [`ReferenceRun::end_time`], when the chain came to rest or the
 //! integration stopped. Tile poses come from the joint angles and magnets from their paths,
-//! as the integrator had them ([`crate::reference::Model::poses`],
-//! [`crate::reference::Model::positions`]).
+//! as the integrator had them ([`crate::model::Model::poses`],
+//! [`crate::model::Model::positions`]).
 
 use kurbo::Point;
 
@@ -17,7 +17,7 @@ use crate::physics::{EnergyUnit, Pole};
 #[cfg(doc)]
 use crate::reference::options::Recording;
 use crate::reference::run_result::ReferenceRun;
-use crate::render::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
+use crate::timeline::{ChainState, MagnetTrack, PairEnergies, TransitionData, DETAIL_TILES};
 use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
@@ -249,11 +249,59 @@ pub fn reference_final_state(run: &ReferenceRun) -> ChainState {
     state
 }
 
+/// The energy curves of `run` from its recorded states (or its final state alone).
+pub fn pair_energies(run: &ReferenceRun) -> PairEnergies {
+    let states: Vec<(f64, &[f64])> = if run.states.is_empty() {
+        vec![(run.end_time, run.final_state.as_slice())]
+    } else {
+        run.states.iter().map(|(t, y)| (*t, y.as_slice())).collect()
+    };
+    let g = &run.model.geometry;
+    let n = g.magnets();
+    let law = run.model.options().force_law;
+    let ri = g.ri();
+    let moment = |k: usize| g.design(k / 2).moment();
+    let mut pairs = vec![Vec::with_capacity(states.len()); n];
+    let mut times = Vec::with_capacity(states.len());
+    let mut total = Vec::with_capacity(states.len());
+    for (t, y) in &states {
+        let p: Vec<Point> = run
+            .model
+            .positions(y)
+            .into_iter()
+            .map(Point::from)
+            .collect();
+        times.push(*t);
+        total.push(state_energy(run, y));
+        for (k, series) in pairs.iter_mut().enumerate() {
+            let e = if k == 0 {
+                let attract = Pole::Ri.attracts(Pole::Magnet(0));
+                law.energy(ri.position, p[0], ri.moment, moment(0), attract)
+            } else {
+                let attract = Pole::Magnet(k - 1).attracts(Pole::Magnet(k));
+                law.energy(p[k - 1], p[k], moment(k - 1), moment(k), attract)
+            };
+            series.push(e);
+        }
+    }
+    let mut phases: Vec<f64> = run
+        .events
+        .iter()
+        .filter(|e| e.kind.is_motion())
+        .map(|e| e.time)
+        .collect();
+    phases.dedup();
+    PairEnergies {
+        times,
+        pairs,
+        total,
+        phases,
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
-    use super::*;
-    use crate::engine::{energy_curve, run, EngineOptions};
     use crate::reference::{run_reference, Recording, ReferenceOptions};
     use crate::timeline::{Outcome, TileDesigns};
     use crate::Chain;
@@ -284,26 +332,5 @@ mod tests {
         .unwrap();
         assert!(off.states.is_empty());
         assert_eq!(off.final_state, r.final_state);
-    }
-
-    #[test]
-    fn energy_matches_the_engine_at_rest_and_folded() {
-        let chain = Chain::parse("SSLLSS").unwrap();
-        let designs = TileDesigns::default();
-        let tl = run(&chain, &designs, &EngineOptions::default()).unwrap();
-        let engine = energy_curve(&tl, 10);
-        let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 50 });
-        let r = run_reference(&chain, &designs, &opts).unwrap();
-        assert_eq!(r.outcome, Outcome::Completed);
-        let curve = reference_energy(&r, 10);
-        let (e0, r0) = (engine[0].energy_j, curve[0].energy_j);
-        assert!((e0 - r0).abs() < 1e-9 * e0.abs(), "{e0} {r0}");
-        let (e1, r1) = (
-            engine.last().unwrap().energy_j,
-            curve.last().unwrap().energy_j,
-        );
-        // both end with every magnet arrived and both folds closed
-        assert!((e1 - r1).abs() < 1e-6 * e1.abs(), "{e1} {r1}");
-        assert!(r1 < r0);
     }
 }

@@ -37,9 +37,9 @@
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
+use crate::model::{Model, ModelOptions};
+use crate::ode::Method;
 use crate::reference::driver::run_reference;
-use crate::reference::dynamics::{Model, ModelOptions};
-use crate::reference::integrators::Method;
 use crate::reference::options::{ReferenceError, ReferenceOptions};
 use crate::reference::run_result::ReferenceRun;
 use crate::timeline::TileDesigns;

@@ -8,8 +8,8 @@ use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
 use foldchain_cli::inputs::read_chain;
 use foldchain_cli::numbers::{number_in, thousands};
-use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::outln;
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 
 /// Checks that a chain of tiles folds sequentially from the reaction-initiator end without

@@ -11,8 +11,8 @@ use std::process::ExitCode;
 use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::engine::{SValue, StartRule, Summary, TileDesigns, DEFAULT_DRAG};
+use foldchain::model::ModelOptions;
 use foldchain::physics::{ForceLaw, DEFAULT_CUTOFF, FORCE_LAW_NAMES};
-use foldchain::reference::ModelOptions;
 use foldchain::timeline::SpeedLaw;
 use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
@@ -263,7 +263,11 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
     let mut model = ModelOptions::default()
         .with_force_law(force_law)
         .with_drag(args.drag.unwrap_or(DEFAULT_DRAG))
-        .with_dynamics(args.dynamics.unwrap_or(DynamicsChoice::Inertial).to_dynamics());
+        .with_dynamics(
+            args.dynamics
+                .unwrap_or(DynamicsChoice::Inertial)
+                .to_dynamics(),
+        );
     model.distance_cutoff = args.distance_cutoff;
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out").join(match mode {
@@ -404,7 +408,10 @@ fn print_report(report: &RunReport, json: bool) -> anyhow::Result<()> {
                 for r in runs {
                     v.insert(r.label.into(), with_dir(&r.summary, &r.dir)?);
                 }
-                v.insert("out_dir".into(), report.out_dir.display().to_string().into());
+                v.insert(
+                    "out_dir".into(),
+                    report.out_dir.display().to_string().into(),
+                );
                 v.into()
             }
         };
@@ -441,7 +448,11 @@ fn with_dir(s: &Summary, dir: &Path) -> anyhow::Result<serde_json::Value> {
 /// One run's summary line, and the reason on the next.
 fn summary_line(name: &str, s: &Summary, dir: &Path) {
     let plural = |n: usize, one: &str, many: &str| {
-        format!("{} {}", thousands(n as u64), if n == 1 { one } else { many })
+        format!(
+            "{} {}",
+            thousands(n as u64),
+            if n == 1 { one } else { many }
+        )
     };
     outln!(
         "{name}: {}, {} in {:.4} s of simulated time, {}, {}, at most {} moving; wrote {}",

@@ -15,18 +15,19 @@ use foldchain::margins::{ChainModel, MarginOptions, Margins};
 use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_design_json, candidate_designs, optimize, sensitivities, study_reporting, tradeoff_svg,
-    Candidate, Parameter, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    candidate_design_json, candidate_designs, optimize, sensitivities, study_reporting, Candidate,
+    Parameter, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
 use foldchain_cli::inputs::{refuse_overwrite, resolve_chain, ChainArgs};
-use foldchain_cli::output::{create_dir_all, write_atomic};
-use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::outln;
+use foldchain_cli::output::{create_dir_all, write_atomic};
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_planner::Turns;
+use foldchain_render::tradeoff_svg;
 
 /// Will it fold when printed? Margins, manufacturing tolerances and a design search.
 #[derive(Parser, Debug)]
@@ -143,7 +144,11 @@ fn tiles_arg(s: &str) -> Result<usize, String> {
 }
 
 fn run(args: &Args) -> anyhow::Result<u8> {
-    let progress = Progress::new("fold-tolerance", "samples", ProgressMode::detect(args.quiet));
+    let progress = Progress::new(
+        "fold-tolerance",
+        "samples",
+        ProgressMode::detect(args.quiet),
+    );
     let code = work(args, &progress);
     progress.finish();
     code

@@ -4,8 +4,8 @@
 //! Unit `j` is joint `j`'s pair of magnets (`2j + 1`, `2j + 2`) and, when the joint folds,
 //! its angle ([`window`]). Only those unknowns are integrated ([`solve`]), each driven by
 //! the pair forces of the magnets within the cutoff (the drives of
-//! [`crate::physics`], the rates and the modes of [`crate::reference::Model`], so the
-//! dynamics and the pair law follow the reference's [`crate::reference::ModelOptions`]):
+//! [`crate::physics`], the rates and the modes of [`crate::model::Model`], so the
+//! dynamics and the pair law follow the reference's [`crate::model::ModelOptions`]):
 //! the magnets upstream move on the tracks already solved, those downstream are at rest in
 //! the first sweep and on their previous tracks in the later ones ([`sweeps`]). Starts,
 //! arrivals and folds are the modes' switches, located on each step's dense output
@@ -31,7 +31,7 @@ pub use sweep::{OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
 pub(crate) use sweeps::ChainSolution;
 pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS};
 
-use crate::reference::{Mode, Model};
+use crate::model::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
 use crate::Fold;
 

@@ -18,7 +18,7 @@ use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::window::{unit_vars, Inputs, Var, Window};
-use crate::reference::{Dynamics, Model};
+use crate::model::{Dynamics, Model};
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
 /// path: 0.5.

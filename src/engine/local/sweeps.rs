@@ -41,7 +41,7 @@ use crate::engine::local::cache::{Cache, Entry};
 use crate::engine::local::solve::SolveOptions;
 use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut, SWEEP_TOLERANCE};
 use crate::engine::local::trajectory::{Shapes, Track};
-use crate::reference::Model;
+use crate::model::Model;
 use crate::timeline::{Event, EventKind};
 
 /// Most sweeps over the chain.
@@ -267,7 +267,7 @@ fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::reference::Dynamics;
+    use crate::model::Dynamics;
 
     /// `word`'s chain at `s` solved with `dynamics`, with or without the cache (`reuse`).
     fn solve_word(word: &str, s: f64, dynamics: Dynamics, reuse: bool) -> ChainSolution {

@@ -4,7 +4,7 @@
 
 use crate::engine::local::solve::{InertialModel, SolveOptions};
 use crate::engine::local::sweeps::{solve_chain_with, ChainSolution};
-use crate::reference::{Dynamics, Model, ModelOptions};
+use crate::model::{Dynamics, Model, ModelOptions};
 use crate::timeline::{start_fraction, TileDesigns};
 use crate::{Chain, Design};
 

@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-pub(crate) use crate::timeline::hermite;
+pub(crate) use crate::ode::hermite;
 
 /// One unknown over time, from its own time origin (`t[0] = 0`).
 #[derive(Clone, Debug, Default, PartialEq)]

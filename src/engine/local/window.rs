@@ -17,8 +17,8 @@ use kurbo::{Point, Vec2};
 
 use crate::engine::local::trajectory::{Shapes, Track};
 use crate::frame::Frame;
+use crate::model::Model;
 use crate::physics::{along_path, neighbours, torque_about, upstream, Pole};
-use crate::reference::Model;
 use crate::Octagon;
 
 /// One unknown of a unit.

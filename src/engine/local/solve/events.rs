@@ -3,11 +3,12 @@
 //! rests at a wall, the events a switch means (with the trigger a start implies), and the
 //! overdamped settling test.
 
-use crate::engine::local::solve::dynamics::{at_wall, InertialModel};
 use crate::engine::local::solve::step::interpolate;
 use crate::engine::local::solve::{LocalEvent, Solver, M, Z};
 use crate::engine::local::window::Var;
-use crate::reference::{Mode, Model};
+use crate::model::{at_wall, InertialModel};
+use crate::model::{Mode, Model};
+use crate::ode::locate::bisect;
 use crate::timeline::EventKind;
 
 /// The mode overdamped unknown `g` (reference state index) switches to, as the reference's
@@ -71,13 +72,8 @@ impl Solver<'_> {
         kinematic: bool,
     ) -> (f64, f64, [f64; Z]) {
         let dim = self.dim();
-        let (mut lo, mut hi) = (t0, t1);
         let mut z_hi = *z1;
-        for _ in 0..60 {
-            if hi - lo <= 1e-13 * hi.abs().max(scale) {
-                break;
-            }
-            let mid = 0.5 * (lo + hi);
+        let (lo, hi) = bisect((t0, t1), scale, |mid| {
             let zm = interpolate(dim, t0, t1, z0, f0, z1, f1, mid);
             let switch = if kinematic {
                 self.any_kinematic_switch(&zm)
@@ -89,12 +85,10 @@ impl Solver<'_> {
                 self.any_switch(&zm, &dm)
             };
             if switch {
-                hi = mid;
                 z_hi = zm;
-            } else {
-                lo = mid;
             }
-        }
+            switch
+        });
         (lo, hi, z_hi)
     }
 

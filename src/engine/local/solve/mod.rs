@@ -6,7 +6,7 @@
 //! unit's inertial time (the magnets' fast relaxation is no reason for small steps once it
 //! has died out). The rates and the switches
 //! between modes (at rest, free, at the end) are the reference model's
-//! ([`crate::reference::Model`]), and every switch is located by bisection on the dense
+//! ([`crate::model::Model`]), and every switch is located by bisection on the dense
 //! output (cubic Hermite on the step's ends), the drives evaluated there.
 //!
 //! The unit follows the reference's dynamics ([`dynamics`]): overdamped, one position per
@@ -18,16 +18,17 @@
 //! that a unit whose inputs repeat an earlier unit's, shifted in time, has the same
 //! solution shifted ([`crate::engine::local`]'s cache).
 
-mod dynamics;
 mod events;
 mod rosenbrock;
 mod step;
 
-pub(crate) use dynamics::InertialModel;
+pub(crate) use crate::model::InertialModel;
 
-use crate::engine::local::trajectory::{hermite, Shape};
+use crate::engine::local::trajectory::Shape;
 use crate::engine::local::window::{Inputs, Scratch, Window};
-use crate::reference::Mode;
+use crate::model::Mode;
+use crate::ode::locate::bisect;
+use crate::ode::{hermite, integral};
 use crate::timeline::EventKind;
 use rosenbrock::rodas;
 use step::dopri;
@@ -354,19 +355,10 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             let mut dn = [0.0; M];
             s.drives(tn, &z0, &mut dn);
             if s.any_switch(&z0, &dn) {
-                let (mut lo, mut hi) = (tau, tn);
-                for _ in 0..60 {
-                    if hi - lo <= 1e-13 * hi.abs().max(scale) {
-                        break;
-                    }
-                    let mid = 0.5 * (lo + hi);
+                let (_, hi) = bisect((tau, tn), scale, |mid| {
                     s.drives(mid, &z0, &mut dn);
-                    if s.any_switch(&z0, &dn) {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
+                    s.any_switch(&z0, &dn)
+                });
                 tau = hi;
             } else {
                 tau = tn;
@@ -419,19 +411,10 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
             streak = 0;
         }
         if !err.is_finite() || err > 1.0 {
-            let fac = if err.is_finite() {
-                (0.9 * err.powf(-st.exponent)).clamp(0.1, 0.9)
-            } else {
-                0.1
-            };
-            h *= fac;
+            h *= integral(err, st.exponent, false);
             continue;
         }
-        let grow = if err > 0.0 {
-            (0.9 * err.powf(-st.exponent)).clamp(0.2, 5.0)
-        } else {
-            5.0
-        };
+        let grow = integral(err, st.exponent, true);
         let (t0, z0, f0) = (tau, z, st.f0);
         let (t1, z1, f1) = (tau + h, st.z1, st.f1);
         // an event inside the step?
@@ -513,7 +496,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use crate::engine::local::sweeps::ChainSolution;
-    use crate::reference::Dynamics;
+    use crate::model::Dynamics;
 
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {
         let o = crate::engine::local::test_support::Options {

@@ -1,15 +1,11 @@
-//! One Dormand-Prince 5(4) step of a unit's state (the reference's tableau), its error
+//! One Dormand-Prince 5(4) step of a unit's state ([`crate::ode::dopri`]), its error
 //! estimate, and its dense output: cubic Hermite on each component's values and rates at
 //! the step's ends. A first-order unit's state is its positions; a second-order unit's is
 //! its positions then its velocities, so that the positions' rates are the velocities and
 //! the velocities' rates the accelerations.
 
 use crate::engine::local::solve::{Solver, M, Z};
-use crate::engine::local::trajectory::hermite;
-use crate::reference::integrators::{A, E};
-
-/// Dormand-Prince 5(4) stage times (the tableau is the reference's).
-const C: [f64; 6] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+use crate::ode::{dopri, hermite};
 
 /// A step attempt: the new state, the rates at both ends and the weighted RMS error.
 pub(super) struct Step {
@@ -38,31 +34,27 @@ pub(super) fn dopri(s: &mut Solver, tau: f64, z: &[f64; Z], h: f64, free: &[usiz
     s.deriv(tau, z, &mut d, &mut k[0]);
     let mut zs = [0.0; Z];
     let mut y6 = [0.0; Z];
-    for st in 0..6 {
-        for c in 0..dim {
-            let mut acc = 0.0;
-            for (jj, a) in A[st].iter().enumerate().take(st + 1) {
-                acc += a * k[jj][c];
-            }
-            zs[c] = z[c] + h * acc;
-        }
-        let mut out = [0.0; Z];
-        s.deriv(tau + C[st] * h, &zs, &mut d, &mut out);
-        k[st + 1] = out;
-        if st == 4 {
-            y6 = zs;
-        }
-    }
+    dopri::stages(
+        &z[..dim],
+        h,
+        &mut k,
+        &mut zs[..dim],
+        Some(&mut y6[..dim]),
+        |c, y, out| {
+            let mut state = [0.0; Z];
+            state[..dim].copy_from_slice(y);
+            let mut rates = [0.0; Z];
+            s.deriv(tau + c * h, &state, &mut d, &mut rates);
+            out.copy_from_slice(&rates[..dim]);
+        },
+    );
     let mut sum = 0.0;
     let mut count = 0usize;
     let second = dim > s.m;
     for &i in free {
         let comps = if second { [i, s.m + i] } else { [i, i] };
         for &c in &comps[..if second { 2 } else { 1 }] {
-            let mut e = 0.0;
-            for (jj, w) in E.iter().enumerate() {
-                e += w * k[jj][c];
-            }
+            let e = dopri::error_rate(&k, c);
             // a velocity's error weighed by the position error it makes in the unit's
             // inertial time
             let wv = if c >= s.m { s.vel_weight() } else { 1.0 };

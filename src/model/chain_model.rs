@@ -1,0 +1,321 @@
+//! The reference model: overdamped point-dipole dynamics of every magnet on its path and of
+//! every folding joint about its hinge (SPEC (6.11), (6.12)).
+//!
+//! **State.** One unknown per magnet, `x_k = u_k / L_k` (the fraction of its path travelled),
+//! and one per folding joint (an LL or RR pair), `psi_j = |theta_j| / (pi/2)` (the fraction of
+//! its fold made). Both lie in `[0, 1]`, so one tolerance fits every unknown whatever the
+//! tile size. Unknowns are interleaved tile by tile (`x_2t, x_2t+1, psi_t`), so that with the
+//! chain-index cutoff the Jacobian is banded with a fixed bandwidth ([`Model::bandwidth`]).
+//!
+//! **Forces.** The pair law, the polarity of each pair and the chain-index cutoff are
+//! [`crate::physics`]'s, as in the event engine's force start rule: by default point dipoles
+//! (`F = 3 mu0 m_i m_j / (4 pi r^4)`, attracting for an odd index difference, the RI being
+//! magnet `-1`), pairs at most [`ModelOptions::cutoff`] apart (default
+//! [`crate::physics::DEFAULT_CUTOFF`]). [`Model::cutoff_error`] measures what the cutoff
+//! leaves out on a given configuration against all pairs.
+//!
+//! **Motion.** A magnet slides with `gamma du/dt = F . t` (the force along its path's
+//! tangent; the wall takes the rest); a joint turns with `gamma_rot dtheta/dt = tau`, the
+//! torque about its hinge of every force that a magnet upstream of the joint (or the RI)
+//! exerts on one downstream (internal forces of the downstream part have no net torque).
+//! Each unknown has a mode: at its start, free, or at its end. A clamped unknown does not
+//! move until its drive (the force along the path, or the torque towards folding) pushes it
+//! away from the end by more than the static friction threshold; the driver finds those
+//! moments, and the arrivals, as events (the reference's driver). Non-folding joints
+//! are rigid: a straight or LR joint has no hinge that opens the way the pair pulls.
+
+use std::f64::consts::FRAC_PI_2;
+
+use kurbo::Point;
+
+use crate::magnet_path::MagnetPath;
+use crate::model::mode::Mode;
+use crate::model::{Dynamics, ModelOptions};
+use crate::physics::ReactionInitiator;
+use crate::timeline::{Geometry, GeometryError, TileDesigns};
+use crate::{Chain, Octagon, Pose};
+
+/// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
+/// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
+/// on a rounding error: 1e-12.
+pub const BALANCE_TOLERANCE: f64 = 1e-12;
+
+/// What one unknown is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Unknown {
+    /// Magnet `k`'s fraction of path travelled.
+    Magnet(usize),
+    /// Joint `j`'s fraction of fold made.
+    Joint(usize),
+}
+
+/// The model of one chain.
+#[derive(Debug)]
+pub struct Model {
+    /// The chain at rest (paths in tile frames).
+    pub geometry: Geometry,
+    pub(super) opts: ModelOptions,
+    /// The unknowns, in state order.
+    pub(crate) unknowns: Vec<Unknown>,
+    /// State index of each magnet.
+    pub(super) magnet_var: Vec<usize>,
+    /// State index of each joint, `usize::MAX` for rigid joints.
+    pub(super) joint_var: Vec<usize>,
+    /// Fold direction of each joint: +1 left, -1 right, 0 rigid.
+    pub(super) joint_sign: Vec<f64>,
+    pub(super) lengths: Vec<f64>,
+    pub(super) moments: Vec<f64>,
+    pub(super) ri: ReactionInitiator,
+    pub(super) hinge_left: Point,
+    pub(super) hinge_right: Point,
+    /// Bonded rest force, N (scale of the drives).
+    pub force_scale: f64,
+    /// Bonded rest torque about a hinge, N m.
+    pub torque_scale: f64,
+    /// A time scale, s: a path travelled at the bonded rest force's speed.
+    pub time_scale: f64,
+    bandwidth: usize,
+}
+
+/// Why a model cannot be built.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelError {
+    /// A design parameter out of range, or a curved path that cannot be built.
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    /// A model option out of range.
+    #[error("reference option `{name}` = {value}: expected {expected}")]
+    BadOption {
+        /// The option.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+}
+
+impl Model {
+    /// The model of `chain` with `designs`.
+    pub fn new(
+        chain: &Chain,
+        designs: &TileDesigns,
+        opts: &ModelOptions,
+    ) -> Result<Model, ModelError> {
+        let bad = |name, value: f64, expected| ModelError::BadOption {
+            name,
+            value,
+            expected,
+        };
+        for (name, v) in [
+            ("drag", opts.drag),
+            ("rotational_drag", opts.rotational_drag),
+        ] {
+            if !v.is_finite() || v <= 0.0 {
+                return Err(bad(name, v, "a finite number > 0"));
+            }
+        }
+        if !opts.static_friction.is_finite() || opts.static_friction < 0.0 {
+            return Err(bad(
+                "static_friction",
+                opts.static_friction,
+                "a finite number >= 0",
+            ));
+        }
+        if opts.cutoff == 0 {
+            return Err(bad("cutoff", 0.0, "at least 1"));
+        }
+        if let Some(r) = opts
+            .distance_cutoff
+            .filter(|r| !(r.is_finite() && *r > 0.0))
+        {
+            return Err(bad("distance_cutoff", r, "a finite number > 0 (mm)"));
+        }
+        if let Dynamics::Inertial(i) = opts.dynamics {
+            for (name, v) in [
+                ("drag", i.drag),
+                ("tile_inertia", i.tile_inertia),
+                ("magnet_mass", i.magnet_mass_g.unwrap_or(1.0)),
+            ] {
+                if !v.is_finite() || v <= 0.0 {
+                    return Err(bad(name, v, "a finite number > 0"));
+                }
+            }
+            for (name, v) in [
+                ("coulomb", i.coulomb),
+                ("tile_rotational_drag", i.tile_rotational_drag),
+            ] {
+                if !v.is_finite() || v < 0.0 {
+                    return Err(bad(name, v, "a finite number >= 0"));
+                }
+            }
+            if !(0.0..1.0).contains(&i.restitution) {
+                return Err(bad("restitution", i.restitution, "a number in [0, 1)"));
+            }
+        }
+        let geometry = Geometry::from_designs(chain, designs)?;
+        let tiles = geometry.tiles();
+        let n = geometry.magnets();
+        let mut unknowns = Vec::new();
+        let mut magnet_var = vec![0; n];
+        let mut joint_var = vec![usize::MAX; tiles.saturating_sub(1)];
+        let mut joint_sign = vec![0.0; tiles.saturating_sub(1)];
+        for t in 0..tiles {
+            for k in [2 * t, 2 * t + 1] {
+                magnet_var[k] = unknowns.len();
+                unknowns.push(Unknown::Magnet(k));
+            }
+            if t + 1 < tiles {
+                let sign = geometry.joint_fold(t).quarter_turns() as f64;
+                joint_sign[t] = sign;
+                if sign != 0.0 {
+                    joint_var[t] = unknowns.len();
+                    unknowns.push(Unknown::Joint(t));
+                }
+            }
+        }
+        let lengths: Vec<f64> = (0..n).map(|k| geometry.path(k).length()).collect();
+        let moments: Vec<f64> = (0..n).map(|k| geometry.design(k / 2).moment()).collect();
+        let oct = Octagon::new(geometry.w);
+        let force_scale = opts.force_law.bonded_rest_force(geometry.design(0));
+        let torque_scale = force_scale * 0.5 * oct.side() * 1e-3;
+        let time_scale = opts.drag * lengths[0] * 1e-3 / force_scale;
+        let cutoff = opts.cutoff;
+        // bandwidth: the widest span of state indices over a window of cutoff + 1 magnets
+        let mut bandwidth = 1;
+        for k in 0..n {
+            let hi = (k + cutoff).min(n - 1);
+            bandwidth = bandwidth.max(magnet_var[hi] - magnet_var[k] + 1);
+        }
+        Ok(Model {
+            opts: *opts,
+            unknowns,
+            magnet_var,
+            joint_var,
+            joint_sign,
+            lengths,
+            moments,
+            ri: geometry.ri(),
+            hinge_left: oct.hinge(true).into(),
+            hinge_right: oct.hinge(false).into(),
+            force_scale,
+            torque_scale,
+            time_scale,
+            bandwidth,
+            geometry,
+        })
+    }
+
+    /// Number of unknowns.
+    pub fn len(&self) -> usize {
+        self.unknowns.len()
+    }
+
+    /// Whether there are no unknowns.
+    pub fn is_empty(&self) -> bool {
+        self.unknowns.is_empty()
+    }
+
+    /// The options.
+    pub fn options(&self) -> &ModelOptions {
+        &self.opts
+    }
+
+    /// Half-bandwidth of the Jacobian: unknowns farther apart in state order never interact.
+    pub fn bandwidth(&self) -> usize {
+        self.bandwidth
+    }
+
+    /// State index of magnet `k`.
+    pub fn magnet_var(&self, k: usize) -> usize {
+        self.magnet_var[k]
+    }
+
+    /// State index of joint `j`, if it folds.
+    pub fn joint_var(&self, j: usize) -> Option<usize> {
+        let v = self.joint_var[j];
+        (v != usize::MAX).then_some(v)
+    }
+
+    /// Fold direction of joint `j`: +1 left, -1 right, 0 rigid.
+    pub fn joint_sign(&self, j: usize) -> f64 {
+        self.joint_sign[j]
+    }
+
+    /// Magnet `k`'s path length, mm.
+    pub fn path_length(&self, k: usize) -> f64 {
+        self.lengths[k]
+    }
+
+    /// The scale a drive of unknown `i` is measured against.
+    pub(crate) fn drive_scale(&self, i: usize) -> f64 {
+        match self.unknowns[i] {
+            Unknown::Magnet(_) => self.force_scale,
+            Unknown::Joint(_) => self.torque_scale,
+        }
+    }
+
+    /// The static threshold a drive must exceed to move a clamped unknown.
+    pub(crate) fn threshold(&self, i: usize) -> f64 {
+        let balance = BALANCE_TOLERANCE * self.drive_scale(i);
+        match self.unknowns[i] {
+            Unknown::Magnet(_) => self.opts.static_friction.max(balance),
+            Unknown::Joint(_) => balance,
+        }
+    }
+
+    /// The signed joint angles (radians, positive = left) of state `y`.
+    pub fn joint_angles(&self, y: &[f64]) -> Vec<f64> {
+        (0..self.joint_var.len())
+            .map(|j| match self.joint_var(j) {
+                Some(v) => self.joint_sign[j] * y[v].clamp(0.0, 1.0) * FRAC_PI_2,
+                None => 0.0,
+            })
+            .collect()
+    }
+
+    /// Tile poses (world frame, mm) of state `y`.
+    pub fn poses(&self, y: &[f64]) -> Vec<Pose> {
+        crate::kinematics::poses_at_angles(&self.joint_angles(y), self.geometry.w)
+    }
+
+    pub(super) fn path(&self, k: usize) -> &MagnetPath {
+        self.geometry.path(k)
+    }
+
+    /// Magnet `k` at fraction `x` of its path: point and unit tangent, tile frame.
+    pub(super) fn local(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
+        let p = self.path(k);
+        let len = self.lengths[k];
+        let u = (x * len).clamp(0.0, len);
+        (p.point_at(u), p.tangent_at(u))
+    }
+
+    /// World positions of the magnets (mm) at state `y`.
+    pub fn positions(&self, y: &[f64]) -> Vec<(f64, f64)> {
+        let poses = self.poses(y);
+        (0..self.geometry.magnets())
+            .map(|k| {
+                let (p, _) = self.local(k, y[self.magnet_var[k]]);
+                poses[k / 2].transform_point(p)
+            })
+            .collect()
+    }
+
+    /// The rate of unknown `i` (per second) for drive `drive` in mode `mode`.
+    pub(crate) fn rate(&self, i: usize, drive: f64, mode: Mode) -> f64 {
+        if mode != Mode::Free {
+            return 0.0;
+        }
+        match self.unknowns[i] {
+            Unknown::Magnet(k) => {
+                let fr = self.opts.static_friction;
+                let f = drive.signum() * (drive.abs() - fr).max(0.0);
+                // mm/s over the path length in mm
+                f / self.opts.drag * 1e3 / self.lengths[k]
+            }
+            Unknown::Joint(_) => drive / self.opts.rotational_drag / FRAC_PI_2,
+        }
+    }
+}

@@ -1,0 +1,211 @@
+//! How the model's unknowns answer their drives under inertia
+//! ([`crate::model::Dynamics::Inertial`]): per unknown its inverse effective mass, damping
+//! rate and Coulomb friction ([`Coefficients`]), and the rules at the walls of its range
+//! ([`InertialModel`]: the acceleration, a bounce or a rest at a wall, a release).
+//!
+//! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
+//! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
+//! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
+//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
+//! drag of [`Inertia`] times the tiles downstream of the joint.
+//!
+//! **Walls.** At a wall (0 or 1) a free unknown moving outwards bounces with the
+//! restitution, or stays there when the rebound would rise less than [`REST_HEIGHT`] of the
+//! range against the drive pressing it on (or the restitution is 0): that is its arrival (a
+//! fold's end). A clamped unknown is released, at rest, when its drive pulls it off its wall
+//! by more than the static threshold and the Coulomb friction. An unknown is quiet on the
+//! run's time scale when its speed and acceleration are under 1e-7 of the range.
+
+use std::f64::consts::FRAC_PI_2;
+use std::fmt;
+
+use crate::model::chain_model::Unknown;
+use crate::model::{Dynamics, Mode, Model};
+use crate::physics::Inertia;
+
+/// A rebound that would rise less than this fraction of the range ends the bouncing.
+pub(crate) const REST_HEIGHT: f64 = 1e-3;
+
+/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
+/// damping rate (1/s), and the Coulomb friction (in drive units).
+pub(crate) struct Coefficients {
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) damping: Vec<f64>,
+    pub(crate) coulomb: Vec<f64>,
+}
+
+impl Coefficients {
+    /// The run's three times, s: the inertial time of the slowest unknown, a move's time at
+    /// the bonded force, and a path's time at the bonded force against the drag alone (the
+    /// longest is the scale the rest test is measured on, the first step comes from them).
+    pub(crate) fn times(&self, model: &Model) -> (f64, f64, f64) {
+        let tau = self
+            .damping
+            .iter()
+            .filter(|d| **d > 0.0)
+            .map(|d| 1.0 / d)
+            .fold(0.0, f64::max);
+        let inv0 = self.inv_mass.first().copied().unwrap_or(1.0);
+        let move_time = (2.0 / (model.force_scale * inv0)).sqrt();
+        let drag_time = self.damping.first().copied().unwrap_or(0.0) / (model.force_scale * inv0);
+        (tau, move_time, drag_time)
+    }
+
+    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
+        let tiles = model.geometry.tiles();
+        let n = model.len();
+        let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for (i, u) in model.unknowns.iter().enumerate() {
+            match *u {
+                Unknown::Magnet(k) => {
+                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
+                    let len = model.path_length(k) * 1e-3;
+                    inv_mass[i] = 1.0 / (m * len);
+                    damping[i] = inertia.drag / m;
+                    coulomb[i] = inertia.coulomb;
+                }
+                Unknown::Joint(j) => {
+                    let swung = (tiles - 1 - j) as f64;
+                    let inertia_j = inertia.tile_inertia * swung;
+                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
+                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
+                }
+            }
+        }
+        Coefficients {
+            inv_mass,
+            damping,
+            coulomb,
+        }
+    }
+}
+
+/// The inertial model's coefficients and time scale, for the local solves.
+pub(crate) struct InertialModel {
+    pub(crate) c: Coefficients,
+    restitution: f64,
+    /// The time scale of the inertial run: the longest of the inertial time,
+    /// a path's time at the bonded force from rest, and its time against the drag alone.
+    pub(crate) scale: f64,
+    /// The shortest of the inertial time and a path's time at the bonded force (first step).
+    pub(crate) first_step: f64,
+}
+
+impl fmt::Debug for InertialModel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("InertialModel")
+            .field("restitution", &self.restitution)
+            .field("scale", &self.scale)
+            .finish()
+    }
+}
+
+impl InertialModel {
+    /// The inertial coefficients of `model`, if its dynamics are inertial.
+    pub(crate) fn new(model: &Model) -> Option<InertialModel> {
+        let Dynamics::Inertial(inertia) = model.options().dynamics else {
+            return None;
+        };
+        let c = Coefficients::new(model, &inertia);
+        // the reference's scale (its inertial driver)
+        let (tau, move_time, drag_time) = c.times(model);
+        Some(InertialModel {
+            restitution: inertia.restitution,
+            scale: tau.max(move_time).max(drag_time),
+            first_step: tau.min(move_time),
+            c,
+        })
+    }
+
+    /// The acceleration of unknown `g` (state index) at velocity `v` under `drive`.
+    pub(crate) fn acceleration(&self, g: usize, drive: f64, v: f64) -> f64 {
+        let fc = self.c.coulomb[g];
+        let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
+        (drive - friction) * self.c.inv_mass[g] - self.c.damping[g] * v
+    }
+
+    /// The drive a clamped unknown `g` must exceed to be released.
+    pub(crate) fn threshold(&self, model: &Model, g: usize) -> f64 {
+        model.threshold(g).max(self.c.coulomb[g])
+    }
+
+    /// Whether clamped unknown `g` in `mode` is pulled off its wall by `drive`.
+    pub(crate) fn released(&self, model: &Model, g: usize, mode: Mode, drive: f64) -> bool {
+        let th = self.threshold(model, g);
+        match mode {
+            Mode::AtStart => drive > th,
+            Mode::AtEnd => -drive > th,
+            Mode::Free => false,
+        }
+    }
+
+    /// What free unknown `g` does on reaching wall `wall` (0 or 1) with velocity `v` (moving
+    /// outwards) under `drive`: `None` stays there (rest), `Some(rebound)` bounces.
+    pub(crate) fn bounce(&self, g: usize, wall: f64, v: f64, drive: f64) -> Option<f64> {
+        let rebound = -self.restitution * v;
+        // the drive pressing it on against the wall, as an acceleration
+        let press = if wall == 1.0 { drive } else { -drive };
+        let a = press.max(0.0) * self.c.inv_mass[g];
+        if self.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
+            None
+        } else {
+            Some(rebound)
+        }
+    }
+
+    /// Whether an unknown with velocity `v` and acceleration `a` is quiet (the reference's
+    /// rest test).
+    pub(crate) fn quiet(&self, v: f64, a: f64) -> bool {
+        v.abs() * self.scale < 1e-7 && a.abs() * self.scale * self.scale < 1e-7
+    }
+}
+
+/// Whether a free unknown at `x` with velocity `v` has reached a wall moving outwards.
+pub(crate) fn at_wall(x: f64, v: f64) -> bool {
+    (x >= 1.0 && v > 0.0) || (x <= 0.0 && v < 0.0)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+mod tests {
+    use super::*;
+    use crate::model::ModelOptions;
+    use crate::timeline::TileDesigns;
+    use crate::{Chain, Design};
+
+    fn inertial() -> ModelOptions {
+        ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+    }
+
+    #[test]
+    fn walls_bounce_fast_arrivals_and_hold_slow_ones() {
+        let chain = Chain::parse("SL").unwrap();
+        let designs = TileDesigns::global(Design::thesis());
+        let model = Model::new(&chain, &designs, &inertial()).unwrap();
+        assert!(InertialModel::new(
+            &Model::new(&chain, &designs, &ModelOptions::default()).unwrap()
+        )
+        .is_none());
+        let im = InertialModel::new(&model).unwrap();
+        let g = model.magnet_var(1);
+        let push = model.force_scale;
+        // the arrival speed whose rebound rises 1e-3 of the path against the bonded force
+        let a = push * im.c.inv_mass[g];
+        let v_rest = (2.0 * a * REST_HEIGHT).sqrt() / im.restitution;
+        // a fast arrival bounces back with the restitution
+        let fast = 2.0 * v_rest;
+        assert_eq!(im.bounce(g, 1.0, fast, push), Some(-im.restitution * fast));
+        assert_eq!(im.bounce(g, 0.0, -fast, -push), Some(im.restitution * fast));
+        // a slower one pressed on by the bonded force stays
+        assert_eq!(im.bounce(g, 1.0, 0.5 * v_rest, push), None);
+        // the same with nothing pressing it on bounces
+        assert!(im.bounce(g, 1.0, 0.5 * v_rest, -push).is_some());
+        assert!(at_wall(1.0, 0.1) && at_wall(0.0, -0.1));
+        assert!(!at_wall(1.0, -0.1) && !at_wall(0.5, 1.0));
+        // released only by more than the threshold, towards the inside
+        assert!(im.released(&model, g, Mode::AtStart, push));
+        assert!(!im.released(&model, g, Mode::AtStart, -push));
+        assert!(im.released(&model, g, Mode::AtEnd, -push));
+        assert!(im.quiet(0.0, 0.0) && !im.quiet(1.0, 0.0));
+    }
+}
