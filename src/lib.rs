@@ -2,7 +2,7 @@
 //!
 //! Design and simulation of self-folding magnetic tile chains: octagon tiles holding magnets
 //! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
-//! initiator starts them (see `SPEC.md` and the thesis it follows).
+//! initiator starts them (the model and the thesis it follows: `docs/physics.md`).
 //!
 //! This crate is the core model and computes only; the command-line tools live in the
 //! `foldchain-cli` crate.

@@ -123,6 +123,13 @@ impl RunReport {
 /// Runs `req`: see the module documentation. A second run into the same directory is
 /// refused before any work; an error (a full disk) leaves the directory as it was.
 pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
+    if req.mode != RunMode::Engine && req.chain.len() > MAX_REFERENCE_TILES {
+        bail!(
+            "--reference/--compare: {} tiles; the reference integrator takes at most {} (use the event engine for longer chains)",
+            thousands(req.chain.len() as u64),
+            thousands(MAX_REFERENCE_TILES as u64)
+        );
+    }
     let staged = StagedDir::open(&req.out_dir, owns_run_entry)?;
     let sdir = staged.path().to_path_buf();
     let unwritten = || {
@@ -265,13 +272,6 @@ fn engine_options(req: &RunRequest, notes: &mut Vec<String>) -> EngineOptions {
 
 /// The force-integrated reference of `req`'s chain.
 fn reference(req: &RunRequest) -> anyhow::Result<ReferenceRun> {
-    if req.chain.len() > MAX_REFERENCE_TILES {
-        bail!(
-            "--reference/--compare: {} tiles; the reference integrator takes at most {} (use the event engine for longer chains)",
-            thousands(req.chain.len() as u64),
-            thousands(MAX_REFERENCE_TILES as u64)
-        );
-    }
     let ro = ReferenceOptions::default()
         .with_record(Recording::Grid {
             max_states: state_budget(req.chain.len()),
@@ -291,10 +291,10 @@ pub fn verdict_note(chain: &Chain, summary: &Summary, folds: &[FoldRecord]) -> O
     let overlap = most_folds_at_once(folds);
     match (&sequential, &summary.first_collision) {
         (Verdict::Collides(c), None) if summary.completed => Some(format!(
-            "fold-check, which folds one joint at a time, finds a collision ({c}); this run folds as the magnets drive it, up to {overlap} joints turning at once, and its tiles never meet: see docs/guide/verifying.md"
+            "fold-check, which folds one joint at a time, finds a collision ({c}); this run folds as the magnets drive it, up to {overlap} joints turning at once, and its tiles never meet: see docs/verifying.md"
         )),
         (Verdict::Valid, Some(c)) => Some(format!(
-            "fold-check, which folds one joint at a time, finds no collision; in this run up to {overlap} joints turn at once and tiles {} and {} meet{}: see docs/guide/verifying.md",
+            "fold-check, which folds one joint at a time, finds no collision; in this run up to {overlap} joints turn at once and tiles {} and {} meet{}: see docs/verifying.md",
             c.tiles.0,
             c.tiles.1,
             c.time.map(|t| format!(" at t = {t:.4} s")).unwrap_or_default()

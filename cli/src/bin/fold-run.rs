@@ -48,7 +48,7 @@ that time), timeline.json, margins.json (the margin of every start and fold, cha
 20,000 tiles) and summary.json. The run is written beside DIR and swapped into place at the
 end: DIR holds the earlier run or the new one, whole, whatever happens; a second run into
 DIR meanwhile is refused; files of yours in DIR are kept. Times are simulated seconds.
-The design JSON is described in docs/guide/designing.md (see also docs/design-example.json).
+The design JSON is described in docs/designing.md (see also docs/design-example.json).
 Limits: 2,000,000 tiles (the engine), 2,000 (--reference, --compare).
 
 Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
@@ -113,7 +113,7 @@ struct Args {
     force_law: String,
     /// The physics of the event engine's local solves and of the reference (--reference,
     /// --compare): inertial (the default: magnets of 0.265 g with a drag of 0.05 N s/m,
-    /// tiles with rotational inertia, bouncing at path ends; docs/guide/physics.md) or
+    /// tiles with rotational inertia, bouncing at path ends; docs/physics.md) or
     /// overdamped (first order, drag --drag: the stiff limit of negligible mass). Refused with
     /// the kinematic engine, which does not use it.
     #[arg(long, value_enum)]
@@ -374,7 +374,7 @@ fn refuse_unused(args: &Args, mode: RunMode, engine: &EngineRequest) -> anyhow::
         }
     ) && mode != RunMode::Reference;
     if args.drag.is_some() && inertial && !drag_used_by_kinematic {
-        bail!("--drag is the overdamped law's drag; the inertial dynamics (the default) take theirs from the physics (docs/guide/physics.md): add --dynamics overdamped, or leave --drag out");
+        bail!("--drag is the overdamped law's drag; the inertial dynamics (the default) take theirs from the physics (docs/physics.md): add --dynamics overdamped, or leave --drag out");
     }
     if args.drag.is_some() && args.speed == Some(SpeedChoice::Unit) && mode == RunMode::Engine {
         bail!("--drag is the overdamped law's drag; --speed unit moves every magnet at 1 mm/s: leave one of them out");

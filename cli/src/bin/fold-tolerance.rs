@@ -44,10 +44,10 @@ use foldchain_render::tradeoff_svg;
 Tolerances (--tol KEY=VALUE, uniform within +-VALUE on every tile independently): s, e,
 wall, width (lengths, mm; d=X is width=2X since d = w/2), br (remanence, relative or %),
 diameter, height (magnet, mm). Defaults: printed dimensions +-0.1 mm (--printer fdm) or
-+-0.05 mm (resin), remanence +-2.5%, magnet dimensions +-0.05 mm (sources in README).
++-0.05 mm (resin), remanence +-2.5%, magnet dimensions +-0.05 mm (sources in docs/tolerances.md).
 
 A sample folds when every magnet's start and every fold has a positive margin
-(quasi-static: see README, \"Margins\").
+(quasi-static: see docs/tolerances.md).
 
 Exit codes: 0 report printed, 1 --optimize found no design reaching --target, 2 bad input."
 )]
@@ -270,7 +270,7 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
     Ok(0)
 }
 
-const CRITERION: &str = "a sample folds when every hold, start and fold margin is positive (quasi-static poses, README \"Margins\")";
+const CRITERION: &str = "a sample folds when every hold, start and fold margin is positive (quasi-static poses, docs/tolerances.md)";
 
 #[derive(serde::Serialize)]
 struct Report<'a> {

@@ -75,7 +75,7 @@ struct Args {
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
     /// The reference's dynamics: overdamped (first order, the stiff limit) or inertial
-    /// (mass, drag, bouncing walls; README, "Physical parameters").
+    /// (mass, drag, bouncing walls; docs/physics.md, "Physical parameters").
     #[arg(long, value_enum, default_value_t = DynamicsChoice::Overdamped)]
     dynamics: DynamicsChoice,
 }
