@@ -12,7 +12,8 @@ use foldchain::engine::{EngineOptions, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 use foldchain::reference::{
-    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
+    run_free_body, run_reference, state_budget, FreeBodyOptions, Recording, ReferenceOptions,
+    ReferenceRun,
 };
 use foldchain::timeline::{FoldRecord, RunSource, SpeedLaw};
 use foldchain::{auto_engine, check_reference, simulate, Chain, EngineKind};
@@ -29,6 +30,37 @@ use crate::run_files::{
 /// The most tiles `--reference` and `--compare` take: the reference's cost grows with tiles
 /// times steps, and the validation scenes go up to 107 tiles.
 pub const MAX_REFERENCE_TILES: usize = 2_000;
+
+/// The most tiles `--reference --model free-body` takes: a step costs what moves, but every
+/// step keeps one entry per unknown (BENCHMARKS.md, "Free-body reference").
+pub const MAX_FREE_BODY_TILES: usize = 100_000;
+
+/// Which reference `--reference` and `--compare` run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ReferenceModel {
+    /// Magnets on their paths and folding joints' angles, upstream of a fold held still.
+    JointAngle,
+    /// Every tile a rigid body floating free.
+    FreeBody,
+}
+
+impl ReferenceModel {
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceModel::JointAngle => "joint-angle",
+            ReferenceModel::FreeBody => "free-body",
+        }
+    }
+
+    /// The most tiles it takes.
+    pub fn max_tiles(self) -> usize {
+        match self {
+            ReferenceModel::JointAngle => MAX_REFERENCE_TILES,
+            ReferenceModel::FreeBody => MAX_FREE_BODY_TILES,
+        }
+    }
+}
 
 /// What `fold-run` runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,6 +101,8 @@ pub struct RunRequest {
     pub designs: TileDesigns,
     /// Engine, reference or both.
     pub mode: RunMode,
+    /// The reference's model (`--reference`, `--compare`).
+    pub reference_model: ReferenceModel,
     /// How the engine is chosen.
     pub engine: EngineRequest,
     /// The physics of the local solves and of the reference.
@@ -123,11 +157,13 @@ impl RunReport {
 /// Runs `req`: see the module documentation. A second run into the same directory is
 /// refused before any work; an error (a full disk) leaves the directory as it was.
 pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
-    if req.mode != RunMode::Engine && req.chain.len() > MAX_REFERENCE_TILES {
+    let most = req.reference_model.max_tiles();
+    if req.mode != RunMode::Engine && req.chain.len() > most {
         bail!(
-            "--reference/--compare: {} tiles; the reference integrator takes at most {} (use the event engine for longer chains)",
+            "--reference/--compare: {} tiles; the {} reference takes at most {} (use the event engine for longer chains)",
             thousands(req.chain.len() as u64),
-            thousands(MAX_REFERENCE_TILES as u64)
+            req.reference_model.name(),
+            thousands(most as u64)
         );
     }
     let staged = StagedDir::open(&req.out_dir, owns_run_entry)?;
@@ -277,7 +313,17 @@ fn reference(req: &RunRequest) -> anyhow::Result<ReferenceRun> {
             max_states: state_budget(req.chain.len()),
         })
         .with_model(req.model);
-    Ok(run_reference(&req.chain, &req.designs, &ro)?)
+    Ok(match req.reference_model {
+        ReferenceModel::JointAngle => run_reference(&req.chain, &req.designs, &ro)?,
+        ReferenceModel::FreeBody => {
+            run_free_body(
+                &req.chain,
+                &req.designs,
+                &FreeBodyOptions::default().with_reference(ro),
+            )?
+            .run
+        }
+    })
 }
 
 /// When `fold-check` (folding one joint at a time, sequentially) and this run (the physical

@@ -17,7 +17,7 @@ use foldchain::timeline::SpeedLaw;
 use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
 };
-use foldchain_cli::fold_run::{run, EngineRequest, RunMode, RunReport, RunRequest};
+use foldchain_cli::fold_run::{run, EngineRequest, ReferenceModel, RunMode, RunReport, RunRequest};
 use foldchain_cli::inputs::{refuse_overwrite_in, resolve_chain, ChainArgs};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::progress::{Progress, ProgressMode};
@@ -141,6 +141,13 @@ struct Args {
     /// engine's checker. For chains up to 2,000 tiles.
     #[arg(long, conflicts_with = "compare")]
     reference: bool,
+    /// Which reference --reference and --compare run: joint-angle (every magnet on its path
+    /// and every folding joint's angle, the part upstream of a fold held still; up to 2,000
+    /// tiles) or free-body (every tile a rigid body floating on water, nothing anchored,
+    /// both sides of a fold turning against their inertia and the water's drag; inertial
+    /// dynamics only; docs/free-body.md; up to 100,000 tiles).
+    #[arg(long, value_enum, default_value_t = ReferenceModel::JointAngle)]
+    model: ReferenceModel,
     /// Run both the event engine and the reference on the chain: both runs' files in
     /// DIR/engine and DIR/reference, and DIR/index.html playing them side by side on one
     /// clock (default out/<name>-compare/). For chains up to 2,000 tiles.
@@ -226,6 +233,17 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
     };
     let engine = engine_request(args, mode)?;
     refuse_unused(args, mode, &engine)?;
+    if args.model == ReferenceModel::FreeBody {
+        if mode == RunMode::Engine {
+            bail!("--model free-body: the reference's model; give --reference or --compare");
+        }
+        if args.dynamics == Some(DynamicsChoice::Overdamped) {
+            bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
+        }
+        if args.distance_cutoff.is_some() {
+            bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
+        }
+    }
     let input = resolve_chain(
         &ChainArgs {
             chain: args.chain.as_deref(),
@@ -272,6 +290,9 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out").join(match mode {
             RunMode::Engine => name.clone(),
+            RunMode::Reference if args.model == ReferenceModel::FreeBody => {
+                format!("{name}-free-body")
+            }
             RunMode::Reference => format!("{name}-reference"),
             RunMode::Compare => format!("{name}-compare"),
         })
@@ -286,8 +307,11 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
     }
     let files = RunFilesOptions {
         margins_json: None,
-        name: match mode {
-            RunMode::Reference => format!("{name} (reference)"),
+        name: match (mode, args.model) {
+            (RunMode::Reference, ReferenceModel::FreeBody) => {
+                format!("{name} (free-body reference)")
+            }
+            (RunMode::Reference, _) => format!("{name} (reference)"),
             _ => name.clone(),
         },
         frames: args.frames,
@@ -303,6 +327,7 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         name,
         designs,
         mode,
+        reference_model: args.model,
         engine,
         model,
         force_law,
