@@ -344,6 +344,7 @@ fn tools() -> Vec<Tool> {
                 flag("--json", 0.2),
                 opt("--tiles", 0.1, &["10", "12", "0", "x"]),
                 opt("--turns", 0.1, &["tight", "loose", "x"]),
+                flag("--quiet", 0.2),
                 flag("--bogus", 0.01),
             ],
         },
