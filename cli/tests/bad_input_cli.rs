@@ -135,7 +135,10 @@ fn a_closed_pipe_ends_a_tool_quietly() {
         ("fold-enum", vec!["--max-tiles", "9", "--json"]),
         ("fold-print", vec!["SLLS", "--quiet", "--out", "OUT"]),
         ("fold-tolerance", vec!["SL", "--samples", "20"]),
-        ("fold-plan", vec!["../shapes/square.svg", "--tiles", "12", "--quiet"]),
+        (
+            "fold-plan",
+            vec!["../shapes/square.svg", "--tiles", "12", "--quiet"],
+        ),
     ] {
         let out = d.join(t);
         let args: Vec<&str> = args
