@@ -344,6 +344,7 @@ fn tools() -> Vec<Tool> {
                 flag("--json", 0.2),
                 opt("--tiles", 0.1, &["10", "12", "0", "x"]),
                 opt("--turns", 0.1, &["tight", "loose", "x"]),
+                flag("--quiet", 0.2),
                 flag("--bogus", 0.01),
             ],
         },
@@ -357,8 +358,13 @@ struct Setup {
 
 impl Setup {
     fn new(tool: &str) -> Setup {
-        let base =
-            std::env::temp_dir().join(format!("foldchain-fuzz-{}-{tool}", std::process::id()));
+        // one directory per call: the quick pass and a tool's full fuzz run at once
+        static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let base = std::env::temp_dir().join(format!(
+            "foldchain-fuzz-{}-{tool}-{call}",
+            std::process::id()
+        ));
         let _ = std::fs::remove_dir_all(&base);
         std::fs::create_dir_all(&base).unwrap();
         let w = |name: &str, text: &str| std::fs::write(base.join(name), text).unwrap();

@@ -49,7 +49,8 @@ that time), timeline.json, margins.json (the margin of every start and fold, cha
 end: DIR holds the earlier run or the new one, whole, whatever happens; a second run into
 DIR meanwhile is refused; files of yours in DIR are kept. Times are simulated seconds.
 The design JSON is described in docs/designing.md (see also docs/design-example.json).
-Limits: 2,000,000 tiles (the engine), 2,000 (--reference, --compare).
+Limits: 2,000,000 tiles (the engine; about 1 GB of memory, BENCHMARKS.md), 2,000 (--reference,
+--compare; 100,000 with --model free-body).
 
 Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
 2 bad input, 3 the disk is full (DIR left as it was)."
