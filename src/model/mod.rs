@@ -32,7 +32,7 @@ mod verdict;
 
 pub(crate) use chain_model::Unknown;
 pub use chain_model::{Model, ModelError, BALANCE_TOLERANCE};
-pub(crate) use coefficients::{at_wall, InertialModel};
+pub(crate) use coefficients::{at_wall, InertialModel, REST_HEIGHT};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;
 pub(crate) use mode::{condition, Mode};

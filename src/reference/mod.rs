@@ -30,6 +30,7 @@
 
 mod driver;
 mod event_log;
+pub mod free_body;
 pub(crate) mod inertial;
 mod locate;
 mod options;
@@ -41,6 +42,7 @@ pub mod stiff;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
+pub use free_body::{run_free_body, FreeBodyError, FreeBodyOptions, FreeBodyRun};
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{
     pair_energies, reference_energy, reference_final_state, reference_state, reference_state_near,
