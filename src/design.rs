@@ -9,13 +9,13 @@
 use std::f64::consts::PI;
 
 /// Permeability of free space, H/m (the thesis' value, 4 pi 1e-7).
-pub const MU0: f64 = 4.0 * PI * 1e-7;
+pub(crate) const MU0: f64 = 4.0 * PI * 1e-7;
 
 /// Default wall thickness of a curved path's final point, mm ([`Design::wall`]).
-pub const DEFAULT_WALL: f64 = 0.8;
+pub(crate) const DEFAULT_WALL: f64 = 0.8;
 
 /// Density of sintered NdFeB, g/cm^3 (manufacturers quote 7.4 to 7.6).
-pub const NDFEB_DENSITY: f64 = 7.5;
+pub(crate) const NDFEB_DENSITY: f64 = 7.5;
 
 /// Tile and magnet design. Lengths in millimetres, mass in grams, remanence in tesla.
 ///
@@ -148,7 +148,7 @@ pub struct InequalityCheck {
 /// The physical range of one design field that a design file or a command line may give
 /// ([`Design::check_ranges`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldRange {
+pub(crate) struct FieldRange {
     /// The field's name in the design JSON.
     pub name: &'static str,
     /// The smallest value.
@@ -166,7 +166,7 @@ pub struct FieldRange {
 /// The physical ranges of the design fields held to a fixed range; the lengths inside a tile
 /// (`d`, `s`, `e`, `c`, `magnet_diameter`) are bounded by the tile's own size
 /// ([`Design::validate`]).
-pub const RANGES: [FieldRange; 5] = [
+pub(crate) const RANGES: [FieldRange; 5] = [
     FieldRange {
         name: "tile_width",
         min: 0.01,
@@ -212,7 +212,7 @@ pub const RANGES: [FieldRange; 5] = [
 /// The widest values [`Design::validate`] takes for any field, in the field's unit (zero
 /// aside, where a field may be zero): far beyond any tile or magnet, so that no product of
 /// them overflows or vanishes.
-pub const NUMERIC_RANGE: (f64, f64) = (1e-9, 1e9);
+pub(crate) const NUMERIC_RANGE: (f64, f64) = (1e-9, 1e9);
 
 fn short(v: f64) -> String {
     crate::short_number(v)
@@ -220,7 +220,7 @@ fn short(v: f64) -> String {
 
 /// Relative tolerance under which two sides count as equal (so `s = e/3` given as a fraction
 /// of `e` is recognised as the edge despite rounding): 1e-12.
-pub const EQUALITY_TOLERANCE: f64 = 1e-12;
+pub(crate) const EQUALITY_TOLERANCE: f64 = 1e-12;
 
 impl Design {
     /// The thesis design.

@@ -6,7 +6,7 @@ use std::path::{Path as FsPath, PathBuf};
 use crate::{Chain, ChainError};
 
 /// The largest chain file read, in bytes (256 MiB): a guard against reading a huge file whole.
-pub const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
+pub(crate) const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
 
 /// Why a chain argument could not be read.
 #[derive(Debug, thiserror::Error)]

@@ -8,12 +8,12 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+use crate::exact::{ExactPoint, ExactPose, Surd};
 use crate::pose::wrap_angle;
 use crate::{Fold, FoldWord, Octagon, Pose};
 
 /// The offset from one tile centre to the next in the first tile's frame, exactly.
-pub fn exact_step(fold: Fold) -> ExactPoint {
+pub(crate) fn exact_step(fold: Fold) -> ExactPoint {
     match fold {
         Fold::S => ExactPoint::new(Surd::new(2, 0), Surd::ZERO),
         Fold::L => ExactPoint::new(Surd::new(0, 2), Surd::new(0, 2)),
@@ -34,7 +34,7 @@ pub fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
 }
 
 /// The pose of the tile after a joint with fold `fold`, exactly.
-pub fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
+pub(crate) fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
     ExactPose {
         centre: pose.transform(exact_step(fold)),
         heading: pose.heading.turned(fold.quarter_turns() as i64),
@@ -43,7 +43,7 @@ pub fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
 
 /// The world position of the hinge of joint `joint` (between tiles `joint` and `joint + 1`),
 /// exactly, given the pose of tile `joint`. `None` for a straight joint.
-pub fn exact_hinge(pose: ExactPose, fold: Fold) -> Option<ExactPoint> {
+pub(crate) fn exact_hinge(pose: ExactPose, fold: Fold) -> Option<ExactPoint> {
     Octagon::exact_hinge(fold).map(|h| pose.transform(h))
 }
 
@@ -57,7 +57,7 @@ pub fn final_angles(word: &FoldWord) -> Vec<f64> {
 
 /// The pose of the next tile relative to a tile whose joint is turned by `angle` radians
 /// (positive = left), for tiles of width `w`: a rotation about the hinge on the turning side.
-pub fn joint_transform(angle: f64, w: f64) -> Pose {
+pub(crate) fn joint_transform(angle: f64, w: f64) -> Pose {
     let o = Octagon::new(w);
     let left = angle >= 0.0;
     let (hx, hy) = o.hinge(left);
@@ -116,11 +116,6 @@ pub fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMu
         );
         each(pose);
     }
-}
-
-/// The final headings as exact quarter turns, for callers that need only headings.
-pub fn final_headings(word: &FoldWord) -> Vec<QuarterTurns> {
-    final_poses(word).into_iter().map(|p| p.heading).collect()
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::kinematics::{final_poses, poses_at_angles};
 use foldchain::model::ModelOptions;
-use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG};
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
@@ -295,7 +295,7 @@ fn summary_and_timeline_say_what_the_run_did() {
             "method": "dopri5",
             "tolerance": 1e-5,
             "drag": DEFAULT_DRAG,
-            "rotational_drag": DEFAULT_ROTATIONAL_DRAG,
+            "rotational_drag": ModelOptions::default().rotational_drag,
         }},
         "index": "magnet k is magnet k mod 2 of tile k/2; joint events index the joint",
         "events": events,

@@ -35,23 +35,21 @@ mod start_rule;
 mod trigger;
 
 pub use energy::energy_curve;
-pub use local::{
-    AUTO_MIN_TILES, DEFAULT_LOCAL_TOLERANCE, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE,
-    SWEEP_TOLERANCE,
-};
-pub use result::{fold_angle, joint_angles_at, Timeline};
+pub(crate) use local::DEFAULT_LOCAL_TOLERANCE;
+pub(crate) use result::fold_angle;
+pub use result::{joint_angles_at, Timeline};
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
 pub use run_source::{timeline_json, MAX_TIMELINE_EVENTS};
-pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
-pub use speed::Motion;
-pub use start_rule::{StartRule, DRIVE_TOLERANCE, ROOT_TOLERANCE, START_TOLERANCE};
+pub use schedule::fold_schedule;
+pub use start_rule::StartRule;
+pub(crate) use start_rule::DRIVE_TOLERANCE;
 
 // The shared vocabulary the engine's results are written in, where the command-line tools and
 // the pictures have long found it (one home: `crate::timeline`, `crate::physics`).
 pub use crate::physics::DEFAULT_DRAG;
 pub use crate::timeline::{
-    joint_of_magnet, CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry,
-    Outcome, SValue, SpeedLaw, Summary, TileDesigns, LENGTH_TOLERANCE,
+    CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry, Outcome, SValue,
+    SpeedLaw, Summary, TileDesigns,
 };
 
 /// The engine's timeline of `word` with the thesis design and the default options, for tests.

@@ -60,7 +60,7 @@ pub struct EngineOptions {
     /// Threads of the local solves' sweeps: 1 runs them one after the other, 2 or more
     /// runs two at once, the later trailing the earlier (more than 2 are not used); 0, the
     /// default: [`std::thread::available_parallelism`], but one thread for a chain of fewer
-    /// than [`crate::engine::AUTO_MIN_TILES`] tiles or when the engine runs on a rayon
+    /// than 500 tiles or when the engine runs on a rayon
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
     /// Most steps of one local solve (one joint's unit over one window) before it gives up:

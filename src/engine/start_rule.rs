@@ -49,19 +49,20 @@ use window::Window;
 /// A drive smaller than this fraction of the bonded rest force counts as zero (the
 /// reference's balance tolerance), so an exact balance (`s = 0`) starts nothing on a
 /// rounding error: 1e-12.
-pub const DRIVE_TOLERANCE: f64 = 1e-12;
+pub(crate) const DRIVE_TOLERANCE: f64 = 1e-12;
 
 /// The root search takes false-position (Illinois) steps until the start is bracketed to
 /// this fraction of the mover's duration, then bisects to the clock's last bit (as the exact
 /// rule does, so that both end on the same number): 1e-12.
-pub const ROOT_TOLERANCE: f64 = 1e-12;
+pub(crate) const ROOT_TOLERANCE: f64 = 1e-12;
 
 /// The force rule's start, fast and cached, is within this fraction of the mover's duration
 /// of the exact rule's: 1e-9 (the search ends on the same last bit of the clock as the exact
 /// rule's bisection unless the drive crosses its threshold more than once within a sample
 /// step; the cache merges neighbourhoods whose starts differ by some 100 units of the clock's
 /// last bit).
-pub const START_TOLERANCE: f64 = 1e-9;
+#[cfg(test)]
+pub(crate) const START_TOLERANCE: f64 = 1e-9;
 
 /// Samples of the drive along the mover's path.
 const PATH_SAMPLES: usize = 64;

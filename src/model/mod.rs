@@ -31,7 +31,7 @@ mod options;
 mod verdict;
 
 pub(crate) use chain_model::Unknown;
-pub use chain_model::{Model, ModelError, BALANCE_TOLERANCE};
+pub(crate) use chain_model::{Model, ModelError};
 pub(crate) use coefficients::{at_wall, InertialModel};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;

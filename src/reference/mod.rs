@@ -42,10 +42,7 @@ pub mod stiff;
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
 pub use options::{Recording, ReferenceError, ReferenceOptions};
-pub use pictures::{
-    pair_energies, reference_energy, reference_final_state, reference_state, reference_state_near,
-    reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
-};
+pub use pictures::{pair_energies, reference_energy, state_budget};
 pub use run_result::ReferenceRun;
 pub(crate) use run_source::joint_angle_samples;
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

@@ -22,7 +22,7 @@ use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
 /// states (one state is 8 bytes per unknown, at most three unknowns per tile).
-pub const STATE_BUDGET_BYTES: usize = 48 << 20;
+pub(crate) const STATE_BUDGET_BYTES: usize = 48 << 20;
 
 /// The states recorded for a chain of `tiles`: [`STATE_BUDGET_BYTES`] worth, from 64 to
 /// 4,096 (about 1,000 at 2,000 tiles).

@@ -19,7 +19,7 @@ use crate::{Chain, Design, Fold, PathKind, Tile};
 /// Far above the rounding of the rest points and `s = e/3` given as a fraction (about 1e-15
 /// relative) and far below anything physical, so the sequential edge `s = e/3` triggers at
 /// the path end rather than stalling on a rounding error.
-pub const LENGTH_TOLERANCE: f64 = 1e-9;
+pub(crate) const LENGTH_TOLERANCE: f64 = 1e-9;
 
 /// Why the geometry of a chain cannot be built.
 #[derive(Debug, thiserror::Error)]

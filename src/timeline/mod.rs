@@ -46,10 +46,12 @@ mod transition;
 
 pub use chain_state::{ChainState, DETAIL_TILES};
 pub use energy_sample::EnergySample;
-pub use event::{joint_of_magnet, start_fraction, Event, EventKind, S0_START_FRACTION};
+pub use event::{Event, EventKind};
+pub(crate) use event::{joint_of_magnet, start_fraction};
 pub use fold_record::FoldRecord;
-pub use geometry::{Geometry, GeometryError, LENGTH_TOLERANCE};
-pub use json::{TimelineJson, EVENT_INDEX};
+pub use geometry::Geometry;
+pub(crate) use geometry::{GeometryError, LENGTH_TOLERANCE};
+pub(crate) use json::{TimelineJson, EVENT_INDEX};
 pub use outcome::Outcome;
 pub use pair_energies::PairEnergies;
 pub use run_source::{RunSource, TrackKey};

@@ -29,11 +29,11 @@ mod tolerances;
 mod wilson;
 
 pub use optimize::{
-    candidate_design_json, candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions,
+    candidate_design_json, candidate_designs, optimize, Candidate, Search, SearchOptions,
 };
-pub use rng::SplitMix64;
-pub use sample::{draw_designs, nudged};
+pub(crate) use rng::SplitMix64;
+pub(crate) use sample::{draw_designs, nudged};
 pub use sensitivity::{sensitivities, Sensitivity};
 pub use study::{study, FailureCount, MarginSpread, Study, StudyOptions};
 pub use tolerances::{Parameter, Printer, ToleranceError, Tolerances};
-pub use wilson::{wilson_interval, Z95};
+pub(crate) use wilson::{wilson_interval, Z95};

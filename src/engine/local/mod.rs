@@ -27,16 +27,14 @@ mod window;
 
 use std::f64::consts::FRAC_PI_2;
 
-pub use sweep::{OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
 pub(crate) use sweeps::ChainSolution;
-pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS};
 
 use crate::model::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
 use crate::Fold;
 
 /// Default tolerance of the local solves (fraction of a path or fold): 1e-8.
-pub const DEFAULT_LOCAL_TOLERANCE: f64 = 1e-8;
+pub(crate) const DEFAULT_LOCAL_TOLERANCE: f64 = 1e-8;
 
 /// What the engine takes from a chain solution.
 pub(crate) struct Solved {

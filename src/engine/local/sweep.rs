@@ -25,15 +25,15 @@ use crate::model::{Dynamics, Model};
 pub(crate) const ANCHOR_FRACTION: f64 = 0.5;
 
 /// Sweeps stop when no event moved by more than this fraction of the run's duration: 1e-6.
-pub const SWEEP_TOLERANCE: f64 = 1e-6;
+pub(crate) const SWEEP_TOLERANCE: f64 = 1e-6;
 /// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-7.
-pub const OFFSET_QUANTUM: f64 = 1e-7;
+pub(crate) const OFFSET_QUANTUM: f64 = 1e-7;
 /// A new shape within this (fraction of a path or fold, and fraction of its duration for
 /// its end) of the same unknown's one unit back, shifted by the difference of the two
 /// units' origins, is stored as that one: 1e-4, 0.5 um on a 5 mm path. Two solves of the
 /// same steady motion on different steps differ by some 1e-5: a magnet that creeps off a
 /// near balance amplifies the interpolation error of its inputs.
-pub const SHAPE_TOLERANCE: f64 = 1e-4;
+pub(crate) const SHAPE_TOLERANCE: f64 = 1e-4;
 
 /// A sweep hands its unit results on in chunks of at most this many units, or at every
 /// local solve (a chunk of look-ups is cheap to wait for; a solve is not): 64.

@@ -15,7 +15,7 @@
 //! Two neighbourhoods with one key differ by less than one quantum in each offset (some 100
 //! units of the clock's last bit), so the cached start differs from the exact one by about a
 //! quantum times the start's sensitivity to a neighbour's start (of order one): within the
-//! rule's stated [`crate::engine::START_TOLERANCE`] (the tests check it against the uncached
+//! rule's stated [`START_TOLERANCE`](crate::engine::start_rule::START_TOLERANCE) (the tests check it against the uncached
 //! search).
 
 use rustc_hash::FxHashMap;
