@@ -65,7 +65,6 @@ mod simulation;
 mod tile;
 pub mod timeline;
 pub mod tolerance;
-pub mod validation;
 mod word;
 
 pub use bom::BillOfMaterials;

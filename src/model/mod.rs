@@ -9,17 +9,18 @@
 //! ([`crate::reference`](mod@crate::reference)) the whole chain at once; both step it with the
 //! integrators of the crate's `ode` module, so the two differ only in what they integrate together.
 //!
-//! ```
-//! use foldchain::model::{Model, ModelOptions};
-//! use foldchain::timeline::TileDesigns;
-//! use foldchain::Chain;
+//! Public: the options of the model ([`ModelOptions`], [`Dynamics`]), its time scales on a
+//! chain ([`TimeScales`]) and why it cannot be built ([`ModelError`]); the model itself is
+//! the simulations' own.
 //!
-//! // a straight tile, a tight U-turn (two left folds), a straight tile: a magnet unknown per
-//! // magnet, a fold unknown per folding joint
-//! let chain = Chain::parse("SLLS").unwrap();
-//! let model = Model::new(&chain, &TileDesigns::default(), &ModelOptions::default()).unwrap();
-//! assert_eq!(model.len(), 10 + 2);
-//! assert!(model.joint_var(0).is_none() && model.joint_var(1).is_some());
+//! ```
+//! use foldchain::model::{Dynamics, ModelOptions};
+//!
+//! // the defaults: overdamped, the dipole law, three neighbours each way
+//! let opts = ModelOptions::default();
+//! assert_eq!(opts.dynamics, Dynamics::Overdamped);
+//! let slow = opts.with_drag(2.0 * opts.drag);
+//! assert_eq!(slow.drag, 2.0 * opts.drag);
 //! ```
 
 mod chain_model;
@@ -28,13 +29,16 @@ mod dynamics;
 mod forces;
 mod mode;
 mod options;
+mod time_scales;
 mod verdict;
 
+pub(crate) use chain_model::Model;
+pub use chain_model::ModelError;
 pub(crate) use chain_model::Unknown;
-pub(crate) use chain_model::{Model, ModelError};
 pub(crate) use coefficients::{at_wall, InertialModel};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;
 pub(crate) use mode::{condition, Mode};
 pub use options::ModelOptions;
+pub use time_scales::TimeScales;
 pub(crate) use verdict::RestState;

@@ -37,7 +37,6 @@ mod pictures;
 mod recorder;
 mod run_result;
 mod run_source;
-pub mod stiff;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
@@ -45,4 +44,3 @@ pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{pair_energies, reference_energy, state_budget};
 pub use run_result::ReferenceRun;
 pub(crate) use run_source::joint_angle_samples;
-pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

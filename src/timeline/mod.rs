@@ -46,8 +46,8 @@ mod transition;
 
 pub use chain_state::{ChainState, DETAIL_TILES};
 pub use energy_sample::EnergySample;
-pub use event::{Event, EventKind};
 pub(crate) use event::{joint_of_magnet, start_fraction};
+pub use event::{Event, EventKind};
 pub use fold_record::FoldRecord;
 pub use geometry::Geometry;
 pub(crate) use geometry::{GeometryError, LENGTH_TOLERANCE};

@@ -12,9 +12,9 @@ use foldchain::physics::Inertia;
 use foldchain::physics::DEFAULT_CUTOFF;
 use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
-use foldchain::validation::compare_events;
-use foldchain::validation::scenes::all_scenes;
 use foldchain::{Chain, Design};
+use foldchain_validation::compare_events;
+use foldchain_validation::scenes::all_scenes;
 
 fn only(events: &[Event], kinds: &[EventKind]) -> Vec<Event> {
     events

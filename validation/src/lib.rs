@@ -18,18 +18,19 @@
 
 mod compare;
 pub mod experiments;
-mod plot;
 mod results;
 pub mod scenes;
+pub mod stiff;
+mod work_precision_plot;
 
 use std::time::Instant;
 
-use crate::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
-use crate::kinematics::poses_at_angles;
-use crate::model::ModelOptions;
-use crate::ode::Method;
-use crate::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
-use crate::validation::scenes::{all_scenes, Scene};
+use crate::scenes::{all_scenes, Scene};
+use foldchain::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
+use foldchain::kinematics::poses_at_angles;
+use foldchain::model::ModelOptions;
+use foldchain::reference::Method;
+use foldchain::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 
 pub use compare::{compare_events, EventComparison};
 pub use results::{Row, SceneReport, Validation};

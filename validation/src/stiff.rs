@@ -3,7 +3,7 @@
 //! with both integrators and counts their work (`fold-validate --stiff`).
 //!
 //! **Where the model is stiff.** Two time scales meet in it: a magnet's, its path travelled
-//! at the bonded rest force's speed ([`Model::time_scale`]), and a fold's, a quarter turn
+//! at the bonded rest force's speed ([`TimeScales::magnet_s`]), and a fold's, a quarter turn
 //! under the bonded rest torque against the rotational drag ([`TimeScales::fold_s`]). With
 //! the default drags a fold is the faster (about a tenth of the magnets' scale) and nothing
 //! is stiff. Heavy, slowly turning tiles (a rotational drag many decades above the default)
@@ -26,7 +26,7 @@
 //! reported for reading but depend on the machine and on whatever else runs on it.
 //!
 //! ```
-//! use foldchain::reference::stiff::{select_cases, run_stiff_study};
+//! use foldchain_validation::stiff::{select_cases, run_stiff_study};
 //!
 //! let cases = select_cases(&["SLLS control".to_string()]).unwrap();
 //! let study = run_stiff_study(&cases, &mut |_, _| {}).unwrap();
@@ -34,16 +34,12 @@
 //! assert!(study.cases[0].stiffness_ratio < 1.0); // default drags: not stiff
 //! ```
 
-use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
-use crate::model::{Model, ModelOptions};
-use crate::ode::Method;
-use crate::reference::driver::run_reference;
-use crate::reference::options::{ReferenceError, ReferenceOptions};
-use crate::reference::run_result::ReferenceRun;
-use crate::timeline::TileDesigns;
-use crate::{Chain, ChainError, Design};
+use foldchain::model::{ModelOptions, TimeScales};
+use foldchain::reference::{run_reference, Method, ReferenceError, ReferenceOptions, ReferenceRun};
+use foldchain::timeline::TileDesigns;
+use foldchain::{Chain, ChainError, Design};
 
 /// One case of the study: a chain, a design and drags, and the tolerance both integrators
 /// run at.
@@ -55,7 +51,7 @@ pub struct StiffCase {
     pub word: &'static str,
     /// Every magnet's remanence (so its moment) times this, on the thesis design.
     pub moment_factor: f64,
-    /// The rotational drag is [`crate::physics::DEFAULT_ROTATIONAL_DRAG`] times
+    /// The rotational drag is [`foldchain::physics::DEFAULT_ROTATIONAL_DRAG`] times
     /// this (the magnet drag stays the default).
     pub rotational_drag_factor: f64,
     /// Tolerance of both integrators.
@@ -148,25 +144,6 @@ pub enum StiffError {
     },
 }
 
-/// The model's two time scales on a case (see the module documentation).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct TimeScales {
-    /// A magnet's time scale, s: its path travelled at the bonded rest force's speed.
-    pub magnet_s: f64,
-    /// A fold's, s: a quarter turn at the bonded rest torque against the rotational drag,
-    /// `rotational_drag * (pi/2) / torque_scale`. An estimate: the torque on a real fold
-    /// changes as it turns and its magnets move; on these cases the folds measured
-    /// ([`StiffRow::longest_fold_s`]) take between about 0.4 and 2 times this.
-    pub fold_s: f64,
-}
-
-impl TimeScales {
-    /// The fold's time scale over the magnets': far above 1 is stiff.
-    pub fn ratio(&self) -> f64 {
-        self.fold_s / self.magnet_s
-    }
-}
-
 impl StiffCase {
     /// The chain.
     pub fn chain(&self) -> Result<Chain, StiffError> {
@@ -208,12 +185,8 @@ impl StiffCase {
 
     /// The model's time scales on this case.
     pub fn time_scales(&self) -> Result<TimeScales, StiffError> {
-        let model = Model::new(&self.chain()?, &self.designs(), &self.model_options())
-            .map_err(|e| self.reference_error(e.into()))?;
-        Ok(TimeScales {
-            magnet_s: model.time_scale,
-            fold_s: model.options().rotational_drag * FRAC_PI_2 / model.torque_scale,
-        })
+        TimeScales::of(&self.chain()?, &self.designs(), &self.model_options())
+            .map_err(|e| self.reference_error(e.into()))
     }
 
     /// One reference run with `method`, and its wall time in seconds.
