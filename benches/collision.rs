@@ -22,7 +22,7 @@ use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptio
 use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::{folded_word, kinematics, Fold, FoldWord};
+use foldchain::{folded_word, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
 fn serpentine(tiles: usize, row: usize) -> FoldWord {
@@ -100,10 +100,10 @@ fn main() {
         });
     }
     let w = FoldWord::from_folds(folds);
-    let poses = kinematics::final_poses(&w);
+    let poses = w.final_poses();
     let (all, r) = median(5, || check_word(&w, &opts));
     let (finals, _) = median(5, || final_overlap(&poses));
-    let (kin, _) = median(5, || kinematics::final_poses(&w));
+    let (kin, _) = median(5, || w.final_poses());
     println!();
     println!("The {}-tile serpentine of rows of 1,000:", w.tiles());
     println!("| part | seconds (median of 5) |");

@@ -22,7 +22,7 @@ pub(crate) fn exact_step(fold: Fold) -> ExactPoint {
 }
 
 /// The exact final pose of every tile of a designed chain, all folds made.
-pub fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
+pub(crate) fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
     let mut poses = Vec::with_capacity(word.tiles());
     let mut pose = ExactPose::default();
     poses.push(pose);
@@ -48,7 +48,7 @@ pub(crate) fn exact_hinge(pose: ExactPose, fold: Fold) -> Option<ExactPoint> {
 }
 
 /// The final signed angle of each joint: +pi/2 for L, -pi/2 for R, 0 for S.
-pub fn final_angles(word: &FoldWord) -> Vec<f64> {
+pub(crate) fn final_angles(word: &FoldWord) -> Vec<f64> {
     word.folds()
         .iter()
         .map(|f| f.quarter_turns() as f64 * FRAC_PI_2)
@@ -69,7 +69,7 @@ pub(crate) fn joint_transform(angle: f64, w: f64) -> Pose {
 
 /// The pose of every tile for joint angles `angles` (one per joint, radians, positive = left,
 /// each within `[-pi/2, pi/2]`), composing `f64` transforms from tile 0 at the origin.
-pub fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
+pub(crate) fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
     let mut poses = Vec::with_capacity(angles.len() + 1);
     for_each_pose_at_angles(angles, w, |p| poses.push(p));
     poses
@@ -79,7 +79,7 @@ pub fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
 /// the same numbers bit for bit (`Pose::then` of [`joint_transform`]s), but a joint's
 /// transform and a heading's sine and cosine are computed again only when the angle changes,
 /// which along a straight run it does not.
-pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+pub(crate) fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
     each(Pose::IDENTITY);
     compose_poses(Pose::IDENTITY, angles, w, each);
 }
@@ -87,7 +87,7 @@ pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose
 /// The poses of the tiles after one at `pose`, whose joints turn by `angles`, handed to
 /// `each` in order: from tile 0's pose, [`for_each_pose_at_angles`] less tile 0; from a
 /// later tile's pose, the same numbers as from tile 0.
-pub fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+pub(crate) fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
     // the last joint angle and its transform, the last heading and its sine and cosine
     let mut joint: Option<(u64, Pose)> = None;
     let mut heading: Option<(u64, f64, f64)> = None;

@@ -5,9 +5,8 @@
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, Timeline};
-use foldchain::kinematics::poses_at_angles;
 use foldchain::timeline::{EventKind, Outcome, SpeedLaw, TileDesigns};
-use foldchain::{simulate, Chain, Design, Octagon};
+use foldchain::{simulate, Chain, Design, Octagon, Pose};
 use parry2d_f64::query::intersection_test;
 
 fn run_with(chain: &str, designs: TileDesigns, speed: SpeedLaw) -> Timeline {
@@ -223,7 +222,7 @@ fn thesis_three_tile_experiments_complete() {
         assert_eq!(summary.first_collision, None);
         let angles = joint_angles_at(&tl, tl.duration());
         let expect =
-            foldchain::kinematics::final_angles(&foldchain::FoldWord::parse(word).unwrap());
+            foldchain::FoldWord::parse(word).unwrap().final_angles();
         assert_eq!(angles, expect, "{word}");
     }
 }
@@ -255,7 +254,7 @@ fn mixed_s_mixes_sequential_and_simultaneous_stretches() {
 /// of the engine's joint angles, independent of the collision check.
 fn overlapping_tiles(tl: &Timeline, t: f64) -> Vec<(usize, usize)> {
     let w = tl.geometry.w;
-    let poses = poses_at_angles(&joint_angles_at(tl, t), w);
+    let poses = Pose::chain_at_angles(&joint_angles_at(tl, t), w);
     let shape = Octagon::new(w).to_parry(1e-7 * w).unwrap();
     let mut pairs = Vec::new();
     for a in 0..poses.len() {

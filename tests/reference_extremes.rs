@@ -5,12 +5,10 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, StartRule};
-use foldchain::kinematics::{final_poses, poses_at_angles};
 use foldchain::model::ModelOptions;
-use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG};
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
-use foldchain::{Chain, Design, FoldWord};
+use foldchain::{Chain, Design, FoldWord, Pose};
 
 fn reference(word: &str, d: Design, model: ModelOptions, method: Method) -> ReferenceRun {
     let r = run_reference(
@@ -99,7 +97,7 @@ fn sequential_edge_then_stall() {
     // the engine's force rule weighs the same pairs as the reference and stalls where it
     // does, at both values of s
     let force = EngineOptions::default().with_start_rule(StartRule::Force {
-        cutoff: DEFAULT_CUTOFF,
+        cutoff: ModelOptions::DEFAULT_CUTOFF,
     });
     for (s, joint, magnet) in [(t.e / 3.0, 4, 10), (t.e / 3.0 + 0.05, 0, 2)] {
         let tl = run(
@@ -260,7 +258,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         "stalled_at": null,
         "reason": null,
         "first_collision": null,
-        "speed_law": {"overdamped": {"drag": DEFAULT_DRAG}},
+        "speed_law": {"overdamped": {"drag": ModelOptions::DEFAULT_DRAG}},
     });
     assert!(same_json(&json, &want), "{json}");
     // every magnet but the last started and arrived, both folds started and ended
@@ -294,7 +292,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         "speed_law": {"reference": {
             "method": "dopri5",
             "tolerance": 1e-5,
-            "drag": DEFAULT_DRAG,
+            "drag": ModelOptions::DEFAULT_DRAG,
             "rotational_drag": ModelOptions::default().rotational_drag,
         }},
         "index": "magnet k is magnet k mod 2 of tile k/2; joint events index the joint",
@@ -355,8 +353,8 @@ fn engine_pose_drift(tiles: usize) -> f64 {
     assert_eq!(tl.outcome, Outcome::Completed);
     let angles = joint_angles_at(&tl, tl.duration());
     let w = 30.0;
-    let approx = poses_at_angles(&angles, w);
-    let exact = final_poses(&FoldWord::parse(&word).unwrap());
+    let approx = Pose::chain_at_angles(&angles, w);
+    let exact = FoldWord::parse(&word).unwrap().final_poses();
     approx
         .iter()
         .zip(&exact)

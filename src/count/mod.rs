@@ -66,6 +66,10 @@ impl Default for CountOptions {
 }
 
 impl CountOptions {
+    /// The largest chain length counted (the weights of the random-chain probability are
+    /// exact integers up to this length).
+    pub const MAX_TILES: usize = MAX_COUNT_TILES;
+
     /// Counts chains of `min` to `max` tiles.
     pub fn with_tiles(mut self, min: usize, max: usize) -> CountOptions {
         self.min_tiles = min;
@@ -131,7 +135,7 @@ pub enum CountError {
 
 /// The largest chain length counted (the weights of the random-chain probability are exact
 /// integers up to this length).
-pub const MAX_COUNT_TILES: usize = 40;
+pub(crate) const MAX_COUNT_TILES: usize = 40;
 
 /// One row of the table: chains of `tiles` tiles.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -39,14 +39,13 @@ pub(crate) use local::DEFAULT_LOCAL_TOLERANCE;
 pub(crate) use result::fold_angle;
 pub use result::{joint_angles_at, Timeline};
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
-pub use run_source::{timeline_json, MAX_TIMELINE_EVENTS};
+pub use run_source::timeline_json;
 pub use schedule::fold_schedule;
 pub use start_rule::StartRule;
 pub(crate) use start_rule::DRIVE_TOLERANCE;
 
 // The shared vocabulary the engine's results are written in, where the command-line tools and
 // the pictures have long found it (one home: `crate::timeline`, `crate::physics`).
-pub use crate::physics::DEFAULT_DRAG;
 pub use crate::timeline::{
     CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry, Outcome, SValue,
     SpeedLaw, Summary, TileDesigns,

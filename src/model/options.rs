@@ -46,6 +46,13 @@ impl Default for ModelOptions {
 }
 
 impl ModelOptions {
+    /// The default drag of a magnet in its channel, N s/m: an assumed value that makes a
+    /// straight-path move of the thesis design take about a third of a second.
+    pub const DEFAULT_DRAG: f64 = DEFAULT_DRAG;
+    /// The default chain-index cutoff of the pair forces: each magnet feels its three nearest
+    /// neighbours each way.
+    pub const DEFAULT_CUTOFF: usize = DEFAULT_CUTOFF;
+
     /// Another magnet drag, N s/m.
     pub fn with_drag(mut self, drag: f64) -> ModelOptions {
         self.drag = drag;

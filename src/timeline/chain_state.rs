@@ -6,7 +6,7 @@ use crate::{Fold, Pose};
 
 /// Chains up to this many tiles carry their magnets' positions in a [`ChainState`] and are
 /// drawn in detail (outlines, paths, magnets, hinges); longer ones are drawn lean.
-pub const DETAIL_TILES: usize = 400;
+pub(crate) const DETAIL_TILES: usize = 400;
 
 /// The chain at time `time`: what a step frame draws.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +29,10 @@ pub struct ChainState {
 }
 
 impl ChainState {
+    /// Chains up to this many tiles carry their magnets' positions and are drawn in detail
+    /// (outlines, paths, magnets, hinges); longer ones are drawn lean.
+    pub const DETAIL_TILES: usize = DETAIL_TILES;
+
     /// Number of tiles.
     pub fn tiles(&self) -> usize {
         self.poses.len()

@@ -44,7 +44,8 @@ mod tile_designs;
 mod track;
 mod transition;
 
-pub use chain_state::{ChainState, DETAIL_TILES};
+pub use chain_state::ChainState;
+pub(crate) use chain_state::DETAIL_TILES;
 pub use energy_sample::EnergySample;
 pub(crate) use event::{joint_of_magnet, start_fraction};
 pub use event::{Event, EventKind};
@@ -58,5 +59,6 @@ pub use run_source::{RunSource, TrackKey};
 pub use speed_law::SpeedLaw;
 pub use summary::{CollisionReport, RunFacts, Summary};
 pub use tile_designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
-pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+pub use track::Track;
+pub(crate) use track::{ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 pub use transition::{MagnetTrack, TransitionData};

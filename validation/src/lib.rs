@@ -27,8 +27,8 @@ use std::time::Instant;
 
 use crate::scenes::{all_scenes, Scene};
 use foldchain::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
-use foldchain::kinematics::poses_at_angles;
 use foldchain::model::ModelOptions;
+use foldchain::Pose;
 use foldchain::reference::Method;
 use foldchain::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 
@@ -106,7 +106,7 @@ pub enum ValidateError {
 fn engine_final(tl: &Timeline) -> Vec<(f64, f64)> {
     let t = tl.duration();
     let angles = joint_angles_at(tl, t);
-    let poses = poses_at_angles(&angles, tl.geometry.w);
+    let poses = Pose::chain_at_angles(&angles, tl.geometry.w);
     let mut out: Vec<(f64, f64)> = poses.iter().map(|p| (p.x, p.y)).collect();
     for k in 0..tl.geometry.magnets() {
         out.push(poses[k / 2].transform_point(tl.local_position(k, t)));

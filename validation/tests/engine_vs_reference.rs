@@ -9,7 +9,6 @@
 use foldchain::engine::{energy_curve, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::physics::DEFAULT_CUTOFF;
 use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design};
@@ -64,7 +63,7 @@ fn local_solves_time_every_event_as_the_reference_does() {
 #[test]
 fn engine_and_reference_agree_on_outcome_and_propagation_order() {
     let rule = StartRule::Force {
-        cutoff: DEFAULT_CUTOFF,
+        cutoff: ModelOptions::DEFAULT_CUTOFF,
     };
     for sc in all_scenes() {
         let r = run_reference(
@@ -119,7 +118,7 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
             &sc.chain,
             &sc.designs,
             &EngineOptions::default().with_start_rule(StartRule::Force {
-                cutoff: DEFAULT_CUTOFF,
+                cutoff: ModelOptions::DEFAULT_CUTOFF,
             }),
         )
         .unwrap();

@@ -10,8 +10,8 @@ use clap::Parser;
 use foldchain::collision::CheckOptions;
 use foldchain::count::{
     count_valid, estimate_random, merge_reports, CountOptions, CountReport, CountRow, Shard,
-    MAX_COUNT_TILES,
 };
+const MAX_COUNT_TILES: usize = CountOptions::MAX_TILES;
 use foldchain_cli::numbers::count_in;
 use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};

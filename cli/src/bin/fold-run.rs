@@ -9,11 +9,12 @@ use anyhow::{anyhow, bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{
-    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
+    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns,
 };
 use foldchain::margins::Margins;
 use foldchain::model::ModelOptions;
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
@@ -294,7 +295,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             )
         })?;
     let dynamics = args.dynamics.to_dynamics();
-    let drag = args.drag.unwrap_or(DEFAULT_DRAG);
+    let drag = args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG);
     let speed = match args.speed {
         SpeedChoice::Unit => SpeedLaw::Unit,
         SpeedChoice::Overdamped => SpeedLaw::Overdamped { drag },
@@ -415,7 +416,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             .with_force_law(force_law)
             .with_start_rule(match args.start_rule {
                 Some(StartRuleChoice::Force) => StartRule::Force {
-                    cutoff: foldchain::physics::DEFAULT_CUTOFF,
+                    cutoff: ModelOptions::DEFAULT_CUTOFF,
                 },
                 Some(StartRuleChoice::Distance) | None => StartRule::Distance,
             })

@@ -12,7 +12,8 @@ use clap::Parser;
 use foldchain::count::Shard;
 use foldchain::engine::EngineOptions;
 use foldchain::margins::{ChainModel, MarginOptions, Margins};
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
     candidate_design_json, candidate_designs, optimize, sensitivities, study, Candidate, Parameter,

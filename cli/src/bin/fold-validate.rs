@@ -13,7 +13,8 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::Parser;
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::Design;
 use foldchain_cli::choices::DynamicsChoice;
 use foldchain_cli::experiments::experiments;

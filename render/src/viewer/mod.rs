@@ -7,7 +7,7 @@
 //! [`RunView`]s).
 //!
 //! The page computes the chain itself, as the library does: joint angles and magnet travel
-//! from [`Track`]s (piecewise linear within [`ANGLE_TOLERANCE`] and [`TRAVEL_TOLERANCE`]),
+//! from [`Track`]s (piecewise linear within [`Track::ANGLE_TOLERANCE`] and [`Track::TRAVEL_TOLERANCE`]),
 //! tile poses by composing the octagon chain's hinge turns ([`foldchain::kinematics`]), magnets
 //! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
 //! about 28 bytes per tile on the event engine's serpentines.
@@ -35,7 +35,7 @@ mod run_data;
 
 use foldchain::timeline::RunSource;
 #[cfg(doc)]
-use foldchain::timeline::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+use foldchain::timeline::Track;
 
 pub use path_form::PathForm;
 pub use run_data::{PackedInts, RunData};
