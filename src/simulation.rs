@@ -24,7 +24,7 @@ pub enum SimulateError {
 }
 
 /// The fold word of what actually folds: each joint's fold if it turned, else S.
-pub fn folded_word(tl: &Timeline) -> FoldWord {
+pub(crate) fn folded_word(tl: &Timeline) -> FoldWord {
     word_of_folds(tl.tiles(), &tl.folds)
 }
 

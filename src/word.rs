@@ -7,9 +7,9 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::{Chain, ChainError, ExactPose, Fold, Tile, MAX_TILES};
 #[cfg(doc)]
 use crate::Pose;
+use crate::{Chain, ChainError, ExactPose, Fold, Tile, MAX_TILES};
 
 /// A fold word: the fold of every joint, from the reaction-initiator end.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]

@@ -4,7 +4,7 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, StartRule};
+use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::ModelOptions;
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
@@ -351,7 +351,7 @@ fn engine_pose_drift(tiles: usize) -> f64 {
     )
     .unwrap();
     assert_eq!(tl.outcome, Outcome::Completed);
-    let angles = joint_angles_at(&tl, tl.duration());
+    let angles = tl.joint_angles_at(tl.duration());
     let w = 30.0;
     let approx = Pose::chain_at_angles(&angles, w);
     let exact = FoldWord::parse(&word).unwrap().final_poses();

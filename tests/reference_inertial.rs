@@ -8,9 +8,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::{ForceLaw, Inertia};
-use foldchain::reference::{
-    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
-};
+use foldchain::reference::{run_reference, Recording, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
@@ -237,9 +235,7 @@ fn recorded_fold_tracks_keep_each_bounce_peak() {
         &TileDesigns::global(Design::thesis().with_s(0.0)),
         &ReferenceOptions::default()
             .with_model(inertial())
-            .with_record(Recording::Grid {
-                max_states: state_budget(chain.len()),
-            }),
+            .with_record(Recording::within_budget(chain.len())),
     )
     .unwrap();
     assert!(r.walls.windows(2).all(|w| w[0].0 <= w[1].0));

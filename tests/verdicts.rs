@@ -17,7 +17,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::reference::{run_reference, state_budget, Recording, ReferenceOptions};
+use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Summary, TileDesigns};
 use foldchain::{check_reference, simulate, Chain, Design};
 
@@ -40,9 +40,7 @@ fn verdicts(word: &str, s: f64, dynamics: Dynamics) -> (Summary, Summary, bool) 
     .unwrap();
     let ro = ReferenceOptions::default()
         .with_model(model)
-        .with_record(Recording::Grid {
-            max_states: state_budget(chain.len()),
-        });
+        .with_record(Recording::within_budget(chain.len()));
     let run = run_reference(&chain, &designs, &ro).unwrap();
     let r = check_reference(&run, &CheckOptions::default()).unwrap();
     let same_hit = match (&e.first_collision, &r.first_collision) {

@@ -24,8 +24,8 @@ mod merge;
 mod random;
 mod search;
 
-pub use merge::{merge_reports, CountReport, MergeError, Shard};
-pub use random::{estimate_random, RandomEstimate};
+pub use merge::{CountReport, MergeError, Shard};
+pub use random::RandomEstimate;
 
 use crate::collision::CheckOptions;
 use search::{search, Scope};
@@ -304,7 +304,7 @@ mod tests {
         let exact = rows[4].p_random.unwrap();
         let mut covered = 0;
         for seed in 1..=10 {
-            let est = estimate_random(6, 20_000, seed, &CheckOptions::default());
+            let est = RandomEstimate::sample(6, 20_000, seed, &CheckOptions::default());
             covered += (est.low <= exact && exact <= est.high) as usize;
             assert!((est.p - exact).abs() < 0.02, "{est:?} vs {exact}");
         }

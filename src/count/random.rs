@@ -27,10 +27,28 @@ pub struct RandomEstimate {
     pub high: f64,
 }
 
+impl RandomEstimate {
+    /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds
+    /// the part that propagation reaches and counts those that reach the end and fold
+    /// cleanly, with a 95% Wilson interval. Deterministic for a given `seed` (and independent
+    /// across lengths for one seed).
+    ///
+    /// ```
+    /// use foldchain::collision::CheckOptions;
+    /// use foldchain::count::RandomEstimate;
+    ///
+    /// let est = RandomEstimate::sample(6, 2000, 1, &CheckOptions::default());
+    /// assert!(est.low <= est.p && est.p <= est.high);
+    /// ```
+    pub fn sample(tiles: usize, samples: u64, seed: u64, opts: &CheckOptions) -> RandomEstimate {
+        estimate_random(tiles, samples, seed, opts)
+    }
+}
+
 /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds the
 /// part that propagation reaches and counts those that reach the end and fold cleanly.
 /// Deterministic for a given `seed` (and independent across lengths for one seed).
-pub fn estimate_random(
+pub(crate) fn estimate_random(
     tiles: usize,
     samples: u64,
     seed: u64,

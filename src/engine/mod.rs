@@ -34,13 +34,13 @@ mod speed;
 mod start_rule;
 mod trigger;
 
-pub use energy::energy_curve;
+pub(crate) use energy::energy_curve;
 pub(crate) use local::DEFAULT_LOCAL_TOLERANCE;
 pub(crate) use result::fold_angle;
-pub use result::{joint_angles_at, Timeline};
+pub(crate) use result::joint_angles_at;
+pub use result::Timeline;
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
-pub use run_source::timeline_json;
-pub use schedule::fold_schedule;
+pub(crate) use schedule::fold_schedule;
 pub use start_rule::StartRule;
 pub(crate) use start_rule::DRIVE_TOLERANCE;
 

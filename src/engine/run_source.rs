@@ -151,7 +151,7 @@ pub(crate) const MAX_TIMELINE_EVENTS: usize = 2_000_000;
 /// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
 /// (index: the magnet, or the joint for fold, inhibited and stalled events), at most
 /// 2,000,000 of them (`MAX_TIMELINE_EVENTS`).
-pub fn timeline_json(tl: &Timeline) -> String {
+pub(crate) fn timeline_json(tl: &Timeline) -> String {
     let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
     TimelineJson {
         tiles: tl.tiles(),

@@ -19,7 +19,7 @@ pub(crate) const ANGLE_TOLERANCE: f64 = 1e-4;
 const MAX_DEPTH: u32 = 14;
 
 /// The fold schedule: one adaptively sampled track per fold.
-pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
+pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
     let tracks = timeline
         .folds
         .iter()

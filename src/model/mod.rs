@@ -32,7 +32,7 @@ mod options;
 mod time_scales;
 mod verdict;
 
-pub(crate) use chain_model::Model;
+pub use chain_model::Model;
 pub use chain_model::ModelError;
 pub(crate) use chain_model::Unknown;
 pub(crate) use coefficients::{at_wall, InertialModel};

@@ -41,6 +41,6 @@ mod run_source;
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
 pub use options::{Recording, ReferenceError, ReferenceOptions};
-pub use pictures::{pair_energies, reference_energy, state_budget};
+pub(crate) use pictures::{pair_energies, state_budget};
 pub use run_result::ReferenceRun;
 pub(crate) use run_source::joint_angle_samples;

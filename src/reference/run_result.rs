@@ -61,6 +61,12 @@ struct ReferenceSettings {
 }
 
 impl ReferenceRun {
+    /// The energy of each pair of neighbouring magnets against time, from the recorded states
+    /// (or the final state alone): what the thesis' experiments plot.
+    pub fn pair_energies(&self) -> crate::timeline::PairEnergies {
+        crate::reference::pair_energies(self)
+    }
+
     /// Number of tiles.
     pub fn tiles(&self) -> usize {
         self.model.geometry.tiles()

@@ -159,7 +159,7 @@ impl Geometry {
     }
 
     /// The reaction initiator: tile 0's design at the tile edge.
-    pub fn ri(&self) -> ReactionInitiator {
+    pub(crate) fn ri(&self) -> ReactionInitiator {
         ReactionInitiator::of(self.design(0))
     }
 

@@ -28,9 +28,7 @@ mod study;
 mod tolerances;
 mod wilson;
 
-pub use optimize::{
-    candidate_design_json, candidate_designs, optimize, Candidate, Search, SearchOptions,
-};
+pub use optimize::{optimize, Candidate, Search, SearchOptions};
 pub(crate) use rng::SplitMix64;
 pub(crate) use sample::{draw_designs, nudged};
 pub use sensitivity::{sensitivities, Sensitivity};

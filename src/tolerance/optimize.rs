@@ -78,6 +78,19 @@ pub struct Candidate {
 }
 
 impl Candidate {
+    /// The per-tile designs of this candidate for `chain`: `base` with the wall moved, `s`
+    /// set per kind (straight runs, turn tiles).
+    pub fn designs(&self, chain: &Chain, base: &Design) -> Vec<Design> {
+        candidate_designs(chain, base, self)
+    }
+
+    /// This candidate as a design file (`{"global": ..., "tiles": [...]}`, the form
+    /// [`crate::timeline::TileDesigns::from_json`] reads): `base` with the wall moved and the
+    /// straight runs' `s`, the turn tiles' `s` as overrides, runs of turn tiles in one entry.
+    pub fn design_file(&self, chain: &Chain, base: &Design) -> serde_json::Value {
+        candidate_design_json(chain, base, self)
+    }
+
     /// Whether it is inside the inequalities, assembles cleanly and reaches `target`.
     pub fn meets(&self, target: f64) -> bool {
         self.infeasible.is_none() && self.assembly_s.is_some() && self.probability >= target
@@ -103,14 +116,18 @@ fn is_turn(tile: &crate::Tile) -> bool {
 }
 
 /// The per-tile designs of a candidate: the base with the wall moved, `s` set per kind.
-pub fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Design> {
+pub(crate) fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Design> {
     designs_of(chain, base, c.s_straight, c.s_turn, c.wall_step)
 }
 
 /// A candidate as a design file (`{"global": ..., "tiles": [...]}`, the form
 /// [`TileDesigns::from_json`] reads): the base with the wall moved and the straight runs'
 /// `s`, the turn tiles' `s` as overrides, runs of turn tiles in one entry.
-pub fn candidate_design_json(chain: &Chain, base: &Design, c: &Candidate) -> serde_json::Value {
+pub(crate) fn candidate_design_json(
+    chain: &Chain,
+    base: &Design,
+    c: &Candidate,
+) -> serde_json::Value {
     let mut global = nudged(base, Parameter::Wall, c.wall_step).with_s(c.s_straight);
     // the grid's steps are decimal: keep the file free of binary rounding
     global.wall = (global.wall * 1e9).round() / 1e9;

@@ -170,7 +170,6 @@ fn dynamics_name(d: Dynamics) -> &'static str {
 mod tests {
     use super::*;
     use foldchain::physics::{ForceLaw, Inertia};
-    use foldchain::reference::pair_energies;
 
     #[test]
     fn chains_parse_and_energy_falls() {
@@ -184,7 +183,7 @@ mod tests {
         assert_eq!(runs.len(), EXPERIMENTS.len());
         for (r, run) in &runs {
             assert!(r.agrees, "{r:?}");
-            let pe = pair_energies(run);
+            let pe = run.pair_energies();
             assert_eq!(pe.pairs.len(), 6);
             assert!(pe.times.len() > 10);
             // the chain ends lower than it starts: the assembly releases energy

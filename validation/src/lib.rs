@@ -26,11 +26,11 @@ mod work_precision_plot;
 use std::time::Instant;
 
 use crate::scenes::{all_scenes, Scene};
-use foldchain::engine::{joint_angles_at, run, EngineError, EngineOptions, StartRule, Timeline};
+use foldchain::engine::{run, EngineError, EngineOptions, StartRule, Timeline};
 use foldchain::model::ModelOptions;
-use foldchain::Pose;
 use foldchain::reference::Method;
 use foldchain::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
+use foldchain::Pose;
 
 pub use compare::{compare_events, EventComparison};
 pub use results::{Row, SceneReport, Validation};
@@ -105,7 +105,7 @@ pub enum ValidateError {
 /// Final tile centres and magnet positions (mm) of an engine run.
 fn engine_final(tl: &Timeline) -> Vec<(f64, f64)> {
     let t = tl.duration();
-    let angles = joint_angles_at(tl, t);
+    let angles = tl.joint_angles_at(t);
     let poses = Pose::chain_at_angles(&angles, tl.geometry.w);
     let mut out: Vec<(f64, f64)> = poses.iter().map(|p| (p.x, p.y)).collect();
     for k in 0..tl.geometry.magnets() {

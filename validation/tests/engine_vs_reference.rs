@@ -6,11 +6,11 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{energy_curve, run, EngineMethod, EngineOptions, StartRule};
+use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
-use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
+use foldchain::reference::{run_reference, Recording, ReferenceOptions};
+use foldchain::timeline::{Event, EventKind, Outcome, RunSource, TileDesigns};
 use foldchain::{Chain, Design};
 use foldchain_validation::compare_events;
 use foldchain_validation::scenes::all_scenes;
@@ -203,11 +203,11 @@ fn energy_matches_the_engine_at_rest_and_folded() {
     let chain = Chain::parse("SSLLSS").unwrap();
     let designs = TileDesigns::default();
     let tl = run(&chain, &designs, &EngineOptions::default()).unwrap();
-    let engine = energy_curve(&tl, 10);
+    let engine = tl.energy(10);
     let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 50 });
     let r = run_reference(&chain, &designs, &opts).unwrap();
     assert_eq!(r.outcome, Outcome::Completed);
-    let curve = reference_energy(&r, 10);
+    let curve = r.energy(10);
     let (e0, r0) = (engine[0].energy_j, curve[0].energy_j);
     assert!((e0 - r0).abs() < 1e-9 * e0.abs(), "{e0} {r0}");
     let (e1, r1) = (

@@ -8,15 +8,13 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::engine::{
-    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns,
-};
+use foldchain::engine::{EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns};
 use foldchain::margins::Margins;
 use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
+use foldchain::reference::{run_reference, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::choices::{
@@ -383,9 +381,7 @@ fn run(args: Args) -> anyhow::Result<u8> {
             );
         }
         let ro = ReferenceOptions::default()
-            .with_record(Recording::Grid {
-                max_states: state_budget(chain.len()),
-            })
+            .with_record(Recording::within_budget(chain.len()))
             .with_model(ModelOptions {
                 distance_cutoff: args.distance_cutoff,
                 ..ModelOptions::default()

@@ -16,8 +16,8 @@ use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_design_json, candidate_designs, optimize, sensitivities, study, Candidate, Parameter,
-    SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    optimize, sensitivities, study, Candidate, Parameter, SearchOptions, Sensitivity, Study,
+    StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
@@ -438,7 +438,7 @@ fn search(
         // the base, the chosen and the most probable design again, with the study's full
         // sample count, and the last two as design files
         let confirm = |c: &Candidate| -> anyhow::Result<Study> {
-            Ok(study(chain, &candidate_designs(chain, base, c), opts)?)
+            Ok(study(chain, &c.designs(chain, base), opts)?)
         };
         let b = confirm(&result.base)?;
         outln!(
@@ -456,7 +456,7 @@ fn search(
             let Some(c) = c else { continue };
             let s = confirm(c)?;
             let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
-            let mut text = serde_json::to_string_pretty(&candidate_design_json(chain, base, c))?;
+            let mut text = serde_json::to_string_pretty(&c.design_file(chain, base))?;
             text.push('\n');
             std::fs::write(&path, text)
                 .with_context(|| format!("cannot write {}", path.display()))?;
