@@ -44,7 +44,7 @@ pub enum InputError {
 
 /// Reads a chain from a command-line argument: if it names an existing file, the file's
 /// contents (lines starting with `#` are comments); otherwise the argument itself.
-pub fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
+pub(crate) fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
     let path = FsPath::new(arg);
     if path.is_file() {
         let size = std::fs::metadata(path)

@@ -2,7 +2,7 @@
 //! every fold ([`foldchain::margins`]), the smallest of them and where, for chains up to
 //! [`MAX_MARGIN_TILES`] tiles.
 
-use foldchain::margins::{margins, ChainModel, MarginOptions, Margins, Weakest};
+use foldchain::margins::{ChainModel, MarginOptions, Margins, Weakest};
 use foldchain::physics::ForceLaw;
 use foldchain::timeline::TileDesigns;
 use foldchain::{Chain, Design};
@@ -41,7 +41,7 @@ pub fn run_margins(
         index.iter().map(|&i| list[i as usize]).collect()
     };
     let model = ChainModel::new(chain, &per_tile).ok()?;
-    let m = margins(
+    let m = Margins::of(
         &model,
         &MarginOptions {
             force_law: law,

@@ -10,12 +10,12 @@
 //! 1% of the force that holds a tile's two magnets together.
 //!
 //! ```
-//! use foldchain::margins::{margins, ChainModel, MarginOptions};
+//! use foldchain::margins::{ChainModel, MarginOptions, Margins};
 //! use foldchain::{Chain, Design};
 //!
 //! let chain = Chain::parse("SLLS").unwrap();
 //! let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
-//! let m = margins(&model, &MarginOptions::default());
+//! let m = Margins::of(&model, &MarginOptions::default());
 //! assert_eq!(m.starts.len(), 2 * chain.len() - 1);
 //! assert_eq!(m.folds.len(), 2);
 //! assert!(m.folds_as_designed(), "{:?}", m.weakest());
@@ -187,6 +187,22 @@ pub struct Margins {
 }
 
 impl Margins {
+    /// Every margin of `model` under `opts`: each start's, hold's and fold's room, and the
+    /// weakest of them (see the module documentation for the poses they are taken in).
+    ///
+    /// ```
+    /// use foldchain::margins::{ChainModel, MarginOptions, Margins};
+    /// use foldchain::{Chain, Design};
+    ///
+    /// let chain = Chain::parse("SLLS").unwrap();
+    /// let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
+    /// let m = Margins::of(&model, &MarginOptions::default());
+    /// assert!(m.folds_as_designed());
+    /// ```
+    pub fn of(model: &ChainModel, opts: &MarginOptions) -> Margins {
+        margins(model, opts)
+    }
+
     /// The smallest margin of all, and where.
     pub fn weakest(&self) -> Option<Weakest> {
         let starts = self.starts.iter().map(|s| Weakest::Start {
@@ -263,7 +279,7 @@ impl Margins {
 /// everything before it arrived and everything after it at rest. Where assembly overlaps
 /// (`s < e/3`) the real chain is somewhere between these poses; the test suite checks the
 /// verdict against the force-integrated reference on the three-tile experiments.
-pub fn margins(model: &ChainModel, opts: &MarginOptions) -> Margins {
+pub(crate) fn margins(model: &ChainModel, opts: &MarginOptions) -> Margins {
     let opts = MarginOptions {
         cutoff: opts.cutoff.max(1),
         ..*opts

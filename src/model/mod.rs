@@ -9,9 +9,8 @@
 //! ([`crate::reference`](mod@crate::reference)) the whole chain at once; both step it with the
 //! integrators of the crate's `ode` module, so the two differ only in what they integrate together.
 //!
-//! Public: the options of the model ([`ModelOptions`], [`Dynamics`]), its time scales on a
-//! chain ([`TimeScales`]) and why it cannot be built ([`ModelError`]); the model itself is
-//! the simulations' own.
+//! Public: the model of a chain ([`Model`], which a reference run's states index), its
+//! options ([`ModelOptions`], [`Dynamics`]) and why it cannot be built ([`ModelError`]).
 //!
 //! ```
 //! use foldchain::model::{Dynamics, ModelOptions};
@@ -29,7 +28,6 @@ mod dynamics;
 mod forces;
 mod mode;
 mod options;
-mod time_scales;
 mod verdict;
 
 pub use chain_model::Model;
@@ -40,5 +38,4 @@ pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;
 pub(crate) use mode::{condition, Mode};
 pub use options::ModelOptions;
-pub use time_scales::TimeScales;
 pub(crate) use verdict::RestState;

@@ -49,7 +49,10 @@ pub struct Geometry {
 
 impl Geometry {
     /// The geometry of `chain` with `designs`, checked (`design` names them in errors).
-    pub fn from_designs(chain: &Chain, designs: &TileDesigns) -> Result<Geometry, GeometryError> {
+    pub(crate) fn from_designs(
+        chain: &Chain,
+        designs: &TileDesigns,
+    ) -> Result<Geometry, GeometryError> {
         designs.validate("design")?;
         let (list, per_tile) = designs.resolve(chain.len());
         Ok(Geometry::new(chain, list, per_tile)?)

@@ -58,7 +58,7 @@ pub use pair_energies::PairEnergies;
 pub use run_source::{RunSource, TrackKey};
 pub use speed_law::SpeedLaw;
 pub use summary::{CollisionReport, RunFacts, Summary};
-pub use tile_designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
+pub use tile_designs::{DesignsError, SValue, TileDesigns, TileOverride};
 pub use track::Track;
 pub(crate) use track::{ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 pub use transition::{MagnetTrack, TransitionData};

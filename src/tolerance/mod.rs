@@ -28,10 +28,11 @@ mod study;
 mod tolerances;
 mod wilson;
 
-pub use optimize::{optimize, Candidate, Search, SearchOptions};
+pub use optimize::{Candidate, Search, SearchOptions};
 pub(crate) use rng::SplitMix64;
 pub(crate) use sample::{draw_designs, nudged};
-pub use sensitivity::{sensitivities, Sensitivity};
-pub use study::{study, FailureCount, MarginSpread, Study, StudyOptions};
+pub use sensitivity::Sensitivity;
+pub(crate) use study::study;
+pub use study::{FailureCount, MarginSpread, Study, StudyOptions};
 pub use tolerances::{Parameter, Printer, ToleranceError, Tolerances};
 pub(crate) use wilson::{wilson_interval, Z95};

@@ -110,6 +110,16 @@ pub struct Search {
     pub most_probable: Option<Candidate>,
 }
 
+impl Search {
+    /// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of
+    /// tile): first one `s` for every tile, for every wall step (the trade-off); then, at the
+    /// wall step whose best probability is highest, every pair of `s` on straight runs and on
+    /// turns.
+    pub fn run(chain: &Chain, base: &Design, opts: &SearchOptions) -> Result<Search, MarginError> {
+        optimize(chain, base, opts)
+    }
+}
+
 /// Whether a tile belongs to a turn (it holds a curved path).
 fn is_turn(tile: &crate::Tile) -> bool {
     tile.first != PathKind::S || tile.second != PathKind::S
@@ -217,7 +227,11 @@ pub fn evaluate(
 /// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of tile):
 /// first one `s` for every tile, for every wall step (the trade-off); then, at the wall step
 /// whose best probability is highest, every pair of `s` on straight runs and on turns.
-pub fn optimize(chain: &Chain, base: &Design, opts: &SearchOptions) -> Result<Search, MarginError> {
+pub(crate) fn optimize(
+    chain: &Chain,
+    base: &Design,
+    opts: &SearchOptions,
+) -> Result<Search, MarginError> {
     let base_candidate = evaluate(chain, base, (base.s, base.s, 0.0), opts)?;
     let mut candidates = Vec::new();
     for &w in &opts.wall_steps {

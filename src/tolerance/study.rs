@@ -64,6 +64,18 @@ pub struct Study {
     pub nominal: Margins,
 }
 
+impl Study {
+    /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per
+    /// tile) and judges each by its margins.
+    pub fn run(
+        chain: &Chain,
+        nominal: &[Design],
+        opts: &StudyOptions,
+    ) -> Result<Study, MarginError> {
+        study(chain, nominal, opts)
+    }
+}
+
 /// A spread of smallest margins over the samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MarginSpread {
@@ -83,7 +95,11 @@ struct Outcome {
 
 /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per tile)
 /// and judges each by its margins.
-pub fn study(chain: &Chain, nominal: &[Design], opts: &StudyOptions) -> Result<Study, MarginError> {
+pub(crate) fn study(
+    chain: &Chain,
+    nominal: &[Design],
+    opts: &StudyOptions,
+) -> Result<Study, MarginError> {
     let nominal_model = ChainModel::new(chain, nominal)?;
     let nominal_margins = margins(&nominal_model, &opts.margins);
     let (k, m) = opts.shard.map_or((0, 1), |s| (s.k as u64 - 1, s.m as u64));

@@ -3,7 +3,7 @@
 //! with both integrators and counts their work (`fold-validate --stiff`).
 //!
 //! **Where the model is stiff.** Two time scales meet in it: a magnet's, its path travelled
-//! at the bonded rest force's speed ([`TimeScales::magnet_s`]), and a fold's, a quarter turn
+//! at the bonded rest force's speed ([`Model::time_scale`]), and a fold's, a quarter turn
 //! under the bonded rest torque against the rotational drag ([`TimeScales::fold_s`]). With
 //! the default drags a fold is the faster (about a tenth of the magnets' scale) and nothing
 //! is stiff. Heavy, slowly turning tiles (a rotational drag many decades above the default)
@@ -34,9 +34,10 @@
 //! assert!(study.cases[0].stiffness_ratio < 1.0); // default drags: not stiff
 //! ```
 
+use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
-use foldchain::model::{ModelOptions, TimeScales};
+use foldchain::model::{Model, ModelOptions};
 use foldchain::reference::{run_reference, Method, ReferenceError, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::TileDesigns;
 use foldchain::{Chain, ChainError, Design};
@@ -144,6 +145,25 @@ pub enum StiffError {
     },
 }
 
+/// The model's two time scales on a case (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct TimeScales {
+    /// A magnet's time scale, s: its path travelled at the bonded rest force's speed.
+    pub magnet_s: f64,
+    /// A fold's, s: a quarter turn at the bonded rest torque against the rotational drag,
+    /// `rotational_drag * (pi/2) / torque_scale`. An estimate: the torque on a real fold
+    /// changes as it turns and its magnets move; on these cases the folds measured
+    /// ([`StiffRow::longest_fold_s`]) take between about 0.4 and 2 times this.
+    pub fold_s: f64,
+}
+
+impl TimeScales {
+    /// The fold's time scale over the magnets': far above 1 is stiff.
+    pub fn ratio(&self) -> f64 {
+        self.fold_s / self.magnet_s
+    }
+}
+
 impl StiffCase {
     /// The chain.
     pub fn chain(&self) -> Result<Chain, StiffError> {
@@ -185,8 +205,12 @@ impl StiffCase {
 
     /// The model's time scales on this case.
     pub fn time_scales(&self) -> Result<TimeScales, StiffError> {
-        TimeScales::of(&self.chain()?, &self.designs(), &self.model_options())
-            .map_err(|e| self.reference_error(e.into()))
+        let model = Model::new(&self.chain()?, &self.designs(), &self.model_options())
+            .map_err(|e| self.reference_error(e.into()))?;
+        Ok(TimeScales {
+            magnet_s: model.time_scale,
+            fold_s: model.options().rotational_drag * FRAC_PI_2 / model.torque_scale,
+        })
     }
 
     /// One reference run with `method`, and its wall time in seconds.

@@ -16,8 +16,7 @@ use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    optimize, sensitivities, study, Candidate, Parameter, SearchOptions, Sensitivity, Study,
-    StudyOptions, Tolerances,
+    Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
@@ -243,8 +242,8 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     // the margins' own errors (a design whose curved path cannot be built) are bad input
     ChainModel::new(&chain, &nominal)?;
     let started = Instant::now();
-    let result = study(&chain, &nominal, &opts)?;
-    let sens = sensitivities(&chain, &nominal, &tolerances, &opts.margins)?;
+    let result = Study::run(&chain, &nominal, &opts)?;
+    let sens = Sensitivity::all(&chain, &nominal, &tolerances, &opts.margins)?;
     let secs = started.elapsed().as_secs_f64();
     if args.json {
         let report = Report {
@@ -385,7 +384,7 @@ fn search(
         ..SearchOptions::default()
     };
     let started = Instant::now();
-    let result = optimize(chain, base, &so)?;
+    let result = Search::run(chain, base, &so)?;
     let plot = args
         .plot
         .clone()
@@ -438,7 +437,7 @@ fn search(
         // the base, the chosen and the most probable design again, with the study's full
         // sample count, and the last two as design files
         let confirm = |c: &Candidate| -> anyhow::Result<Study> {
-            Ok(study(chain, &c.designs(chain, base), opts)?)
+            Ok(Study::run(chain, &c.designs(chain, base), opts)?)
         };
         let b = confirm(&result.base)?;
         outln!(
