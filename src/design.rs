@@ -211,8 +211,9 @@ pub(crate) const RANGES: [FieldRange; 5] = [
 
 /// The widest values [`Design::validate`] takes for any field, in the field's unit (zero
 /// aside, where a field may be zero): far beyond any tile or magnet, so that no product of
-/// them overflows or vanishes.
-pub(crate) const NUMERIC_RANGE: (f64, f64) = (1e-9, 1e9);
+/// them overflows or vanishes (the smallest, 1e-15, leaves room for the library's stress
+/// cases such as `s = 1e-12 d`; a fourth power of it, 1e-60, is still far from underflow).
+pub(crate) const NUMERIC_RANGE: (f64, f64) = (1e-15, 1e9);
 
 fn short(v: f64) -> String {
     crate::short_number(v)
