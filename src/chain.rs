@@ -68,7 +68,7 @@ impl Chain {
     /// GiB; a guard against hostile run-length counts such as `SS*99999999999`.
     pub const MAX_TILES: usize = MAX_TILES;
 
-    /// A chain from its tiles; fails on an empty list or more than [`MAX_TILES`] tiles.
+    /// A chain from its tiles; fails on an empty list or more than [`Chain::MAX_TILES`] tiles.
     pub fn from_tiles(tiles: Vec<Tile>) -> Result<Chain, ChainError> {
         if tiles.is_empty() {
             return Err(ChainError::Empty);

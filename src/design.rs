@@ -266,7 +266,7 @@ impl Design {
         self.c.unwrap_or(0.5 * self.magnet_diameter + self.wall)
     }
 
-    /// The mass of one magnet as a cylinder of NdFeB ([`NDFEB_DENSITY`]), g: 0.265 g for the
+    /// The mass of one magnet as a cylinder of NdFeB (7.5 g/cm^3), g: 0.265 g for the
     /// thesis' 3 mm x 5 mm magnets.
     pub fn cylinder_mass(&self) -> f64 {
         self.magnet_volume_m3() * 1e6 * NDFEB_DENSITY
@@ -298,7 +298,7 @@ impl Design {
     /// Checks that every parameter is a finite number of the right sign, that the lengths
     /// make a tile that can be built (the path inside the tile's half, the tile's two magnets
     /// at rest at least a magnet diameter apart), and that no value is so large or small
-    /// that the arithmetic overflows ([`NUMERIC_RANGE`]). A design file or command line is
+    /// that the arithmetic overflows (1e-15 to 1e9 in the field's unit). A design file or command line is
     /// held to the narrower physical ranges of [`Design::check_ranges`] as well.
     pub fn validate(&self) -> Result<(), DesignError> {
         let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
@@ -466,7 +466,7 @@ impl Design {
     }
 
     /// Checks [`Design::validate`] and the physical ranges a design file or a command line
-    /// is held to ([`RANGES`]): values outside them are almost certainly a typing error
+    /// is held to (the ranges a tile can have: see the message of each field): values outside them are almost certainly a typing error
     /// (a tile 30 m wide, a magnet of 100 T), and far outside them the models have not been
     /// tried. The library's own studies (moments scaled by 10^6, micrometre tiles) use
     /// [`Design::validate`] alone.

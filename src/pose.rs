@@ -35,7 +35,8 @@ impl Pose {
     /// The pose of every tile of a chain of tiles of width `w` whose joints turn by `angles`
     /// (one per joint, radians, positive = left, each within `[-pi/2, pi/2]`), composing
     /// `f64` transforms from tile 0 at the origin heading +x. At a word's
-    /// [`FoldWord::final_angles`] they agree with its exact [`FoldWord::final_poses`].
+    /// [`FoldWord::final_angles`](crate::FoldWord::final_angles) they agree with its exact
+/// [`FoldWord::final_poses`](crate::FoldWord::final_poses).
     ///
     /// ```
     /// use foldchain::{FoldWord, Pose};

@@ -15,7 +15,7 @@
 //! alike, so only words whose first turn is L are searched and counted twice.
 //!
 //! Large counts split into disjoint shards ([`CountOptions::with_shard`]) whose reports add up
-//! with [`merge_reports`]; [`estimate_random`] samples the random-chain probability beyond
+//! with [`CountReport::merge`]; [`RandomEstimate::sample`] samples the random-chain probability beyond
 //! exact reach.
 
 mod first_hit;

@@ -3,9 +3,10 @@
 //! events; the fold schedule it implies; and the energy of the chain over time.
 //!
 //! - [`run`]: the event queue and its rules ([`EngineOptions`], [`StartRule`], the speed law
-//!   [`Motion`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
-//! - [`fold_angle`], [`joint_angles_at`]: the fold law; [`fold_schedule`]: the folds as
-//!   tracks for the collision check; [`energy_curve`]: the total dipole energy.
+//!   [`SpeedLaw`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
+//! - [`Timeline::joint_angles_at`]: the fold law; [`Timeline::fold_schedule`]: the folds as
+//!   tracks for the collision check; [`RunSource::energy`](crate::timeline::RunSource::energy):
+//!   the total dipole energy.
 //!
 //! ```
 //! use foldchain::engine::{run, EngineOptions};

@@ -40,7 +40,7 @@ pub enum EngineMethod {
 
 /// Engine options. Default: local solves ([`EngineMethod::Local`]) of the reference's
 /// default model ([`ModelOptions::default`]) at tolerance
-/// [`crate::engine::DEFAULT_LOCAL_TOLERANCE`]. The kinematic baseline's defaults: the
+/// 1e-8. The kinematic baseline's defaults: the
 /// overdamped speed law with the default drag, the distance rule (the thesis'
 /// inequalities), the point-dipole pair law.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 //! reaction initiator comes, the drive margin of every magnet's start and the torque margin
 //! of every fold, from the shared physics ([`crate::physics`]) on quasi-static
 //! configurations of the chain (see [`start`](self) and [`fold`](self) below, in
-//! [`margins`]'s documentation). A chain whose every margin is positive folds as designed in
+//! [`Margins::of`]'s documentation). A chain whose every margin is positive folds as designed in
 //! this model; the smallest margin says how near it is to stalling, and where.
 //!
 //! Margins are fractions of the bond force of the magnet's tile
@@ -61,7 +61,7 @@ impl Default for MarginOptions {
 pub struct StartMargin {
     /// The magnet.
     pub magnet: usize,
-    /// The joint it belongs to ([`crate::timeline::joint_of_magnet`]).
+    /// The joint it belongs to (magnets `2j + 1` and `2j + 2` belong to joint `j`).
     pub joint: usize,
     /// The largest force along its path while it waits, over its tile's bond force.
     pub margin: f64,

@@ -319,7 +319,7 @@ impl Model {
     }
 }
 
-/// The model's drives and rates on a [`Forces`] scratch.
+/// The model's drives and rates on a `Forces` scratch.
 impl Model {
     /// Drives at state `y` with the model's cutoff.
     pub(crate) fn forces(&self, y: &[f64], out: &mut Forces) {

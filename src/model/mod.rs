@@ -1,7 +1,7 @@
 //! The physical model both simulations integrate: the chain's unknowns (each magnet's
 //! fraction of path travelled, each folding joint's fraction of fold made), the drives on
 //! them from the pair forces of [`crate::physics`], how they answer the drives (overdamped
-//! rates or inertial accelerations, [`Dynamics`]), where each is held ([`Mode`]: at its
+//! rates or inertial accelerations, [`Dynamics`]), where each is held (its mode: at its
 //! start, free, at its end) and when it switches, and how a run ended from the state it came
 //! to rest in.
 //!

@@ -4,8 +4,9 @@
 use crate::model::Dynamics;
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 
-/// Options of the reference model. Defaults: drag [`DEFAULT_DRAG`], rotational drag
-/// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`], the
+/// Options of the reference model. Defaults: drag [`ModelOptions::DEFAULT_DRAG`] (5 N s/m), rotational drag
+/// 1.125e-5 N m s (the magnet drag times the square of the thesis' magnet radius, 1.5 mm),
+/// no static friction, cutoff [`ModelOptions::DEFAULT_CUTOFF`] (3), the
 /// point-dipole law.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModelOptions {
@@ -24,7 +25,7 @@ pub struct ModelOptions {
     /// `drag` and `rotational_drag`; [`Dynamics::Inertial`] carries its own parameters).
     pub dynamics: Dynamics,
     /// Pairs nearer than this (mm) interact too, however far apart in chain index (found on
-    /// a grid, [`crate::physics::pairs_within`]); `None` (the default) for the chain-index
+    /// a grid); `None` (the default) for the chain-index
     /// cutoff alone. Such pairs lie outside the Jacobian's band, which ROS2 then only
     /// approximates. 90 mm (three tile widths) keeps every pair whose force exceeds 0.07% of
     /// the bonded rest force ((14.4 / 90)^4).

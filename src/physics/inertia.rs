@@ -32,8 +32,8 @@ pub(crate) const DEFAULT_RESTITUTION: f64 = 0.3;
 /// The inertial model's parameters. Defaults: the design's magnet as an NdFeB cylinder
 /// ([`crate::Design::cylinder_mass`], 0.265 g for the thesis magnets; the thesis' 0.625 g is
 /// the design's `magnet_mass`, used when `magnet_mass_g` is set to it), drag
-/// [`DEFAULT_INERTIAL_DRAG`], no Coulomb friction, [`DEFAULT_TILE_INERTIA`] and
-/// [`DEFAULT_TILE_ROTATIONAL_DRAG`] per swung tile, restitution [`DEFAULT_RESTITUTION`].
+/// 0.05 N s/m, no Coulomb friction, 1.5e-6 kg m^2 and 3e-7 N m s per swung
+/// tile, restitution 0.3 (the constants in `physics/inertia.rs` say where each comes from).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inertia {
     /// Mass of a magnet, g; `None` for the NdFeB cylinder of the design's magnet size.

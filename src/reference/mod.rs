@@ -9,9 +9,9 @@
 //! - [`run_reference`]: the hybrid driver, which locates every event on real integrator steps
 //!   and switches the unknowns' modes there; its result ([`ReferenceRun`]) carries the
 //!   engine's event kinds and summary fields.
-//! - [`stiff`]: the stiff cases and the study of both integrators on them.
-//! - The pictures' data from the reference's recorded states ([`reference_state`],
-//!   [`reference_energy`], [`reference_transition`]).
+//! - The pictures' data from the reference's recorded states, through
+//!   [`RunSource`](crate::timeline::RunSource) (the stiff cases and the study of both
+//!   integrators on them are the `foldchain-validation` crate's).
 //!
 //! ```
 //! use foldchain::reference::{run_reference, Method, ReferenceOptions};

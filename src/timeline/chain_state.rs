@@ -16,7 +16,7 @@ pub struct ChainState {
     /// Pose of every tile (world frame, mm).
     pub poses: Vec<Pose>,
     /// World position of every magnet, mm (magnet `k` is magnet `k mod 2` of tile `k / 2`);
-    /// empty for a chain drawn lean (more than [`DETAIL_TILES`] tiles), whose frames show no
+    /// empty for a chain drawn lean (more than [`ChainState::DETAIL_TILES`] tiles), whose frames show no
     /// magnets (it would be 32 MB per frame at a million tiles).
     pub magnets: Vec<(f64, f64)>,
     /// Whether each magnet is moving.

@@ -2,7 +2,7 @@
 //! designs of the tiles and the chain at rest they make ([`TileDesigns`], [`Geometry`]); the
 //! events, folds and outcome of a run ([`Event`], [`FoldRecord`], [`Outcome`]), its energy
 //! curve ([`EnergySample`]), its summary ([`Summary`]) and its `timeline.json`
-//! ([`TimelineJson`]); and the run itself as its readers see it ([`RunSource`]): the chain at
+//! ([`RunSource::timeline_json`]); and the run itself as its readers see it ([`RunSource`]): the chain at
 //! any time ([`ChainState`]), the transition diagram's data ([`TransitionData`]) and each
 //! magnet's travel and joint's angle against time ([`Track`]).
 //!

@@ -4,7 +4,7 @@
 //! assembly that still folds often enough.
 //!
 //! A sample draws each tile's parameters independently ([`Tolerances`], seeded per sample:
-//! [`SplitMix64`]) and decides by the margins ([`crate::margins`]): the chain folds when
+//! SplitMix64) and decides by the margins ([`crate::margins`]): the chain folds when
 //! every start and every fold margin is positive. That is a quasi-static criterion, checked
 //! against the force-integrated reference on short chains in the test suite; it is what makes
 //! ten thousand samples of a hundred tiles cost seconds.

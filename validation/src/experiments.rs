@@ -14,9 +14,9 @@
 //! propagation, is Table 7.1's geometry (the event engine and the reference both find it),
 //! not an observation with a count, and is left out here.
 //!
-//! [`foldchain::reference::pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8
+//! [`foldchain::reference::ReferenceRun::pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8
 //! of the runs: each pair of adjacent magnets (the RI with magnet 0, then magnet `k` with
-//! `k + 1`) and the total ([`foldchain::reference::state_energy`]) against time.
+//! `k + 1`) and the total (the sum over every pair) against time.
 
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::{

@@ -52,7 +52,7 @@ pub struct StiffCase {
     pub word: &'static str,
     /// Every magnet's remanence (so its moment) times this, on the thesis design.
     pub moment_factor: f64,
-    /// The rotational drag is [`foldchain::physics::DEFAULT_ROTATIONAL_DRAG`] times
+    /// The rotational drag is default (1.125e-5 N m s) times
     /// this (the magnet drag stays the default).
     pub rotational_drag_factor: f64,
     /// Tolerance of both integrators.

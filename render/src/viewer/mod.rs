@@ -8,7 +8,7 @@
 //!
 //! The page computes the chain itself, as the library does: joint angles and magnet travel
 //! from [`Track`]s (piecewise linear within [`Track::ANGLE_TOLERANCE`] and [`Track::TRAVEL_TOLERANCE`]),
-//! tile poses by composing the octagon chain's hinge turns ([`foldchain::kinematics`]), magnets
+//! tile poses by composing the octagon chain's hinge turns ([`foldchain::Pose::compose_at_angles`]), magnets
 //! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
 //! about 28 bytes per tile on the event engine's serpentines.
 //!
