@@ -118,6 +118,66 @@ pub(crate) fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: im
     }
 }
 
+impl FoldWord {
+    /// The exact final pose of every tile, all folds made: tile 0 at the origin heading +x; a
+    /// straight joint puts the next centre `w` ahead, a fold the next centre at
+    /// `(w/sqrt2, +-w/sqrt2)` in the tile's frame, exactly ([`ExactPose`]).
+    ///
+    /// ```
+    /// use foldchain::FoldWord;
+    ///
+    /// // a tight U-turn: the return row runs sqrt2 * w from the first, exactly
+    /// let poses = FoldWord::parse("SSLLSS").unwrap().final_poses();
+    /// let w = 30.0;
+    /// let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
+    /// assert!((pitch - 2f64.sqrt() * w).abs() < 1e-12);
+    /// ```
+    pub fn final_poses(&self) -> Vec<ExactPose> {
+        final_poses(self)
+    }
+
+    /// The final signed angle of each joint, radians: +pi/2 for L, -pi/2 for R, 0 for S (the
+    /// angles [`Pose::chain_at_angles`] takes).
+    pub fn final_angles(&self) -> Vec<f64> {
+        final_angles(self)
+    }
+}
+
+impl Pose {
+    /// The pose of every tile of a chain of tiles of width `w` whose joints turn by `angles`
+    /// (one per joint, radians, positive = left, each within `[-pi/2, pi/2]`), composing
+    /// `f64` transforms from tile 0 at the origin heading +x. At a word's
+    /// [`FoldWord::final_angles`](crate::FoldWord::final_angles) they agree with its exact
+    /// [`FoldWord::final_poses`](crate::FoldWord::final_poses).
+    ///
+    /// ```
+    /// use foldchain::{FoldWord, Pose};
+    ///
+    /// let word = FoldWord::parse("SLLS").unwrap();
+    /// let poses = Pose::chain_at_angles(&word.final_angles(), 30.0);
+    /// let exact = word.final_poses();
+    /// assert_eq!(poses.len(), 5);
+    /// assert!((poses[4].y - exact[4].centre.y.to_f64(30.0)).abs() < 1e-9);
+    /// ```
+    pub fn chain_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
+        poses_at_angles(angles, w)
+    }
+
+    /// The poses of [`Pose::chain_at_angles`] handed to `each` in tile order, without storing
+    /// them (the same numbers bit for bit; a joint's transform and a heading's sine and cosine
+    /// are computed again only when the angle changes).
+    pub fn for_each_at_angles(angles: &[f64], w: f64, each: impl FnMut(Pose)) {
+        for_each_pose_at_angles(angles, w, each)
+    }
+
+    /// The poses of the tiles after one at this pose, whose joints turn by `angles`, handed to
+    /// `each` in order: from tile 0's pose, [`Pose::for_each_at_angles`] less tile 0; from a
+    /// later tile's pose, the same numbers as from tile 0.
+    pub fn compose_at_angles(self, angles: &[f64], w: f64, each: impl FnMut(Pose)) {
+        compose_poses(self, angles, w, each)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

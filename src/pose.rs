@@ -32,39 +32,6 @@ impl Pose {
         angle: 0.0,
     };
 
-    /// The pose of every tile of a chain of tiles of width `w` whose joints turn by `angles`
-    /// (one per joint, radians, positive = left, each within `[-pi/2, pi/2]`), composing
-    /// `f64` transforms from tile 0 at the origin heading +x. At a word's
-    /// [`FoldWord::final_angles`](crate::FoldWord::final_angles) they agree with its exact
-/// [`FoldWord::final_poses`](crate::FoldWord::final_poses).
-    ///
-    /// ```
-    /// use foldchain::{FoldWord, Pose};
-    ///
-    /// let word = FoldWord::parse("SLLS").unwrap();
-    /// let poses = Pose::chain_at_angles(&word.final_angles(), 30.0);
-    /// let exact = word.final_poses();
-    /// assert_eq!(poses.len(), 5);
-    /// assert!((poses[4].y - exact[4].centre.y.to_f64(30.0)).abs() < 1e-9);
-    /// ```
-    pub fn chain_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
-        crate::kinematics::poses_at_angles(angles, w)
-    }
-
-    /// The poses of [`Pose::chain_at_angles`] handed to `each` in tile order, without storing
-    /// them (the same numbers bit for bit; a joint's transform and a heading's sine and cosine
-    /// are computed again only when the angle changes).
-    pub fn for_each_at_angles(angles: &[f64], w: f64, each: impl FnMut(Pose)) {
-        crate::kinematics::for_each_pose_at_angles(angles, w, each)
-    }
-
-    /// The poses of the tiles after one at this pose, whose joints turn by `angles`, handed to
-    /// `each` in order: from tile 0's pose, [`Pose::for_each_at_angles`] less tile 0; from a
-    /// later tile's pose, the same numbers as from tile 0.
-    pub fn compose_at_angles(self, angles: &[f64], w: f64, each: impl FnMut(Pose)) {
-        crate::kinematics::compose_poses(self, angles, w, each)
-    }
-
     /// A pose from translation and angle.
     pub const fn new(x: f64, y: f64, angle: f64) -> Pose {
         Pose { x, y, angle }

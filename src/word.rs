@@ -7,9 +7,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-#[cfg(doc)]
-use crate::Pose;
-use crate::{Chain, ChainError, ExactPose, Fold, Tile, MAX_TILES};
+use crate::{Chain, ChainError, Fold, Tile, MAX_TILES};
 
 /// A fold word: the fold of every joint, from the reaction-initiator end.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
@@ -18,29 +16,6 @@ pub struct FoldWord {
 }
 
 impl FoldWord {
-    /// The exact final pose of every tile, all folds made: tile 0 at the origin heading +x; a
-    /// straight joint puts the next centre `w` ahead, a fold the next centre at
-    /// `(w/sqrt2, +-w/sqrt2)` in the tile's frame, exactly ([`ExactPose`]).
-    ///
-    /// ```
-    /// use foldchain::FoldWord;
-    ///
-    /// // a tight U-turn: the return row runs sqrt2 * w from the first, exactly
-    /// let poses = FoldWord::parse("SSLLSS").unwrap().final_poses();
-    /// let w = 30.0;
-    /// let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
-    /// assert!((pitch - 2f64.sqrt() * w).abs() < 1e-12);
-    /// ```
-    pub fn final_poses(&self) -> Vec<ExactPose> {
-        crate::kinematics::final_poses(self)
-    }
-
-    /// The final signed angle of each joint, radians: +pi/2 for L, -pi/2 for R, 0 for S (the
-    /// angles [`Pose::chain_at_angles`] takes).
-    pub fn final_angles(&self) -> Vec<f64> {
-        crate::kinematics::final_angles(self)
-    }
-
     /// A word from its letters.
     pub fn from_folds(folds: Vec<Fold>) -> FoldWord {
         FoldWord { folds }

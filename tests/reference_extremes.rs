@@ -7,7 +7,7 @@
 use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::ModelOptions;
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
-use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
+use foldchain::timeline::{Event, EventKind, Outcome, RunResult, TileDesigns};
 use foldchain::{Chain, Design, FoldWord, Pose};
 
 fn reference(word: &str, d: Design, model: ModelOptions, method: Method) -> ReferenceRun {
@@ -243,7 +243,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         Method::Dopri5,
     );
     // the summary, in the engine's fields, holds the run's own values
-    let json: serde_json::Value = serde_json::from_str(&r.to_summary().to_json()).unwrap();
+    let json: serde_json::Value = serde_json::to_value(r.to_summary()).unwrap();
     let duration = r.duration();
     assert!(duration > 0.0 && duration <= r.end_time);
     let want = serde_json::json!({
@@ -318,7 +318,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         Outcome::Stalled { joint, magnet, .. } => assert_eq!((*joint, *magnet), (1, 4)),
         o => panic!("{o:?}"),
     }
-    assert_eq!((s.result, s.completed), ("stalled", false));
+    assert_eq!((s.result, s.completed), (RunResult::Stalled, false));
     assert_eq!((s.stalled_at, s.inhibited_at), (Some(1), None));
     assert_eq!(s.folds, vec![0]);
     let reason = s.reason.unwrap();

@@ -18,7 +18,7 @@ use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
 use foldchain::reference::{run_reference, Recording, ReferenceOptions};
-use foldchain::timeline::{Summary, TileDesigns};
+use foldchain::timeline::{RunResult, Summary, TileDesigns};
 use foldchain::{check_reference, simulate, Chain, Design};
 
 /// The inertial dynamics with the default parameters (fold-run's default).
@@ -235,7 +235,7 @@ fn a_local_solve_that_gives_up_is_stopped_not_stalled() {
     // stall
     let e = run(EngineOptions::default().max_steps);
     assert!(
-        !["stopped", "stalled"].contains(&e.result),
+        ![RunResult::Stopped, RunResult::Stalled].contains(&e.result),
         "{}: {:?}",
         e.result,
         e.reason

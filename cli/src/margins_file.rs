@@ -41,13 +41,7 @@ pub fn run_margins(
         index.iter().map(|&i| list[i as usize]).collect()
     };
     let model = ChainModel::new(chain, &per_tile).ok()?;
-    let m = Margins::of(
-        &model,
-        &MarginOptions {
-            force_law: law,
-            ..MarginOptions::default()
-        },
-    );
+    let m = Margins::of(&model, &MarginOptions::default().with_force_law(law));
     let file = MarginsFile {
         criterion: CRITERION,
         force_law: law,

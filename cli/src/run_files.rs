@@ -308,9 +308,7 @@ pub fn write_prepared_run_files(
         &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
         &is_run_file,
     )?;
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    out.write("summary.json", summary_json.as_bytes())?;
+    out.write_json("summary.json", summary)?;
     Ok(out.written().to_vec())
 }
 

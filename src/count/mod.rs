@@ -32,6 +32,7 @@ use search::{search, Scope};
 
 /// What to count.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub struct CountOptions {
     /// Shortest chain counted, in tiles. Default 2.
     pub min_tiles: usize,

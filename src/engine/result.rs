@@ -52,17 +52,6 @@ impl Timeline {
         joint_angles_at(self, t)
     }
 
-    /// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
-    /// one adaptively sampled angle track per fold.
-    pub fn fold_schedule(&self) -> crate::collision::FoldSchedule {
-        crate::engine::schedule::fold_schedule(self)
-    }
-
-    /// The fold word of what actually folds: each joint's fold if it turned, else S.
-    pub fn folded_word(&self) -> crate::FoldWord {
-        crate::simulation::folded_word(self)
-    }
-
     pub(crate) fn progress(&self) -> Progress<'_> {
         Progress {
             start: &self.start,

@@ -44,6 +44,7 @@ pub enum EngineMethod {
 /// overdamped speed law with the default drag, the distance rule (the thesis'
 /// inequalities), the point-dipole pair law.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct EngineOptions {
     /// How events are timed.
     pub method: EngineMethod,
@@ -55,8 +56,6 @@ pub struct EngineOptions {
     pub speed: SpeedLaw,
     /// The kinematic baseline's rule that starts each magnet.
     pub start: StartRule,
-    /// The pair law of the kinematic force start rule and the energy curve.
-    pub force_law: ForceLaw,
     /// Threads of the local solves' sweeps: 1 runs them one after the other, 2 or more
     /// runs two at once, the later trailing the earlier (more than 2 are not used); 0, the
     /// default: [`std::thread::available_parallelism`], but one thread for a chain of fewer
@@ -78,7 +77,6 @@ impl Default for EngineOptions {
             tolerance: DEFAULT_LOCAL_TOLERANCE,
             speed: SpeedLaw::default(),
             start: StartRule::default(),
-            force_law: ForceLaw::default(),
             threads: 0,
             max_steps: 1_000_000,
         }
@@ -102,7 +100,6 @@ impl EngineOptions {
 
     /// Another pair law (of the local solves' model too).
     pub fn with_force_law(mut self, force_law: ForceLaw) -> EngineOptions {
-        self.force_law = force_law;
         self.model.force_law = force_law;
         self
     }
@@ -116,7 +113,6 @@ impl EngineOptions {
     /// Other model options for the local solves.
     pub fn with_model(mut self, model: ModelOptions) -> EngineOptions {
         self.model = model;
-        self.force_law = model.force_law;
         self
     }
 
@@ -391,7 +387,7 @@ impl Runner {
         let rule = ForceRule {
             geometry: &self.geometry,
             progress: self.progress(),
-            law: self.opts.force_law,
+            law: self.opts.model.force_law,
             cutoff,
         };
         let found = rule.start(&mut cache, m, t);
@@ -446,7 +442,7 @@ impl Runner {
         Timeline {
             geometry: self.geometry,
             speed: self.opts.speed,
-            force_law: self.opts.force_law,
+            force_law: self.opts.model.force_law,
             motions: self.motions,
             start: self.start,
             events: self.events,

@@ -34,6 +34,7 @@ use crate::physics::{ForceLaw, DEFAULT_CUTOFF};
 /// How the margins are computed. Default: the point-dipole law, the physics' default
 /// chain-index cutoff (3), 32 samples along a mover's path and 16 over a fold's turn.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MarginOptions {
     /// The pair law.
     pub force_law: ForceLaw,
@@ -53,6 +54,20 @@ impl Default for MarginOptions {
             path_samples: 32,
             fold_samples: 16,
         }
+    }
+}
+
+impl MarginOptions {
+    /// Another pair law.
+    pub fn with_force_law(mut self, force_law: ForceLaw) -> MarginOptions {
+        self.force_law = force_law;
+        self
+    }
+
+    /// Another chain-index cutoff (taken as at least 1).
+    pub fn with_cutoff(mut self, cutoff: usize) -> MarginOptions {
+        self.cutoff = cutoff;
+        self
     }
 }
 

@@ -9,6 +9,7 @@ use crate::physics::{ForceLaw, DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_
 /// no static friction, cutoff [`ModelOptions::DEFAULT_CUTOFF`] (3), the
 /// point-dipole law.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ModelOptions {
     /// Drag of a magnet in its channel, N s/m.
     pub drag: f64,
@@ -84,9 +85,11 @@ impl ModelOptions {
         self.dynamics = dynamics;
         self
     }
-    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index).
-    pub fn with_distance_cutoff(mut self, mm: f64) -> ModelOptions {
-        self.distance_cutoff = Some(mm);
+
+    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index;
+    /// `None`: the chain-index cutoff alone).
+    pub fn with_distance_cutoff(mut self, mm: Option<f64>) -> ModelOptions {
+        self.distance_cutoff = mm;
         self
     }
 }

@@ -35,6 +35,7 @@ pub(crate) const DEFAULT_RESTITUTION: f64 = 0.3;
 /// 0.05 N s/m, no Coulomb friction, 1.5e-6 kg m^2 and 3e-7 N m s per swung
 /// tile, restitution 0.3 (the constants in `physics/inertia.rs` say where each comes from).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Inertia {
     /// Mass of a magnet, g; `None` for the NdFeB cylinder of the design's magnet size.
     pub magnet_mass_g: Option<f64>,
@@ -67,6 +68,12 @@ impl Default for Inertia {
 }
 
 impl Inertia {
+    /// Another restitution of the walls (0: dead stop, 1: elastic).
+    pub fn with_restitution(mut self, restitution: f64) -> Inertia {
+        self.restitution = restitution;
+        self
+    }
+
     /// The mass of a magnet of `design`, kg.
     pub fn magnet_mass_kg(&self, design: &crate::Design) -> f64 {
         self.magnet_mass_g.unwrap_or_else(|| design.cylinder_mass()) * 1e-3

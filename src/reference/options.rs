@@ -44,6 +44,7 @@ impl Recording {
 /// Options of a reference run. Defaults: Dormand-Prince, tolerance 1e-8, the model's
 /// defaults, at most 2,000,000 steps, no states recorded ([`Recording::Off`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ReferenceOptions {
     /// The integrator.
     pub method: Method,

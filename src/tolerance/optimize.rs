@@ -23,6 +23,7 @@ use crate::{Chain, Design, PathKind};
 /// thesis' `e`); walls 0.2 mm thinner, as designed and 0.2 mm thicker; the study's defaults
 /// with 1,000 samples per candidate.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SearchOptions {
     /// The folding probability a design must keep (the lower end of its 95% interval is
     /// not asked for: the estimate itself).
@@ -52,6 +53,32 @@ impl Default for SearchOptions {
             engine: EngineOptions::default(),
             per_tile_s: true,
         }
+    }
+}
+
+impl SearchOptions {
+    /// Another target probability.
+    pub fn with_target(mut self, target: f64) -> SearchOptions {
+        self.target = target;
+        self
+    }
+
+    /// Another study of each candidate.
+    pub fn with_study(mut self, study: StudyOptions) -> SearchOptions {
+        self.study = study;
+        self
+    }
+
+    /// Another engine to time the assembly.
+    pub fn with_engine(mut self, engine: EngineOptions) -> SearchOptions {
+        self.engine = engine;
+        self
+    }
+
+    /// Search per-tile `s` (straight runs against turns) or not.
+    pub fn with_per_tile_s(mut self, per_tile_s: bool) -> SearchOptions {
+        self.per_tile_s = per_tile_s;
+        self
     }
 }
 

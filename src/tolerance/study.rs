@@ -10,6 +10,7 @@ use crate::{Chain, Design};
 /// What a study draws and how. Default: 10,000 samples, seed 1, all of them (no shard),
 /// FDM tolerances, the default margins.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct StudyOptions {
     /// Samples in the whole study (a shard draws its share of them).
     pub samples: u64,
@@ -32,6 +33,38 @@ impl Default for StudyOptions {
             tolerances: Tolerances::default(),
             margins: MarginOptions::default(),
         }
+    }
+}
+
+impl StudyOptions {
+    /// Another number of samples in the whole study.
+    pub fn with_samples(mut self, samples: u64) -> StudyOptions {
+        self.samples = samples;
+        self
+    }
+
+    /// Another seed.
+    pub fn with_seed(mut self, seed: u64) -> StudyOptions {
+        self.seed = seed;
+        self
+    }
+
+    /// Only the samples of part `shard` (`None`: all of them).
+    pub fn with_shard(mut self, shard: Option<Shard>) -> StudyOptions {
+        self.shard = shard;
+        self
+    }
+
+    /// Other tolerances.
+    pub fn with_tolerances(mut self, tolerances: Tolerances) -> StudyOptions {
+        self.tolerances = tolerances;
+        self
+    }
+
+    /// Other margin options.
+    pub fn with_margins(mut self, margins: MarginOptions) -> StudyOptions {
+        self.margins = margins;
+        self
     }
 }
 

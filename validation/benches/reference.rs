@@ -86,7 +86,7 @@ fn case(
         s.rhs,
         s.event_steps,
         run.events.len(),
-        run.result_name(),
+        run.result(),
     );
 }
 

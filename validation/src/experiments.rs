@@ -139,7 +139,7 @@ pub fn run_experiments(
                 .with_record(record);
             let run = run_reference(&e.to_chain()?, &TileDesigns::default(), &opts)?;
             let folds = run.folded_joints();
-            let outcome = run.result_name().to_string();
+            let outcome = run.result().name().to_string();
             let agrees = outcome == "completed" && folds == e.folds;
             out.push((
                 ExperimentResult {

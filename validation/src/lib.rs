@@ -228,7 +228,7 @@ pub fn validate(
         scenes.push(SceneReport {
             scene: name.clone(),
             tiles: sc.chain.len(),
-            reference_outcome: reference.result_name().into(),
+            reference_outcome: reference.result().name().into(),
             reference_reason: reference.to_summary().reason,
             engine_outcome,
             reference_duration_s: duration,
@@ -266,7 +266,7 @@ pub fn validate(
                     missing: c.missing,
                     inversions: c.inversions,
                     interleavings: c.interleavings,
-                    outcome: r.result_name().into(),
+                    outcome: r.result().name().into(),
                 });
             }
         }

@@ -382,12 +382,12 @@ fn run(args: Args) -> anyhow::Result<u8> {
         }
         let ro = ReferenceOptions::default()
             .with_record(Recording::within_budget(chain.len()))
-            .with_model(ModelOptions {
-                distance_cutoff: args.distance_cutoff,
-                ..ModelOptions::default()
+            .with_model(
+                ModelOptions::default()
                     .with_force_law(force_law)
                     .with_dynamics(dynamics)
-            });
+                    .with_distance_cutoff(args.distance_cutoff),
+            );
         Ok(run_reference(&chain, &designs, &ro)?)
     };
     let kinematic = match args.engine {

@@ -223,16 +223,12 @@ fn run(args: &Args) -> anyhow::Result<u8> {
             args.force_law
         )
     })?;
-    let opts = StudyOptions {
-        samples: args.samples,
-        seed: args.seed,
-        shard,
-        tolerances,
-        margins: MarginOptions {
-            force_law,
-            ..MarginOptions::default()
-        },
-    };
+    let opts = StudyOptions::default()
+        .with_samples(args.samples)
+        .with_seed(args.seed)
+        .with_shard(shard)
+        .with_tolerances(tolerances)
+        .with_margins(MarginOptions::default().with_force_law(force_law));
     if args.optimize {
         if designs.has_overrides() {
             bail!("--optimize searches per-tile s itself: give a plain design (no \"tiles\")");
@@ -374,15 +370,10 @@ fn search(
     opts: &StudyOptions,
 ) -> anyhow::Result<u8> {
     let target = args.target.unwrap_or(DEFAULT_TARGET);
-    let so = SearchOptions {
-        target,
-        study: StudyOptions {
-            samples: args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES),
-            ..*opts
-        },
-        engine: EngineOptions::default().with_force_law(opts.margins.force_law),
-        ..SearchOptions::default()
-    };
+    let so = SearchOptions::default()
+        .with_target(target)
+        .with_study(opts.with_samples(args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES)))
+        .with_engine(EngineOptions::default().with_force_law(opts.margins.force_law));
     let started = Instant::now();
     let result = Search::run(chain, base, &so)?;
     let plot = args
