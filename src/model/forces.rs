@@ -44,7 +44,7 @@ impl Model {
     /// through a magnet's arrival, so a step that overshoots it keeps its order and the
     /// arrival is found on the step's dense output (the driver never keeps a state
     /// beyond the range).
-    fn local_continued(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
+    pub(crate) fn local_continued(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
         let p = self.path(k);
         let len = self.lengths[k];
         let u = x * len;

@@ -14,7 +14,9 @@ use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, ReferenceOptions, ReferenceRun};
+use foldchain::reference::{
+    run_free_body, run_reference, FreeBodyOptions, ReferenceOptions, ReferenceRun,
+};
 use foldchain::timeline::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::choices::{
@@ -143,6 +145,13 @@ struct Args {
     /// first_collision and exit code as the engine's. For chains up to 2,000 tiles.
     #[arg(long, conflicts_with = "compare")]
     reference: bool,
+    /// Which reference --reference and --compare run: joint-angle (every magnet on its path
+    /// and every folding joint's angle, the part upstream of a fold held still; up to 2,000
+    /// tiles) or free-body (every tile a rigid body floating on water, nothing anchored,
+    /// both sides of a fold turning against their inertia and the water's drag; inertial
+    /// dynamics only; docs/free-body.md; up to 100,000 tiles).
+    #[arg(long, value_enum, default_value_t = ReferenceModel::JointAngle)]
+    model: ReferenceModel,
     /// Run both the event engine and the reference on the chain: both runs' files in
     /// DIR/engine and DIR/reference, and DIR/index.html playing them side by side on one
     /// clock (default out/<name>-compare/). For chains up to 2,000 tiles.
@@ -293,6 +302,17 @@ fn run(args: Args) -> anyhow::Result<u8> {
             )
         })?;
     let dynamics = args.dynamics.to_dynamics();
+    if args.model == ReferenceModel::FreeBody {
+        if !(args.reference || args.compare) {
+            bail!("--model free-body: the reference's model; give --reference or --compare");
+        }
+        if args.dynamics == DynamicsChoice::Overdamped {
+            bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
+        }
+        if args.distance_cutoff.is_some() {
+            bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
+        }
+    }
     let drag = args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG);
     let speed = match args.speed {
         SpeedChoice::Unit => SpeedLaw::Unit,
@@ -330,8 +350,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let margins = MarginsJob::start(&chain, &designs, force_law);
     let mut files = RunFilesOptions {
         margins_json: None,
-        name: match mode {
-            Mode::Reference => format!("{name} (reference)"),
+        name: match (mode, args.model) {
+            (Mode::Reference, ReferenceModel::FreeBody) => format!("{name} (free-body reference)"),
+            (Mode::Reference, _) => format!("{name} (reference)"),
             _ => name.clone(),
         },
         frames: args.frames,
@@ -345,6 +366,9 @@ fn run(args: Args) -> anyhow::Result<u8> {
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out").join(match mode {
             Mode::Engine => name.clone(),
+            Mode::Reference if args.model == ReferenceModel::FreeBody => {
+                format!("{name}-free-body")
+            }
             Mode::Reference => format!("{name}-reference"),
             Mode::Compare => format!("{name}-compare"),
         })
@@ -374,10 +398,16 @@ fn run(args: Args) -> anyhow::Result<u8> {
         )
     };
     let reference = || -> anyhow::Result<ReferenceRun> {
-        if chain.len() > MAX_REFERENCE_TILES {
+        let most = match args.model {
+            ReferenceModel::JointAngle => MAX_REFERENCE_TILES,
+            ReferenceModel::FreeBody => MAX_FREE_BODY_TILES,
+        };
+        if chain.len() > most {
             bail!(
-                "--reference/--compare: {} tiles; the reference integrator takes at most {MAX_REFERENCE_TILES} (use the event engine for longer chains)",
-                chain.len()
+                "--reference/--compare: {} tiles; the {} reference takes at most {} (use the event engine for longer chains)",
+                thousands(chain.len() as u64),
+                args.model.name(),
+                thousands(most as u64)
             );
         }
         let ro = ReferenceOptions::default()
@@ -388,7 +418,17 @@ fn run(args: Args) -> anyhow::Result<u8> {
                     .with_dynamics(dynamics)
                     .with_distance_cutoff(args.distance_cutoff),
             );
-        Ok(run_reference(&chain, &designs, &ro)?)
+        Ok(match args.model {
+            ReferenceModel::JointAngle => run_reference(&chain, &designs, &ro)?,
+            ReferenceModel::FreeBody => {
+                run_free_body(
+                    &chain,
+                    &designs,
+                    &FreeBodyOptions::default().with_reference(ro),
+                )?
+                .run
+            }
+        })
     };
     let kinematic = match args.engine {
         EngineChoice::Kinematic => true,
@@ -533,6 +573,28 @@ enum Mode {
 /// The most tiles `--reference` takes: its cost grows with tiles times steps, and the
 /// validation scenes go up to 107 tiles.
 const MAX_REFERENCE_TILES: usize = 2_000;
+
+/// The most tiles `--reference --model free-body` takes: a step costs what moves, but every
+/// step keeps one entry per unknown (BENCHMARKS.md, "Free-body reference").
+const MAX_FREE_BODY_TILES: usize = 100_000;
+
+/// Which reference `--reference` and `--compare` run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ReferenceModel {
+    /// Magnets on their paths and folding joints' angles, upstream of a fold held still.
+    JointAngle,
+    /// Every tile a rigid body floating free.
+    FreeBody,
+}
+
+impl ReferenceModel {
+    fn name(self) -> &'static str {
+        match self {
+            ReferenceModel::JointAngle => "joint-angle",
+            ReferenceModel::FreeBody => "free-body",
+        }
+    }
+}
 
 /// Writes the run's files, with a progress bar for long runs, and warns of a simulated
 /// time far from a physical chain's.
