@@ -25,11 +25,11 @@
 mod energy;
 mod fold_law;
 mod local;
-mod progress;
 mod queue;
 mod result;
 mod run;
 mod run_source;
+mod run_state;
 mod schedule;
 mod speed;
 mod start_rule;

@@ -2,7 +2,7 @@
 //! the outcome ([`Timeline`]); where every magnet is and every joint's angle at any time.
 
 use crate::engine::local::Solved;
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
 use crate::timeline::Event;
@@ -52,8 +52,8 @@ impl Timeline {
         joint_angles_at(self, t)
     }
 
-    pub(crate) fn progress(&self) -> Progress<'_> {
-        Progress {
+    pub(crate) fn progress(&self) -> RunState<'_> {
+        RunState {
             start: &self.start,
             motions: &self.motions,
             folds: &self.folds,

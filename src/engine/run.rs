@@ -11,9 +11,9 @@
 //! exactly on arrival (`s = e/3`) never counts as moving together with it.
 
 use crate::engine::local::run_local;
-use crate::engine::progress::Progress;
 use crate::engine::queue::Queue;
 use crate::engine::result::Timeline;
+use crate::engine::run_state::RunState;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
@@ -269,8 +269,8 @@ impl Runner {
         }
     }
 
-    fn progress(&self) -> Progress<'_> {
-        Progress {
+    fn progress(&self) -> RunState<'_> {
+        RunState {
             start: &self.start,
             motions: &self.motions,
             folds: &self.folds,

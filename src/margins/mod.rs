@@ -24,8 +24,8 @@
 mod fold;
 mod hold;
 mod model;
+mod placed_tiles;
 mod start;
-mod window;
 
 pub use model::{ChainModel, MarginError};
 

@@ -33,7 +33,6 @@ mod verdict;
 pub use chain_model::Model;
 pub use chain_model::ModelError;
 pub(crate) use chain_model::Unknown;
-pub(crate) use chain_model::BALANCE_TOLERANCE;
 pub(crate) use coefficients::{at_wall, InertialModel, REST_HEIGHT};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;

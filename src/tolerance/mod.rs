@@ -21,7 +21,6 @@
 //! ```
 
 mod optimize;
-mod rng;
 mod sample;
 mod sensitivity;
 mod study;
@@ -29,7 +28,6 @@ mod tolerances;
 mod wilson;
 
 pub use optimize::{Candidate, Search, SearchOptions};
-pub(crate) use rng::SplitMix64;
 pub(crate) use sample::{draw_designs, nudged};
 pub use sensitivity::Sensitivity;
 pub(crate) use study::study;

@@ -134,142 +134,196 @@ pub fn validate(
     opts: &ValidateOptions,
     progress: &mut dyn FnMut(&str, &str, Option<f64>),
 ) -> Result<Validation, ValidateError> {
-    let all = all_scenes();
-    let known = all.iter().map(|s| s.name).collect::<Vec<_>>().join(", ");
-    for name in &opts.scenes {
-        if !all.iter().any(|s| s.name == name) {
-            return Err(ValidateError::UnknownScene {
-                name: name.clone(),
-                known,
-            });
-        }
-    }
-    let chosen: Vec<Scene> = all
-        .into_iter()
-        .filter(|s| opts.scenes.is_empty() || opts.scenes.iter().any(|n| n == s.name))
-        .collect();
     let mut rows = Vec::new();
     let mut scenes = Vec::new();
-    for sc in &chosen {
-        let name = sc.name.to_string();
-        let ref_err = |source| ValidateError::Reference {
-            scene: name.clone(),
-            source: Box::new(source),
-        };
-        progress(sc.name, "reference", Some(opts.reference_tolerance));
-        let t0 = Instant::now();
-        let reference = run_reference(
-            &sc.chain,
-            &sc.designs,
-            &ReferenceOptions::default()
-                .with_tolerance(opts.reference_tolerance)
-                .with_model(opts.model),
-        )
-        .map_err(ref_err)?;
-        let reference_wall = t0.elapsed().as_secs_f64();
-        let duration = reference.duration();
-        let w = reference.model.geometry.w;
-        let ref_final = reference_final(&reference);
-        let mut rest = vec![0.0; reference.model.len()];
-        let cutoff_error = reference
-            .model
-            .cutoff_error(&rest)
-            .max(reference.model.cutoff_error(&reference.final_state));
-        rest.clear();
+    for sc in &chosen_scenes(&opts.scenes)? {
+        scenes.push(validate_scene(sc, opts, progress, &mut rows)?);
+    }
+    Ok(Validation { rows, scenes })
+}
 
-        let force = StartRule::Force {
-            cutoff: reference.model.options().cutoff,
+/// The scenes named (all of them for none), in their order; an unknown name is refused.
+fn chosen_scenes(names: &[String]) -> Result<Vec<Scene>, ValidateError> {
+    let all = all_scenes();
+    let known = all.iter().map(|s| s.name).collect::<Vec<_>>().join(", ");
+    if let Some(name) = names
+        .iter()
+        .find(|n| !all.iter().any(|s| s.name == n.as_str()))
+    {
+        return Err(ValidateError::UnknownScene {
+            name: name.clone(),
+            known,
+        });
+    }
+    Ok(all
+        .into_iter()
+        .filter(|s| names.is_empty() || names.iter().any(|n| n == s.name))
+        .collect())
+}
+
+fn reference_error(sc: &Scene, source: ReferenceError) -> ValidateError {
+    ValidateError::Reference {
+        scene: sc.name.to_string(),
+        source: Box::new(source),
+    }
+}
+
+/// What the engine's rows say of a scene for its report: the engine's outcome and duration,
+/// and the kinematic baseline's best-fit time factor and scaled error.
+struct EngineFacts {
+    outcome: String,
+    duration: f64,
+    scaled: (f64, f64),
+}
+
+/// One scene: its reference run at the tight tolerance, then the engine's rows and each
+/// integrator's ladder measured against it (into `rows`); its report.
+fn validate_scene(
+    sc: &Scene,
+    opts: &ValidateOptions,
+    progress: &mut dyn FnMut(&str, &str, Option<f64>),
+    rows: &mut Vec<Row>,
+) -> Result<SceneReport, ValidateError> {
+    progress(sc.name, "reference", Some(opts.reference_tolerance));
+    let t0 = Instant::now();
+    let reference = run_reference(
+        &sc.chain,
+        &sc.designs,
+        &ReferenceOptions::default()
+            .with_tolerance(opts.reference_tolerance)
+            .with_model(opts.model),
+    )
+    .map_err(|e| reference_error(sc, e))?;
+    let reference_wall = t0.elapsed().as_secs_f64();
+    let rest = vec![0.0; reference.model.len()];
+    let cutoff_error = reference
+        .model
+        .cutoff_error(&rest)
+        .max(reference.model.cutoff_error(&reference.final_state));
+    let engine = engine_rows(sc, opts, &reference, progress, rows)?;
+    let report = SceneReport {
+        scene: sc.name.to_string(),
+        tiles: sc.chain.len(),
+        reference_outcome: reference.result().name().into(),
+        reference_reason: reference.to_summary().reason,
+        engine_outcome: engine.outcome,
+        reference_duration_s: reference.duration(),
+        engine_duration_s: engine.duration,
+        reference_wall_s: reference_wall,
+        baseline_time_factor: engine.scaled.0,
+        baseline_error_time_scaled: engine.scaled.1,
+        cutoff_error,
+    };
+    ladder_rows(sc, opts, &reference, progress, rows)?;
+    Ok(report)
+}
+
+/// The event engine's rows of a scene (`event`, `event-force`, `event-dist`) against its
+/// reference run.
+fn engine_rows(
+    sc: &Scene,
+    opts: &ValidateOptions,
+    reference: &ReferenceRun,
+    progress: &mut dyn FnMut(&str, &str, Option<f64>),
+    rows: &mut Vec<Row>,
+) -> Result<EngineFacts, ValidateError> {
+    let (duration, w) = (reference.duration(), reference.model.geometry.w);
+    let ref_final = reference_final(reference);
+    let force = StartRule::Force {
+        cutoff: reference.model.options().cutoff,
+    };
+    let mut facts = EngineFacts {
+        outcome: String::new(),
+        duration: 0.0,
+        scaled: (1.0, 0.0),
+    };
+    for (method, rule) in [
+        ("event", None),
+        ("event-force", Some(force)),
+        ("event-dist", Some(StartRule::Distance)),
+    ] {
+        progress(sc.name, method, None);
+        let t0 = Instant::now();
+        let eo = match rule {
+            None => EngineOptions::default().with_model(opts.model),
+            Some(rule) => EngineOptions::default()
+                .with_start_rule(rule)
+                .with_force_law(opts.model.force_law),
         };
-        let mut engine_outcome = String::new();
-        let mut engine_duration = 0.0;
-        let mut engine_scaled = (1.0, 0.0);
-        for (method, rule) in [
-            ("event", None),
-            ("event-force", Some(force)),
-            ("event-dist", Some(StartRule::Distance)),
-        ] {
-            progress(sc.name, method, None);
+        let tl = run(&sc.chain, &sc.designs, &eo).map_err(|source| ValidateError::Engine {
+            scene: sc.name.to_string(),
+            source: Box::new(source),
+        })?;
+        let wall = t0.elapsed().as_secs_f64();
+        let c = compare_events(&reference.events, &tl.events, duration);
+        if rule.is_none() {
+            facts.outcome = tl.outcome.name().into();
+            facts.duration = tl.duration();
+        }
+        if rule == Some(force) {
+            facts.scaled = (c.time_factor, c.error_time_scaled);
+        }
+        rows.push(Row {
+            scene: sc.name.to_string(),
+            method: method.into(),
+            tolerance: None,
+            error_time: c.error_time,
+            error_pose: pose_error(&ref_final, &engine_final(&tl), w),
+            wall_s: wall,
+            steps: tl.events.len() as u64,
+            rejected: 0,
+            rhs: 0,
+            missing: c.missing,
+            inversions: c.inversions,
+            interleavings: c.interleavings,
+            outcome: tl.outcome.name().into(),
+        });
+    }
+    Ok(facts)
+}
+
+/// Each integrator's rows of a scene along its ladder of tolerances, against its reference
+/// run.
+fn ladder_rows(
+    sc: &Scene,
+    opts: &ValidateOptions,
+    reference: &ReferenceRun,
+    progress: &mut dyn FnMut(&str, &str, Option<f64>),
+    rows: &mut Vec<Row>,
+) -> Result<(), ValidateError> {
+    let (duration, w) = (reference.duration(), reference.model.geometry.w);
+    let ref_final = reference_final(reference);
+    for (method, ladder) in [(Method::Dopri5, &opts.dopri5), (Method::Ros2, &opts.ros2)] {
+        for &tol in ladder {
+            progress(sc.name, method.name(), Some(tol));
             let t0 = Instant::now();
-            let eo = match rule {
-                None => EngineOptions::default().with_model(opts.model),
-                Some(rule) => EngineOptions::default()
-                    .with_start_rule(rule)
-                    .with_force_law(opts.model.force_law),
-            };
-            let tl = run(&sc.chain, &sc.designs, &eo).map_err(|source| ValidateError::Engine {
-                scene: name.clone(),
-                source: Box::new(source),
-            })?;
+            let r = run_reference(
+                &sc.chain,
+                &sc.designs,
+                &ReferenceOptions::default()
+                    .with_method(method)
+                    .with_tolerance(tol)
+                    .with_model(opts.model),
+            )
+            .map_err(|e| reference_error(sc, e))?;
             let wall = t0.elapsed().as_secs_f64();
-            let c = compare_events(&reference.events, &tl.events, duration);
-            if rule.is_none() {
-                engine_outcome = tl.outcome.name().into();
-                engine_duration = tl.duration();
-            }
-            if rule == Some(force) {
-                engine_scaled = (c.time_factor, c.error_time_scaled);
-            }
+            let c = compare_events(&reference.events, &r.events, duration);
             rows.push(Row {
-                scene: name.clone(),
-                method: method.into(),
-                tolerance: None,
+                scene: sc.name.to_string(),
+                method: method.name().into(),
+                tolerance: Some(tol),
                 error_time: c.error_time,
-                error_pose: pose_error(&ref_final, &engine_final(&tl), w),
+                error_pose: pose_error(&ref_final, &reference_final(&r), w),
                 wall_s: wall,
-                steps: tl.events.len() as u64,
-                rejected: 0,
-                rhs: 0,
+                steps: r.stats.accepted,
+                rejected: r.stats.rejected,
+                rhs: r.stats.rhs,
                 missing: c.missing,
                 inversions: c.inversions,
                 interleavings: c.interleavings,
-                outcome: tl.outcome.name().into(),
+                outcome: r.result().name().into(),
             });
         }
-        scenes.push(SceneReport {
-            scene: name.clone(),
-            tiles: sc.chain.len(),
-            reference_outcome: reference.result().name().into(),
-            reference_reason: reference.to_summary().reason,
-            engine_outcome,
-            reference_duration_s: duration,
-            engine_duration_s: engine_duration,
-            reference_wall_s: reference_wall,
-            baseline_time_factor: engine_scaled.0,
-            baseline_error_time_scaled: engine_scaled.1,
-            cutoff_error,
-        });
-        for (method, ladder) in [(Method::Dopri5, &opts.dopri5), (Method::Ros2, &opts.ros2)] {
-            for &tol in ladder {
-                progress(sc.name, method.name(), Some(tol));
-                let t0 = Instant::now();
-                let r = run_reference(
-                    &sc.chain,
-                    &sc.designs,
-                    &ReferenceOptions::default()
-                        .with_method(method)
-                        .with_tolerance(tol)
-                        .with_model(opts.model),
-                )
-                .map_err(ref_err)?;
-                let wall = t0.elapsed().as_secs_f64();
-                let c = compare_events(&reference.events, &r.events, duration);
-                rows.push(Row {
-                    scene: name.clone(),
-                    method: method.name().into(),
-                    tolerance: Some(tol),
-                    error_time: c.error_time,
-                    error_pose: pose_error(&ref_final, &reference_final(&r), w),
-                    wall_s: wall,
-                    steps: r.stats.accepted,
-                    rejected: r.stats.rejected,
-                    rhs: r.stats.rhs,
-                    missing: c.missing,
-                    inversions: c.inversions,
-                    interleavings: c.interleavings,
-                    outcome: r.result().name().into(),
-                });
-            }
-        }
     }
-    Ok(Validation { rows, scenes })
+    Ok(())
 }

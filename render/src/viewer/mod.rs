@@ -29,9 +29,9 @@
 //! (Chromium's canvas and its software WebGL are far too slow for 10^4 tiles on a headless
 //! machine: `BENCHMARKS.md`); with few, the canvas draws them with smooth edges.
 
-mod base64;
 mod path_form;
 mod run_data;
+mod typed_arrays;
 
 use foldchain::timeline::RunSource;
 #[cfg(doc)]

@@ -11,7 +11,7 @@ use foldchain::timeline::{RunSource, Track, TrackKey};
 use foldchain::Pose;
 use rustc_hash::FxHashMap;
 
-use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
+use crate::viewer::typed_arrays::{encode_f32, encode_f64, encode_uint};
 use crate::viewer::{PathForm, RunView};
 
 /// A packed integer array: bytes per value (1, 2 or 4) and the little-endian bytes in base64.

@@ -17,17 +17,17 @@
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
 mod cache;
+mod relaxation;
 mod solve;
 mod sweep;
-mod sweeps;
 #[cfg(test)]
 mod test_support;
 mod trajectory;
-mod window;
+mod unit_forces;
 
 use std::f64::consts::FRAC_PI_2;
 
-pub(crate) use sweeps::ChainSolution;
+pub(crate) use relaxation::ChainSolution;
 
 use crate::model::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
@@ -96,7 +96,7 @@ pub(crate) fn run_local(model: &Model, tol: f64, threads: usize, max_steps: usiz
         rosenbrock: true,
         rest_skip: true,
     };
-    let chain = sweeps::solve_chain(model, opts, threads);
+    let chain = relaxation::solve_chain(model, opts, threads);
     let g = &model.geometry;
     let n = g.magnets();
     let joints = g.tiles().saturating_sub(1);

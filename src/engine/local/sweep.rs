@@ -1,6 +1,6 @@
 //! One sweep over the chain ([`sweep`]): every unit solved in turn from the RI end, with the
 //! units before it on this sweep's tracks and the units after it on the sweep before's
-//! ([`crate::engine::local::sweeps`] tells the method).
+//! ([`crate::engine::local::relaxation`] tells the method).
 //!
 //! A sweep reads the sweep before as a stream of unit results ([`UnitOut`]: the unit's
 //! entry and origin, from which its tracks follow, and the shapes it made), and writes its
@@ -17,7 +17,7 @@ use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
-use crate::engine::local::window::{unit_vars, Inputs, Var, Window};
+use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
 use crate::model::{Dynamics, Model};
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
@@ -252,7 +252,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             break;
         }
         let j = u as isize - 1;
-        let w = Window::new(model, j, cutoff);
+        let w = UnitForces::new(model, j, cutoff);
         let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
         if !before.read_to(model, need, k, &mut shapes, &mut magnets, &mut joints) {
             complete = false;
@@ -424,7 +424,7 @@ fn shared_shape(
     library: &Library,
     magnets: &[Track],
     joints: &[Track],
-    w: &Window,
+    w: &UnitForces,
     i: usize,
     shape: &Shape,
     start: f64,
@@ -476,7 +476,7 @@ impl Saved {
 /// Moves the moving tracks of unit `w`'s window after its unknowns (the magnets after its
 /// last one, the joints after its own) by `shift`, keeping what they were in `saved`.
 fn shift_downstream(
-    w: &Window,
+    w: &UnitForces,
     magnets: &mut [Track],
     joints: &mut [Track],
     shift: f64,
@@ -533,7 +533,7 @@ fn change(old: &(Arc<Entry>, f64), new: &Arc<Entry>, t_ref: f64) -> f64 {
 }
 
 /// The cache key of unit `w` with input tracks `tracks` and origin `t_ref`.
-fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
+fn window_key(w: &UnitForces, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
     let g = &w.model.geometry;
     key.clear();
     let first = w.vars.iter().find_map(|v| match v {

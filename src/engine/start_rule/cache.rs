@@ -20,9 +20,9 @@
 
 use rustc_hash::FxHashMap;
 
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::engine::start_rule::answer::ForceStart;
-use crate::engine::start_rule::window::ARRIVED_MARGIN;
+use crate::engine::start_rule::neighbourhood::ARRIVED_MARGIN;
 use crate::physics::reach;
 use crate::timeline::Geometry;
 
@@ -52,7 +52,7 @@ impl ForceCache {
     fn fill_key(
         &mut self,
         g: &Geometry,
-        progress: &Progress<'_>,
+        progress: &RunState<'_>,
         cutoff: usize,
         m: usize,
         t0: f64,
@@ -114,7 +114,7 @@ impl ForceCache {
     pub(crate) fn start(
         &mut self,
         g: &Geometry,
-        progress: &Progress<'_>,
+        progress: &RunState<'_>,
         cutoff: usize,
         m: usize,
         t0: f64,
