@@ -18,7 +18,7 @@ use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::Recording;
-use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
+use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
@@ -223,9 +223,7 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     // the reference as fold-run ran it above (--dynamics overdamped, the library's default)
     let ro = ReferenceOptions::default()
         .with_model(ModelOptions::default().with_dynamics(Dynamics::Overdamped))
-        .with_record(Recording::Grid {
-            max_states: state_budget(chain.len()),
-        });
+        .with_record(Recording::within_budget(chain.len()));
     let reference = run_reference(&chain, &TileDesigns::default(), &ro).unwrap();
     let w = tl.geometry().w;
     // the engine at any time (the fold law is sampled within its tolerance), the reference

@@ -7,8 +7,8 @@
 //! [`RunView`]s).
 //!
 //! The page computes the chain itself, as the library does: joint angles and magnet travel
-//! from [`Track`]s (piecewise linear within [`ANGLE_TOLERANCE`] and [`TRAVEL_TOLERANCE`]),
-//! tile poses by composing the octagon chain's hinge turns ([`foldchain::kinematics`]), magnets
+//! from [`Track`]s (piecewise linear within [`Track::ANGLE_TOLERANCE`] and [`Track::TRAVEL_TOLERANCE`]),
+//! tile poses by composing the octagon chain's hinge turns ([`foldchain::Pose::compose_at_angles`]), magnets
 //! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
 //! about 28 bytes per tile on the event engine's serpentines.
 //!
@@ -43,13 +43,13 @@
 //! machine: `BENCHMARKS.md`), each tile's octagon stamped from a sprite made once per
 //! frame size and turn; with few, the canvas draws them with smooth edges.
 
-mod base64;
 mod path_form;
 mod run_data;
+mod typed_arrays;
 
 use foldchain::timeline::RunSource;
 #[cfg(doc)]
-use foldchain::timeline::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+use foldchain::timeline::Track;
 
 pub use path_form::PathForm;
 pub use run_data::{PackedInts, RunData};
