@@ -9,9 +9,8 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use crate::caps::{cap_plans, CapPlan};
-use crate::cell_plan::{axes, checked_plans, CellFailure};
+use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
 use crate::check::CheckMemo;
-use crate::error::Rejected;
 use crate::fit::plan_score;
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
@@ -155,8 +154,7 @@ pub(crate) fn plan_by_caps(
             .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
     };
 
-    let mut collide = String::new();
-    let mut rejected: Option<(String, Box<Rejected>)> = None;
+    let mut failed = Failed::default();
     let found = search.run_checked(target, w0, |w| {
         let mut routes = routes_at(shape, &axes, style, w);
         if opts.tile_size.is_none() {
@@ -173,8 +171,7 @@ pub(crate) fn plan_by_caps(
             name,
             &routes,
             crate::empty::near(opts.turns),
-            &mut collide,
-            &mut rejected,
+            &mut failed,
         );
         // a count within the tolerance first, then no part left empty, then the fit
         match plans.into_iter().min_by(by_rank) {
@@ -191,10 +188,13 @@ pub(crate) fn plan_by_caps(
     });
     match found.map(|f| f.plans) {
         Some(p) => Ok(p),
-        None => match rejected {
+        None => match failed.rejected {
             Some((text, r)) => Err((text, Some(r))),
-            None if !collide.is_empty() => Err((
-                format!("every cap route collides when folded (first: {collide})"),
+            None if !failed.collide.is_empty() => Err((
+                format!(
+                    "every cap route collides when folded (first: {})",
+                    failed.collide
+                ),
                 None,
             )),
             None => Err(("no cap decomposition".into(), None)),

@@ -179,13 +179,16 @@ struct PBox {
 /// runs shorter than `min` merged and dropped.
 type Runs = Vec<(usize, usize)>;
 
+/// The cheapest decompositions found per box, join requirement and cut side.
+type Memo = HashMap<(PBox, Option<bool>, Option<Dir>), Rc<Vec<CapPlan>>>;
+
 /// The search over boxes.
 struct Search<'a> {
     r: &'a Raster,
     pitch: f64,
     /// Runs and gaps shorter than this many pixels do not count (half a tile).
     min: usize,
-    memo: HashMap<(PBox, Option<bool>, Option<Dir>), Rc<Vec<CapPlan>>>,
+    memo: Memo,
     visited: usize,
 }
 
@@ -755,7 +758,7 @@ pub(crate) fn parts(axis_shape: &Shape) -> Vec<Rect> {
             ));
         }
     }
-    out.sort_by(|a, b| b.0.cmp(&a.0));
+    out.sort_by_key(|p| std::cmp::Reverse(p.0));
     out.into_iter().map(|p| p.1).collect()
 }
 

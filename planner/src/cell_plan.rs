@@ -16,6 +16,16 @@ use crate::route::Routed;
 use crate::rows::Style;
 use crate::shape::Shape;
 
+/// What the routes checked so far said when they failed: the last collision, and the route
+/// that leaves the smallest part empty (with its reason).
+#[derive(Default)]
+pub(crate) struct Failed {
+    /// The last collision.
+    pub collide: String,
+    /// The route rejected for the smallest empty part.
+    pub rejected: Option<(String, Box<Rejected>)>,
+}
+
 /// Routes (cheapest first, over all axes) checked and measured.
 const CHECKED_ROUTES: usize = 10;
 
@@ -44,8 +54,8 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 }
 
 /// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`) that fold
-/// without collision and leave no part of the shape empty. The last collision is kept in
-/// `collide`, and the route that leaves the smallest part empty in `rejected`.
+/// without collision and leave no part of the shape empty (measured at `near` tile widths).
+/// What the others said is kept in `failed`.
 pub(crate) fn checked_plans(
     shape: &Shape,
     style: Style,
@@ -53,9 +63,9 @@ pub(crate) fn checked_plans(
     name: &str,
     routes: &[(f64, Arc<Routed>)],
     near: f64,
-    collide: &mut String,
-    rejected: &mut Option<(String, Box<Rejected>)>,
+    failed: &mut Failed,
 ) -> Vec<Plan> {
+    let Failed { collide, rejected } = failed;
     let mut plans: Vec<Plan> = Vec::new();
     for (a, r) in routes.iter().take(CHECKED_ROUTES) {
         if let Err(e) = check_folds(&r.word) {
@@ -82,7 +92,8 @@ pub(crate) fn checked_plans(
         }
         let plan = match note_empty(shape, asm.to_plan(&r.word, name), near) {
             Ok(plan) => plan,
-            Err((part, plan)) => {
+            Err(e) => {
+                let (part, plan) = *e;
                 if rejected
                     .as_ref()
                     .is_none_or(|(_, b)| part.tiles < b.empty.tiles)

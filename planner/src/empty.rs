@@ -219,6 +219,25 @@ fn near_wide(grid: &CentreGrid, centres: &[Point], p: Point, near: f64) -> bool 
         })
 }
 
+/// Checks `plan` for an empty part (points farther than `near` tile widths from every
+/// centre, see [`near`]): a part larger than [`REFUSE_EMPTY_TILES`] rejects it (returned with
+/// the plan); a smaller one is noted in the plan's metrics and warnings.
+pub(crate) fn note_empty(
+    shape: &Shape,
+    mut plan: Plan,
+    near: f64,
+) -> Result<Plan, Box<(EmptyPart, Plan)>> {
+    match empty_part(shape, &plan, near) {
+        None => Ok(plan),
+        Some(part) if part.tiles > REFUSE_EMPTY_TILES => Err(Box::new((part, plan))),
+        Some(part) => {
+            plan.metrics.largest_empty_tiles = part.tiles;
+            plan.warnings.push(format!("the plan {part}"));
+            Ok(plan)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,24 +264,5 @@ mod tests {
         assert!(area > 40.0 && p.x > 10.0, "{area} at {p:?}");
         assert!(b.x0 > 10.0 && b.x1 < 20.0 && b.height() > 8.0, "{b:?}");
         assert!(largest_empty_part(&shape, &rows(20), NEAR).is_none());
-    }
-}
-
-/// Checks `plan` for an empty part (points farther than `near` tile widths from every
-/// centre, see [`near`]): a part larger than [`REFUSE_EMPTY_TILES`] rejects it (returned with
-/// the plan); a smaller one is noted in the plan's metrics and warnings.
-pub(crate) fn note_empty(
-    shape: &Shape,
-    mut plan: Plan,
-    near: f64,
-) -> Result<Plan, (EmptyPart, Plan)> {
-    match empty_part(shape, &plan, near) {
-        None => Ok(plan),
-        Some(part) if part.tiles > REFUSE_EMPTY_TILES => Err((part, plan)),
-        Some(part) => {
-            plan.metrics.largest_empty_tiles = part.tiles;
-            plan.warnings.push(format!("the plan {part}"));
-            Ok(plan)
-        }
     }
 }

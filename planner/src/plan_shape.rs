@@ -96,7 +96,8 @@ pub(crate) fn plan_shape(
     if let Some(p) = best.take() {
         match note_empty(shape, p, crate::empty::near(opts.turns)) {
             Ok(p) => best = Some(p),
-            Err((part, p)) => {
+            Err(e) => {
+                let (part, p) = *e;
                 failures.push(format!("one serpentine {part}"));
                 reject(Box::new(Rejected {
                     plan: p,
