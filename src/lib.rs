@@ -2,7 +2,7 @@
 //!
 //! Design and simulation of self-folding magnetic tile chains: octagon tiles holding magnets
 //! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
-//! initiator starts them (see `SPEC.md` and the thesis it follows).
+//! initiator starts them (the model and the thesis it follows: `docs/physics.md`).
 //!
 //! This crate is the core model and computes only; the command-line tools live in the
 //! `foldchain-cli` crate.
@@ -45,6 +45,7 @@ pub mod collision;
 pub mod count;
 pub mod design;
 pub mod engine;
+mod engine_choice;
 mod error;
 pub mod exact;
 mod frame;
@@ -60,6 +61,7 @@ mod ode;
 mod path_kind;
 pub mod physics;
 mod pose;
+mod progress;
 pub mod reference;
 mod simulation;
 mod tile;
@@ -72,6 +74,10 @@ pub use bom::BillOfMaterials;
 pub use chain::{Chain, MAX_TILES};
 pub use design::{Design, DesignError, InequalityCheck, Standing};
 pub use engine::{timeline_json, MAX_TIMELINE_EVENTS};
+pub use engine_choice::{
+    auto_engine, distinct_neighbourhoods, AutoEngine, EngineKind, LOCAL_ENGINE_MAX_NEIGHBOURHOODS,
+    NEIGHBOURHOOD_RADIUS,
+};
 pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
 pub use joint::{Fold, JointOutcome};
@@ -79,6 +85,7 @@ pub use number_text::short_number;
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
+pub use progress::{NoProgress, Progress};
 pub use simulation::{check_engine_run, check_reference, folded_word, simulate, SimulateError};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

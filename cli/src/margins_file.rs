@@ -22,7 +22,7 @@ struct MarginsFile<'a> {
 }
 
 /// The criterion the margins judge by, as the files and tools state it.
-pub const CRITERION: &str = "margins are fractions of the tile's bond force (starts) or of the bond force times the pair's lever about the hinge (folds), on quasi-static poses (README, Margins); the chain folds as designed when every one is positive (holds: the resting chain keeps each magnet in place before the RI comes)";
+pub const CRITERION: &str = "margins are fractions of the tile's bond force (starts) or of the bond force times the pair's lever about the hinge (folds), on quasi-static poses (docs/tolerances.md, Margins); the chain folds as designed when every one is positive (holds: the resting chain keeps each magnet in place before the RI comes)";
 
 /// The margins of `chain` with `designs` under `law`, and their JSON text; `None` for a chain
 /// longer than [`MAX_MARGIN_TILES`] or one whose paths cannot be built.

@@ -35,8 +35,9 @@ fn temp_name(name: &str) -> String {
     format!(".{name}.tmp{}", std::process::id())
 }
 
-/// Is `file` one of [`write_atomic`]'s temporary names for one of `names`, from any process?
-fn is_temp_of(file: &str, is_ours: &dyn Fn(&str) -> bool) -> bool {
+/// Is `file` one of [`write_atomic`]'s temporary names for a name `is_ours` accepts, from any
+/// process?
+pub fn is_temp_of(file: &str, is_ours: &dyn Fn(&str) -> bool) -> bool {
     let Some(rest) = file.strip_prefix('.') else {
         return false;
     };

@@ -144,7 +144,8 @@ pub fn is_run_file(name: &str) -> bool {
 }
 
 /// Is the entry at `path`, in a run's output directory, one `fold-run` owns (replaced by
-/// the next run into that directory): one of [`is_run_file`]'s names, or `engine/` or
+/// the next run into that directory): one of [`is_run_file`]'s names or a temporary name of
+/// one (a killed run's torn file), or `engine/` or
 /// `reference/` of `--compare` holding nothing but such files. Everything else is a user's,
 /// and stays.
 pub fn owns_run_entry(path: &Path) -> bool {
@@ -154,14 +155,15 @@ pub fn owns_run_entry(path: &Path) -> bool {
     let Ok(meta) = std::fs::symlink_metadata(path) else {
         return false;
     };
+    // a file being written when a run was killed: `.NAME.tmpPID`
+    let ours = |n: &str| is_run_file(n) || crate::output::is_temp_of(n, &is_run_file);
     if meta.is_file() {
-        return is_run_file(&name);
+        return ours(&name);
     }
     if meta.is_dir() && (name == "engine" || name == "reference") {
         return std::fs::read_dir(path).is_ok_and(|entries| {
             entries.flatten().all(|e| {
-                e.file_type().is_ok_and(|t| t.is_file())
-                    && is_run_file(&e.file_name().to_string_lossy())
+                e.file_type().is_ok_and(|t| t.is_file()) && ours(&e.file_name().to_string_lossy())
             })
         });
     }

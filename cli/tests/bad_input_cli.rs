@@ -15,6 +15,7 @@ fn tool(name: &str) -> Command {
         "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
         "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
         "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
+        "fold-print" => env!("CARGO_BIN_EXE_fold-print"),
         _ => env!("CARGO_BIN_EXE_fold-validate"),
     };
     Command::new(path)
@@ -132,6 +133,12 @@ fn a_closed_pipe_ends_a_tool_quietly() {
         ("fold-run", vec!["SLLS", "--json", "--out", "OUT"]),
         ("fold-check", vec!["S*40", "--json"]),
         ("fold-enum", vec!["--max-tiles", "9", "--json"]),
+        ("fold-print", vec!["SLLS", "--quiet", "--out", "OUT"]),
+        ("fold-tolerance", vec!["SL", "--samples", "20"]),
+        (
+            "fold-plan",
+            vec!["../shapes/square.svg", "--tiles", "12", "--quiet"],
+        ),
     ] {
         let out = d.join(t);
         let args: Vec<&str> = args

@@ -144,12 +144,11 @@ impl Plan {
     /// The one-line summary `fold-plan` prints.
     pub fn summary(&self) -> String {
         format!(
-            "{} tiles, {} {} U-turns, {} 90-degree turns, {} cell(s), axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
-            self.tiles,
-            self.u_turns,
-            self.turns,
-            self.quarter_turns,
-            self.cells,
+            "{}, {}, {}, {}, axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
+            plural(self.tiles, "tile", "tiles"),
+            plural(self.u_turns, &format!("{} U-turn", self.turns), &format!("{} U-turns", self.turns)),
+            plural(self.quarter_turns, "90-degree turn", "90-degree turns"),
+            plural(self.cells, "cell", "cells"),
             self.axis_deg,
             self.tile_size,
             mm(self.tile_mm),
@@ -159,4 +158,9 @@ impl Plan {
             100.0 * self.metrics.outside_share
         )
     }
+}
+
+/// `n` and the noun in the number it takes: `1 cell`, `2 cells`.
+pub(crate) fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }

@@ -1,7 +1,7 @@
 //! The inertial model's parameters ([`Inertia`]): magnet mass and drag, Coulomb friction,
 //! the tiles' rotational inertia and drag per swung tile, and the restitution of a magnet
 //! or a fold meeting its wall. Every default is an estimate, with its reasoning and range,
-//! since the thesis measures none of them (README, "Physical parameters").
+//! since the thesis measures none of them (docs/physics.md, "Physical parameters").
 //!
 //! With them a magnet of the thesis design has an inertial time `m / gamma` of about 5 ms,
 //! short against a move (tens of ms): its motion is inertial but well damped, and it bounces

@@ -34,6 +34,6 @@ pub use optimize::{
 pub use rng::SplitMix64;
 pub use sample::{draw_designs, nudged};
 pub use sensitivity::{sensitivities, Sensitivity};
-pub use study::{study, FailureCount, MarginSpread, Study, StudyOptions};
+pub use study::{study, study_reporting, FailureCount, MarginSpread, Study, StudyOptions};
 pub use tolerances::{Parameter, Printer, ToleranceError, Tolerances};
 pub use wilson::{wilson_interval, Z95};

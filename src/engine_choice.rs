@@ -1,4 +1,5 @@
-//! `fold-run --engine auto`'s choice between the local solves and the kinematic baseline.
+//! The choice between the event engine's local solves and its kinematic baseline for a chain
+//! (`fold-run --engine auto`): [`auto_engine`].
 //!
 //! The local solves cache a unit's solution by its window and its inputs, so a chain costs
 //! about one solve per distinct neighbourhood of its joints (the transient after a turn dies
@@ -10,8 +11,8 @@
 
 use std::collections::HashSet;
 
-use foldchain::engine::TileDesigns;
-use foldchain::Chain;
+use crate::timeline::TileDesigns;
+use crate::Chain;
 
 /// Tiles either side of a joint in its neighbourhood: 12.
 pub const NEIGHBOURHOOD_RADIUS: usize = 12;
@@ -19,6 +20,46 @@ pub const NEIGHBOURHOOD_RADIUS: usize = 12;
 /// `--engine auto` uses the local solves up to this many distinct neighbourhoods (a
 /// 2,000-tile random fold word: some 6 s of overdamped local solves, 25 s inertial).
 pub const LOCAL_ENGINE_MAX_NEIGHBOURHOODS: usize = 2_000;
+
+/// How the event engine times a chain's events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum EngineKind {
+    /// Local solves of the reference's physics, one joint at a time.
+    Local,
+    /// The kinematic baseline: a start rule and a closed-form speed law.
+    Kinematic,
+}
+
+/// What [`auto_engine`] chose, and on what grounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AutoEngine {
+    /// The engine chosen.
+    pub kind: EngineKind,
+    /// The chain's distinct joint neighbourhoods ([`distinct_neighbourhoods`]).
+    pub neighbourhoods: usize,
+}
+
+/// The local solves when the chain has at most [`LOCAL_ENGINE_MAX_NEIGHBOURHOODS`] distinct
+/// joint neighbourhoods (their cost), the kinematic baseline beyond.
+///
+/// ```
+/// use foldchain::engine::TileDesigns;
+/// use foldchain::{auto_engine, Chain, EngineKind};
+/// let serpentine = Chain::parse(&"S*300 LL S*300 RR ".repeat(20)).unwrap();
+/// assert_eq!(auto_engine(&serpentine, &TileDesigns::default()).kind, EngineKind::Local);
+/// ```
+pub fn auto_engine(chain: &Chain, designs: &TileDesigns) -> AutoEngine {
+    let neighbourhoods = distinct_neighbourhoods(chain, designs);
+    AutoEngine {
+        kind: if neighbourhoods > LOCAL_ENGINE_MAX_NEIGHBOURHOODS {
+            EngineKind::Kinematic
+        } else {
+            EngineKind::Local
+        },
+        neighbourhoods,
+    }
+}
 
 /// How many distinct neighbourhoods (the tiles and their designs within
 /// [`NEIGHBOURHOOD_RADIUS`] of a joint) `chain`'s joints have, the joints within the radius of
