@@ -88,7 +88,7 @@ fn what_it_does_not_take_is_refused() {
     let cutoff = cutoff.with_reference(
         cutoff
             .reference
-            .with_model(cutoff.reference.model.with_distance_cutoff(90.0)),
+            .with_model(cutoff.reference.model.with_distance_cutoff(Some(90.0))),
     );
     assert!(run_free_body(&chain, &d, &cutoff).is_err());
 }

@@ -8,9 +8,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::{ForceLaw, Inertia};
-use foldchain::reference::{
-    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
-};
+use foldchain::reference::{run_reference, Recording, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
@@ -62,11 +60,9 @@ fn overdamped_is_the_limit_of_negligible_mass() {
     // the same drag, a magnet of 0.0265 g: m / gamma = 5e-6 s against moves of ~0.1 s
     let d = Design::thesis();
     let od = ModelOptions::default();
-    let light = Inertia {
-        magnet_mass_g: Some(0.0265),
-        drag: od.drag,
-        ..Inertia::default()
-    };
+    let light = Inertia::default()
+        .with_magnet_mass(0.0265)
+        .with_drag(od.drag);
     let word = "SS";
     let a = run(word, d, od);
     let b = run(word, d, od.with_dynamics(Dynamics::Inertial(light)));
@@ -87,14 +83,8 @@ fn magnets_bounce_at_their_path_ends() {
     // with restitution the magnets rebound before they stay: arrivals come later than
     // without, and the outcome is the same
     let d = Design::thesis();
-    let dead = Inertia {
-        restitution: 0.0,
-        ..Inertia::default()
-    };
-    let bouncy = Inertia {
-        restitution: 0.6,
-        ..Inertia::default()
-    };
+    let dead = Inertia::default().with_restitution(0.0);
+    let bouncy = Inertia::default().with_restitution(0.6);
     let a = run("SS", d, inertial().with_dynamics(Dynamics::Inertial(dead)));
     let b = run(
         "SS",
@@ -137,10 +127,7 @@ fn inertia_does_not_rescue_the_old_final_point() {
         );
     }
     // and bad inertial parameters are refused by name
-    let bad = Inertia {
-        restitution: 1.5,
-        ..Inertia::default()
-    };
+    let bad = Inertia::default().with_restitution(1.5);
     let e = run_reference(
         &Chain::parse("SS").unwrap(),
         &TileDesigns::default(),
@@ -198,7 +185,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
     let d = run(
         "LLL",
         Design::thesis(),
-        inertial().with_distance_cutoff(90.0),
+        inertial().with_distance_cutoff(Some(90.0)),
     );
     assert_eq!(d.outcome, Outcome::Completed);
     assert_eq!(d.folded_joints(), r.folded_joints());
@@ -210,7 +197,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
         run(
             "S*9",
             Design::thesis(),
-            inertial().with_distance_cutoff(90.0),
+            inertial().with_distance_cutoff(Some(90.0)),
         ),
     );
     assert_eq!(a.events.len(), b.events.len());
@@ -219,7 +206,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
     let bad = run_reference(
         &Chain::parse("SS").unwrap(),
         &TileDesigns::default(),
-        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(-1.0)),
+        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(Some(-1.0))),
     );
     assert!(bad.is_err());
 }
@@ -237,9 +224,7 @@ fn recorded_fold_tracks_keep_each_bounce_peak() {
         &TileDesigns::global(Design::thesis().with_s(0.0)),
         &ReferenceOptions::default()
             .with_model(inertial())
-            .with_record(Recording::Grid {
-                max_states: state_budget(chain.len()),
-            }),
+            .with_record(Recording::within_budget(chain.len())),
     )
     .unwrap();
     assert!(r.walls.windows(2).all(|w| w[0].0 <= w[1].0));

@@ -18,10 +18,13 @@ rsvg-convert -w 900 -b white "$tmp/serpentine/final.svg" -o docs/fold-run-serpen
 "$bin/fold-plan" shapes/key.svg --tiles 171 --quiet --preview "$tmp/key.svg" >/dev/null
 rsvg-convert -w 900 -b white "$tmp/key.svg" -o docs/plan-key-171.png
 
-# docs/designing.md: the viewer at the end of the key's run, framed on the folded key (mm)
+# docs/designing.md: the viewer at the end of the key's run, in its own default view (the
+# camera following the fold ends framed on the folded key); the time budget lets the page
+# finish drawing
 "$bin/fold-run" shapes/key.svg --tiles 171 --quiet --frames 2 --out "$tmp/key" >/dev/null
 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1000,700 \
-  --screenshot="$tmp/viewer.png" "file://$tmp/key/index.html#t=end&view=-560,-380,760,240" 2>/dev/null
+  --force-device-scale-factor=1 --virtual-time-budget=3000 --user-data-dir="$tmp/profile" \
+  --screenshot="$tmp/viewer.png" "file://$tmp/key/index.html#t=end" 2>/dev/null
 cp "$tmp/viewer.png" docs/viewer-key.png
 
 if [ "${1:-}" = "--all" ]; then

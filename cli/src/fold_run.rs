@@ -12,8 +12,7 @@ use foldchain::engine::{EngineOptions, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 use foldchain::reference::{
-    run_free_body, run_reference, state_budget, FreeBodyOptions, Recording, ReferenceOptions,
-    ReferenceRun,
+    run_free_body, run_reference, FreeBodyOptions, Recording, ReferenceOptions, ReferenceRun,
 };
 use foldchain::timeline::{FoldRecord, RunSource, SpeedLaw};
 use foldchain::{auto_engine, check_reference, simulate, Chain, EngineKind};
@@ -309,9 +308,7 @@ fn engine_options(req: &RunRequest, notes: &mut Vec<String>) -> EngineOptions {
 /// The force-integrated reference of `req`'s chain.
 fn reference(req: &RunRequest) -> anyhow::Result<ReferenceRun> {
     let ro = ReferenceOptions::default()
-        .with_record(Recording::Grid {
-            max_states: state_budget(req.chain.len()),
-        })
+        .with_record(Recording::within_budget(req.chain.len()))
         .with_model(req.model);
     Ok(match req.reference_model {
         ReferenceModel::JointAngle => run_reference(&req.chain, &req.designs, &ro)?,

@@ -122,6 +122,18 @@ impl OutputDir {
         Ok(())
     }
 
+    /// Writes `value` as pretty JSON and a newline into `name`, as [`OutputDir::write`].
+    pub fn write_json(
+        &mut self,
+        name: &str,
+        value: &impl serde::Serialize,
+    ) -> Result<(), WriteError> {
+        let mut text = serde_json::to_string_pretty(value)
+            .map_err(|e| WriteError::new(&self.dir.join(name), e.into()))?;
+        text.push('\n');
+        self.write(name, text.as_bytes())
+    }
+
     /// Removes the files that `stale` claims (names the tool owns, such as step frames) but
     /// this run did not write, and the temporary files of names `ours` claims, left by an
     /// interrupted run. Nothing else is touched. Returns the names removed, sorted.

@@ -20,7 +20,7 @@ use std::path::Path;
 use foldchain::check_engine_run;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{Summary, Timeline};
-use foldchain::timeline::{ChainState, RunSource, DETAIL_TILES};
+use foldchain::timeline::{ChainState, RunSource};
 use foldchain_render::viewer::{viewer_html, viewer_html_of, RunData, RunView};
 use foldchain_render::{energy_svg, frame_svg, transition_svg, FrameOptions, FrameView};
 use kurbo::Point;
@@ -123,7 +123,7 @@ pub fn write_compare_page(
 pub fn default_frames(tiles: usize) -> usize {
     match tiles {
         0..=50 => 40,
-        51..=DETAIL_TILES => 24,
+        51..=ChainState::DETAIL_TILES => 24,
         401..=20_000 => 12,
         _ => 6,
     }
@@ -310,9 +310,7 @@ pub fn write_prepared_run_files(
         &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
         &is_run_file,
     )?;
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    out.write("summary.json", summary_json.as_bytes())?;
+    out.write_json("summary.json", summary)?;
     Ok(out.written().to_vec())
 }
 
@@ -435,7 +433,7 @@ fn frame_view(
         let shown: Vec<usize> = (0..state.tiles())
             .filter(|&i| view.shows(&state.poses[i], w))
             .collect();
-        if shown.len() <= DETAIL_TILES {
+        if shown.len() <= ChainState::DETAIL_TILES {
             let g = source.geometry();
             state.magnets = vec![(f64::NAN, f64::NAN); g.magnets()];
             for k in shown.into_iter().flat_map(|i| [2 * i, 2 * i + 1]) {

@@ -175,3 +175,24 @@ fn a_closed_pipe_ends_a_tool_quietly() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn fold_print_refuses_a_file_as_out_before_any_work() {
+    // found by the options fuzz: the refusal came after the parts were built, below a
+    // progress line, so it was not one line
+    let d = scratch("print-out-file");
+    let file = d.join("afile");
+    std::fs::write(&file, "not a directory").unwrap();
+    let o = tool("fold-print")
+        .env("FOLDCHAIN_PROGRESS_SECONDS", "0")
+        .args(["SLLS", "--out"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("not a directory"), "{err}");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a directory");
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -16,8 +16,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use foldchain::tolerance::SplitMix64;
-
 /// One option: its flag, the probability it is given, and its values (`None`: a flag
 /// without a value). `@DIR`, `@FILE` and `@...` in a value stand for files of the setup.
 struct Opt {
@@ -475,8 +473,16 @@ fn fuzz(name: &str, default_cases: usize) {
         .and_then(|v| v.parse().ok())
         .unwrap_or(29);
     let setup = Setup::new(name);
-    let mut rng = SplitMix64::new(seed ^ name.len() as u64 ^ (name.as_bytes()[5] as u64) << 8);
-    let mut pick = |n: usize| (rng.next_u64() % n as u64) as usize;
+    // SplitMix64 (the library's generator is crate-private): a deterministic stream per tool
+    let mut state = seed ^ name.len() as u64 ^ (name.as_bytes()[5] as u64) << 8;
+    let mut next_u64 = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    let mut pick = |n: usize| (next_u64() % n as u64) as usize;
     let mut failures = Vec::new();
     let mut exits = [0usize; 3];
     let mut slowest: Vec<(f64, String)> = Vec::new();

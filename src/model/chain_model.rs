@@ -38,7 +38,7 @@ use crate::{Chain, Octagon, Pose};
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
 /// on a rounding error: 1e-12.
-pub const BALANCE_TOLERANCE: f64 = 1e-12;
+pub(crate) const BALANCE_TOLERANCE: f64 = 1e-12;
 
 /// What one unknown is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,10 +4,12 @@
 use crate::model::Dynamics;
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
 
-/// Options of the reference model. Defaults: drag [`DEFAULT_DRAG`], rotational drag
-/// [`DEFAULT_ROTATIONAL_DRAG`], no static friction, cutoff [`DEFAULT_CUTOFF`], the
+/// Options of the reference model. Defaults: drag [`ModelOptions::DEFAULT_DRAG`] (5 N s/m), rotational drag
+/// 1.125e-5 N m s (the magnet drag times the square of the thesis' magnet radius, 1.5 mm),
+/// no static friction, cutoff [`ModelOptions::DEFAULT_CUTOFF`] (3), the
 /// point-dipole law.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ModelOptions {
     /// Drag of a magnet in its channel, N s/m.
     pub drag: f64,
@@ -24,7 +26,7 @@ pub struct ModelOptions {
     /// `drag` and `rotational_drag`; [`Dynamics::Inertial`] carries its own parameters).
     pub dynamics: Dynamics,
     /// Pairs nearer than this (mm) interact too, however far apart in chain index (found on
-    /// a grid, [`crate::physics::pairs_within`]); `None` (the default) for the chain-index
+    /// a grid); `None` (the default) for the chain-index
     /// cutoff alone. Such pairs lie outside the Jacobian's band, which ROS2 then only
     /// approximates. 90 mm (three tile widths) keeps every pair whose force exceeds 0.07% of
     /// the bonded rest force ((14.4 / 90)^4).
@@ -46,6 +48,13 @@ impl Default for ModelOptions {
 }
 
 impl ModelOptions {
+    /// The default drag of a magnet in its channel, N s/m: an assumed value that makes a
+    /// straight-path move of the thesis design take about a third of a second.
+    pub const DEFAULT_DRAG: f64 = DEFAULT_DRAG;
+    /// The default chain-index cutoff of the pair forces: each magnet feels its three nearest
+    /// neighbours each way.
+    pub const DEFAULT_CUTOFF: usize = DEFAULT_CUTOFF;
+
     /// Another magnet drag, N s/m.
     pub fn with_drag(mut self, drag: f64) -> ModelOptions {
         self.drag = drag;
@@ -76,9 +85,11 @@ impl ModelOptions {
         self.dynamics = dynamics;
         self
     }
-    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index).
-    pub fn with_distance_cutoff(mut self, mm: f64) -> ModelOptions {
-        self.distance_cutoff = Some(mm);
+
+    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index;
+    /// `None`: the chain-index cutoff alone).
+    pub fn with_distance_cutoff(mut self, mm: Option<f64>) -> ModelOptions {
+        self.distance_cutoff = mm;
         self
     }
 }

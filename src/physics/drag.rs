@@ -4,9 +4,9 @@
 
 /// Default drag coefficient of a magnet in its channel, N s/m: an assumed value that makes a
 /// straight-path move of the thesis design take about a third of a second.
-pub const DEFAULT_DRAG: f64 = 5.0;
+pub(crate) const DEFAULT_DRAG: f64 = 5.0;
 
 /// Default rotational drag of a joint, N m s: the magnet drag [`DEFAULT_DRAG`] times the
 /// square of the thesis' magnet radius (1.5 mm), 1.125e-5. With it a fold of the thesis
 /// design takes about as long as the magnets' move, as in the event engine's fold law.
-pub const DEFAULT_ROTATIONAL_DRAG: f64 = DEFAULT_DRAG * 1.5e-3 * 1.5e-3;
+pub(crate) const DEFAULT_ROTATIONAL_DRAG: f64 = DEFAULT_DRAG * 1.5e-3 * 1.5e-3;

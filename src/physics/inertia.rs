@@ -14,27 +14,28 @@
 /// body in water, `6 pi eta r` = 3e-5 N s/m, is the floor; a 1-10 um film of water under the
 /// base gives `eta A / h` = 7e-4 to 7e-3 N s/m, of silicone oil up to 1 N s/m): range 1e-3 to
 /// 1 N s/m. The overdamped model's 5 N s/m ([`crate::physics::DEFAULT_DRAG`]) lies above it.
-pub const DEFAULT_INERTIAL_DRAG: f64 = 0.05;
+pub(crate) const DEFAULT_INERTIAL_DRAG: f64 = 0.05;
 
 /// Default rotational inertia of one tile about a hinge, kg m^2: 1.5e-6 (a 30 mm octagon of
 /// printed plastic about 5 mm thick, about 5 g with its magnets, its centre about 15 mm from
 /// the hinge).
-pub const DEFAULT_TILE_INERTIA: f64 = 1.5e-6;
+pub(crate) const DEFAULT_TILE_INERTIA: f64 = 1.5e-6;
 
 /// Default rotational drag of one swung tile, N m s: 3e-7 (a tile turning on water: the drag
 /// of its wetted underside and edges at a lever of about 15 mm).
-pub const DEFAULT_TILE_ROTATIONAL_DRAG: f64 = 3e-7;
+pub(crate) const DEFAULT_TILE_ROTATIONAL_DRAG: f64 = 3e-7;
 
 /// Default coefficient of restitution of a magnet (or fold) meeting its end: 0.3 (a plated
 /// magnet on a printed plastic wall, damped by the liquid; range 0 to 0.6).
-pub const DEFAULT_RESTITUTION: f64 = 0.3;
+pub(crate) const DEFAULT_RESTITUTION: f64 = 0.3;
 
 /// The inertial model's parameters. Defaults: the design's magnet as an NdFeB cylinder
 /// ([`crate::Design::cylinder_mass`], 0.265 g for the thesis magnets; the thesis' 0.625 g is
 /// the design's `magnet_mass`, used when `magnet_mass_g` is set to it), drag
-/// [`DEFAULT_INERTIAL_DRAG`], no Coulomb friction, [`DEFAULT_TILE_INERTIA`] and
-/// [`DEFAULT_TILE_ROTATIONAL_DRAG`] per swung tile, restitution [`DEFAULT_RESTITUTION`].
+/// 0.05 N s/m, no Coulomb friction, 1.5e-6 kg m^2 and 3e-7 N m s per swung
+/// tile, restitution 0.3 (the constants in `physics/inertia.rs` say where each comes from).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Inertia {
     /// Mass of a magnet, g; `None` for the NdFeB cylinder of the design's magnet size.
     pub magnet_mass_g: Option<f64>,
@@ -67,6 +68,12 @@ impl Default for Inertia {
 }
 
 impl Inertia {
+    /// Another restitution of the walls (0: dead stop, 1: elastic).
+    pub fn with_restitution(mut self, restitution: f64) -> Inertia {
+        self.restitution = restitution;
+        self
+    }
+
     /// The mass of a magnet of `design`, kg.
     pub fn magnet_mass_kg(&self, design: &crate::Design) -> f64 {
         self.magnet_mass_g.unwrap_or_else(|| design.cylinder_mass()) * 1e-3

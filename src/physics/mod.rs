@@ -35,14 +35,11 @@ mod inertia;
 mod poles;
 mod ri;
 
-pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
-pub use drive::{along_path, joints_between, torque_about};
-pub use energy::EnergyUnit;
-pub use force_law::{ForceLaw, FORCE_LAW_NAMES};
-pub use grid::pairs_within;
-pub use inertia::{
-    Inertia, DEFAULT_INERTIAL_DRAG, DEFAULT_RESTITUTION, DEFAULT_TILE_INERTIA,
-    DEFAULT_TILE_ROTATIONAL_DRAG,
-};
-pub use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
-pub use ri::ReactionInitiator;
+pub(crate) use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+pub(crate) use drive::{along_path, joints_between, torque_about};
+pub(crate) use energy::EnergyUnit;
+pub use force_law::ForceLaw;
+pub(crate) use grid::pairs_within;
+pub use inertia::Inertia;
+pub(crate) use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
+pub(crate) use ri::ReactionInitiator;

@@ -2,7 +2,7 @@
 //! designs of the tiles and the chain at rest they make ([`TileDesigns`], [`Geometry`]); the
 //! events, folds and outcome of a run ([`Event`], [`FoldRecord`], [`Outcome`]), its energy
 //! curve ([`EnergySample`]), its summary ([`Summary`]) and its `timeline.json`
-//! ([`TimelineJson`]); and the run itself as its readers see it ([`RunSource`]): the chain at
+//! ([`RunSource::timeline_json`]); and the run itself as its readers see it ([`RunSource`]): the chain at
 //! any time ([`ChainState`]), the transition diagram's data ([`TransitionData`]) and each
 //! magnet's travel and joint's angle against time ([`Track`]).
 //!
@@ -37,6 +37,7 @@ mod geometry;
 mod json;
 mod outcome;
 mod pair_energies;
+mod run_result;
 mod run_source;
 mod speed_law;
 mod summary;
@@ -44,17 +45,23 @@ mod tile_designs;
 mod track;
 mod transition;
 
-pub use chain_state::{ChainState, DETAIL_TILES};
+pub use chain_state::ChainState;
+pub(crate) use chain_state::DETAIL_TILES;
 pub use energy_sample::EnergySample;
-pub use event::{joint_of_magnet, start_fraction, Event, EventKind, S0_START_FRACTION};
+pub(crate) use event::{joint_of_magnet, start_fraction};
+pub use event::{Event, EventKind};
 pub use fold_record::FoldRecord;
-pub use geometry::{Geometry, GeometryError, LENGTH_TOLERANCE};
-pub use json::{TimelineJson, EVENT_INDEX};
+pub use geometry::Geometry;
+pub(crate) use geometry::{GeometryError, LENGTH_TOLERANCE};
+pub(crate) use json::{TimelineJson, EVENT_INDEX};
 pub use outcome::Outcome;
 pub use pair_energies::PairEnergies;
+pub use run_result::RunResult;
 pub use run_source::{RunSource, TrackKey};
 pub use speed_law::SpeedLaw;
-pub use summary::{CollisionReport, RunFacts, Summary};
-pub use tile_designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
-pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+pub(crate) use summary::RunFacts;
+pub use summary::{CollisionReport, Summary};
+pub use tile_designs::{DesignsError, SValue, TileDesigns, TileOverride};
+pub use track::Track;
+pub(crate) use track::{ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 pub use transition::{MagnetTrack, TransitionData};

@@ -26,7 +26,7 @@ pub enum SpeedLaw {
 }
 
 impl Default for SpeedLaw {
-    /// Overdamped with [`DEFAULT_DRAG`].
+    /// Overdamped with [`ModelOptions::DEFAULT_DRAG`](crate::model::ModelOptions::DEFAULT_DRAG).
     fn default() -> SpeedLaw {
         SpeedLaw::Overdamped { drag: DEFAULT_DRAG }
     }

@@ -11,6 +11,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// What a study draws and how. Default: 10,000 samples, seed 1, all of them (no shard),
 /// FDM tolerances, the default margins.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct StudyOptions {
     /// Samples in the whole study (a shard draws its share of them).
     pub samples: u64,
@@ -33,6 +34,38 @@ impl Default for StudyOptions {
             tolerances: Tolerances::default(),
             margins: MarginOptions::default(),
         }
+    }
+}
+
+impl StudyOptions {
+    /// Another number of samples in the whole study.
+    pub fn with_samples(mut self, samples: u64) -> StudyOptions {
+        self.samples = samples;
+        self
+    }
+
+    /// Another seed.
+    pub fn with_seed(mut self, seed: u64) -> StudyOptions {
+        self.seed = seed;
+        self
+    }
+
+    /// Only the samples of part `shard` (`None`: all of them).
+    pub fn with_shard(mut self, shard: Option<Shard>) -> StudyOptions {
+        self.shard = shard;
+        self
+    }
+
+    /// Other tolerances.
+    pub fn with_tolerances(mut self, tolerances: Tolerances) -> StudyOptions {
+        self.tolerances = tolerances;
+        self
+    }
+
+    /// Other margin options.
+    pub fn with_margins(mut self, margins: MarginOptions) -> StudyOptions {
+        self.margins = margins;
+        self
     }
 }
 
@@ -65,6 +98,18 @@ pub struct Study {
     pub nominal: Margins,
 }
 
+impl Study {
+    /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per
+    /// tile) and judges each by its margins.
+    pub fn run(
+        chain: &Chain,
+        nominal: &[Design],
+        opts: &StudyOptions,
+    ) -> Result<Study, MarginError> {
+        study(chain, nominal, opts)
+    }
+}
+
 /// A spread of smallest margins over the samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MarginSpread {
@@ -84,11 +129,15 @@ struct Outcome {
 
 /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per tile)
 /// and judges each by its margins.
-pub fn study(chain: &Chain, nominal: &[Design], opts: &StudyOptions) -> Result<Study, MarginError> {
+pub(crate) fn study(
+    chain: &Chain,
+    nominal: &[Design],
+    opts: &StudyOptions,
+) -> Result<Study, MarginError> {
     study_reporting(chain, nominal, opts, &NoProgress)
 }
 
-/// [`study`], saying how many samples are judged (stage `samples`) as it goes.
+/// [`Study::run`], saying how many samples are judged (stage `samples`) as it goes.
 pub fn study_reporting(
     chain: &Chain,
     nominal: &[Design],

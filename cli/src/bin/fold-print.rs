@@ -224,6 +224,13 @@ fn run(args: &Args) -> anyhow::Result<()> {
         let owned = |n: &str| is_job_file(&format!("{sub}/{n}"));
         refuse_overwrite_in(&input_refs, &out.join(sub), &owned, "--out")?;
     }
+    // refused before the work, not after it
+    if out.exists() && !out.is_dir() {
+        anyhow::bail!(
+            "--out {}: exists and is not a directory; give a directory for the parts and plates",
+            out.display()
+        );
+    }
     let progress = Progress::new("fold-print", "files", ProgressMode::detect(args.quiet));
     progress.stage("planning and building the parts");
     // a shape that cannot be planned keeps the planner's own exit code (1)

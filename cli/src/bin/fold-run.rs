@@ -10,9 +10,10 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::Parser;
-use foldchain::engine::{SValue, StartRule, Summary, TileDesigns, DEFAULT_DRAG};
+use foldchain::engine::{SValue, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
-use foldchain::physics::{ForceLaw, DEFAULT_CUTOFF, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::SpeedLaw;
 use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
@@ -281,7 +282,7 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         })?;
     let mut model = ModelOptions::default()
         .with_force_law(force_law)
-        .with_drag(args.drag.unwrap_or(DEFAULT_DRAG))
+        .with_drag(args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG))
         .with_dynamics(
             args.dynamics
                 .unwrap_or(DynamicsChoice::Inertial)
@@ -357,12 +358,12 @@ fn engine_request(args: &Args, mode: RunMode) -> anyhow::Result<EngineRequest> {
         speed: match args.speed.unwrap_or(SpeedChoice::Overdamped) {
             SpeedChoice::Unit => SpeedLaw::Unit,
             SpeedChoice::Overdamped => SpeedLaw::Overdamped {
-                drag: args.drag.unwrap_or(DEFAULT_DRAG),
+                drag: args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG),
             },
         },
         start: match args.start_rule.unwrap_or(StartRuleChoice::Distance) {
             StartRuleChoice::Force => StartRule::Force {
-                cutoff: DEFAULT_CUTOFF,
+                cutoff: ModelOptions::DEFAULT_CUTOFF,
             },
             StartRuleChoice::Distance => StartRule::Distance,
         },

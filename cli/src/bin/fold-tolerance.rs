@@ -12,11 +12,12 @@ use clap::Parser;
 use foldchain::count::Shard;
 use foldchain::engine::EngineOptions;
 use foldchain::margins::{ChainModel, MarginOptions, Margins};
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_design_json, candidate_designs, optimize, sensitivities, study_reporting, Candidate,
-    Parameter, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    study_reporting, Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions,
+    Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
@@ -226,16 +227,12 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
             args.force_law
         )
     })?;
-    let opts = StudyOptions {
-        samples: args.samples,
-        seed: args.seed,
-        shard,
-        tolerances,
-        margins: MarginOptions {
-            force_law,
-            ..MarginOptions::default()
-        },
-    };
+    let opts = StudyOptions::default()
+        .with_samples(args.samples)
+        .with_seed(args.seed)
+        .with_shard(shard)
+        .with_tolerances(tolerances)
+        .with_margins(MarginOptions::default().with_force_law(force_law));
     if args.optimize {
         if designs.has_overrides() {
             bail!("--optimize searches per-tile s itself: give a plain design (no \"tiles\")");
@@ -247,7 +244,7 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
     let started = Instant::now();
     let result = study_reporting(&chain, &nominal, &opts, progress)?;
     progress.stage("sensitivities");
-    let sens = sensitivities(&chain, &nominal, &tolerances, &opts.margins)?;
+    let sens = Sensitivity::all(&chain, &nominal, &tolerances, &opts.margins)?;
     let secs = started.elapsed().as_secs_f64();
     progress.finish();
     if args.json {
@@ -380,18 +377,13 @@ fn search(
     progress: &Progress,
 ) -> anyhow::Result<u8> {
     let target = args.target.unwrap_or(DEFAULT_TARGET);
-    let so = SearchOptions {
-        target,
-        study: StudyOptions {
-            samples: args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES),
-            ..*opts
-        },
-        engine: EngineOptions::default().with_force_law(opts.margins.force_law),
-        ..SearchOptions::default()
-    };
+    let so = SearchOptions::default()
+        .with_target(target)
+        .with_study(opts.with_samples(args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES)))
+        .with_engine(EngineOptions::default().with_force_law(opts.margins.force_law));
     let started = Instant::now();
     progress.stage("design search");
-    let result = optimize(chain, base, &so)?;
+    let result = Search::run(chain, base, &so)?;
     let plot = args
         .plot
         .clone()
@@ -414,7 +406,7 @@ fn search(
     let confirm = |c: &Candidate| -> anyhow::Result<Study> {
         Ok(study_reporting(
             chain,
-            &candidate_designs(chain, base, c),
+            &c.designs(chain, base),
             opts,
             progress,
         )?)
@@ -429,7 +421,7 @@ fn search(
         let Some(c) = c else { continue };
         let s = confirm(c)?;
         let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
-        let mut text = serde_json::to_string_pretty(&candidate_design_json(chain, base, c))?;
+        let mut text = serde_json::to_string_pretty(&c.design_file(chain, base))?;
         text.push('\n');
         write_atomic(&path, text.as_bytes())?;
         confirmed.push((label, s, path));

@@ -4,7 +4,7 @@
 //! Prints the work-precision table (or `--json`), writes `work-precision.svg` and
 //! `work-precision.json` into the output directory. Exit 0, or 2 for bad input.
 //!
-//! `--stiff` runs the stiff study instead ([`foldchain::reference::stiff`]): each stiff case
+//! `--stiff` runs the stiff study instead ([`foldchain_validation::stiff`]): each stiff case
 //! and non-stiff control with both integrators, their step counts, printed as a table (or
 //! `--json`); nothing is written.
 
@@ -13,11 +13,8 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::Parser;
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
-use foldchain::reference::stiff::{run_stiff_study, select_cases};
-use foldchain::reference::STIFF_CASES;
-use foldchain::validation::scenes::all_scenes;
-use foldchain::validation::{validate, ValidateOptions};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::Design;
 use foldchain_cli::choices::DynamicsChoice;
 use foldchain_cli::experiments::experiments;
@@ -26,6 +23,10 @@ use foldchain_cli::output::OutputDir;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args_with};
 use foldchain_cli::{errln, outln};
+use foldchain_validation::scenes::all_scenes;
+use foldchain_validation::stiff::STIFF_CASES;
+use foldchain_validation::stiff::{run_stiff_study, select_cases};
+use foldchain_validation::{validate, ValidateOptions};
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
 /// integrator (Dormand-Prince 5(4), ROS2) along a ladder of tolerances, and reports each

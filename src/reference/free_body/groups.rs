@@ -8,9 +8,9 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::frame::Frame;
 use crate::model::{Mode, Model};
 use crate::reference::free_body::tile_body::TileBodies;
+use crate::tile_frame::TileFrame;
 
 /// Mass (or drag) moments about a point in some frame: total `m`, first moment `s`, second
 /// moment `j` (SI units).
@@ -60,7 +60,7 @@ pub(crate) struct Groups {
     /// The group of each tile.
     pub(crate) of_tile: Vec<usize>,
     /// Each tile's frame in its group's (the group's first tile's) frame, mm.
-    pub(crate) rel: Vec<Frame>,
+    pub(crate) rel: Vec<TileFrame>,
     /// Each group's mass and linear drag moments about its first tile's centre, in its frame.
     pub(crate) mass: Vec<Moments>,
     pub(crate) drag: Vec<Moments>,
@@ -82,7 +82,7 @@ impl Groups {
         let tiles = model.geometry.tiles();
         let half = 0.5 * model.geometry.w;
         let mut g = Groups {
-            rel: vec![Frame::IDENTITY; tiles],
+            rel: vec![TileFrame::IDENTITY; tiles],
             of_tile: vec![0; tiles],
             suffix_mass: vec![Moments::default(); tiles],
             suffix_drag: vec![Moments::default(); tiles],
@@ -96,7 +96,7 @@ impl Groups {
                 if turning.is_some() {
                     g.last.push(j);
                     g.first.push(t);
-                    g.rel[t] = Frame::IDENTITY;
+                    g.rel[t] = TileFrame::IDENTITY;
                 } else {
                     let a = model.joint_var(j).map_or(0.0, |v| {
                         model.joint_sign(j) * y[v].clamp(0.0, 1.0) * FRAC_PI_2

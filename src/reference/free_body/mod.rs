@@ -38,7 +38,7 @@ mod system;
 mod tile_body;
 
 pub use driver::run_free_body;
-pub use options::{FreeBodyError, FreeBodyOptions, DEFAULT_TILE_MASS};
+pub use options::{FreeBodyError, FreeBodyOptions};
 pub use run::FreeBodyRun;
 pub use system::Momentum;
 pub use tile_body::Water;

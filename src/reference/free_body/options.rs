@@ -8,10 +8,10 @@ use crate::reference::{ReferenceError, ReferenceOptions};
 /// float in about 5 mm of water (7.3), so with their two magnets they draw less than 5 mm:
 /// at most 998 kg/m^3 x 7.46 cm^2 x 5 mm = 3.7 g in all, 3.2 g without the magnets (a solid
 /// printed octagon 30 mm across and 7.5 mm thick would weigh 6.7 g and sink). Range 2 to 3.2.
-pub const DEFAULT_TILE_MASS: f64 = 3.0;
+pub(crate) const DEFAULT_TILE_MASS: f64 = 3.0;
 
 /// Options of a free-body run. Defaults: the reference's options (Dormand-Prince, tolerance
-/// 1e-8, the model's defaults with the inertial dynamics), [`DEFAULT_TILE_MASS`], water at
+/// 1e-8, the model's defaults with the inertial dynamics), 3 g a tile, water at
 /// 20 C on a 0.25 mm film without form drag ([`Water`]), no momentum track.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FreeBodyOptions {

@@ -27,7 +27,6 @@ use std::f64::consts::FRAC_PI_2;
 
 use kurbo::{Point, Vec2};
 
-use crate::frame::Frame;
 use crate::model::{InertialModel, Mode, Model, Unknown};
 use crate::ode::System;
 use crate::physics::ReactionInitiator;
@@ -37,6 +36,7 @@ use crate::reference::free_body::spatial::{
     shift_inertia_back, shift_motion, solve, Mat3, Vec3,
 };
 use crate::reference::free_body::tile_body::TileBodies;
+use crate::tile_frame::TileFrame;
 
 /// Entries of the base in the state.
 pub(crate) const BASE: usize = 6;
@@ -84,7 +84,7 @@ impl Setup {
 #[derive(Debug, Default)]
 pub(crate) struct Work {
     /// Group frames in tile 0's frame, mm, and their reference points (first tile centres), m.
-    pub(crate) frames: Vec<Frame>,
+    pub(crate) frames: Vec<TileFrame>,
     pub(crate) origin: Vec<[f64; 2]>,
     /// Per group: velocity, velocity-product acceleration, inertia (tile 0's axes, about its
     /// reference point), external force, articulated inertia and bias, joint axis (of the
@@ -129,9 +129,9 @@ pub(crate) struct FreeBody<'a> {
 }
 
 /// A frame `b` given in frame `a`, in `a`'s parent.
-fn compose(a: &Frame, b: &Frame) -> Frame {
+fn compose(a: &TileFrame, b: &TileFrame) -> TileFrame {
     let p = a.point((b.x, b.y));
-    Frame {
+    TileFrame {
         x: p.x,
         y: p.y,
         angle: a.angle + b.angle,
@@ -277,7 +277,7 @@ impl FreeBody<'_> {
         let (sp, cp) = w.full[2].sin_cos();
         let (vx, vy) = (w.full[3], w.full[4]);
         w.v[0] = [w.full[5], cp * vx + sp * vy, -sp * vx + cp * vy];
-        w.frames.push(Frame::IDENTITY);
+        w.frames.push(TileFrame::IDENTITY);
         w.origin.push([0.0, 0.0]);
         // frames, joint axes and velocities outwards
         for g in 1..ng {

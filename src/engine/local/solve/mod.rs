@@ -25,7 +25,7 @@ mod step;
 pub(crate) use crate::model::InertialModel;
 
 use crate::engine::local::trajectory::Shape;
-use crate::engine::local::window::{Inputs, Scratch, Window};
+use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces};
 use crate::model::Mode;
 use crate::ode::locate::bisect;
 use crate::ode::{hermite, integral};
@@ -99,7 +99,7 @@ pub(crate) struct Solution {
 
 /// A local solve in progress.
 pub(super) struct Solver<'a> {
-    w: &'a Window<'a>,
+    w: &'a UnitForces<'a>,
     inputs: Inputs<'a>,
     opts: SolveOptions<'a>,
     t_ref: f64,
@@ -210,7 +210,7 @@ impl Solver<'_> {
 }
 
 /// Solves unit `w` against `inputs`.
-pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
+pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
     let tracks = w.input_tracks(&inputs);
     let first = tracks
         .iter()
@@ -495,7 +495,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
-    use crate::engine::local::sweeps::ChainSolution;
+    use crate::engine::local::relaxation::ChainSolution;
     use crate::model::Dynamics;
 
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {

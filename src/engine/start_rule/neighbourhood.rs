@@ -2,7 +2,7 @@
 //! search, then the drive at many times without rebuilding what does not change.
 //!
 //! A search for magnet `m`'s start asks for the drive on `m` at some 20 to 90 times. Between
-//! them only the magnets still moving and the joints still folding change. [`Window`] keeps,
+//! them only the magnets still moving and the joints still folding change. [`Neighbourhood`] keeps,
 //! for the magnets within the cutoff and the tiles that carry them: each magnet's path,
 //! moment and polarity, its last travel and the point there (a point on an arc costs a sine
 //! and a cosine), each joint's last angle and transform, and each tile's pose with the sine
@@ -19,12 +19,12 @@
 use kurbo::Point;
 
 use crate::engine::fold_law::fold_angle_from;
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::engine::speed::Motion;
-use crate::frame::Frame;
 use crate::kinematics::joint_transform;
 use crate::magnet_path::MagnetPath;
 use crate::physics::{along_path, reach, ForceLaw, Pole};
+use crate::tile_frame::TileFrame;
 use crate::timeline::{FoldRecord, Geometry};
 use crate::Pose;
 
@@ -59,8 +59,8 @@ struct Joint<'a> {
 }
 
 /// Magnet `m`'s neighbourhood, ready to give the drive on `m` at any time of its search.
-pub(super) struct Window<'a> {
-    progress: Progress<'a>,
+pub(super) struct Neighbourhood<'a> {
+    progress: RunState<'a>,
     law: ForceLaw,
     w: f64,
     m: usize,
@@ -69,7 +69,7 @@ pub(super) struct Window<'a> {
     sources: Vec<Source>,
     joints: Vec<Joint<'a>>,
     /// Each tile's pose in the window's frame, with the sine and cosine of its angle.
-    frames: Vec<Frame>,
+    frames: Vec<TileFrame>,
     /// The RI (tile 0's frame) when within reach: position and moment.
     ri: Option<(Point, f64)>,
     /// `m`'s path direction at its rest point, tile frame.
@@ -78,15 +78,15 @@ pub(super) struct Window<'a> {
     primed: bool,
 }
 
-impl<'a> Window<'a> {
+impl<'a> Neighbourhood<'a> {
     /// The neighbourhood of magnet `m` within `cutoff` in chain index.
     pub(super) fn new(
         geometry: &'a Geometry,
-        progress: Progress<'a>,
+        progress: RunState<'a>,
         law: ForceLaw,
         cutoff: usize,
         m: usize,
-    ) -> Window<'a> {
+    ) -> Neighbourhood<'a> {
         let g = geometry;
         let within = reach(m, cutoff, g.magnets());
         let (lo, hi) = (*within.start(), *within.end());
@@ -122,7 +122,7 @@ impl<'a> Window<'a> {
             let ri = g.ri();
             (ri.position, ri.moment)
         });
-        Window {
+        Neighbourhood {
             progress,
             law,
             w: g.w,
@@ -130,14 +130,14 @@ impl<'a> Window<'a> {
             lo,
             sources,
             joints,
-            frames: vec![Frame::IDENTITY; thi - tlo + 1],
+            frames: vec![TileFrame::IDENTITY; thi - tlo + 1],
             ri,
             tangent: g.path(m).tangent_at(0.0),
             primed: false,
         }
     }
 
-    /// The travel of source `i` at `t`, as [`Progress::travel_at`] gives it.
+    /// The travel of source `i` at `t`, as [`RunState::travel_at`] gives it.
     fn travel(&self, i: usize, t: f64) -> f64 {
         let s = &self.sources[i];
         if self.progress.solved.is_some() {
@@ -178,7 +178,7 @@ impl<'a> Window<'a> {
         if let Some(from) = changed {
             for n in from..self.joints.len() {
                 let pose = self.frames[n].to_pose().then(&self.joints[n].transform);
-                self.frames[n + 1] = Frame::from_pose(&pose);
+                self.frames[n + 1] = TileFrame::from_pose(&pose);
             }
         }
         let at = |s: &Source| self.frames[s.tile].point(s.local);
@@ -210,7 +210,7 @@ impl<'a> Window<'a> {
         drive
     }
 
-    /// The angle of the window's joint `n` at `t`, as [`Progress::joint_angle`] gives it,
+    /// The angle of the window's joint `n` at `t`, as [`RunState::joint_angle`] gives it,
     /// from the travels just computed.
     fn joint_angle(&self, n: usize, t: f64) -> f64 {
         let Some(fold) = self.joints[n].fold else {

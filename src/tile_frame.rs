@@ -12,7 +12,7 @@ use crate::Pose;
 
 /// A tile's pose with the sine and cosine of its heading.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Frame {
+pub(crate) struct TileFrame {
     pub(crate) x: f64,
     pub(crate) y: f64,
     pub(crate) angle: f64,
@@ -20,16 +20,16 @@ pub(crate) struct Frame {
     pub(crate) cos: f64,
 }
 
-impl Default for Frame {
+impl Default for TileFrame {
     /// Tile 0's frame: the origin, heading 0.
-    fn default() -> Frame {
-        Frame::IDENTITY
+    fn default() -> TileFrame {
+        TileFrame::IDENTITY
     }
 }
 
-impl Frame {
+impl TileFrame {
     /// The origin, heading 0.
-    pub(crate) const IDENTITY: Frame = Frame {
+    pub(crate) const IDENTITY: TileFrame = TileFrame {
         x: 0.0,
         y: 0.0,
         angle: 0.0,
@@ -38,9 +38,9 @@ impl Frame {
     };
 
     /// The frame of a pose (one `sin_cos`).
-    pub(crate) fn from_pose(p: &Pose) -> Frame {
+    pub(crate) fn from_pose(p: &Pose) -> TileFrame {
         let (sin, cos) = p.angle.sin_cos();
-        Frame {
+        TileFrame {
             x: p.x,
             y: p.y,
             angle: p.angle,
@@ -74,7 +74,7 @@ impl Frame {
     /// of the joint's side, in this tile's frame; either for `a = 0`), tiles `2 half` wide:
     /// [`crate::kinematics::joint_transform`] then [`crate::Pose::then`], with one
     /// `sin_cos` for a turned joint and one when the heading changes.
-    pub(crate) fn across_joint(&self, a: f64, hinge: Point, half: f64) -> Frame {
+    pub(crate) fn across_joint(&self, a: f64, hinge: Point, half: f64) -> TileFrame {
         let (s, c) = sin_cos(a);
         let (dx, dy) = (half, -hinge.y);
         let rel = (hinge.x + c * dx - s * dy, hinge.y + s * dx + c * dy);
@@ -85,7 +85,7 @@ impl Frame {
         } else {
             angle.sin_cos()
         };
-        Frame {
+        TileFrame {
             x: p.x,
             y: p.y,
             angle,

@@ -5,7 +5,7 @@
 use svg::node::element::{Circle, Group, Line, Path, Polyline, Rectangle, Text};
 use svg::{Document, Node};
 
-use crate::validation::results::{Row, SceneReport, Validation};
+use crate::results::{Row, SceneReport, Validation};
 
 /// Panels per row.
 const COLUMNS: usize = 3;

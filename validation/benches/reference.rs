@@ -16,9 +16,9 @@ use std::time::Instant;
 
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::TileDesigns;
-use foldchain::validation::compare_events;
-use foldchain::validation::scenes::all_scenes;
 use foldchain::{Chain, Design};
+use foldchain_validation::compare_events;
+use foldchain_validation::scenes::all_scenes;
 
 /// CPU seconds (user + system) of this process so far, from `/proc/self/stat` (fields 14
 /// and 15, in clock ticks of 1/100 s on Linux); `None` where that file is missing.
@@ -86,7 +86,7 @@ fn case(
         s.rhs,
         s.event_steps,
         run.events.len(),
-        run.result_name(),
+        run.result(),
     );
 }
 

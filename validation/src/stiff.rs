@@ -26,7 +26,7 @@
 //! reported for reading but depend on the machine and on whatever else runs on it.
 //!
 //! ```
-//! use foldchain::reference::stiff::{select_cases, run_stiff_study};
+//! use foldchain_validation::stiff::{select_cases, run_stiff_study};
 //!
 //! let cases = select_cases(&["SLLS control".to_string()]).unwrap();
 //! let study = run_stiff_study(&cases, &mut |_, _| {}).unwrap();
@@ -37,13 +37,10 @@
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
-use crate::model::{Model, ModelOptions};
-use crate::ode::Method;
-use crate::reference::driver::run_reference;
-use crate::reference::options::{ReferenceError, ReferenceOptions};
-use crate::reference::run_result::ReferenceRun;
-use crate::timeline::TileDesigns;
-use crate::{Chain, ChainError, Design};
+use foldchain::model::{Model, ModelOptions};
+use foldchain::reference::{run_reference, Method, ReferenceError, ReferenceOptions, ReferenceRun};
+use foldchain::timeline::TileDesigns;
+use foldchain::{Chain, ChainError, Design};
 
 /// One case of the study: a chain, a design and drags, and the tolerance both integrators
 /// run at.
@@ -55,7 +52,7 @@ pub struct StiffCase {
     pub word: &'static str,
     /// Every magnet's remanence (so its moment) times this, on the thesis design.
     pub moment_factor: f64,
-    /// The rotational drag is [`crate::physics::DEFAULT_ROTATIONAL_DRAG`] times
+    /// The rotational drag is default (1.125e-5 N m s) times
     /// this (the magnet drag stays the default).
     pub rotational_drag_factor: f64,
     /// Tolerance of both integrators.

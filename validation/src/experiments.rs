@@ -14,14 +14,16 @@
 //! propagation, is Table 7.1's geometry (the event engine and the reference both find it),
 //! not an observation with a count, and is left out here.
 //!
-//! [`crate::reference::pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8
+//! [`foldchain::reference::ReferenceRun::pair_energies`] gives the energy curves of thesis figures 7.7 and 7.8
 //! of the runs: each pair of adjacent magnets (the RI with magnet 0, then magnet `k` with
-//! `k + 1`) and the total ([`crate::reference::state_energy`]) against time.
+//! `k + 1`) and the total (the sum over every pair) against time.
 
-use crate::model::{Dynamics, ModelOptions};
-use crate::reference::{run_reference, Recording, ReferenceError, ReferenceOptions, ReferenceRun};
-use crate::timeline::TileDesigns;
-use crate::{Chain, ChainError, FoldWord};
+use foldchain::model::{Dynamics, ModelOptions};
+use foldchain::reference::{
+    run_reference, Recording, ReferenceError, ReferenceOptions, ReferenceRun,
+};
+use foldchain::timeline::TileDesigns;
+use foldchain::{Chain, ChainError, FoldWord};
 
 /// One experiment of the thesis with what was observed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,7 +139,7 @@ pub fn run_experiments(
                 .with_record(record);
             let run = run_reference(&e.to_chain()?, &TileDesigns::default(), &opts)?;
             let folds = run.folded_joints();
-            let outcome = run.result_name().to_string();
+            let outcome = run.result().name().to_string();
             let agrees = outcome == "completed" && folds == e.folds;
             out.push((
                 ExperimentResult {
@@ -167,8 +169,7 @@ fn dynamics_name(d: Dynamics) -> &'static str {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::physics::{ForceLaw, Inertia};
-    use crate::reference::pair_energies;
+    use foldchain::physics::{ForceLaw, Inertia};
 
     #[test]
     fn chains_parse_and_energy_falls() {
@@ -182,7 +183,7 @@ mod tests {
         assert_eq!(runs.len(), EXPERIMENTS.len());
         for (r, run) in &runs {
             assert!(r.agrees, "{r:?}");
-            let pe = pair_energies(run);
+            let pe = run.pair_energies();
             assert_eq!(pe.pairs.len(), 6);
             assert!(pe.times.len() > 10);
             // the chain ends lower than it starts: the assembly releases energy

@@ -10,7 +10,7 @@ use crate::timeline::FoldRecord;
 
 /// A view of a run's starts, motions and folds.
 #[derive(Clone, Copy)]
-pub(crate) struct Progress<'a> {
+pub(crate) struct RunState<'a> {
     /// Each magnet's start, s (NaN: not started).
     pub(crate) start: &'a [f64],
     /// Each magnet's motion.
@@ -23,7 +23,7 @@ pub(crate) struct Progress<'a> {
     pub(crate) solved: Option<&'a Solved>,
 }
 
-impl<'a> Progress<'a> {
+impl<'a> RunState<'a> {
     /// When magnet `k` starts, or `None` if it has not.
     pub(crate) fn start_of(&self, k: usize) -> Option<f64> {
         let t = self.start[k];

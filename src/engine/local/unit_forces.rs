@@ -16,9 +16,9 @@ use std::f64::consts::FRAC_PI_2;
 use kurbo::{Point, Vec2};
 
 use crate::engine::local::trajectory::{Shapes, Track};
-use crate::frame::Frame;
 use crate::model::Model;
 use crate::physics::{along_path, neighbours, torque_about, upstream, Pole};
+use crate::tile_frame::TileFrame;
 use crate::Octagon;
 
 /// One unknown of a unit.
@@ -46,7 +46,7 @@ pub(crate) struct Inputs<'a> {
 pub(crate) struct Scratch {
     /// Each tile's pose, and the joint angles they were built from (a pose is built again
     /// only from the first joint whose angle changed).
-    poses: Vec<Frame>,
+    poses: Vec<TileFrame>,
     angles: Vec<f64>,
     /// Each magnet's arc length along its path and its point there, tile frame (a magnet
     /// at rest is not placed again).
@@ -65,7 +65,7 @@ pub(crate) struct Scratch {
 }
 
 /// One unit's window on the chain.
-pub(crate) struct Window<'a> {
+pub(crate) struct UnitForces<'a> {
     /// The chain's model (the reference's: geometry, rates, thresholds).
     pub(crate) model: &'a Model,
     /// The unit's joint (`-1`: magnet 0 alone).
@@ -93,9 +93,9 @@ pub(crate) struct Window<'a> {
     var_of_slot: Vec<Option<usize>>,
 }
 
-impl<'a> Window<'a> {
+impl<'a> UnitForces<'a> {
     /// The window of unit `j` of `model` with pair cutoff `cutoff`.
-    pub(crate) fn new(model: &'a Model, j: isize, cutoff: usize) -> Window<'a> {
+    pub(crate) fn new(model: &'a Model, j: isize, cutoff: usize) -> UnitForces<'a> {
         let n = model.geometry.magnets();
         let vars = unit_vars(model, j);
         let (first, last) = match (
@@ -117,7 +117,7 @@ impl<'a> Window<'a> {
             .map(|k| vars.iter().position(|&v| v == Var::Magnet(k)))
             .chain((t0..t1).map(|jj| vars.iter().position(|&v| v == Var::Joint(jj))))
             .collect();
-        Window {
+        UnitForces {
             model,
             j,
             lo,
@@ -199,7 +199,7 @@ impl<'a> Window<'a> {
         let (t0, t1) = self.tiles();
         let magnets = self.hi - self.lo + 1;
         if s.poses.len() != t1 - t0 + 1 {
-            s.poses = vec![Frame::IDENTITY; t1 - t0 + 1];
+            s.poses = vec![TileFrame::IDENTITY; t1 - t0 + 1];
             s.angles = vec![f64::NAN; t1 - t0];
             s.local = vec![(f64::NAN, (0.0, 0.0)); magnets];
             s.tangents = vec![(0.0, 0.0); self.vars.len()];
@@ -316,7 +316,7 @@ pub(crate) fn unit_vars(model: &Model, j: isize) -> Vec<Var> {
     vars
 }
 
-/// Unknown `v`'s terms in a window from magnet `lo` (see [`Window`]'s `terms`), its pairs
+/// Unknown `v`'s terms in a window from magnet `lo` (see [`UnitForces`]'s `terms`), its pairs
 /// added to `pairs` where they are not there yet: a magnet's neighbours within `cutoff`, or
 /// the pairs across a joint whose torque turns it (a pole up to the joint's first magnet on
 /// a magnet after it, within `cutoff` of the joint).

@@ -12,7 +12,7 @@
 
 use rustc_hash::FxHashMap;
 
-use crate::timeline::{Event, EventKind};
+use foldchain::timeline::{Event, EventKind};
 
 /// Timed events of a run keyed by (kind, index), in time order.
 type Keyed = Vec<((EventKind, u32), f64)>;

@@ -7,8 +7,8 @@
 //! `sqrt2 w` apart, so the square is about 11 w by 9 sqrt2 w (330 mm by 382 mm on 30 mm
 //! tiles), as the thesis' 107-tile square with tight turns.
 
-use crate::timeline::TileDesigns;
-use crate::{Chain, Design};
+use foldchain::timeline::TileDesigns;
+use foldchain::{Chain, Design};
 
 /// One scene.
 #[derive(Clone, Debug)]
@@ -98,11 +98,11 @@ mod tests {
         assert_eq!(w.len(), 106);
         let chain = Chain::parse(&w).unwrap();
         assert_eq!(chain.len(), 107);
-        let (_, summary) = crate::simulate(
+        let (_, summary) = foldchain::simulate(
             &chain,
             &TileDesigns::default(),
-            &crate::engine::EngineOptions::default(),
-            &crate::collision::CheckOptions::default(),
+            &foldchain::engine::EngineOptions::default(),
+            &foldchain::collision::CheckOptions::default(),
         )
         .unwrap();
         assert!(summary.completed, "{summary:?}");

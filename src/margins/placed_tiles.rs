@@ -21,17 +21,17 @@ pub(crate) trait State {
 }
 
 /// Magnets `lo..=hi` placed in the frame of tile `lo / 2`, reused between evaluations.
-pub(crate) struct Window {
+pub(crate) struct PlacedTiles {
     lo: usize,
     hi: usize,
     poses: Vec<Pose>,
     points: Vec<Point>,
 }
 
-impl Window {
+impl PlacedTiles {
     /// A window over magnets `lo..=hi`.
-    pub(crate) fn new(lo: usize, hi: usize) -> Window {
-        Window {
+    pub(crate) fn new(lo: usize, hi: usize) -> PlacedTiles {
+        PlacedTiles {
             lo,
             hi,
             poses: Vec::with_capacity(hi / 2 - lo / 2 + 1),
@@ -92,7 +92,7 @@ impl Window {
         self.drive_from(model, law, cutoff, m, u, true)
     }
 
-    /// [`Window::drive`], the reaction initiator left out unless `with_ri`.
+    /// [`PlacedTiles::drive`], the reaction initiator left out unless `with_ri`.
     pub(crate) fn drive_from(
         &self,
         model: &ChainModel,

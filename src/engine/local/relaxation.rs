@@ -2,7 +2,7 @@
 //! first, every unit sees the units before it on their solved tracks and the units after it
 //! at rest; each later sweep solves every unit again with the units after it on their
 //! tracks of the sweep before (a Gauss-Seidel waveform relaxation), until no event moves by
-//! more than [`SWEEP_TOLERANCE`](crate::engine::SWEEP_TOLERANCE) of the run's duration, or [`MAX_SWEEPS`] sweeps.
+//! more than [`SWEEP_TOLERANCE`](crate::engine::local::sweep::SWEEP_TOLERANCE) of the run's duration, or [`MAX_SWEEPS`] sweeps.
 //!
 //! **Relative placement.** In a later sweep the units after unit `u` are placed against `u`
 //! as they were in the sweep before: their tracks move by as much as `u`'s time origin moved
@@ -13,8 +13,8 @@
 //!
 //! **Cache.** A unit's solution depends only on the geometry of its window and on its
 //! inputs' shapes and offsets relative to its own time origin. Those are the key of a cache
-//! (offsets rounded to [`OFFSET_QUANTUM`](crate::engine::OFFSET_QUANTUM) time scales). A new solution's shape that agrees
-//! within [`SHAPE_TOLERANCE`](crate::engine::SHAPE_TOLERANCE) with a stored shape of the same kind of unknown (the same path,
+//! (offsets rounded to [`OFFSET_QUANTUM`](crate::engine::local::sweep::OFFSET_QUANTUM) time scales). A new solution's shape that agrees
+//! within [`SHAPE_TOLERANCE`](crate::engine::local::sweep::SHAPE_TOLERANCE) with a stored shape of the same kind of unknown (the same path,
 //! the same fold) is stored as that one, and so is one that agrees with the same unknown's one
 //! unit back: a steady straight run settles on the same shapes after every U-turn. Along a
 //! steady run the transient from the RI (or from a U-turn) dies out in a few tiles, after
@@ -45,7 +45,7 @@ use crate::model::Model;
 use crate::timeline::{Event, EventKind};
 
 /// Most sweeps over the chain.
-pub const MAX_SWEEPS: usize = 8;
+pub(crate) const MAX_SWEEPS: usize = 8;
 
 /// The chain's solution.
 #[derive(Debug)]
@@ -101,7 +101,7 @@ impl ChainSolution {
 }
 
 /// Threads 0 (the default) runs chains of fewer tiles than this on one thread: 500.
-pub const AUTO_MIN_TILES: usize = 500;
+pub(crate) const AUTO_MIN_TILES: usize = 500;
 
 /// Solves `model`'s chain with local solves of tolerance `opts.tol`, the sweeps on
 /// `threads` threads (more than 2 are not used; 0: as many as the machine has, but one for

@@ -6,15 +6,14 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::engine::{energy_curve, run, EngineMethod, EngineOptions, StartRule};
+use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::Inertia;
-use foldchain::physics::DEFAULT_CUTOFF;
-use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
-use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
-use foldchain::validation::compare_events;
-use foldchain::validation::scenes::all_scenes;
+use foldchain::reference::{run_reference, Recording, ReferenceOptions};
+use foldchain::timeline::{Event, EventKind, Outcome, RunSource, TileDesigns};
 use foldchain::{Chain, Design};
+use foldchain_validation::compare_events;
+use foldchain_validation::scenes::all_scenes;
 
 fn only(events: &[Event], kinds: &[EventKind]) -> Vec<Event> {
     events
@@ -64,7 +63,7 @@ fn local_solves_time_every_event_as_the_reference_does() {
 #[test]
 fn engine_and_reference_agree_on_outcome_and_propagation_order() {
     let rule = StartRule::Force {
-        cutoff: DEFAULT_CUTOFF,
+        cutoff: ModelOptions::DEFAULT_CUTOFF,
     };
     for sc in all_scenes() {
         let r = run_reference(
@@ -119,7 +118,7 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
             &sc.chain,
             &sc.designs,
             &EngineOptions::default().with_start_rule(StartRule::Force {
-                cutoff: DEFAULT_CUTOFF,
+                cutoff: ModelOptions::DEFAULT_CUTOFF,
             }),
         )
         .unwrap();
@@ -204,11 +203,11 @@ fn energy_matches_the_engine_at_rest_and_folded() {
     let chain = Chain::parse("SSLLSS").unwrap();
     let designs = TileDesigns::default();
     let tl = run(&chain, &designs, &EngineOptions::default()).unwrap();
-    let engine = energy_curve(&tl, 10);
+    let engine = tl.energy(10);
     let opts = ReferenceOptions::default().with_record(Recording::Grid { max_states: 50 });
     let r = run_reference(&chain, &designs, &opts).unwrap();
     assert_eq!(r.outcome, Outcome::Completed);
-    let curve = reference_energy(&r, 10);
+    let curve = r.energy(10);
     let (e0, r0) = (engine[0].energy_j, curve[0].energy_j);
     assert!((e0 - r0).abs() < 1e-9 * e0.abs(), "{e0} {r0}");
     let (e1, r1) = (
