@@ -12,21 +12,15 @@
 //! crate) read runs through [`RunSource`] alone.
 //!
 //! ```
-//! use foldchain::timeline::{Outcome, RunFacts, SpeedLaw, Summary};
+//! use foldchain::engine::{run, EngineOptions};
+//! use foldchain::timeline::{Outcome, RunResult, TileDesigns};
+//! use foldchain::Chain;
 //!
-//! let outcome = Outcome::Completed;
-//! let summary = Summary::new(RunFacts {
-//!     tiles: 3,
-//!     outcome: &outcome,
-//!     decided_by: "an example",
-//!     duration_s: 1.0,
-//!     events: 9,
-//!     folds: vec![1],
-//!     max_moving_magnets: 2,
-//!     speed_law: SpeedLaw::Unit,
-//! });
+//! let tl = run(&Chain::parse("SLLS").unwrap(), &TileDesigns::default(), &EngineOptions::default()).unwrap();
+//! assert_eq!(tl.outcome, Outcome::Completed);
+//! let summary = tl.summary();
 //! assert!(summary.completed);
-//! assert_eq!(summary.result, "completed");
+//! assert_eq!(summary.result, RunResult::Completed);
 //! ```
 
 mod chain_state;

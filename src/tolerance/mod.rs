@@ -10,12 +10,12 @@
 //! ten thousand samples of a hundred tiles cost seconds.
 //!
 //! ```
-//! use foldchain::tolerance::{study, StudyOptions, Tolerances};
+//! use foldchain::tolerance::{Study, StudyOptions};
 //! use foldchain::{Chain, Design};
 //!
 //! let chain = Chain::parse("SSS").unwrap();
-//! let opts = StudyOptions { samples: 200, ..StudyOptions::default() };
-//! let s = study(&chain, &[Design::thesis()], &opts).unwrap();
+//! let opts = StudyOptions::default().with_samples(200);
+//! let s = Study::run(&chain, &[Design::thesis()], &opts).unwrap();
 //! assert_eq!(s.samples, 200);
 //! assert!(s.interval.0 <= s.probability && s.probability <= s.interval.1);
 //! ```

@@ -89,13 +89,23 @@ struct Driver {
     opts: FreeBodyOptions,
     modes: Vec<Mode>,
     groups: Groups,
+    /// The whole state (the free unknowns' entries current after each step).
     z: Vec<f64>,
+    /// The free unknowns, and the stepper's packed state: the base, then their values and
+    /// rates.
+    packed: Vec<usize>,
+    zp: Vec<f64>,
+    /// A whole state to evaluate a trial step's end in.
+    zs: Vec<f64>,
+    stepper: Stepper<Work>,
     t: f64,
     log: EventLog,
     stats: StepStats,
     work: Work,
-    /// Drives of the held unknowns near the moving ones at the step's start.
+    /// Drives of the held unknowns near the moving ones at the step's start, and at a trial
+    /// step's end.
     drive0: Vec<f64>,
+    drive1: Vec<f64>,
     /// Scratch: held joints' drives; the held magnets whose drives may change.
     held: Vec<(usize, f64)>,
     near: Vec<usize>,
@@ -128,12 +138,17 @@ impl Driver {
             opts: *opts,
             modes,
             groups,
+            zs: z.clone(),
             z,
+            packed: Vec::new(),
+            zp: vec![0.0; BASE],
+            stepper: Stepper::new(Method::Dopri5, BASE, 0),
             t: 0.0,
             log,
             stats: StepStats::default(),
             work: Work::default(),
             drive0: vec![0.0; n],
+            drive1: vec![0.0; n],
             held: Vec::new(),
             near: Vec::new(),
             momentum: Vec::new(),
@@ -169,21 +184,18 @@ impl Driver {
                 .extend((0..n).filter(|&k| self.modes[model.magnet_var(k)] != Mode::Free));
             return;
         }
-        let mut mark = vec![false; n];
-        for (i, u) in model.unknowns.iter().enumerate() {
-            if self.modes[i] != Mode::Free {
-                continue;
-            }
-            let (lo, hi) = match *u {
+        for &i in &self.packed {
+            let (lo, hi) = match model.unknowns[i] {
                 Unknown::Magnet(k) => (k.saturating_sub(c), k + c),
                 Unknown::Joint(j) => ((2 * j + 2).saturating_sub(c), 2 * j + 1 + c),
             };
-            for m in mark.iter_mut().take(hi.min(n - 1) + 1).skip(lo) {
-                *m = true;
-            }
+            self.near.extend(lo..=hi.min(n - 1));
         }
+        self.near.sort_unstable();
+        self.near.dedup();
+        let modes = &self.modes;
         self.near
-            .extend((0..n).filter(|&k| mark[k] && self.modes[model.magnet_var(k)] != Mode::Free));
+            .retain(|&k| modes[model.magnet_var(k)] != Mode::Free);
     }
 
     /// Drives of the held unknowns of `near` and of the held joints at state `z` into
@@ -193,6 +205,7 @@ impl Driver {
             setup: &self.setup,
             groups: &self.groups,
             modes: &self.modes,
+            packed: &self.packed,
         };
         sys.evaluate(z, &mut self.work);
         for &k in &self.near {
@@ -212,8 +225,9 @@ impl Driver {
         loop {
             self.near_moving(all);
             let mut drive = std::mem::take(&mut self.drive0);
-            let z = self.z.clone();
+            let z = std::mem::take(&mut self.z);
             self.held_drives(&z, &mut drive);
+            self.z = z;
             self.drive0 = drive;
             let model = &self.setup.model;
             let mut started = Vec::new();
@@ -250,6 +264,7 @@ impl Driver {
             if joints {
                 self.regroup();
             }
+            self.pack();
             all = true;
         }
         any
@@ -258,8 +273,15 @@ impl Driver {
     /// The fraction of the step to `z1` at which the first held unknown is pulled off its
     /// wall (its pull linear over the step from `drive0`); 1 when none is.
     fn release_within(&mut self, z1: &[f64]) -> f64 {
-        let mut drive1 = vec![0.0; self.setup.model.len()];
-        self.held_drives(z1, &mut drive1);
+        let mut zs = std::mem::take(&mut self.zs);
+        zs[..BASE].copy_from_slice(&z1[..BASE]);
+        for (p, &i) in self.packed.iter().enumerate() {
+            zs[Setup::at(i)] = z1[BASE + 2 * p];
+            zs[Setup::at(i) + 1] = z1[BASE + 2 * p + 1];
+        }
+        let mut drive1 = std::mem::take(&mut self.drive1);
+        self.held_drives(&zs, &mut drive1);
+        self.zs = zs;
         let model = &self.setup.model;
         let mut theta: f64 = 1.0;
         let mut check = |i: usize| {
@@ -281,6 +303,7 @@ impl Driver {
         for &(v, _) in &self.held {
             check(v);
         }
+        self.drive1 = drive1;
         theta
     }
 
@@ -288,25 +311,22 @@ impl Driver {
     /// impulse on the whole chain). Notes the contacts in `walls` when recording. Whether
     /// any mode changed.
     fn walls(&mut self, walls: Option<&mut Vec<(f64, usize, f64)>>) -> bool {
-        let model_len = self.setup.model.len();
         let mut hits = Vec::new();
-        let past = (0..model_len).any(|i| {
-            let x = self.z[Setup::at(i)];
-            self.modes[i] == Mode::Free && !(0.0..=1.0).contains(&x)
-        });
+        let past = self
+            .packed
+            .iter()
+            .any(|&i| !(0.0..=1.0).contains(&self.z[Setup::at(i)]));
         let before = past.then(|| {
             let sys = FreeBody {
                 setup: &self.setup,
                 groups: &self.groups,
                 modes: &self.modes,
+                packed: &self.packed,
             };
             sys.evaluate(&self.z, &mut self.work);
             sys.base_momentum(&self.work).0
         });
-        for i in 0..model_len {
-            if self.modes[i] != Mode::Free {
-                continue;
-            }
+        for &i in &self.packed {
             let at = Setup::at(i);
             let x = self.z[at];
             let wall = if x >= 1.0 {
@@ -329,6 +349,7 @@ impl Driver {
                 setup: &self.setup,
                 groups: &self.groups,
                 modes: &self.modes,
+                packed: &self.packed,
             };
             sys.evaluate(&self.z, &mut self.work);
             let (after, composite) = sys.base_momentum(&self.work);
@@ -357,6 +378,7 @@ impl Driver {
                 setup: &self.setup,
                 groups: &self.groups,
                 modes: &self.modes,
+                packed: &self.packed,
             };
             sys.evaluate(&self.z, &mut self.work);
         }
@@ -370,6 +392,7 @@ impl Driver {
                     setup: &self.setup,
                     groups: &self.groups,
                     modes: &self.modes,
+                    packed: &self.packed,
                 };
                 sys.magnet_drive(k, &mut self.work)
             };
@@ -402,6 +425,7 @@ impl Driver {
         if switched {
             self.log.close(self.t);
             self.regroup();
+            self.pack();
         }
         switched
     }
@@ -413,6 +437,7 @@ impl Driver {
             setup: &self.setup,
             groups: &self.groups,
             modes: &self.modes,
+            packed: &self.packed,
         };
         sys.evaluate(&self.z, &mut self.work);
         let g = self.groups.of_tile[j + 1];
@@ -449,6 +474,43 @@ impl Driver {
         stays
     }
 
+    /// The free unknowns after a change of modes: the packed state from the whole one, the
+    /// stepper's storage for it, and the whole state its evaluations start from.
+    fn pack(&mut self) {
+        self.packed.clear();
+        self.packed
+            .extend((0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free));
+        let len = BASE + 2 * self.packed.len();
+        if self.zp.len() != len {
+            let mut stepper = Stepper::new(Method::Dopri5, len, 0);
+            std::mem::swap(stepper.work_mut(), self.stepper.work_mut());
+            self.stepper = stepper;
+            self.zp = vec![0.0; len];
+        }
+        self.stepper.invalidate();
+        self.stepper.work_mut().full.clone_from(&self.z);
+        self.zs.clone_from(&self.z);
+        self.sync_packed();
+    }
+
+    /// The packed state from the whole one.
+    fn sync_packed(&mut self) {
+        self.zp[..BASE].copy_from_slice(&self.z[..BASE]);
+        for (p, &i) in self.packed.iter().enumerate() {
+            self.zp[BASE + 2 * p] = self.z[Setup::at(i)];
+            self.zp[BASE + 2 * p + 1] = self.z[Setup::at(i) + 1];
+        }
+    }
+
+    /// The whole state's free entries from the packed one.
+    fn unpack(&mut self) {
+        self.z[..BASE].copy_from_slice(&self.zp[..BASE]);
+        for (p, &i) in self.packed.iter().enumerate() {
+            self.z[Setup::at(i)] = self.zp[BASE + 2 * p];
+            self.z[Setup::at(i) + 1] = self.zp[BASE + 2 * p + 1];
+        }
+    }
+
     fn note_base(&mut self) {
         self.steps += 1;
         if self.steps % self.base_stride != 0 {
@@ -466,13 +528,10 @@ impl Driver {
     }
 
     fn run(mut self) -> FreeBodyRun {
-        let n = self.setup.model.len();
-        let nz = BASE + 2 * n;
         let opts = self.opts.reference;
         let tol = opts.tolerance;
         let (_, move_time, drag_time) = self.setup.im.c.times(&self.setup.model);
         let scale = self.setup.im.scale;
-        let mut stepper: Stepper<Work> = Stepper::new(Method::Dopri5, nz, 0);
         let expo = 1.0 / (Method::Dopri5.error_order() as f64 + 1.0);
         let mut h = self.setup.im.first_step * 1e-3;
         let mut stopped = None;
@@ -485,49 +544,52 @@ impl Driver {
             )),
         };
         let mut walls = Vec::new();
-        let mut f = vec![0.0; nz];
-        let mut z1 = vec![0.0; nz];
+        let mut f = Vec::new();
+        let mut z1 = Vec::new();
+        self.pack();
         self.release(true);
         self.note_base();
         loop {
-            let free: Vec<usize> = (0..n).filter(|&i| self.modes[i] == Mode::Free).collect();
-            if free.is_empty() {
+            if self.packed.is_empty() {
                 break;
             }
+            let len = self.zp.len();
+            f.resize(len, 0.0);
+            z1.resize(len, 0.0);
             {
                 let sys = FreeBody {
                     setup: &self.setup,
                     groups: &self.groups,
                     modes: &self.modes,
+                    packed: &self.packed,
                 };
-                stepper.rhs(&sys, &self.z, &mut f, &mut self.stats);
+                self.stepper.rhs(&sys, &self.zp, &mut f, &mut self.stats);
                 if self.opts.track_momentum {
-                    let m = sys.momentum(self.t, &self.z, stepper.work());
+                    let m = sys.momentum(self.t, &self.zp, self.stepper.work());
                     self.momentum.push(m);
                 }
             }
             let t = self.t;
-            let quiet = free.iter().all(|&i| {
-                let at = Setup::at(i);
-                self.setup.im.quiet(self.z[at + 1], f[at + 1])
+            let free = self.packed.len();
+            let quiet = (0..free).all(|p| {
+                let v = BASE + 2 * p + 1;
+                self.setup.im.quiet(self.zp[v], f[v])
             });
             if quiet && t > self.log.last_event + scale {
                 break;
             }
             if self.stats.accepted + self.stats.rejected >= opts.max_steps {
                 stopped = Some(format!(
-                    "step limit of {} reached at t = {t:.6e} s with {} unknowns moving",
+                    "step limit of {} reached at t = {t:.6e} s with {free} unknowns moving",
                     opts.max_steps,
-                    free.len()
                 ));
                 break;
             }
             if t - self.log.last_event > 1e4 * scale.max(self.log.last_event) {
                 stopped = Some(format!(
-                    "no event for {:.3e} s after the last at {:.6e} s with {} unknowns still moving",
+                    "no event for {:.3e} s after the last at {:.6e} s with {free} unknowns still moving",
                     t - self.log.last_event,
                     self.log.last_event,
-                    free.len()
                 ));
                 break;
             }
@@ -536,8 +598,12 @@ impl Driver {
                     setup: &self.setup,
                     groups: &self.groups,
                     modes: &self.modes,
+                    packed: &self.packed,
                 };
-                match stepper.attempt(&sys, &self.z, &f, h, tol, &mut self.stats, &mut z1) {
+                match self
+                    .stepper
+                    .attempt(&sys, &self.zp, &f, h, tol, &mut self.stats, &mut z1)
+                {
                     Ok(e) => e,
                     Err(_) => {
                         h *= 0.5;
@@ -563,9 +629,9 @@ impl Driver {
             }
             // a wall crossed: cut the step to end just past the first crossing
             let mut theta: f64 = 1.0;
-            for &i in &free {
-                let at = Setup::at(i);
-                let (a, b) = (self.z[at], z1[at]);
+            for p in 0..free {
+                let at = BASE + 2 * p;
+                let (a, b) = (self.zp[at], z1[at]);
                 for wall in [0.0, 1.0] {
                     let past = if wall == 0.0 { b < 0.0 } else { b > 1.0 };
                     if past && (b - wall).abs() > 1e-9 {
@@ -591,38 +657,27 @@ impl Driver {
             }
             self.stats.accepted += 1;
             let grow = integral(err, expo, true);
-            std::mem::swap(&mut self.z, &mut z1);
-            // z1 keeps the step's start
+            // the step's start, for the recorded states and the start crossings
             let t0 = t;
+            let start = (rec.as_ref().is_some_and(|r| r.next_time() <= t + h)
+                || self.log.reports_crossings())
+            .then(|| (self.setup.values(&self.z), self.setup.rates(&self.z)));
+            std::mem::swap(&mut self.zp, &mut z1);
+            self.unpack();
             self.t = t + h;
-            let (y0, v0) = (self.setup.values(&z1), self.setup.rates(&z1));
-            if self.log.reports_crossings() {
+            let v_end = start.as_ref().map(|_| self.setup.rates(&self.z));
+            if let (true, Some((y0, v0))) = (self.log.reports_crossings(), &start) {
                 let (y1, v1) = (self.setup.values(&self.z), self.setup.rates(&self.z));
-                self.log.cross(
-                    &self.setup.model,
-                    t0,
-                    &y0,
-                    Some(&v0),
-                    self.t,
-                    &y1,
-                    Some(&v1),
-                );
+                self.log
+                    .cross(&self.setup.model, t0, y0, Some(v0), self.t, &y1, Some(&v1));
             }
-            let v_end = self.setup.rates(&self.z);
             let switched = self.walls(rec.is_some().then_some(&mut walls));
-            let released = self.release(switched);
-            if switched || released {
-                stepper.invalidate();
-            }
-            if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= self.t) {
-                r.cover(
-                    t0,
-                    &y0,
-                    &v0,
-                    self.t,
-                    &self.setup.values(&self.z),
-                    Some(&v_end),
-                );
+            self.release(switched);
+            self.sync_packed();
+            if let (Some(r), Some((y0, v0)), Some(v_end)) = (rec.as_mut(), &start, &v_end) {
+                if r.next_time() <= self.t {
+                    r.cover(t0, y0, v0, self.t, &self.setup.values(&self.z), Some(v_end));
+                }
             }
             self.note_base();
             h *= grow;

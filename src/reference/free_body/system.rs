@@ -113,8 +113,9 @@ pub(crate) struct Work {
     tan: Vec<Vec2>,
     stamp: Vec<u32>,
     epoch: u32,
-    /// The values of the model unknowns.
-    y: Vec<f64>,
+    /// The whole state being evaluated: the stepper's packed states are scattered into it
+    /// (the held unknowns' entries stay as they were set when the modes last changed).
+    pub(crate) full: Vec<f64>,
 }
 
 /// The free-body system at one set of modes and groups.
@@ -122,6 +123,9 @@ pub(crate) struct FreeBody<'a> {
     pub(crate) setup: &'a Setup,
     pub(crate) groups: &'a Groups,
     pub(crate) modes: &'a [Mode],
+    /// The free unknowns, in order: the stepper's state is the base then their values and
+    /// rates.
+    pub(crate) packed: &'a [usize],
 }
 
 /// A frame `b` given in frame `a`, in `a`'s parent.
@@ -168,7 +172,7 @@ impl FreeBody<'_> {
             let f = compose(&w.frames[g], &self.groups.rel[t]);
             let (p, tg) = self
                 .model()
-                .local_continued(k, w.y[self.model().magnet_var(k)]);
+                .local_continued(k, w.full[Setup::at(self.model().magnet_var(k))]);
             w.pos[k] = f.point(p);
             w.tan[k] = f.vector(tg);
             w.stamp[k] = w.epoch;
@@ -218,16 +222,21 @@ impl FreeBody<'_> {
         f.dot(t)
     }
 
-    /// Evaluates the state `z`: frames, velocities, forces, accelerations (into `w`).
+    /// Evaluates the whole state `z`: frames, velocities, forces, accelerations (into `w`).
     pub(crate) fn evaluate(&self, z: &[f64], w: &mut Work) {
+        w.full.clear();
+        w.full.extend_from_slice(z);
+        self.evaluate_full(w);
+    }
+
+    /// Evaluates the state in `w.full`.
+    fn evaluate_full(&self, w: &mut Work) {
         let model = self.model();
         let groups = self.groups;
         let ng = groups.len();
         let n = model.geometry.magnets();
         let c = self.setup.cutoff;
         let half = 0.5 * model.geometry.w;
-        w.y.clear();
-        w.y.extend((0..model.len()).map(|i| z[Setup::at(i)]));
         if w.stamp.len() != n {
             w.stamp = vec![0; n];
             w.pos = vec![Point::ORIGIN; n];
@@ -263,11 +272,11 @@ impl FreeBody<'_> {
         w.frames.clear();
         w.origin.clear();
         w.drive.clear();
-        w.drive.resize(model.len(), 0.0);
+        w.drive.resize(self.packed.len(), 0.0);
         // the base's velocity in tile 0's axes
-        let (sp, cp) = z[2].sin_cos();
-        let (vx, vy) = (z[3], z[4]);
-        w.v[0] = [z[5], cp * vx + sp * vy, -sp * vx + cp * vy];
+        let (sp, cp) = w.full[2].sin_cos();
+        let (vx, vy) = (w.full[3], w.full[4]);
+        w.v[0] = [w.full[5], cp * vx + sp * vy, -sp * vx + cp * vy];
         w.frames.push(TileFrame::IDENTITY);
         w.origin.push([0.0, 0.0]);
         // frames, joint axes and velocities outwards
@@ -275,8 +284,8 @@ impl FreeBody<'_> {
             let j = groups.last[g - 1];
             let v = model.joint_var(j).unwrap_or(0);
             let sign = model.joint_sign(j);
-            let theta = sign * w.y[v] * FRAC_PI_2;
-            let theta_dot = sign * z[Setup::at(v) + 1] * FRAC_PI_2;
+            let theta = sign * w.full[Setup::at(v)] * FRAC_PI_2;
+            let theta_dot = sign * w.full[Setup::at(v) + 1] * FRAC_PI_2;
             let before = compose(&w.frames[g - 1], &groups.rel[j]);
             let hinge = self.setup.hinge(j);
             let f = before.across_joint(theta, hinge, half);
@@ -340,9 +349,9 @@ impl FreeBody<'_> {
             }
         }
         // the free magnets' drives
-        for (i, u) in model.unknowns.iter().enumerate() {
-            if let (Unknown::Magnet(k), Mode::Free) = (*u, self.modes[i]) {
-                w.drive[i] = self.magnet_drive(k, w);
+        for (p, &i) in self.packed.iter().enumerate() {
+            if let Unknown::Magnet(k) = model.unknowns[i] {
+                w.drive[p] = self.magnet_drive(k, w);
             }
         }
         self.articulated(w, |_| 0.0, true);
@@ -404,25 +413,21 @@ impl FreeBody<'_> {
         }
     }
 
-    /// The rates of state `z` into `out` (after [`FreeBody::evaluate`] into `w`).
-    fn rates(&self, z: &[f64], w: &Work, out: &mut [f64]) {
+    /// The rates of the packed state into `out` (after an evaluation into `w`).
+    fn rates(&self, w: &Work, out: &mut [f64]) {
         let model = self.model();
+        let z = &w.full;
         out[0] = z[3];
         out[1] = z[4];
         out[2] = z[5];
         out[3] = w.base_acc[1];
         out[4] = w.base_acc[2];
         out[5] = w.base_acc[0];
-        for i in 0..model.len() {
-            let at = Setup::at(i);
-            if self.modes[i] != Mode::Free {
-                out[at] = 0.0;
-                out[at + 1] = 0.0;
-                continue;
-            }
-            out[at] = z[at + 1];
-            out[at + 1] = match model.unknowns[i] {
-                Unknown::Magnet(_) => self.setup.im.acceleration(i, w.drive[i], z[at + 1]),
+        for (p, &i) in self.packed.iter().enumerate() {
+            let v = z[Setup::at(i) + 1];
+            out[BASE + 2 * p] = v;
+            out[BASE + 2 * p + 1] = match model.unknowns[i] {
+                Unknown::Magnet(_) => self.setup.im.acceleration(i, w.drive[p], v),
                 Unknown::Joint(j) => {
                     let g = self.groups.of_tile[j + 1];
                     model.joint_sign(j) * w.qdd[g] / FRAC_PI_2
@@ -568,15 +573,19 @@ impl System for FreeBody<'_> {
     }
 
     fn counts(&self, i: usize) -> bool {
-        if i < BASE {
-            // the base's pose feeds nothing back; its velocities do (the water's drag)
-            return i >= 3;
-        }
-        self.modes[(i - BASE) / 2] == Mode::Free
+        // the base's pose feeds nothing back; its velocities do (the water's drag)
+        i >= 3
     }
 
+    /// `z` is the packed state: the base, then the free unknowns' values and rates.
     fn rhs(&self, z: &[f64], work: &mut Work, out: &mut [f64]) {
-        self.evaluate(z, work);
-        self.rates(z, work, out);
+        work.full[..BASE].copy_from_slice(&z[..BASE]);
+        for (p, &i) in self.packed.iter().enumerate() {
+            let at = Setup::at(i);
+            work.full[at] = z[BASE + 2 * p];
+            work.full[at + 1] = z[BASE + 2 * p + 1];
+        }
+        self.evaluate_full(work);
+        self.rates(work, out);
     }
 }
