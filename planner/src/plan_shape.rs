@@ -112,10 +112,35 @@ pub(crate) fn plan_shape(
         failures,
         rejected,
     } = found;
-    best.ok_or_else(|| PlanError::Unplannable {
+    if let Some(p) = best {
+        return Ok(p);
+    }
+    // one chain can fill the shape, only not without leaving a part of it empty: the plan
+    // that leaves the least empty, with a warning saying where, rather than no plan (issue
+    // 26: a drawing is refused only when one chain cannot do it), unless it bridges the gaps
+    // of a shape monotone in no direction with much of the chain outside
+    if let Some(r) = rejected {
+        let bridges =
+            monotone.is_empty() && r.plan.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE;
+        if !bridges {
+            let Rejected { mut plan, empty } = *r;
+            plan.metrics.largest_empty_tiles = empty.tiles;
+            plan.warnings.push(format!("the plan {empty}"));
+            return Ok(plan);
+        }
+        return Err(PlanError::Unplannable {
+            name: name.into(),
+            reason: unplannable_reason(shape, monotone.is_empty(), failures),
+            rejected: Some(Box::new(Rejected {
+                plan: r.plan,
+                empty: r.empty,
+            })),
+        });
+    }
+    Err(PlanError::Unplannable {
         name: name.into(),
         reason: unplannable_reason(shape, monotone.is_empty(), failures),
-        rejected,
+        rejected: None,
     })
 }
 
