@@ -435,7 +435,11 @@ mod tests {
         // square (no seams between the pieces), and the row queries one outline
         let mut body = String::new();
         for i in 0..900 {
-            body += &format!(r#"<rect x="{}" y="{}" width="1" height="1"/>"#, i % 30, i / 30);
+            body += &format!(
+                r#"<rect x="{}" y="{}" width="1" height="1"/>"#,
+                i % 30,
+                i / 30
+            );
         }
         let s = Shape::from_svg_data(svg(&body).as_bytes(), "t").unwrap();
         assert!((s.area() - 900.0).abs() < 1e-6, "{}", s.area());
