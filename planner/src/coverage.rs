@@ -453,26 +453,40 @@ mod tests {
         assert!(segment_meets_octagon(c, p(-0.1, 0.0), p(0.1, 0.0), TOUCH));
     }
 
-    /// A drawing of several filled elements that touch along edges (the sample key: a
-    /// rounded head, a shaft, two teeth): its region's area is their union's, in the frames
-    /// the planner measures in (turned, mirrored, scaled), where the touching elements may
-    /// come out as separate polygons.
+    /// Several filled paths that touch along edges (a key's head, shaft and tooth, as
+    /// separate elements): the region's area is their union's, in the frames the planner
+    /// measures in (turned, mirrored, scaled), where the touching paths may come out as
+    /// separate polygons.
     #[test]
-    fn touching_elements_are_united_in_every_frame() {
-        let data =
-            std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../shapes/key.svg")).unwrap();
-        let key = Shape::from_svg_data(&data, "key.svg").unwrap();
-        assert!(key.paths().len() > 1);
-        for s in [
-            key.clone(),
-            key.rotated(0.3).scaled(1.0 / 8.3),
-            key.mirrored(-1.0, 1.0).scaled(1.0 / 8.3),
-            key.rotated(std::f64::consts::FRAC_PI_2)
-                .mirrored(1.0, -1.0)
-                .scaled(0.01),
+    fn touching_paths_are_united_in_every_frame() {
+        let path = |r: Ring, even_odd: bool| crate::shape::FilledPath {
+            rings: vec![r],
+            even_odd,
+        };
+        let key = Shape::from_paths(vec![
+            path(Ring::rect(0.0, 0.0, 100.0, 120.0), false),
+            path(Ring::rect(100.0, 48.0, 270.0, 72.0), true),
+            path(Ring::rect(205.0, 72.0, 223.0, 94.0), false),
+        ]);
+        let union = 12_000.0 + 4_080.0 + 396.0;
+        for (s, k) in [
+            (key.clone(), 1.0),
+            (key.rotated(0.3).scaled(1.0 / 8.3), 1.0 / 8.3),
+            (key.mirrored(-1.0, 1.0).scaled(1.0 / 8.3), 1.0 / 8.3),
+            (
+                key.rotated(std::f64::consts::FRAC_PI_2)
+                    .mirrored(1.0, -1.0)
+                    .scaled(0.01),
+                0.01,
+            ),
         ] {
             let a = areas(&s, &[]);
-            assert!(close(a.shape, s.area()), "{} vs {}", a.shape, s.area());
+            assert!(
+                close(a.shape, union * k * k),
+                "{} vs {}",
+                a.shape,
+                union * k * k
+            );
         }
     }
 }
