@@ -4,11 +4,14 @@
 //! schedule checked the same way ([`check_reference`]).
 
 use crate::collision::{
-    check_schedule, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError,
+    check_schedule, closest_approach, CheckOptions, Collision, FoldSchedule, JointTrack,
+    ScheduleError,
 };
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
 use crate::reference::{joint_angle_samples, ReferenceRun};
-use crate::timeline::{CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track};
+use crate::timeline::{
+    Clearance, CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track,
+};
 use crate::{Chain, Fold, FoldWord};
 
 /// Why a simulation could not be made.
@@ -51,10 +54,15 @@ fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
 /// [`simulate`]'s.
 pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, SimulateError> {
     let mut summary = run.to_summary();
-    if run.tiles() < 2 || run.folds.is_empty() {
+    if run.tiles() < 2 {
         return Ok(summary);
     }
     let word = word_of_folds(run.tiles(), &run.folds);
+    if run.folds.is_empty() {
+        let still = FoldSchedule::default();
+        summary.clearance = clearance(&word, &still, check, run.model.geometry.w);
+        return Ok(summary);
+    }
     let tracks = run
         .folds
         .iter()
@@ -70,16 +78,58 @@ pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summa
         })
         .collect();
     let schedule = FoldSchedule { tracks };
-    let (collision, undecided) = match check_schedule(&word, &schedule, check) {
-        Ok(()) => (None, None),
-        Err(ScheduleError::Collision(c)) => (Some(c), None),
-        Err(e @ ScheduleError::Undecided { .. }) => {
-            (None, Some(format!("collision check undecided: {e}")))
-        }
-        Err(e) => return Err(SimulateError::Schedule(e)),
-    };
+    let w = run.model.geometry.w;
+    let (collision, undecided) = verdict(&word, &schedule, check, w)?;
     summary = overrule(summary, collision, undecided);
+    summary.clearance = clearance(&word, &schedule, check, w);
     Ok(summary)
+}
+
+/// The collision check of `schedule` with the run's touching tolerance (tiles `w` mm wide):
+/// the first collision, or why the check could not decide.
+fn verdict(
+    word: &FoldWord,
+    schedule: &FoldSchedule,
+    check: &CheckOptions,
+    w: f64,
+) -> Result<(Option<Collision>, Option<String>), SimulateError> {
+    let opts = check.with_tolerance(check.run_tolerance(w));
+    match check_schedule(word, schedule, &opts) {
+        Ok(()) => Ok((None, None)),
+        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
+        Err(e @ ScheduleError::Undecided { .. }) => {
+            Ok((None, Some(format!("collision check undecided: {e}"))))
+        }
+        Err(e) => Err(SimulateError::Schedule(e)),
+    }
+}
+
+/// The precision of a run's clearance, mm: a twentieth of the 10 um overlap tolerance, and a
+/// tenth of the 5 um within which the two simulations' clearances are held to agree.
+pub(crate) const CLEARANCE_PRECISION_MM: f64 = 5e-4;
+
+/// How close two tiles that are not neighbours come along `schedule` (tiles `w` mm wide),
+/// when it can be measured ([`crate::collision`]'s clearance).
+fn clearance(
+    word: &FoldWord,
+    schedule: &FoldSchedule,
+    check: &CheckOptions,
+    w: f64,
+) -> Option<Clearance> {
+    if check.final_only {
+        return None;
+    }
+    let c = closest_approach(word.tiles(), schedule, CLEARANCE_PRECISION_MM / w)?;
+    let mm = c.distance * w;
+    Some(Clearance {
+        mm,
+        tiles: c.tiles,
+        time: c.time,
+        joint: c.joint,
+        graze: mm < 0.0 && -mm <= check.overlap_mm,
+        overlap_tolerance_mm: check.overlap_mm,
+        precision_mm: CLEARANCE_PRECISION_MM,
+    })
 }
 
 /// A run's summary with the collision check's verdict.
@@ -121,22 +171,18 @@ pub fn simulate(
 /// summary with the verdict. For callers that do other work with the timeline while the
 /// check runs (`fold-run` draws the run's files on a second thread).
 pub fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, SimulateError> {
-    let (collision, undecided) = check_timeline(tl, check)?;
+    let (collision, undecided, clearance) = check_timeline(tl, check)?;
     let mut summary = tl.summary();
+    summary.clearance = clearance;
     if let Some(why) = solve_stopped(tl) {
-        // a stall's reason already ends with it
-        if summary.reason.as_deref().is_some_and(|r| r.contains(&why)) {
-            summary.result = RunResult::Stopped;
-            summary.completed = false;
-        } else {
-            summary = summary.overruled(RunResult::Stopped, why);
-        }
+        summary = summary.undecided(why);
     }
     Ok(overrule(summary, collision, undecided))
 }
 
-/// Why a local solve of the engine gave up (its step limit), if one did: the run is
-/// `stopped`, as a reference run whose integration stopped early
+/// Why a local solve of the engine ran out of its work budget (its step limit, or no event
+/// for 1e4 of its time scales), if one did, with the balance it could not decide and its
+/// margin: the run is `undecided`, as a reference run that runs out of its budget
 /// ([`ReferenceRun::to_summary`]), not `stalled`, which says the physics came to rest with a
 /// magnet short of its trigger (the reference's [`crate::timeline::Outcome::Stalled`]).
 fn solve_stopped(tl: &Timeline) -> Option<String> {
@@ -148,21 +194,16 @@ fn solve_stopped(tl: &Timeline) -> Option<String> {
         .find_map(|u| u.0.solution.stopped.clone())
 }
 
-fn check_timeline(
-    tl: &Timeline,
-    check: &CheckOptions,
-) -> Result<(Option<Collision>, Option<String>), SimulateError> {
+/// The collision check of the engine's run: its verdict and its clearance.
+type Checked = (Option<Collision>, Option<String>, Option<Clearance>);
+
+fn check_timeline(tl: &Timeline, check: &CheckOptions) -> Result<Checked, SimulateError> {
     if tl.tiles() < 2 {
-        return Ok((None, None));
+        return Ok((None, None, None));
     }
     let word = folded_word(tl);
     let schedule = fold_schedule(tl);
-    match check_schedule(&word, &schedule, check) {
-        Ok(()) => Ok((None, None)),
-        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
-        Err(e @ ScheduleError::Undecided { .. }) => {
-            Ok((None, Some(format!("collision check undecided: {e}"))))
-        }
-        Err(e) => Err(SimulateError::Schedule(e)),
-    }
+    let w = tl.geometry.w;
+    let (collision, undecided) = verdict(&word, &schedule, check, w)?;
+    Ok((collision, undecided, clearance(&word, &schedule, check, w)))
 }

@@ -15,7 +15,7 @@
 //! (speed under 1e-7 of its range per inertial time, acceleration likewise) or nothing is
 //! free. When states are recorded, so is every wall contact ([`ReferenceRun::walls`]).
 
-use crate::model::{at_wall, Forces, InertialModel, Mode, Model, RestState};
+use crate::model::{at_wall, undecided_margin, Forces, InertialModel, Mode, Model, RestState};
 use crate::ode::{integral, StepStats, Stepper, System};
 use crate::reference::event_log::EventLog;
 use crate::reference::options::{Recording, ReferenceOptions};
@@ -149,6 +149,7 @@ pub(crate) fn run_inertial(
     let mut t = 0.0;
     let mut h = im.first_step * 1e-3;
     let mut stopped = None;
+    let mut undecided = false;
     let positions = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i]).collect() };
     let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
     let mut rec = match opts.record {
@@ -183,21 +184,28 @@ pub(crate) fn run_inertial(
         if quiet && t > log.last_event + scale {
             break;
         }
-        if stats.accepted + stats.rejected >= opts.max_steps {
-            stopped = Some(format!(
-                "step limit of {} reached at t = {t:.6e} s with {} unknowns moving",
-                opts.max_steps,
-                free.len()
-            ));
-            break;
-        }
-        if t - log.last_event > 1e4 * scale.max(log.last_event) {
-            stopped = Some(format!(
-                "no event for {:.3e} s after the last at {:.6e} s with {} unknowns still moving",
+        // the work budget (ReferenceOptions): a balance not decided within it is said, with
+        // its margin, and the run is undecided
+        let budget = opts.step_budget(model.geometry.tiles());
+        let exhausted = if stats.accepted + stats.rejected >= budget {
+            Some(format!("{budget} steps"))
+        } else if t - log.last_event > 1e4 * scale.max(log.last_event) {
+            Some(format!(
+                "no event for {:.3e} s after the last at {:.6e} s",
                 t - log.last_event,
-                log.last_event,
-                free.len()
+                log.last_event
+            ))
+        } else {
+            None
+        };
+        if let Some(budget) = exhausted {
+            model.forces(&positions(&z), &mut work);
+            let margin =
+                undecided_margin(&model, free.iter().map(|&i| (i, z[2 * i], work.drive[i])));
+            stopped = Some(format!(
+                "undecided at t = {t:.6e} s within the work budget ({budget}): {margin}"
             ));
+            undecided = true;
             break;
         }
         let sys = Inertial {
@@ -360,6 +368,7 @@ pub(crate) fn run_inertial(
         folds: log.folds,
         outcome,
         stopped,
+        undecided,
         max_moving: log.max_moving,
         stats,
     }

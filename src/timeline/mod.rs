@@ -54,7 +54,7 @@ pub use run_result::RunResult;
 pub use run_source::{RunSource, TrackKey};
 pub use speed_law::SpeedLaw;
 pub(crate) use summary::RunFacts;
-pub use summary::{CollisionReport, Summary};
+pub use summary::{Clearance, CollisionReport, Summary};
 pub use tile_designs::{DesignsError, SValue, TileDesigns, TileOverride};
 pub use track::Track;
 pub(crate) use track::{ANGLE_TOLERANCE, TRAVEL_TOLERANCE};

@@ -17,7 +17,9 @@
 use std::f64::consts::FRAC_PI_2;
 
 use crate::model::REST_HEIGHT;
-use crate::model::{at_wall, Dynamics, Forces, InertialModel, Mode, Model, RestState, Unknown};
+use crate::model::{
+    at_wall, undecided_margin, Dynamics, Forces, InertialModel, Mode, Model, RestState, Unknown,
+};
 use crate::ode::{integral, Method, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
 use crate::reference::free_body::groups::Groups;
@@ -578,16 +580,17 @@ impl Driver {
             if quiet && t > self.log.last_event + scale {
                 break;
             }
-            if self.stats.accepted + self.stats.rejected >= opts.max_steps {
+            // the work budget (ReferenceOptions): undecided, its margin said at the end
+            let budget = opts.step_budget(self.setup.model.geometry.tiles());
+            if self.stats.accepted + self.stats.rejected >= budget {
                 stopped = Some(format!(
-                    "step limit of {} reached at t = {t:.6e} s with {free} unknowns moving",
-                    opts.max_steps,
+                    "undecided at t = {t:.6e} s within the work budget ({budget} steps)"
                 ));
                 break;
             }
             if t - self.log.last_event > 1e4 * scale.max(self.log.last_event) {
                 stopped = Some(format!(
-                    "no event for {:.3e} s after the last at {:.6e} s with {free} unknowns still moving",
+                    "undecided at t = {t:.6e} s within the work budget (no event for {:.3e} s after the last at {:.6e} s)",
                     t - self.log.last_event,
                     self.log.last_event,
                 ));
@@ -695,6 +698,19 @@ impl Driver {
         .outcome(time);
         let mut events = self.log.events;
         events.extend(outcome.stop_event(time));
+        // a stop on the work budget: with the balance nearest
+        let undecided = stopped
+            .as_deref()
+            .is_some_and(|w: &str| w.starts_with("undecided"));
+        let stopped = stopped.map(|why| {
+            if !undecided {
+                return why;
+            }
+            let free = (0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free);
+            let margin =
+                undecided_margin(&self.setup.model, free.map(|i| (i, y[i], forces.drive[i])));
+            format!("{why}: {margin}")
+        });
         let states = rec.map(|r| r.finish(self.t, &y)).unwrap_or_default();
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
         FreeBodyRun {
@@ -709,6 +725,7 @@ impl Driver {
                 folds: self.log.folds,
                 outcome,
                 stopped,
+                undecided,
                 max_moving: self.log.max_moving,
                 stats: self.stats,
             },
