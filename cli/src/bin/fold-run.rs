@@ -507,10 +507,14 @@ fn summary_line(name: &str, s: &Summary, dir: &Path) {
     if let Some(r) = &s.reason {
         outln!("  {r}");
     }
-    if let Some(c) = &s.clearance {
-        outln!("  {}", clearance_words(c));
+    // a near miss, a touch, a graze or an overlap (summary.json always has it)
+    if let Some(c) = s.clearance.filter(|c| c.mm < NEAR_MISS_MM) {
+        outln!("  {}", clearance_words(&c));
     }
 }
+
+/// The closest approach the text summary tells: under 1 mm (summary.json has every run's).
+const NEAR_MISS_MM: f64 = 1.0;
 
 /// How close two tiles that are not neighbours came, in words.
 fn clearance_words(c: &foldchain::timeline::Clearance) -> String {

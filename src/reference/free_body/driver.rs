@@ -28,6 +28,7 @@ use crate::reference::free_body::run::FreeBodyRun;
 use crate::reference::free_body::spatial::solve;
 use crate::reference::free_body::system::{FreeBody, Momentum, Setup, Work, BASE};
 use crate::reference::free_body::tile_body::TileBodies;
+use crate::reference::inertial::ReleaseCuts;
 use crate::reference::options::{Recording, ReferenceError};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
@@ -537,6 +538,7 @@ impl Driver {
         let expo = 1.0 / (Method::Dopri5.error_order() as f64 + 1.0);
         let mut h = self.setup.im.first_step * 1e-3;
         let mut stopped = None;
+        let mut cuts = ReleaseCuts::default();
         let mut rec = match opts.record {
             Recording::Off => None,
             Recording::Grid { max_states } => Some(Recorder::new(
@@ -585,6 +587,13 @@ impl Driver {
             if self.stats.accepted + self.stats.rejected >= budget {
                 stopped = Some(format!(
                     "undecided at t = {t:.6e} s within the work budget ({budget} steps)"
+                ));
+                break;
+            }
+            if cuts.futile() {
+                stopped = Some(format!(
+                    "undecided at t = {t:.6e} s within the work budget ({})",
+                    cuts.reason()
                 ));
                 break;
             }
@@ -655,6 +664,7 @@ impl Driver {
                 let cut = h * theta.max(1e-6);
                 if cut > 1e-14 * t.max(scale) {
                     h = cut;
+                    cuts.note(self.log.last_event);
                     continue;
                 }
             }
