@@ -19,7 +19,7 @@ use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Summary, TileDesigns};
-use foldchain::{check_reference, simulate, Chain, Design};
+use foldchain::{simulate, Chain, Design};
 
 /// The clearances of the two simulations agree within this, mm.
 const AGREE_MM: f64 = 0.005;
@@ -41,7 +41,7 @@ fn both(word: &str, s: f64) -> (Summary, Summary) {
         .with_model(model)
         .with_record(Recording::within_budget(chain.len()));
     let run = run_reference(&chain, &designs, &ro).unwrap();
-    let r = check_reference(&run, &check).unwrap();
+    let r = run.checked_summary(&check).unwrap();
     (e, r)
 }
 

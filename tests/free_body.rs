@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::reference::free_body::{FreeBodyError, Water};
+use foldchain::reference::ReferenceError;
 use foldchain::reference::{run_free_body, FreeBodyOptions, ReferenceOptions};
 use foldchain::timeline::{Outcome, TileDesigns};
 use foldchain::Chain;
@@ -20,12 +20,8 @@ fn momentum_is_conserved_without_drag() {
     // impulse inside the chain; from rest the momentum stays zero, within 1e-9 of the
     // momenta of the parts that move (measured: 1.4e-10 at most over these chains at
     // tolerance 1e-10; about 1e-8 at the default 1e-8, the integrator's own error)
-    let still = Water {
-        viscosity: 0.0,
-        ..Water::default()
-    };
     let base = FreeBodyOptions::default()
-        .with_water(still)
+        .with_water_viscosity(0.0)
         .with_momentum_track();
     let opts = base.with_reference(base.reference.with_tolerance(1e-10));
     for word in ["SLS", "SLLS", "SLSRS", "SSLSSRRS"] {
@@ -79,7 +75,7 @@ fn what_it_does_not_take_is_refused() {
     );
     assert!(matches!(
         run_free_body(&chain, &d, &overdamped),
-        Err(FreeBodyError::Unsupported { .. })
+        Err(ReferenceError::FreeBodyUnsupported { .. })
     ));
     let light = FreeBodyOptions::default().with_tile_mass(0.0);
     let e = run_free_body(&chain, &d, &light).unwrap_err();

@@ -11,7 +11,7 @@ use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::{RunResult, TileDesigns};
-use foldchain::{check_reference, simulate, Chain};
+use foldchain::{simulate, Chain};
 
 /// The design of issue 27: a wall on the knife edge between starting magnet 4 and not.
 const KNIFE_EDGE: &str = r#"{"wall": 1.2715684370696545}"#;
@@ -56,7 +56,7 @@ fn the_reference_says_undecided_within_its_budget() {
         3 * ReferenceOptions::DEFAULT_STEPS_PER_TILE
     );
     assert!(run.undecided);
-    let s = check_reference(&run, &CheckOptions::default()).unwrap();
+    let s = run.checked_summary(&CheckOptions::default()).unwrap();
     assert_undecided("reference", s.result, s.reason.as_deref().unwrap_or(""));
     assert_eq!(run.result(), RunResult::Undecided);
 }

@@ -32,16 +32,9 @@ pub(crate) const FINE_TILES: usize = 100;
 /// Deepest halving of a schedule interval.
 const MAX_DEPTH: u32 = 14;
 
-impl Timeline {
-    /// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
-    /// one adaptively sampled angle track per fold.
-    pub fn fold_schedule(&self) -> FoldSchedule {
-        fold_schedule(self)
-    }
-}
-
-/// The fold schedule: one adaptively sampled track per fold, within
-/// [`FINE_ANGLE_TOLERANCE`] of the law up to [`FINE_TILES`] tiles, [`ANGLE_TOLERANCE`] beyond.
+/// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
+/// one adaptively sampled angle track per fold, within [`FINE_ANGLE_TOLERANCE`] of the law
+/// up to [`FINE_TILES`] tiles, [`ANGLE_TOLERANCE`] beyond.
 pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
     let tol = if timeline.tiles() <= FINE_TILES {
         FINE_ANGLE_TOLERANCE

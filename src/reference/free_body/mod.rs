@@ -1,13 +1,13 @@
 //! The free-body reference: every tile a rigid body in the plane, floating, nothing
 //! anchored (issue 27). Each tile has its mass and moment of inertia and the water's drag on
-//! it ([`Water`]: linear film drag, optionally quadratic form drag); the magnets slide on
+//! it (linear film drag, optionally quadratic form drag: [`FreeBodyOptions`]); the magnets slide on
 //! their paths under the pair forces of [`crate::physics`] as in the model
 //! ([`crate::model`]); the RI rides on tile 0. A joint that is not turning holds its two
 //! tiles together, so the chain is a few rigid groups joined by the turning joints, each a
 //! revolute hinge: the groups' accelerations come from the articulated-body recursion
 //! (floating base), exact and O(groups) per evaluation, and the pair forces cost O(cutoff^2)
 //! per turning joint and O(cutoff) per moving magnet, so a step costs what moves, not the
-//! chain's length. It is stepped with the crate's Dormand-Prince ([`crate::ode`]) by a
+//! chain's length. It is stepped with the crate's Dormand-Prince (the `ode` module) by a
 //! stepping loop like the joint-angle reference's inertial one, with the same events.
 //!
 //! With no water drag the chain's linear and angular momentum stay what they were (zero from
@@ -38,7 +38,6 @@ mod system;
 mod tile_body;
 
 pub use driver::run_free_body;
-pub use options::{FreeBodyError, FreeBodyOptions};
+pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;
 pub use system::Momentum;
-pub use tile_body::Water;

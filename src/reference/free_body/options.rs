@@ -1,5 +1,5 @@
-//! The options of a free-body run ([`FreeBodyOptions`]) and why one cannot be made
-//! ([`FreeBodyError`]).
+//! The options of a free-body run ([`FreeBodyOptions`]); why one cannot be made is a
+//! [`ReferenceError`] (the free body's own options out of range, or what it does not take).
 
 use crate::reference::free_body::tile_body::Water;
 use crate::reference::{ReferenceError, ReferenceOptions};
@@ -11,8 +11,9 @@ use crate::reference::{ReferenceError, ReferenceOptions};
 pub(crate) const DEFAULT_TILE_MASS: f64 = 3.0;
 
 /// Options of a free-body run. Defaults: the reference's options (Dormand-Prince, tolerance
-/// 1e-8, the model's defaults with the inertial dynamics), 3 g a tile, water at
-/// 20 C on a 0.25 mm film without form drag ([`Water`]), no momentum track.
+/// 1e-8, the model's defaults with the inertial dynamics), 3 g a tile, water at 20 C
+/// (viscosity 1.0e-3 Pa s, density 998 kg/m^3) on a 0.25 mm film under each tile without
+/// form drag, no momentum track.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FreeBodyOptions {
     /// The integrator's tolerance, the step limit, the states kept and the model (its
@@ -20,8 +21,8 @@ pub struct FreeBodyOptions {
     pub reference: ReferenceOptions,
     /// Mass of a printed tile without its magnets, g.
     pub tile_mass_g: f64,
-    /// The water.
-    pub water: Water,
+    /// The water ([`FreeBodyOptions::with_water_viscosity`] and the other `with_water_*`).
+    pub(crate) water: Water,
     /// Keep the chain's momentum at the start of every step ([`crate::reference::FreeBodyRun::momentum`]).
     pub track_momentum: bool,
 }
@@ -52,9 +53,28 @@ impl FreeBodyOptions {
         self.tile_mass_g = grams;
         self
     }
-    /// Other water.
-    pub fn with_water(mut self, water: Water) -> FreeBodyOptions {
-        self.water = water;
+    /// Another dynamic viscosity of the water, Pa s (water: 1.0e-3 at 20 C, 0.89e-3 at 25 C;
+    /// 0: no film drag).
+    pub fn with_water_viscosity(mut self, pa_s: f64) -> FreeBodyOptions {
+        self.water.viscosity = pa_s;
+        self
+    }
+    /// Another thickness of the sheared film under a tile, mm (0.25: a tile floating 4.75 mm
+    /// deep in the thesis' 5 mm of water; range 0.1 to 1.5, a plate moving for a second in
+    /// deep water shears about `sqrt(nu t)` = 1 mm).
+    pub fn with_water_film(mut self, mm: f64) -> FreeBodyOptions {
+        self.water.film_mm = mm;
+        self
+    }
+    /// Another density of the water, kg/m^3.
+    pub fn with_water_density(mut self, kg_m3: f64) -> FreeBodyOptions {
+        self.water.density = kg_m3;
+        self
+    }
+    /// Another form drag coefficient `C_d` of a tile's immersed edge (0: none; a blunt plate
+    /// edge about 1 to 2).
+    pub fn with_water_form_drag(mut self, cd: f64) -> FreeBodyOptions {
+        self.water.form_drag = cd;
         self
     }
     /// Keep the momentum at every step.
@@ -63,22 +83,22 @@ impl FreeBodyOptions {
         self
     }
 
-    pub(crate) fn validate(&self) -> Result<(), FreeBodyError> {
+    pub(crate) fn validate(&self) -> Result<(), ReferenceError> {
         let bad = |name, value, expected| {
-            Err(FreeBodyError::BadOption {
+            Err(ReferenceError::FreeBodyOption {
                 name,
                 value,
                 expected,
             })
         };
         if self.reference.method != crate::ode::Method::Dopri5 {
-            return Err(FreeBodyError::Unsupported {
+            return Err(ReferenceError::FreeBodyUnsupported {
                 what: "the ROS2 method",
                 why: "the free-body reference steps with Dormand-Prince 5(4)",
             });
         }
         if self.reference.model.distance_cutoff.is_some() {
-            return Err(FreeBodyError::Unsupported {
+            return Err(ReferenceError::FreeBodyUnsupported {
                 what: "a distance cutoff",
                 why: "the free-body reference weighs pairs by chain index only (the pairs between its rigid groups)",
             });
@@ -108,31 +128,4 @@ impl FreeBodyOptions {
         }
         Ok(())
     }
-}
-
-/// Why a free-body run could not be made.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum FreeBodyError {
-    /// The reference's options or the model refused the input.
-    #[error(transparent)]
-    Reference(#[from] ReferenceError),
-    /// An option out of range.
-    #[error("free-body option `{name}` = {value}: expected {expected}")]
-    BadOption {
-        /// The option.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What was expected.
-        expected: &'static str,
-    },
-    /// Something the free-body reference does not do.
-    #[error("the free-body reference does not take {what}: {why}")]
-    Unsupported {
-        /// What was asked for.
-        what: &'static str,
-        /// Why not.
-        why: &'static str,
-    },
 }

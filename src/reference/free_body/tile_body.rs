@@ -1,6 +1,6 @@
 //! Each tile as a rigid body on the water ([`TileBodies`]): its mass and moment of inertia
 //! (the printed plate, its two magnets, and on tile 0 the reaction initiator it carries),
-//! and the water's drag on it, from the free-body options ([`Water`], the tile's mass).
+//! and the water's drag on it, from the free-body options (the water, the tile's mass).
 //!
 //! **Mass.** The plate is a uniform regular octagon `w` across the flats: inertia
 //! `m J / A` about its centre (`A` its area, `J` its polar area moment). The magnets are
@@ -22,7 +22,7 @@ use crate::Octagon;
 /// The water the tiles float on. Defaults: water at 20 C (viscosity 1.0e-3 Pa s, density
 /// 998 kg/m^3), a sheared film of 0.25 mm under each tile, no form drag.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Water {
+pub(crate) struct Water {
     /// Dynamic viscosity, Pa s (water: 1.0e-3 at 20 C, 0.89e-3 at 25 C).
     pub viscosity: f64,
     /// Thickness of the sheared film under a tile, mm (0.25: a tile floating 4.75 mm deep in
