@@ -32,7 +32,7 @@ mod chain_tree;
 mod clearance;
 pub(crate) use clearance::closest_approach;
 mod first_hit;
-pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
+pub(crate) use first_hit::{unit_tail_frame, TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
 mod pieces;
