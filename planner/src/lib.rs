@@ -45,6 +45,7 @@ mod drawing;
 mod empty;
 mod error;
 mod fit;
+mod flatten;
 mod frame;
 mod options;
 mod plan;
@@ -69,7 +70,7 @@ pub use empty::EmptyPart;
 pub use error::{PlanError, PlanOption, Rejected};
 pub use options::{
     ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
-    MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
+    MAX_DRAWING_BYTES, MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
 };
 pub use plan::{Metrics, Plan, PlanPose};
 pub use preview::{preview_svg, preview_svg_file, preview_svg_rejected};
@@ -92,7 +93,7 @@ pub fn plan_svg_file_reporting(
     opts: &PlanOptions,
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
-    let text = std::fs::read(path).map_err(|source| PlanError::Read {
+    let text = read_file_at_most(path, MAX_DRAWING_BYTES).map_err(|source| PlanError::Read {
         path: path.to_path_buf(),
         source,
     })?;
@@ -131,4 +132,26 @@ fn plan_svg_data(
     })?;
     plan.set_scale(mm_per_unit);
     Ok(plan)
+}
+
+/// Reads a whole file of at most `limit` bytes: a larger file, or a device or pipe that
+/// does not end (`/dev/zero`), is refused with an `InvalidData` error once `limit` bytes
+/// are read, so that reading an input never takes unbounded memory or time. The tools read
+/// every input file (drawings, plans, designs, reports) through it.
+pub fn read_file_at_most(path: &std::path::Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "larger than {} MiB, the most read from one input file",
+                limit >> 20
+            ),
+        ));
+    }
+    Ok(bytes)
 }
