@@ -43,6 +43,7 @@ mod drawing;
 mod empty;
 mod error;
 mod fit;
+mod flatten;
 mod frame;
 mod options;
 mod plan;

@@ -30,7 +30,7 @@ mod block_pairs;
 mod blocks;
 mod chain_tree;
 mod first_hit;
-pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
+pub(crate) use first_hit::{unit_tail_frame, TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
 mod pieces;
