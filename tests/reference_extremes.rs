@@ -258,6 +258,8 @@ fn summary_and_timeline_say_what_the_run_did() {
         "stalled_at": null,
         "reason": null,
         "first_collision": null,
+        // measured by the collision check (check_reference), not by the run
+        "clearance": null,
         "speed_law": {"overdamped": {"drag": ModelOptions::DEFAULT_DRAG}},
     });
     assert!(same_json(&json, &want), "{json}");

@@ -29,7 +29,8 @@
 //! cells (`cells`, `route`, `cell_plan`). Both solve rows with one dynamic programme
 //! (`rows`), search the tile width the same way (`sizing`), map between frames with kurbo
 //! affines (`frame`) and turn a checked fold word into a [`Plan`] (`assembly`) whose fit is
-//! measured on sample points (`fit`, `centre_grid`). [`preview_svg`] draws a plan over its
+//! measured as exact areas of the tiles' union inside and outside the shape (`fit`,
+//! `coverage`). [`preview_svg`] draws a plan over its
 //! shape.
 
 mod assembly;
@@ -39,6 +40,7 @@ mod cell_plan;
 mod centre_grid;
 mod check;
 mod clip;
+mod coverage;
 mod drawing;
 mod empty;
 mod error;
@@ -49,6 +51,7 @@ mod options;
 mod plan;
 mod plan_shape;
 mod preview;
+mod refusal;
 mod route;
 mod row_chain;
 mod rows;
@@ -110,16 +113,23 @@ fn plan_svg_data(
 ) -> Result<Plan, PlanError> {
     progress("reading the drawing", 0, 1);
     let (shape, mm_per_unit) = drawing::read_drawing(data, name)?;
-    let mut plan = plan_shape::plan_shape(&shape, &opts.resolved(mm_per_unit), name, progress)
-        .map_err(|mut e| {
-            if let PlanError::Unplannable {
-                rejected: Some(r), ..
-            } = &mut e
-            {
-                r.plan.set_scale(mm_per_unit);
-            }
-            e
-        })?;
+    let mut plan = plan_shape::plan_shape(
+        &shape,
+        &opts.resolved(mm_per_unit),
+        name,
+        mm_per_unit,
+        true,
+        progress,
+    )
+    .map_err(|mut e| {
+        if let PlanError::Unplannable {
+            rejected: Some(r), ..
+        } = &mut e
+        {
+            r.plan.set_scale(mm_per_unit);
+        }
+        e
+    })?;
     plan.set_scale(mm_per_unit);
     Ok(plan)
 }

@@ -50,13 +50,14 @@ fn plan_sizes(name: &str, sizes: &[usize]) -> Vec<Plan> {
             "{name}: {} tiles for {n}",
             p.tiles
         );
-        // at least 80% of what rows can cover with at most 8% of the chain outside (the
+        // at least 80% of what rows can cover with at most 9% of the chain outside (the
         // area-true fit of issue 13 lays a tile only when most of it is inside: the dog at
-        // 150 tiles went from 85% / 12.3% outside to 81% / 5.8%)
+        // 150 tiles went from 85% / 12.3% outside to 81% / 5.8%; measured exactly since
+        // issue 26, not on 25 points a tile, its plan at 150 has 8.8% outside)
         let reach = p.metrics.covered_share / row_density(false);
         assert!(reach > 0.80, "{name} {n}: {reach:.3}: {}", p.summary());
         assert!(
-            p.metrics.outside_share < 0.08,
+            p.metrics.outside_share < 0.09,
             "{name} {n}: {}",
             p.summary()
         );
