@@ -233,3 +233,18 @@ fn an_endless_input_file_is_refused_at_its_size_limit() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A short word for a huge chain: fold-print refuses over 100,000 tiles at once (found by
+/// hand: `S*5000000` ran on, towards a 16 GB assembly sheet).
+#[test]
+fn fold_print_refuses_a_chain_too_long_to_print() {
+    let d = scratch("print-long");
+    let o = tool("fold-print")
+        .args(["S*5000000", "--quiet", "--out"])
+        .arg(d.join("out"))
+        .output()
+        .unwrap();
+    refused(&o, &["5000001 tiles", "at most 100,000 tiles"]);
+    assert!(!d.join("out").exists(), "nothing written");
+    std::fs::remove_dir_all(&d).unwrap();
+}
