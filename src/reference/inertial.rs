@@ -94,8 +94,11 @@ const RELEASE_SLACK: f64 = 1e-3;
 
 /// Steps cut for a release since the last event after which the start has not come, past
 /// which a clamped unknown's pull is taken to sit on its threshold within the rounding (a
-/// design on a knife edge): the run is undecided. A start is found in a few cuts.
-const MAX_FUTILE_CUTS: usize = 2_000;
+/// design on a knife edge): the run is undecided. A start is found in a few cuts, but at
+/// s = 0 (magnets starting at their rest points) some 7-tile words need more than 2,000
+/// (LRRLLLS and five others were undecided at 0.0056 s); 50,000 keeps the knife edge of
+/// three tiles under half a second.
+const MAX_FUTILE_CUTS: usize = 50_000;
 
 /// The steps cut for a release that did not come, since the last event.
 #[derive(Debug, Default)]
