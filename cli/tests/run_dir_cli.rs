@@ -138,7 +138,7 @@ fn a_full_disk_exits_3_and_leaves_the_earlier_run() {
         "mount -t tmpfs -o size=1m tmpfs {m} || exit 77
          {bin} SLLS --frames 4 --out {m}/run > /dev/null || exit 78
          echo mine > {m}/run/notes.txt
-         {bin} 'S*400' --frames 300 --out {m}/run > /dev/null 2> {b}/err.txt
+         {bin} 'S*400' --frames 300 --quiet --out {m}/run > /dev/null 2> {b}/err.txt
          echo $? > {b}/code.txt
          ls -a {m} > {b}/beside.txt
          ls {m}/run > {b}/left.txt",

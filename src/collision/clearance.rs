@@ -73,21 +73,44 @@ pub(crate) fn closest_approach(
         track_of: &track_of,
         rates: &rates,
         precision,
-        octagon: Octagon::new(1.0),
+        outline: Outline::unit(),
         circumradius: Octagon::new(1.0).circumradius(),
         work: 0,
         best: None,
         hints: vec![0; joints],
+        turns: vec![None; joints],
     };
     // a first bound from every pair at a few moments, then the pairs nearest first
     let samples = sample_times(&rates, tiles);
+    // every joint's turn at every sample, and each pair's pose built along the chain from
+    // tile `i` (the products `pose` forms, in its order: the same numbers, n^2 instead of
+    // n^3 compositions)
+    let turns: Vec<Vec<Rigid>> = samples
+        .iter()
+        .map(|&t| (0..joints).map(|k| turn_of(walk.angle(k, t))).collect())
+        .collect();
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    let mut row: Vec<f64> = Vec::new();
     for i in 0..tiles {
+        // row[(j - i) * samples + s]: the distance of tiles i and j at sample s
+        row.clear();
+        row.resize((tiles - i) * samples.len(), f64::INFINITY);
+        for (s, turns) in turns.iter().enumerate() {
+            let mut at = Rigid::IDENTITY;
+            for j in i + 1..tiles {
+                at = at.then(&turns[j - 1]);
+                if j >= i + 2 {
+                    row[(j - i) * samples.len() + s] = walk.outline.signed_distance(&at);
+                }
+            }
+        }
         for j in i + 2..tiles {
-            let near = samples
-                .iter()
-                .map(|&t| walk.evaluate(i, j, t))
-                .fold(f64::INFINITY, f64::min);
+            let mut near = f64::INFINITY;
+            for (s, &t) in samples.iter().enumerate() {
+                let d = row[(j - i) * samples.len() + s];
+                walk.record(i, j, t, d);
+                near = near.min(d);
+            }
             pairs.push((near, i, j));
         }
     }
@@ -193,12 +216,14 @@ struct PairWalk<'a> {
     track_of: &'a [Option<&'a JointTrack>],
     rates: &'a Rates,
     precision: f64,
-    octagon: Octagon,
+    outline: Outline,
     circumradius: f64,
     work: usize,
     best: Option<Closest>,
     /// Each joint's chord hint ([`JointTrack::chord_at`]).
     hints: Vec<usize>,
+    /// Each joint's last angle and turn ([`PairWalk::turn`]).
+    turns: Vec<Option<(f64, Rigid)>>,
 }
 
 impl PairWalk<'_> {
@@ -210,21 +235,40 @@ impl PairWalk<'_> {
         }
     }
 
+    /// Joint `k`'s turn at angle `a` ([`turn_of`]), kept for the next call: most joints
+    /// hold their angle over a pair's walk.
+    fn turn(&mut self, k: usize, a: f64) -> Rigid {
+        match self.turns[k] {
+            Some((b, r)) if b.to_bits() == a.to_bits() => r,
+            _ => {
+                let r = turn_of(a);
+                self.turns[k] = Some((a, r));
+                r
+            }
+        }
+    }
+
     /// Tile `j`'s pose in tile `i`'s frame at `t`.
     fn pose(&mut self, i: usize, j: usize, t: f64) -> Rigid {
         let mut at = Rigid::IDENTITY;
         for k in i..j {
             let a = self.angle(k, t);
-            at = at.then(&turn_of(a));
+            at = at.then(&self.turn(k, a));
         }
         at
     }
 
     /// The signed distance of tiles `i` and `j` at `t`, tile widths; the best updated.
     fn evaluate(&mut self, i: usize, j: usize, t: f64) -> f64 {
-        self.work += 1;
         let pose = self.pose(i, j, t);
-        let d = signed_distance(&self.octagon, &pose);
+        let d = self.outline.signed_distance(&pose);
+        self.record(i, j, t, d);
+        d
+    }
+
+    /// Counts one evaluation of tiles `i` and `j` at `t`, `d` apart; the best updated.
+    fn record(&mut self, i: usize, j: usize, t: f64, d: f64) {
+        self.work += 1;
         if self.best.is_none_or(|b| d < b.distance) {
             let joint = self.front(i, j, t);
             self.best = Some(Closest {
@@ -234,7 +278,6 @@ impl PairWalk<'_> {
                 joint,
             });
         }
-        d
     }
 
     /// The fold front between tiles `i` and `j` at `t`.
@@ -331,46 +374,76 @@ const OVERLAP_PRECISION: f64 = 0.01;
 /// The most buckets one step of a pair may span.
 const MAX_WIDEN: usize = 256;
 
-/// The signed distance between the unit octagon at the origin and the one at `pose`: the
-/// gap when apart, minus the overlap depth (the least translation that parts them) when
-/// they overlap.
-fn signed_distance(octagon: &Octagon, pose: &Rigid) -> f64 {
-    let a: [Point; 8] = octagon.vertices().map(|(x, y)| Point::new(x, y));
-    let b: [Point; 8] = a.map(|p| pose.apply(p));
-    // separating axes: the face normals of both
-    let mut sep = f64::NEG_INFINITY;
-    for poly in [&a, &b] {
-        for e in 0..8 {
-            let (p, q) = (poly[e], poly[(e + 1) % 8]);
-            let n = kurbo::Vec2::new(q.y - p.y, p.x - q.x).normalize();
-            let (mut a0, mut a1) = (f64::INFINITY, f64::NEG_INFINITY);
-            let (mut b0, mut b1) = (f64::INFINITY, f64::NEG_INFINITY);
-            for v in &a {
-                let x = v.to_vec2().dot(n);
-                a0 = a0.min(x);
-                a1 = a1.max(x);
-            }
-            for v in &b {
-                let x = v.to_vec2().dot(n);
-                b0 = b0.min(x);
-                b1 = b1.max(x);
-            }
-            sep = sep.max((b0 - a1).max(a0 - b1));
+/// The unit octagon at the origin: its vertices and circumradius, computed once.
+struct Outline {
+    vertices: [Point; 8],
+    circumradius: f64,
+}
+
+impl Outline {
+    fn unit() -> Outline {
+        let o = Octagon::new(1.0);
+        Outline {
+            vertices: o.vertices().map(|(x, y)| Point::new(x, y)),
+            circumradius: o.circumradius(),
         }
     }
-    if sep <= 0.0 {
-        return sep;
-    }
-    // apart: the nearest vertex of either to an edge of the other
-    let mut d = f64::INFINITY;
-    for (p, q) in [(&a, &b), (&b, &a)] {
-        for v in p.iter() {
-            for e in 0..8 {
-                d = d.min(segment_distance(*v, q[e], q[(e + 1) % 8]));
+
+    /// The signed distance between the unit octagon at the origin and the one at `pose`:
+    /// the gap when apart, minus the overlap depth (the least translation that parts them)
+    /// when they overlap.
+    ///
+    /// Two shortcuts leave the result bit for bit what the full computation gives: octagons
+    /// whose centres are more than two circumradii apart (with a relative margin of 1e-9)
+    /// are apart, so the separating axes are skipped; and a vertex farther than the nearest
+    /// distance found so far (plus 1e-9) from the other octagon's circumscribed circle is
+    /// not measured against its edges, since none of them can be nearer.
+    fn signed_distance(&self, pose: &Rigid) -> f64 {
+        let a = &self.vertices;
+        let b: [Point; 8] = a.map(|p| pose.apply(p));
+        let r = self.circumradius;
+        let cb = pose.apply(Point::ORIGIN);
+        let apart = cb.to_vec2().hypot() > 2.0 * r * (1.0 + 1e-9);
+        if !apart {
+            // separating axes: the face normals of both
+            let mut sep = f64::NEG_INFINITY;
+            for poly in [a, &b] {
+                for e in 0..8 {
+                    let (p, q) = (poly[e], poly[(e + 1) % 8]);
+                    let n = kurbo::Vec2::new(q.y - p.y, p.x - q.x).normalize();
+                    let (mut a0, mut a1) = (f64::INFINITY, f64::NEG_INFINITY);
+                    let (mut b0, mut b1) = (f64::INFINITY, f64::NEG_INFINITY);
+                    for v in a {
+                        let x = v.to_vec2().dot(n);
+                        a0 = a0.min(x);
+                        a1 = a1.max(x);
+                    }
+                    for v in &b {
+                        let x = v.to_vec2().dot(n);
+                        b0 = b0.min(x);
+                        b1 = b1.max(x);
+                    }
+                    sep = sep.max((b0 - a1).max(a0 - b1));
+                }
+            }
+            if sep <= 0.0 {
+                return sep;
             }
         }
+        // apart: the nearest vertex of either to an edge of the other
+        let mut d = f64::INFINITY;
+        for (p, q, centre) in [(a, &b, cb), (&b, a, Point::ORIGIN)] {
+            for v in p.iter() {
+                if (*v - centre).hypot() - r > d + 1e-9 {
+                    continue;
+                }
+                for e in 0..8 {
+                    d = d.min(segment_distance(*v, q[e], q[(e + 1) % 8]));
+                }
+            }
+        }
+        d
     }
-    d
 }
 
 fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
@@ -390,7 +463,6 @@ mod tests {
 
     #[test]
     fn distances_of_two_octagons() {
-        let o = Octagon::new(1.0);
         let at = |x: f64, y: f64, _a: f64| shift(x, y);
         fn shift(x: f64, y: f64) -> Rigid {
             // a translation as the composition of two half turns
@@ -398,13 +470,13 @@ mod tests {
                 .then(&Rigid::rotation_about(Point::ORIGIN, std::f64::consts::PI))
         }
         // face to face: touching at 1, apart by 0.25 at 1.25, overlapping by 0.25 at 0.75
-        assert!(signed_distance(&o, &at(1.0, 0.0, 0.0)).abs() < 1e-12);
-        assert!((signed_distance(&o, &at(1.25, 0.0, 0.0)) - 0.25).abs() < 1e-12);
-        assert!((signed_distance(&o, &at(0.75, 0.0, 0.0)) + 0.25).abs() < 1e-12);
+        assert!(Outline::unit().signed_distance(&at(1.0, 0.0, 0.0)).abs() < 1e-12);
+        assert!((Outline::unit().signed_distance(&at(1.25, 0.0, 0.0)) - 0.25).abs() < 1e-12);
+        assert!((Outline::unit().signed_distance(&at(0.75, 0.0, 0.0)) + 0.25).abs() < 1e-12);
         // diagonal faces: the 45 degree face's distance along the diagonal
         // along the diagonal the 45 degree faces meet at a centre distance of 1
         let r = 1.0 / std::f64::consts::SQRT_2;
-        let d = signed_distance(&o, &at(r + 0.1, r + 0.1, 0.0));
+        let d = Outline::unit().signed_distance(&at(r + 0.1, r + 0.1, 0.0));
         assert!((d - 0.1 * std::f64::consts::SQRT_2).abs() < 1e-12, "{d}");
     }
 
@@ -473,7 +545,6 @@ mod tests {
                 t
             });
             let mut sampled = f64::INFINITY;
-            let o = Octagon::new(1.0);
             for q in 0..=2000 {
                 let t = rates.t0 + rates.span * q as f64 / 2000.0;
                 let angles = s.angles_at(n - 1, t);
@@ -482,7 +553,7 @@ mod tests {
                     for j in i + 1..n {
                         at = at.then(&turn_of(angles[j - 1]));
                         if j >= i + 2 {
-                            sampled = sampled.min(signed_distance(&o, &at));
+                            sampled = sampled.min(Outline::unit().signed_distance(&at));
                         }
                     }
                 }
