@@ -140,6 +140,9 @@ struct Rates {
     width: f64,
     /// `fastest[k][b]`: joint `k`'s largest `|rate|` over the chords meeting bucket `b`.
     fastest: Vec<Vec<f64>>,
+    /// `active[k][b]`: the first bucket from `b` on in which joint `k` turns (`BUCKETS`
+    /// when none does), so a step passes a stretch of rest in one look.
+    active: Vec<Vec<u32>>,
     /// Each joint's jumps (a repeated time with another angle), sorted.
     jumps: Vec<Vec<f64>>,
 }
@@ -157,6 +160,7 @@ impl Rates {
         let span = t1 - t0;
         let width = span / BUCKETS as f64;
         let mut fastest = vec![Vec::new(); track_of.len()];
+        let mut active = vec![Vec::new(); track_of.len()];
         let mut jumps = vec![Vec::new(); track_of.len()];
         for (k, tr) in track_of.iter().enumerate() {
             let Some(tr) = tr else { continue };
@@ -177,7 +181,18 @@ impl Rates {
                     *v = v.max(rate);
                 }
             }
+            let mut next = vec![BUCKETS as u32; BUCKETS];
+            for b in (0..BUCKETS).rev() {
+                next[b] = if f[b] > 0.0 {
+                    b as u32
+                } else if b + 1 < BUCKETS {
+                    next[b + 1]
+                } else {
+                    BUCKETS as u32
+                };
+            }
             fastest[k] = f;
+            active[k] = next;
             jumps[k].dedup();
         }
         Rates {
@@ -185,6 +200,7 @@ impl Rates {
             span,
             width,
             fastest,
+            active,
             jumps,
         }
     }
@@ -248,22 +264,39 @@ impl PairWalk<'_> {
         }
     }
 
-    /// Tile `j`'s pose in tile `i`'s frame at `t`.
-    fn pose(&mut self, i: usize, j: usize, t: f64) -> Rigid {
+    /// Tile `j`'s pose in tile `i`'s frame at `t`, and in `centres` the centre of tile `k`
+    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`).
+    fn pose(
+        &mut self,
+        (i, j, t): (usize, usize, f64),
+        moving: &[usize],
+        centres: &mut Vec<Point>,
+    ) -> Rigid {
+        centres.clear();
+        let mut next = moving.iter().peekable();
         let mut at = Rigid::IDENTITY;
         for k in i..j {
+            if next.next_if_eq(&&k).is_some() {
+                centres.push(at.apply(Point::ORIGIN));
+            }
             let a = self.angle(k, t);
             at = at.then(&self.turn(k, a));
         }
         at
     }
 
-    /// The signed distance of tiles `i` and `j` at `t`, tile widths; the best updated.
-    fn evaluate(&mut self, i: usize, j: usize, t: f64) -> f64 {
-        let pose = self.pose(i, j, t);
+    /// The signed distance of tiles `i` and `j` at `t`, tile widths, the best updated; the
+    /// centres of `moving`'s tiles in `centres` ([`PairWalk::pose`]); tile `j`'s centre.
+    fn evaluate(
+        &mut self,
+        (i, j, t): (usize, usize, f64),
+        moving: &[usize],
+        centres: &mut Vec<Point>,
+    ) -> (f64, Point) {
+        let pose = self.pose((i, j, t), moving, centres);
         let d = self.outline.signed_distance(&pose);
         self.record(i, j, t, d);
-        d
+        (d, pose.apply(Point::ORIGIN))
     }
 
     /// Counts one evaluation of tiles `i` and `j` at `t`, `d` apart; the best updated.
@@ -297,11 +330,22 @@ impl PairWalk<'_> {
     }
 
     /// Follows pair `(i, j)` over the schedule; `false` when the work budget ran out.
+    ///
+    /// The step from `t` is as long as tile `j` cannot have moved `room` towards tile `i`.
+    /// Two bounds on its speed hold, and the longer step either allows is taken: the chain's
+    /// (joint `k` turning at `w_k` moves tile `j`'s points at most `w_k 2 R (j - k)`), and
+    /// the pose's: a point of tile `j` is at most `rho_k = |c_j - c_k| + 2 R` from joint
+    /// `k`'s hinge now (`c` the centres, the hinge a vertex of tile `k`), and `rho_k` grows
+    /// no faster than the joints beyond `k` move tile `j` (`g_k = sum_{m > k} w_m 2 R (j -
+    /// m)`), so over a step `s` the tile moves at most `B s + A s^2 / 2` with `B = sum w_k
+    /// rho_k` and `A = sum w_k g_k`. The pose's bound is the tight one for tiles far apart
+    /// along the chain and near in the plane, the pairs that cost most steps.
     fn follow(&mut self, i: usize, j: usize) -> bool {
         let moving: Vec<usize> = (i..j).filter(|&k| self.track_of[k].is_some()).collect();
         let (t0, t_end) = (self.rates.t0, self.rates.t0 + self.rates.span);
+        let mut centres: Vec<Point> = Vec::with_capacity(moving.len());
         if moving.is_empty() {
-            self.evaluate(i, j, t0);
+            self.evaluate((i, j, t0), &moving, &mut centres);
             return true;
         }
         // each moving joint's lever: 2 R (j - k)
@@ -315,10 +359,16 @@ impl PairWalk<'_> {
             if self.work > MAX_WORK {
                 return false;
             }
-            let d = self.evaluate(i, j, t);
+            let (d, cj) = self.evaluate((i, j, t), &moving, &mut centres);
             if t >= t_end {
                 return true;
             }
+            // each moving joint's reach to tile j now: rho_k, never above its lever
+            let rho: Vec<f64> = centres
+                .iter()
+                .zip(&lever)
+                .map(|(c, &l)| ((cj - *c).hypot() + 2.0 * self.circumradius).min(l))
+                .collect();
             let m = self.best.map_or(d, |b| b.distance);
             // an overlap is measured to a hundredth of its depth besides the precision (a
             // tile passing through another keeps a flat depth that would cost a step per
@@ -339,24 +389,31 @@ impl PairWalk<'_> {
             let mut bb = b;
             let next = loop {
                 self.work += 1;
-                let mut speed = 0.0;
-                for (q, &k) in moving.iter().enumerate() {
+                let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
+                for (q, &k) in moving.iter().enumerate().rev() {
                     fastest[q] = fastest[q].max(self.rates.fastest[k][bb]);
                     speed += fastest[q] * lever[q];
+                    linear += fastest[q] * rho[q];
+                    growth += fastest[q] * beyond;
+                    beyond += fastest[q] * lever[q];
                 }
                 let limit = self.rates.bucket_end(bb).min(jump);
-                let reach = if speed > 0.0 {
-                    t + room / speed
-                } else {
-                    f64::INFINITY
-                };
+                let step = step_within(room, speed, linear, growth);
+                let reach = t + step;
                 let settled =
                     reach < limit || limit >= jump || bb + 1 >= BUCKETS || bb - b >= MAX_WIDEN;
                 // (a bucket that ends at t by rounding is passed)
                 if settled && limit > t {
                     break reach.min(limit);
                 }
-                bb += 1;
+                // the buckets up to the next in which a joint between the tiles turns add
+                // nothing to the bound: pass them at once
+                let idle = moving
+                    .iter()
+                    .map(|&k| self.rates.active[k].get(bb + 1).map_or(BUCKETS, |&a| a as usize))
+                    .min()
+                    .unwrap_or(BUCKETS);
+                bb = (bb + 1).max(idle.saturating_sub(1)).min(BUCKETS - 1);
             };
             // progress whatever the rounding
             t = if next > t {
@@ -366,6 +423,24 @@ impl PairWalk<'_> {
             };
         }
     }
+}
+
+/// The longest step over which a tile moving at most `speed`, or at most `linear + growth
+/// s` after `s`, cannot cover `room` (infinite when it does not move).
+fn step_within(room: f64, speed: f64, linear: f64, growth: f64) -> f64 {
+    let chain = if speed > 0.0 {
+        room / speed
+    } else {
+        f64::INFINITY
+    };
+    // linear s + growth s^2 / 2 = room, in the form without cancellation
+    let root = linear * linear + 2.0 * growth * room;
+    let pose = if linear > 0.0 || growth > 0.0 {
+        2.0 * room / (linear + root.max(0.0).sqrt())
+    } else {
+        f64::INFINITY
+    };
+    chain.max(pose)
 }
 
 /// The precision of an overlap's depth, besides the absolute one: a hundredth of it.
