@@ -10,9 +10,8 @@
 mod browser;
 
 use std::path::Path;
-use std::process::Command;
 
-use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
+use browser::{attr, attributes, browser, chromium, serpentine, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
@@ -21,6 +20,9 @@ use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
+
+mod common;
+use common::{run, stderr, summary};
 
 /// The page's background colour.
 const BACKGROUND: [u8; 3] = [0xfb, 0xfb, 0xf8];
@@ -32,13 +34,6 @@ fn engine_run(word: &str) -> Timeline {
     simulate(&chain, &TileDesigns::default(), &opts.0, &opts.1)
         .unwrap()
         .0
-}
-
-fn fold_run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 /// The page's `<body>` attributes at `hash`.
@@ -86,10 +81,6 @@ fn pixel(shot: &(usize, usize, Vec<u8>), (x, y): (usize, usize)) -> [u8; 3] {
     [shot.2[i], shot.2[i + 1], shot.2[i + 2]]
 }
 
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
-}
-
 fn poses_of(attrs: &[(String, String)], name: &str) -> Vec<Pose> {
     attr(attrs, name)
         .split(';')
@@ -127,8 +118,11 @@ fn assert_poses_match(page: &[Pose], lib: &[Pose], w: f64, what: &str) {
 fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     let Some(exe) = browser() else { return };
     let d = tmp("start-end");
-    let o = fold_run(&["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        "fold-run",
+        &["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let html = std::fs::read_to_string(&page).unwrap();
     // self-contained: nothing to fetch
@@ -162,7 +156,10 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
 fn screenshots_at_the_start_and_the_end_differ_and_show_the_chain() {
     let Some(exe) = browser() else { return };
     let d = tmp("shots");
-    let o = fold_run(&["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"]);
+    let o = run(
+        "fold-run",
+        &["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"],
+    );
     assert!(o.status.success());
     let page = d.join("index.html");
     let tl = engine_run("SSLLSS");
@@ -202,21 +199,20 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     // curved paths (L and R folds), a collision and a fold angle law to follow
     let word = "LSLLSR";
     // the library's default dynamics (overdamped) on both sides
-    let o = fold_run(&[
-        word,
-        "--compare",
-        "--dynamics",
-        "overdamped",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
-    assert!(
-        o.status.code().is_some(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+    let o = run(
+        "fold-run",
+        &[
+            word,
+            "--compare",
+            "--dynamics",
+            "overdamped",
+            "--out",
+            d.to_str().unwrap(),
+            "--frames",
+            "2",
+        ],
     );
+    assert!(o.status.code().is_some(), "{}", stderr(&o));
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
     let tl = engine_run(word);
@@ -261,15 +257,18 @@ fn the_collision_is_marked_at_its_time_and_place() {
     let d = tmp("collision");
     // overdamped, as the library's engine_run below: LSLLSR collides (the inertial folds of
     // fold-run's default pass)
-    let o = fold_run(&[
-        "LSLLSR",
-        "--dynamics",
-        "overdamped",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
+    let o = run(
+        "fold-run",
+        &[
+            "LSLLSR",
+            "--dynamics",
+            "overdamped",
+            "--out",
+            d.to_str().unwrap(),
+            "--frames",
+            "2",
+        ],
+    );
     assert_eq!(
         o.status.code(),
         Some(1),
@@ -311,15 +310,18 @@ fn the_collision_is_marked_at_its_time_and_place() {
 fn compare_shows_engine_and_reference_side_by_side() {
     let Some(exe) = browser() else { return };
     let d = tmp("compare");
-    let o = fold_run(&[
-        "SSLLSS",
-        "--compare",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        "fold-run",
+        &[
+            "SSLLSS",
+            "--compare",
+            "--out",
+            d.to_str().unwrap(),
+            "--frames",
+            "2",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     for run in ["engine", "reference"] {
         assert!(d.join(run).join("summary.json").is_file(), "{run}");
         assert!(d.join(run).join("index.html").is_file(), "{run}");
@@ -373,15 +375,18 @@ fn screen_box(view: &str, poses: &[Pose], w: f64) -> [f64; 4] {
 /// README's first command) into `d`.
 fn key_run(d: &Path) -> std::process::Output {
     let key = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/key.svg");
-    fold_run(&[
-        key.to_str().unwrap(),
-        "--tiles",
-        "171",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ])
+    run(
+        "fold-run",
+        &[
+            key.to_str().unwrap(),
+            "--tiles",
+            "171",
+            "--out",
+            d.to_str().unwrap(),
+            "--frames",
+            "2",
+        ],
+    )
 }
 
 /// A fixed key chain (the 167-tile plan of the cell planner, rows along the shaft, one
@@ -394,7 +399,7 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
     let Some(exe) = browser() else { return };
     let d = tmp("key");
     let o = key_run(&d);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let s = summary(&d);
     let folds = s["folds"].as_array().unwrap().len();
@@ -468,8 +473,11 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
 fn the_camera_follows_the_fold_without_jumps() {
     let Some(exe) = browser() else { return };
     let d = tmp("follow");
-    let o = fold_run(&[KEY_CHAIN, "--out", d.to_str().unwrap(), "--frames", "2"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        "fold-run",
+        &[KEY_CHAIN, "--out", d.to_str().unwrap(), "--frames", "2"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let duration = summary(&d)["duration_s"].as_f64().unwrap();
     // the view at 301 times over the run, as a paused page shows it at each
@@ -515,34 +523,17 @@ fn the_camera_follows_the_fold_without_jumps() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-/// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
-/// fold word (`S*k L L S*k R R ...`), as `cli/benches/viewer.rs` makes them.
-fn serpentine(tiles: usize, row: usize) -> String {
-    let mut parts = Vec::new();
-    let (mut letters, mut left) = (0, true);
-    while letters + 1 < tiles {
-        let straight = (row - 1).min(tiles - 1 - letters);
-        parts.push(format!("S*{straight}"));
-        letters += straight;
-        for _ in 0..2 {
-            if letters + 1 < tiles {
-                parts.push(if left { "L" } else { "R" }.to_string());
-                letters += 1;
-            }
-        }
-        left = !left;
-    }
-    parts.join(" ")
-}
-
 #[test]
 fn a_long_serpentine_is_rasterised_framed_and_timed() {
     let Some(exe) = browser() else { return };
     let d = tmp("serpentine");
     // 3,000 tiles: past the 1,500 in view above which the page rasterises, quick to run
     let word = serpentine(3_000, 50);
-    let o = fold_run(&[&word, "--out", d.to_str().unwrap(), "--frames", "1"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        "fold-run",
+        &[&word, "--out", d.to_str().unwrap(), "--frames", "1"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let dom = chromium(
         &exe,
