@@ -6,7 +6,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain::{Fold, FoldWord};
 
 mod common;
-use common::{assert_exit, run, stderr, stdout};
+use common::{absent, assert_exit, run, stderr, stdout};
 
 fn check(args: &[&str]) -> Output {
     run("fold-check", args)
@@ -48,7 +48,7 @@ fn inhibited_tile_list_exits_1() {
 
 #[test]
 fn chain_from_a_file_and_json() {
-    let dir = std::env::temp_dir().join(format!("foldchain-check-cli-{}", std::process::id()));
+    let dir = absent("cli");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("u-turn.txt");
     std::fs::write(&f, "# a tight U-turn\nSS*4 SL LL LS SS*4\n").unwrap();
@@ -73,7 +73,7 @@ fn bad_input_exits_2_with_a_clear_message() {
         assert!(stderr(&o).contains(needle), "{arg:?}: {}", stderr(&o));
         assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
     }
-    let dir = std::env::temp_dir().join(format!("foldchain-check-bad-{}", std::process::id()));
+    let dir = absent("bad");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("binary.txt");
     std::fs::write(&f, [0u8, 159, 146, 150]).unwrap();
@@ -202,7 +202,7 @@ fn random_chain_numerator(tiles: u32) -> u64 {
 
 #[test]
 fn merge_adds_up_shard_files_and_refuses_a_missing_or_doubled_one() {
-    let dir = std::env::temp_dir().join(format!("foldchain-merge-cli-{}", std::process::id()));
+    let dir = absent("merge");
     std::fs::create_dir_all(&dir).unwrap();
     let mut files = Vec::new();
     for k in 1..=3 {

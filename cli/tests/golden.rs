@@ -12,7 +12,7 @@ use std::process::Command;
 use serde_json::Value;
 
 mod common;
-use common::root;
+use common::{absent, root};
 
 /// Relative tolerance on numbers: far above the rounding a reordered sum may change, far
 /// below any change of model or algorithm.
@@ -228,8 +228,7 @@ fn runs_are_unchanged() {
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn validation_is_unchanged() {
-    let dir =
-        std::env::temp_dir().join(format!("foldchain-golden-validate-{}", std::process::id()));
+    let dir = absent("validate");
     let (code, out) = run(
         env!("CARGO_BIN_EXE_fold-validate"),
         &["--quick", "--json", "--out", dir.to_str().unwrap()],

@@ -7,7 +7,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
 mod common;
-use common::{run, shape, stderr};
+use common::{absent, run, shape, stderr};
 
 /// Word and tile list agree and the chain folds without collision (sequential sweeps).
 fn assert_sound(p: &Plan) {
@@ -22,7 +22,7 @@ const TWO_DISCS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" h
 
 #[test]
 fn cli_prints_tile_list_and_summary_and_writes_files() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-cli-{}", std::process::id()));
+    let dir = absent("cli");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("plan.json");
     let pv = dir.join("preview.svg");
@@ -68,7 +68,7 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
 
 #[test]
 fn bad_files_exit_2_naming_the_file() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-bad-{}", std::process::id()));
+    let dir = absent("bad");
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
         ("broken.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect", "not a readable SVG"),
@@ -101,7 +101,7 @@ fn bad_files_exit_2_naming_the_file() {
 
 #[test]
 fn cli_exits_1_naming_why() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-cells-{}", std::process::id()));
+    let dir = absent("cells");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("two.svg");
     std::fs::write(&f, TWO_DISCS).unwrap();

@@ -14,7 +14,7 @@ use foldchain::{Design, Tile};
 use foldchain_print::{to_3mf, Item, Object, PartOptions, TilePart};
 
 mod common;
-use common::{run, stderr, stdout};
+use common::{absent, run, stderr, stdout};
 
 /// The slicer, or `None` (with a note) when there is none outside CI.
 fn slicer() -> Option<PathBuf> {
@@ -74,7 +74,7 @@ fn comment<'a>(gcode: &'a str, key: &str) -> &'a str {
 #[test]
 fn prusaslicer_slices_every_tile_type_and_a_plate() {
     let Some(exe) = slicer() else { return };
-    let dir = std::env::temp_dir().join(format!("fold-print-slicer-{}", std::process::id()));
+    let dir = absent("slicer");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let opts = PartOptions::default();

@@ -22,7 +22,7 @@ use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
 mod common;
-use common::{run, stderr, summary};
+use common::{run, shape, stderr, summary};
 
 /// The page's background colour.
 const BACKGROUND: [u8; 3] = [0xfb, 0xfb, 0xf8];
@@ -36,13 +36,26 @@ fn engine_run(word: &str) -> Timeline {
         .0
 }
 
-/// The page's `<body>` attributes at `hash`.
-fn body(exe: &Path, page: &Path, hash: &str) -> Vec<(String, String)> {
-    let dom = chromium(
+/// `fold-run` on `chain` with `extra` options, writing its files and page into `d` (two
+/// frames).
+fn fold_run_page(chain: &str, d: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![chain, "--out", d.to_str().unwrap(), "--frames", "2"];
+    args.extend(extra);
+    run("fold-run", &args)
+}
+
+/// The page at `hash` as Chromium shows it after 3 s (virtual time): its DOM.
+fn dump_dom(exe: &Path, page: &Path, hash: &str) -> String {
+    chromium(
         exe,
         &url(page, hash),
         &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    )
+}
+
+/// The page's `<body>` attributes at `hash`.
+fn body(exe: &Path, page: &Path, hash: &str) -> Vec<(String, String)> {
+    let dom = dump_dom(exe, page, hash);
     attributes(&dom, "body", "data-time")
 }
 
@@ -118,10 +131,7 @@ fn assert_poses_match(page: &[Pose], lib: &[Pose], w: f64, what: &str) {
 fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     let Some(exe) = browser() else { return };
     let d = tmp("start-end");
-    let o = run(
-        "fold-run",
-        &["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"],
-    );
+    let o = fold_run_page("SSLLSS", &d, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let html = std::fs::read_to_string(&page).unwrap();
@@ -156,10 +166,7 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
 fn screenshots_at_the_start_and_the_end_differ_and_show_the_chain() {
     let Some(exe) = browser() else { return };
     let d = tmp("shots");
-    let o = run(
-        "fold-run",
-        &["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"],
-    );
+    let o = fold_run_page("SSLLSS", &d, &[]);
     assert!(o.status.success());
     let page = d.join("index.html");
     let tl = engine_run("SSLLSS");
@@ -199,19 +206,7 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     // curved paths (L and R folds), a collision and a fold angle law to follow
     let word = "LSLLSR";
     // the library's default dynamics (overdamped) on both sides
-    let o = run(
-        "fold-run",
-        &[
-            word,
-            "--compare",
-            "--dynamics",
-            "overdamped",
-            "--out",
-            d.to_str().unwrap(),
-            "--frames",
-            "2",
-        ],
-    );
+    let o = fold_run_page(word, &d, &["--compare", "--dynamics", "overdamped"]);
     assert!(o.status.code().is_some(), "{}", stderr(&o));
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
@@ -232,11 +227,7 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
         .collect();
     for (run, times) in [("engine", &engine_times), ("reference", &ref_times)] {
         let probe: Vec<String> = times.iter().map(|t| t.to_string()).collect();
-        let dom = chromium(
-            &exe,
-            &url(&page, &format!("t=0&probe={}", probe.join(","))),
-            &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-        );
+        let dom = dump_dom(&exe, &page, &format!("t=0&probe={}", probe.join(",")));
         let panel = attributes(&dom, "section", &format!("data-run=\"{run}\""));
         for (i, &t) in times.iter().enumerate() {
             let lib = if run == "engine" {
@@ -257,18 +248,7 @@ fn the_collision_is_marked_at_its_time_and_place() {
     let d = tmp("collision");
     // overdamped, as the library's engine_run below: LSLLSR collides (the inertial folds of
     // fold-run's default pass)
-    let o = run(
-        "fold-run",
-        &[
-            "LSLLSR",
-            "--dynamics",
-            "overdamped",
-            "--out",
-            d.to_str().unwrap(),
-            "--frames",
-            "2",
-        ],
-    );
+    let o = fold_run_page("LSLLSR", &d, &["--dynamics", "overdamped"]);
     assert_eq!(
         o.status.code(),
         Some(1),
@@ -310,27 +290,13 @@ fn the_collision_is_marked_at_its_time_and_place() {
 fn compare_shows_engine_and_reference_side_by_side() {
     let Some(exe) = browser() else { return };
     let d = tmp("compare");
-    let o = run(
-        "fold-run",
-        &[
-            "SSLLSS",
-            "--compare",
-            "--out",
-            d.to_str().unwrap(),
-            "--frames",
-            "2",
-        ],
-    );
+    let o = fold_run_page("SSLLSS", &d, &["--compare"]);
     assert!(o.status.success(), "{}", stderr(&o));
     for run in ["engine", "reference"] {
         assert!(d.join(run).join("summary.json").is_file(), "{run}");
         assert!(d.join(run).join("index.html").is_file(), "{run}");
     }
-    let dom = chromium(
-        &exe,
-        &url(&d.join("index.html"), "t=end"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &d.join("index.html"), "t=end");
     for run in ["engine", "reference"] {
         let panel = attributes(&dom, "section", &format!("data-run=\"{run}\""));
         let folds = summary(&d.join(run))["folds"].as_array().unwrap().len();
@@ -374,19 +340,7 @@ fn screen_box(view: &str, poses: &[Pose], w: f64) -> [f64; 4] {
 /// The key planned from the thesis' shape (`fold-run shapes/key.svg --tiles 171`, the
 /// README's first command) into `d`.
 fn key_run(d: &Path) -> std::process::Output {
-    let key = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/key.svg");
-    run(
-        "fold-run",
-        &[
-            key.to_str().unwrap(),
-            "--tiles",
-            "171",
-            "--out",
-            d.to_str().unwrap(),
-            "--frames",
-            "2",
-        ],
-    )
+    fold_run_page(shape("key.svg").to_str().unwrap(), d, &["--tiles", "171"])
 }
 
 /// A fixed key chain (the 167-tile plan of the cell planner, rows along the shaft, one
@@ -403,11 +357,7 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
     let page = d.join("index.html");
     let s = summary(&d);
     let folds = s["folds"].as_array().unwrap().len();
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&poses=1"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, "t=end&poses=1");
     let at_end = attributes(&dom, "body", "data-time");
     let panel = attributes(&dom, "section", "data-run=");
     let poses = poses_of(&panel, "data-poses");
@@ -428,11 +378,7 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
     assert!(fill >= 0.5, "the key fills {fill:.2} of the view");
     assert_eq!(attr(&at_end, "data-follow"), "1");
     // fitting the whole run instead (follow=0), the speck the issue saw: the test can fail
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&follow=0"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, "t=end&follow=0");
     let whole = attributes(&dom, "body", "data-time");
     let b0 = screen_box(attr(&whole, "data-view"), &poses, w);
     let fill0 = ((b0[2] - b0[0]) / width).max((b0[3] - b0[1]) / height);
@@ -473,10 +419,7 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
 fn the_camera_follows_the_fold_without_jumps() {
     let Some(exe) = browser() else { return };
     let d = tmp("follow");
-    let o = run(
-        "fold-run",
-        &[KEY_CHAIN, "--out", d.to_str().unwrap(), "--frames", "2"],
-    );
+    let o = fold_run_page(KEY_CHAIN, &d, &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let duration = summary(&d)["duration_s"].as_f64().unwrap();
@@ -485,11 +428,7 @@ fn the_camera_follows_the_fold_without_jumps() {
     let times: Vec<String> = (0..=steps)
         .map(|i| (duration * i as f64 / steps as f64).to_string())
         .collect();
-    let dom = chromium(
-        &exe,
-        &url(&page, &format!("t=0&views={}", times.join(","))),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, &format!("t=0&views={}", times.join(",")));
     let b = attributes(&dom, "body", "data-time");
     let [_, _, width, _] = panel_rect(&b);
     let views: Vec<Vec<f64>> = (1..=steps + 1)
@@ -535,11 +474,7 @@ fn a_long_serpentine_is_rasterised_framed_and_timed() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&poses=1"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, "t=end&poses=1");
     let b = attributes(&dom, "body", "data-time");
     assert_eq!(attr(&b, "data-renderer"), "raster");
     // the drawing times are reported (their size is a benchmark's business: BENCHMARKS.md)
