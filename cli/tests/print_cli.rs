@@ -210,10 +210,9 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
 /// plans itself, the same warnings as fold-plan's plan of it; for a plan file, its own.
 #[test]
 fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
-    let root = env!("CARGO_MANIFEST_DIR").to_string() + "/..";
-    let plan = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+    let plan = tool("fold-plan")
         .args(["shapes/key.svg", "--tiles", "300", "--json", "--quiet"])
-        .current_dir(&root)
+        .current_dir(root())
         .output()
         .unwrap();
     ok(&plan);
@@ -225,7 +224,7 @@ fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
         .iter()
         .map(|w| w.as_str().unwrap().to_string())
         .collect();
-    let dir = tmp("warnings");
+    let dir = absent("warnings");
     let out = dir.to_str().unwrap();
     for extra in [&[][..], &["--json"][..]] {
         let mut args = vec!["shapes/key.svg", "--tiles", "300", "--out", out, "--quiet"];
