@@ -1021,6 +1021,103 @@ mod tests {
         assert!(best.cost < 20.0, "{}", best.cost);
     }
 
+    /// A separate piece a third of a tile thick is a sliver (no tile fits in it): not a
+    /// part; a separate piece two tiles wide is one.
+    #[test]
+    fn a_sliver_is_not_a_separate_part() {
+        let square = Ring::rect(0.0, 0.0, 10.0, 10.0);
+        let sliver = Ring::rect(11.0, 2.0, 11.35, 9.0);
+        let block = Ring::rect(12.0, 2.0, 14.0, 9.0);
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square.clone(), sliver.clone()])).len(),
+            1
+        );
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square, sliver, block])).len(),
+            2
+        );
+    }
+
+    /// The run-based count of connected pieces agrees with a flood fill of the pixels, on
+    /// every box of a grid of boxes over a shape with a hole and a notch.
+    #[test]
+    fn pieces_counted_from_runs_agree_with_a_flood_fill() {
+        // holes wound the other way: a hole in the middle and a notch into the left edge
+        let reversed = |r: Ring| Ring {
+            points: r.points.into_iter().rev().collect(),
+        };
+        let shape = Shape::from_rings(vec![
+            Ring::rect(0.0, 0.0, 12.0, 10.0),
+            reversed(Ring::rect(4.0, 3.0, 8.0, 7.0)),
+            reversed(Ring::rect(-1.0, 4.0, 3.0, 5.0)),
+        ]);
+        let r = Raster::new(&shape);
+        let s = Search {
+            r: &r,
+            pitch: std::f64::consts::SQRT_2,
+            min: 2,
+            memo: HashMap::new(),
+            visited: 0,
+            components_memo: RefCell::new(HashMap::new()),
+        };
+        let min_px = (0.5 * r.per_tile() * r.per_tile()).max(1.0) as usize;
+        let flood = |b: PBox| {
+            let (w, h) = (b.x1 - b.x0, b.y1 - b.y0);
+            let mut seen = vec![false; w * h];
+            let mut count = 0;
+            for start in 0..w * h {
+                let at = |c: usize| r.inside[(b.y0 + c / w) * r.nx + b.x0 + c % w];
+                if seen[start] || !at(start) {
+                    continue;
+                }
+                seen[start] = true;
+                let mut stack = vec![start];
+                let mut size = 0;
+                while let Some(c) = stack.pop() {
+                    size += 1;
+                    let (i, j) = (c % w, c / w);
+                    let mut next = Vec::new();
+                    if i > 0 {
+                        next.push(c - 1);
+                    }
+                    if i + 1 < w {
+                        next.push(c + 1);
+                    }
+                    if j > 0 {
+                        next.push(c - w);
+                    }
+                    if j + 1 < h {
+                        next.push(c + w);
+                    }
+                    for n in next {
+                        if !seen[n] && at(n) {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+                if size >= min_px {
+                    count += 1;
+                }
+            }
+            count
+        };
+        let mut several = 0;
+        for x0 in (0..r.nx).step_by(5) {
+            for x1 in (x0 + 1..=r.nx).step_by(7) {
+                for y0 in (0..r.ny).step_by(5) {
+                    for y1 in (y0 + 1..=r.ny).step_by(7) {
+                        let b = PBox { x0, x1, y0, y1 };
+                        let n = s.count_components(b);
+                        assert_eq!(n, flood(b), "{b:?}");
+                        several += usize::from(n > 1);
+                    }
+                }
+            }
+        }
+        assert!(several > 0, "no box with several pieces was tried");
+    }
+
     /// A convex shape is one cell.
     #[test]
     fn a_square_is_one_cell() {
