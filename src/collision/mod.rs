@@ -61,8 +61,8 @@ pub struct CheckOptions {
     pub tolerance: f64,
     /// Check only the final shape, not the fold sweeps. Default `false`.
     pub final_only: bool,
-    /// The deepest overlap, mm, that a simulated run's check
-    /// ([`crate::simulate`], [`crate::check_reference`]) counts as touching: a graze,
+    /// The deepest overlap, mm, that a simulated run's check ([`crate::simulate`],
+    /// [`crate::reference::ReferenceRun::checked_summary`]) counts as touching: a graze,
     /// reported with its clearance ([`crate::timeline::Clearance`]) rather than as a
     /// collision. Default `0.01` (10 um). Not used by the sequential checks of words
     /// ([`check_word`], [`check_chain`]), which follow exact poses.
