@@ -204,3 +204,68 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
     assert!(!dir.join("parts.json").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A plan's warnings (a part left empty, a count off the request) are said by fold-print as
+/// fold-plan says them, on stderr (also with `--json`) and in parts.json: for a drawing it
+/// plans itself, the same warnings as fold-plan's plan of it; for a plan file, its own.
+#[test]
+fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
+    let plan = tool("fold-plan")
+        .args(["shapes/key.svg", "--tiles", "300", "--json", "--quiet"])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    ok(&plan);
+    let plan_err = String::from_utf8_lossy(&plan.stderr).into_owned();
+    let mut json: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
+    let warnings: Vec<String> = json["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap().to_string())
+        .collect();
+    let dir = absent("warnings");
+    let out = dir.to_str().unwrap();
+    for extra in [&[][..], &["--json"][..]] {
+        let mut args = vec!["shapes/key.svg", "--tiles", "300", "--out", out, "--quiet"];
+        args.extend_from_slice(extra);
+        let o = print(&args);
+        ok(&o);
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in &warnings {
+            assert!(
+                plan_err.contains(&format!("fold-plan: warning: {w}")),
+                "{plan_err}"
+            );
+            assert!(err.contains(&format!("fold-print: warning: {w}")), "{err}");
+        }
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("parts.json")).unwrap()).unwrap();
+        let listed = report
+            .get("plan_warnings")
+            .and_then(|w| w.as_array())
+            .map_or(0, Vec::len);
+        assert_eq!(listed, warnings.len(), "{report}");
+    }
+    // a plan file with a warning of its own
+    let said = "the plan has 9 tiles, 10.0% fewer than the 10 asked (tolerance 3.0%)";
+    json["warnings"] = serde_json::json!([said]);
+    std::fs::create_dir_all(&dir).unwrap();
+    let plan_file = dir.join("warned-plan.json");
+    std::fs::write(&plan_file, json.to_string()).unwrap();
+    let out2 = dir.join("out");
+    let o = print(&[
+        "--plan",
+        plan_file.to_str().unwrap(),
+        "--out",
+        out2.to_str().unwrap(),
+        "--quiet",
+    ]);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!("fold-print: warning: {said}")),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

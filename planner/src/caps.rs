@@ -28,6 +28,7 @@ use std::rc::Rc;
 
 use kurbo::{Rect, Vec2};
 
+use crate::empty::DeepLine;
 use crate::shape::Shape;
 
 /// One of the four axis directions of the axis frame.
@@ -109,6 +110,10 @@ const STEP_PRICE: f64 = 1.2;
 /// either side of it (see [`Search::best`]): the row programme then leaves a row out or
 /// lays one more than fits, about half a row's strip of misfit.
 const PARITY_PRICE: f64 = 0.5;
+/// Price of one unit of area (a tile width squared) of a cell that its rows leave to the
+/// next cell's first row but that row does not reach ([`Search::dropped`]): an area left
+/// empty, as the row programme prices a tile area left uncovered.
+const DROP_PRICE: f64 = 1.0;
 /// Price of a join that cannot be made.
 const NO_JOIN: f64 = 1e3;
 /// Price of one tile laid outside the shape to make a join (a round cell's last row ends
@@ -128,6 +133,80 @@ struct Raster {
     inside: Vec<bool>,
     /// The summed-area table of `inside` (see [`Raster::count`]).
     sat: Vec<u32>,
+    /// The runs (half-open column ranges) of inside pixels of every pixel row.
+    row_runs: Vec<Runs>,
+    /// The runs (half-open row ranges) of inside pixels of every pixel column.
+    col_runs: Vec<Runs>,
+}
+
+/// Drops the slivers from a raster (`inside`, `nx` by `ny` pixels of size `px` from `(x0,
+/// y0)`, of `shape` in unit tiles): a group of touching inside pixels at least half a tile
+/// in area (one that would count as a part of the shape) in which no pixel centre lies half
+/// a tile inside the outline ([`DeepLine`], the empty-part measure's own test) is a sliver
+/// narrower than a tile (a thin spit of a country's coast, the tip of a crescent) that the
+/// raster sees cut off from the rest. No tile fits in it, so no chain needs to reach it: it
+/// is neither a separate part nor a cell. Smaller groups are left as they are (the search
+/// ignores them).
+fn drop_slivers(shape: &Shape, inside: &mut [bool], nx: usize, ny: usize, o: (f64, f64, f64)) {
+    let (x0, y0, px) = o;
+    let min_px = (0.5 / (px * px)).max(1.0) as usize;
+    // label the groups (four-neighbour), with their sizes
+    let mut label = vec![u32::MAX; nx * ny];
+    let mut sizes: Vec<usize> = Vec::new();
+    let mut stack = Vec::new();
+    for s in 0..nx * ny {
+        if label[s] != u32::MAX || !inside[s] {
+            continue;
+        }
+        let l = sizes.len() as u32;
+        label[s] = l;
+        stack.push(s);
+        let mut size = 0;
+        while let Some(c) = stack.pop() {
+            size += 1;
+            let (i, j) = (c % nx, c / nx);
+            let mut visit = |k: usize| {
+                if label[k] == u32::MAX && inside[k] {
+                    label[k] = l;
+                    stack.push(k);
+                }
+            };
+            if i > 0 {
+                visit(c - 1);
+            }
+            if i + 1 < nx {
+                visit(c + 1);
+            }
+            if j > 0 {
+                visit(c - nx);
+            }
+            if j + 1 < ny {
+                visit(c + nx);
+            }
+        }
+        sizes.push(size);
+    }
+    // the groups that count as parts and hold a pixel a tile fits around
+    let mut holds_tile: Vec<bool> = sizes.iter().map(|&n| n < min_px).collect();
+    for j in 0..ny {
+        let y = y0 + (j as f64 + 0.5) * px;
+        let mut line: Option<DeepLine> = None;
+        for i in 0..nx {
+            let l = label[j * nx + i];
+            if l == u32::MAX || holds_tile[l as usize] {
+                continue;
+            }
+            let x = x0 + (i as f64 + 0.5) * px;
+            if line.get_or_insert_with(|| DeepLine::new(shape, y)).deep(x) {
+                holds_tile[l as usize] = true;
+            }
+        }
+    }
+    for (v, &l) in inside.iter_mut().zip(&label) {
+        if l != u32::MAX && !holds_tile[l as usize] {
+            *v = false;
+        }
+    }
 }
 
 impl Raster {
@@ -149,6 +228,7 @@ impl Raster {
                 }
             }
         }
+        drop_slivers(shape, &mut inside, nx, ny, (b.x0, b.y0, px));
         // sat[(j * (nx + 1)) + i]: inside pixels with column < i and row < j
         let mut sat = vec![0u32; (nx + 1) * (ny + 1)];
         for j in 0..ny {
@@ -158,6 +238,30 @@ impl Raster {
                 sat[(j + 1) * (nx + 1) + i + 1] = sat[j * (nx + 1) + i + 1] + row;
             }
         }
+        let line_runs = |n: usize, len: usize, at: &dyn Fn(usize, usize) -> bool| -> Vec<Runs> {
+            (0..n)
+                .map(|k| {
+                    let mut runs: Runs = Vec::new();
+                    let mut start: Option<usize> = None;
+                    for t in 0..len {
+                        match (at(k, t), start) {
+                            (true, None) => start = Some(t),
+                            (false, Some(a)) => {
+                                runs.push((a, t));
+                                start = None;
+                            }
+                            _ => {}
+                        }
+                    }
+                    if let Some(a) = start {
+                        runs.push((a, len));
+                    }
+                    runs
+                })
+                .collect()
+        };
+        let row_runs = line_runs(ny, nx, &|j, i| inside[j * nx + i]);
+        let col_runs = line_runs(nx, ny, &|i, j| inside[j * nx + i]);
         Raster {
             nx,
             ny,
@@ -166,7 +270,24 @@ impl Raster {
             px,
             inside,
             sat,
+            row_runs,
+            col_runs,
         }
+    }
+
+    /// The runs of inside pixels of pixel row `j` (if `rows`) or column `j` within `lo..hi`.
+    fn runs_within(&self, rows: bool, j: usize, lo: usize, hi: usize) -> Runs {
+        let all = if rows {
+            &self.row_runs[j]
+        } else {
+            &self.col_runs[j]
+        };
+        all.iter()
+            .filter_map(|&(a, e)| {
+                let (a, e) = (a.max(lo), e.min(hi));
+                (a < e).then_some((a, e))
+            })
+            .collect()
     }
 
     /// The number of inside pixels in columns `x0..x1` and rows `y0..y1`.
@@ -175,10 +296,6 @@ impl Raster {
         self.sat[y1 * w + x1] + self.sat[y0 * w + x0]
             - self.sat[y0 * w + x1]
             - self.sat[y1 * w + x0]
-    }
-
-    fn at(&self, i: usize, j: usize) -> bool {
-        self.inside[j * self.nx + i]
     }
 
     /// Pixels per tile width.
@@ -218,26 +335,7 @@ struct Search<'a> {
 impl Search<'_> {
     /// The runs of line `k` (a pixel row if `rows`, else a pixel column) within `lo..hi`.
     fn runs(&self, rows: bool, k: usize, lo: usize, hi: usize) -> Runs {
-        let mut raw: Runs = Vec::new();
-        let mut start: Option<usize> = None;
-        for t in lo..hi {
-            let v = if rows {
-                self.r.at(t, k)
-            } else {
-                self.r.at(k, t)
-            };
-            match (v, start) {
-                (true, None) => start = Some(t),
-                (false, Some(s)) => {
-                    raw.push((s, t));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(s) = start {
-            raw.push((s, hi));
-        }
+        let raw = self.r.runs_within(rows, k, lo, hi);
         let mut out: Runs = Vec::new();
         for (a, b) in raw {
             match out.last_mut() {
@@ -314,49 +412,79 @@ impl Search<'_> {
         n
     }
 
-    /// The number of groups of touching inside pixels in the box larger than half a tile.
+    /// The number of groups of touching inside pixels in the box larger than half a tile:
+    /// the runs of the box's pixel rows, joined where runs of neighbouring rows share a
+    /// column (the work grows with the rows and their runs, not with the pixels).
     fn count_components(&self, b: PBox) -> usize {
-        let w = b.x1 - b.x0;
-        let h = b.y1 - b.y0;
-        let mut seen = vec![false; w * h];
         let min_px = (0.5 * self.r.per_tile() * self.r.per_tile()).max(1.0) as usize;
-        let mut count = 0;
-        let mut stack = Vec::new();
-        for s in 0..w * h {
-            if seen[s] || !self.r.at(b.x0 + s % w, b.y0 + s / w) {
-                continue;
+        let mut runs: Runs = Vec::new();
+        let mut row_start: Vec<usize> = Vec::with_capacity(b.y1 - b.y0 + 1);
+        for j in b.y0..b.y1 {
+            row_start.push(runs.len());
+            runs.extend(self.r.runs_within(true, j, b.x0, b.x1));
+        }
+        row_start.push(runs.len());
+        let mut parent: Vec<usize> = (0..runs.len()).collect();
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
             }
-            seen[s] = true;
-            stack.push(s);
-            let mut size = 0;
-            while let Some(c) = stack.pop() {
-                size += 1;
-                let (i, j) = (c % w, c / w);
-                let mut visit = |ii: usize, jj: usize| {
-                    let k = jj * w + ii;
-                    if !seen[k] && self.r.at(b.x0 + ii, b.y0 + jj) {
-                        seen[k] = true;
-                        stack.push(k);
-                    }
-                };
-                if i > 0 {
-                    visit(i - 1, j);
+            x
+        }
+        for r in 1..row_start.len() - 1 {
+            let (mut i, mut k) = (row_start[r - 1], row_start[r]);
+            while i < row_start[r] && k < row_start[r + 1] {
+                let ((a0, e0), (a1, e1)) = (runs[i], runs[k]);
+                if a0 < e1 && a1 < e0 {
+                    let (ri, rk) = (root(&mut parent, i), root(&mut parent, k));
+                    parent[ri] = rk;
                 }
-                if i + 1 < w {
-                    visit(i + 1, j);
+                if e0 < e1 {
+                    i += 1;
+                } else {
+                    k += 1;
                 }
-                if j > 0 {
-                    visit(i, j - 1);
-                }
-                if j + 1 < h {
-                    visit(i, j + 1);
-                }
-            }
-            if size >= min_px {
-                count += 1;
             }
         }
-        count
+        let mut size = vec![0usize; runs.len()];
+        for (i, &(a, e)) in runs.iter().enumerate() {
+            let r = root(&mut parent, i);
+            size[r] += e - a;
+        }
+        size.iter().filter(|&&n| n >= min_px).count()
+    }
+
+    /// The area (tile widths squared) that [`Search::runs_cut`] leaves out of the lines of
+    /// the box across `y` (pixel rows if `y`, else columns) for a cell whose side `cut` meets
+    /// the next cell, beyond the tile nearest that side (the next cell's first row reaches
+    /// that far): no row of this cell covers it, so it is left empty. Priced in
+    /// [`Search::best`] at [`DROP_PRICE`] per unit, so that the price grows with the tiles
+    /// (a decomposition that leaves a round hole's corners to the next cell is cheap at a
+    /// hundred tiles and costs tens of tile areas at thousands: more cells then cost less).
+    fn dropped(&self, b: PBox, y: bool, cut: Option<Dir>) -> f64 {
+        let Some(c) = cut else { return 0.0 };
+        if c.is_y() == y {
+            return 0.0;
+        }
+        let (k0, k1, lo, hi) = if y {
+            (b.y0, b.y1, b.x0, b.x1)
+        } else {
+            (b.x0, b.x1, b.y0, b.y1)
+        };
+        let reach = self.r.per_tile();
+        let mut px = 0.0;
+        for k in k0..k1 {
+            let all = self.runs(y, k, lo, hi);
+            if all.len() < 2 {
+                continue;
+            }
+            let kept = self.runs_cut(y, k, lo, hi, cut);
+            for r in all.iter().filter(|r| !kept.contains(r)) {
+                px += ((r.1 - r.0) as f64 - reach).max(0.0);
+            }
+        }
+        DROP_PRICE * px * self.r.px * self.r.px
     }
 
     /// True if every line across `y` (pixel rows if `y`, else columns) meets the box's pixels
@@ -632,7 +760,9 @@ impl Search<'_> {
                             n,
                             either_sign: true,
                         }],
-                        cost: self.rows(extent) - 1.0 + self.steps(b, stack_y),
+                        cost: self.rows(extent) - 1.0
+                            + self.steps(b, stack_y)
+                            + self.dropped(b, stack_y, cut),
                     },
                     b,
                 ));
@@ -656,7 +786,10 @@ impl Search<'_> {
                     } else {
                         cap.x1 - cap.x0
                     };
-                    let cap_cost = self.rows(extent) - 1.0 + 1.0 + self.steps(cap, d.is_y());
+                    let cap_cost = self.rows(extent) - 1.0
+                        + 1.0
+                        + self.steps(cap, d.is_y())
+                        + self.dropped(cap, d.is_y(), cut);
                     for p in before.iter() {
                         let Some(last) = p.cells.last() else { continue };
                         let lb = self.pbox(last.rect);
