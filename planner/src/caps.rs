@@ -86,6 +86,9 @@ pub(crate) struct CapPlan {
     pub cells: Vec<CapCell>,
     /// Turns (U-turns and quarter turns) plus the join misses, in tile widths.
     pub cost: f64,
+    /// True for a slab decomposition ([`crate::slabs`]): its cells need not be caps, and it
+    /// is sized on its own.
+    pub slabs: bool,
 }
 
 /// Cap decompositions kept per box and join requirement.
@@ -124,7 +127,7 @@ const BRIDGE_PRICE: f64 = 1.4;
 
 /// The shape as pixels: `inside[j * nx + i]` for the pixel whose centre is at
 /// `(x0 + (i + 1/2) px, y0 + (j + 1/2) px)`.
-struct Raster {
+pub(crate) struct Raster {
     nx: usize,
     ny: usize,
     x0: f64,
@@ -210,7 +213,7 @@ fn drop_slivers(shape: &Shape, inside: &mut [bool], nx: usize, ny: usize, o: (f6
 }
 
 impl Raster {
-    fn new(shape: &Shape) -> Raster {
+    pub(crate) fn new(shape: &Shape) -> Raster {
         let b = shape.bbox();
         let area = (b.width() * b.height()).max(1e-9);
         // a quarter tile, or coarser so that the raster stays bounded
@@ -299,18 +302,18 @@ impl Raster {
     }
 
     /// Pixels per tile width.
-    fn per_tile(&self) -> f64 {
+    pub(crate) fn per_tile(&self) -> f64 {
         1.0 / self.px
     }
 }
 
 /// A box of pixels, half-open: `x0..x1`, `y0..y1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-struct PBox {
-    x0: usize,
-    x1: usize,
-    y0: usize,
-    y1: usize,
+pub(crate) struct PBox {
+    pub x0: usize,
+    pub x1: usize,
+    pub y0: usize,
+    pub y1: usize,
 }
 
 /// The runs (half-open pixel ranges) of one line of the raster inside a box, gaps and
@@ -321,7 +324,7 @@ type Runs = Vec<(usize, usize)>;
 type Memo = HashMap<(PBox, Option<bool>, Option<Dir>), Rc<Vec<CapPlan>>>;
 
 /// The search over boxes.
-struct Search<'a> {
+pub(crate) struct Search<'a> {
     r: &'a Raster,
     pitch: f64,
     /// Runs and gaps shorter than this many pixels do not count (half a tile).
@@ -332,9 +335,37 @@ struct Search<'a> {
     components_memo: RefCell<HashMap<PBox, usize>>,
 }
 
-impl Search<'_> {
+impl<'a> Search<'a> {
+    /// A search over the raster `r` for rows of pitch `pitch` (tile widths).
+    pub(crate) fn new(r: &'a Raster, pitch: f64) -> Search<'a> {
+        Search {
+            r,
+            pitch,
+            min: ((0.5 / r.px).round() as usize).max(1),
+            memo: HashMap::new(),
+            visited: 0,
+            components_memo: RefCell::new(HashMap::new()),
+        }
+    }
+
+    /// The raster searched.
+    pub(crate) fn raster(&self) -> &Raster {
+        self.r
+    }
+
+    /// The box of every inside pixel, if it is one piece.
+    pub(crate) fn whole(&self) -> Option<PBox> {
+        let all = PBox {
+            x0: 0,
+            x1: self.r.nx,
+            y0: 0,
+            y1: self.r.ny,
+        };
+        self.tight(all).filter(|&b| self.components(b) == 1)
+    }
+
     /// The runs of line `k` (a pixel row if `rows`, else a pixel column) within `lo..hi`.
-    fn runs(&self, rows: bool, k: usize, lo: usize, hi: usize) -> Runs {
+    pub(crate) fn runs(&self, rows: bool, k: usize, lo: usize, hi: usize) -> Runs {
         let raw = self.r.runs_within(rows, k, lo, hi);
         let mut out: Runs = Vec::new();
         for (a, b) in raw {
@@ -375,7 +406,7 @@ impl Search<'_> {
     /// The box shrunk to the inside pixels it holds, or None if it holds none (each side
     /// moved in while the line along it is empty, each line counted in the summed-area
     /// table).
-    fn tight(&self, b: PBox) -> Option<PBox> {
+    pub(crate) fn tight(&self, b: PBox) -> Option<PBox> {
         let r = self.r;
         if b.x0 >= b.x1 || b.y0 >= b.y1 || r.count(b.x0, b.x1, b.y0, b.y1) == 0 {
             return None;
@@ -403,7 +434,7 @@ impl Search<'_> {
 
     /// [`Search::count_components`], remembered per box (the cuts of a box and of the boxes
     /// around it ask about the same rests again and again).
-    fn components(&self, b: PBox) -> usize {
+    pub(crate) fn components(&self, b: PBox) -> usize {
         if let Some(&n) = self.components_memo.borrow().get(&b) {
             return n;
         }
@@ -503,7 +534,7 @@ impl Search<'_> {
     /// the difference (a T's wide bar below its narrow stem: the U-turn at the bar's end is
     /// far from the stem). Rows are sampled a row pitch apart; each end changes its U-turn
     /// every other row, so half of both ends' changes are priced.
-    fn steps(&self, b: PBox, y: bool) -> f64 {
+    pub(crate) fn steps(&self, b: PBox, y: bool) -> f64 {
         let tile = self.r.per_tile();
         let step = ((self.pitch * tile).round() as usize).max(1);
         let (k0, k1, lo, hi) = if y {
@@ -528,7 +559,7 @@ impl Search<'_> {
     }
 
     /// Rows of a serpentine over an extent of `px` pixels.
-    fn rows(&self, px: usize) -> f64 {
+    pub(crate) fn rows(&self, px: usize) -> f64 {
         (px as f64 * self.r.px / self.pitch).round().max(1.0)
     }
 
@@ -763,6 +794,7 @@ impl Search<'_> {
                         cost: self.rows(extent) - 1.0
                             + self.steps(b, stack_y)
                             + self.dropped(b, stack_y, cut),
+                        slabs: false,
                     },
                     b,
                 ));
@@ -825,6 +857,7 @@ impl Search<'_> {
                             CapPlan {
                                 cells,
                                 cost: p.cost + cap_cost + price + parity,
+                                slabs: false,
                             },
                             b,
                         ));
@@ -853,7 +886,7 @@ impl Search<'_> {
     }
 
     /// The box in the axis frame (unit tiles).
-    fn rect(&self, b: PBox) -> Rect {
+    pub(crate) fn rect(&self, b: PBox) -> Rect {
         let px = self.r.px;
         Rect::new(
             self.r.x0 + b.x0 as f64 * px,
@@ -1019,6 +1052,103 @@ mod tests {
             "{best:?}"
         );
         assert!(best.cost < 20.0, "{}", best.cost);
+    }
+
+    /// A separate piece a third of a tile thick is a sliver (no tile fits in it): not a
+    /// part; a separate piece two tiles wide is one.
+    #[test]
+    fn a_sliver_is_not_a_separate_part() {
+        let square = Ring::rect(0.0, 0.0, 10.0, 10.0);
+        let sliver = Ring::rect(11.0, 2.0, 11.35, 9.0);
+        let block = Ring::rect(12.0, 2.0, 14.0, 9.0);
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square.clone(), sliver.clone()])).len(),
+            1
+        );
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square, sliver, block])).len(),
+            2
+        );
+    }
+
+    /// The run-based count of connected pieces agrees with a flood fill of the pixels, on
+    /// every box of a grid of boxes over a shape with a hole and a notch.
+    #[test]
+    fn pieces_counted_from_runs_agree_with_a_flood_fill() {
+        // holes wound the other way: a hole in the middle and a notch into the left edge
+        let reversed = |r: Ring| Ring {
+            points: r.points.into_iter().rev().collect(),
+        };
+        let shape = Shape::from_rings(vec![
+            Ring::rect(0.0, 0.0, 12.0, 10.0),
+            reversed(Ring::rect(4.0, 3.0, 8.0, 7.0)),
+            reversed(Ring::rect(-1.0, 4.0, 3.0, 5.0)),
+        ]);
+        let r = Raster::new(&shape);
+        let s = Search {
+            r: &r,
+            pitch: std::f64::consts::SQRT_2,
+            min: 2,
+            memo: HashMap::new(),
+            visited: 0,
+            components_memo: RefCell::new(HashMap::new()),
+        };
+        let min_px = (0.5 * r.per_tile() * r.per_tile()).max(1.0) as usize;
+        let flood = |b: PBox| {
+            let (w, h) = (b.x1 - b.x0, b.y1 - b.y0);
+            let mut seen = vec![false; w * h];
+            let mut count = 0;
+            for start in 0..w * h {
+                let at = |c: usize| r.inside[(b.y0 + c / w) * r.nx + b.x0 + c % w];
+                if seen[start] || !at(start) {
+                    continue;
+                }
+                seen[start] = true;
+                let mut stack = vec![start];
+                let mut size = 0;
+                while let Some(c) = stack.pop() {
+                    size += 1;
+                    let (i, j) = (c % w, c / w);
+                    let mut next = Vec::new();
+                    if i > 0 {
+                        next.push(c - 1);
+                    }
+                    if i + 1 < w {
+                        next.push(c + 1);
+                    }
+                    if j > 0 {
+                        next.push(c - w);
+                    }
+                    if j + 1 < h {
+                        next.push(c + w);
+                    }
+                    for n in next {
+                        if !seen[n] && at(n) {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+                if size >= min_px {
+                    count += 1;
+                }
+            }
+            count
+        };
+        let mut several = 0;
+        for x0 in (0..r.nx).step_by(5) {
+            for x1 in (x0 + 1..=r.nx).step_by(7) {
+                for y0 in (0..r.ny).step_by(5) {
+                    for y1 in (y0 + 1..=r.ny).step_by(7) {
+                        let b = PBox { x0, x1, y0, y1 };
+                        let n = s.count_components(b);
+                        assert_eq!(n, flood(b), "{b:?}");
+                        several += usize::from(n > 1);
+                    }
+                }
+            }
+        }
+        assert!(several > 0, "no box with several pieces was tried");
     }
 
     /// A convex shape is one cell.

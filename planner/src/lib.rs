@@ -59,6 +59,7 @@ mod serpentine;
 mod shape;
 mod simplify;
 mod sizing;
+mod slabs;
 mod units;
 
 /// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
