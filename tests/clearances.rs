@@ -146,7 +146,11 @@ fn a_147_tile_serpentine_reports_its_clearance() {
     let mut word = String::new();
     for row in 0..10 {
         if row > 0 {
-            word.push_str(if row % 2 == 1 { " SL LL LS " } else { " SR RR RS " });
+            word.push_str(if row % 2 == 1 {
+                " SL LL LS "
+            } else {
+                " SR RR RS "
+            });
         }
         word.push_str("SS*12");
     }

@@ -410,7 +410,11 @@ impl PairWalk<'_> {
                 // nothing to the bound: pass them at once
                 let idle = moving
                     .iter()
-                    .map(|&k| self.rates.active[k].get(bb + 1).map_or(BUCKETS, |&a| a as usize))
+                    .map(|&k| {
+                        self.rates.active[k]
+                            .get(bb + 1)
+                            .map_or(BUCKETS, |&a| a as usize)
+                    })
                     .min()
                     .unwrap_or(BUCKETS);
                 bb = (bb + 1).max(idle.saturating_sub(1)).min(BUCKETS - 1);
