@@ -74,7 +74,6 @@ pub(crate) fn closest_approach(
         rates: &rates,
         precision,
         outline: Outline::unit(),
-        circumradius: Octagon::new(1.0).circumradius(),
         work: 0,
         best: None,
         hints: vec![0; joints],
@@ -233,7 +232,6 @@ struct PairWalk<'a> {
     rates: &'a Rates,
     precision: f64,
     outline: Outline,
-    circumradius: f64,
     work: usize,
     best: Option<Closest>,
     /// Each joint's chord hint ([`JointTrack::chord_at`]).
@@ -351,7 +349,7 @@ impl PairWalk<'_> {
         // each moving joint's lever: 2 R (j - k)
         let lever: Vec<f64> = moving
             .iter()
-            .map(|&k| 2.0 * self.circumradius * (j - k) as f64)
+            .map(|&k| 2.0 * self.outline.circumradius * (j - k) as f64)
             .collect();
         let mut fastest = vec![0.0f64; moving.len()];
         let mut t = t0;
@@ -367,7 +365,7 @@ impl PairWalk<'_> {
             let rho: Vec<f64> = centres
                 .iter()
                 .zip(&lever)
-                .map(|(c, &l)| ((cj - *c).hypot() + 2.0 * self.circumradius).min(l))
+                .map(|(c, &l)| ((cj - *c).hypot() + 2.0 * self.outline.circumradius).min(l))
                 .collect();
             let m = self.best.map_or(d, |b| b.distance);
             // an overlap is measured to a hundredth of its depth besides the precision (a
