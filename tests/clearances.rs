@@ -169,3 +169,36 @@ fn a_147_tile_serpentine_reports_its_clearance() {
     // loose rows never come nearer than two tiles one apart along the chain
     assert!(c.mm > 0.0 && c.tiles.1 >= c.tiles.0 + 2, "{c:?}");
 }
+
+/// A 1,000-tile serpentine (rows of 20 joined by `LL` and `RR`, fold-run's defaults) reports
+/// its clearance: the pair walk followed every pair and gave `None` past 1,000 tiles (and
+/// past its work budget from about 200); it now follows only the pairs that come as near as
+/// the final shape's nearest (BENCHMARKS.md: about 3 s of CPU).
+#[test]
+fn a_1000_tile_serpentine_reports_its_clearance() {
+    let mut word = String::from("S*19");
+    let mut letters = 19;
+    let mut row = 0;
+    while letters < 999 {
+        let r = (999 - letters - 2).min(18);
+        word.push_str(if row % 2 == 0 { " LL " } else { " RR " });
+        word.push_str(&format!("S*{r}"));
+        letters += 2 + r;
+        row += 1;
+    }
+    let chain = Chain::parse(&word).unwrap();
+    assert_eq!(chain.len(), 1000);
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let (_, summary) = simulate(
+        &chain,
+        &TileDesigns::global(Design::thesis()),
+        &EngineOptions::default().with_model(model),
+        &CheckOptions::default(),
+    )
+    .unwrap();
+    let c = summary.clearance.expect("the clearance is measured");
+    // the U-turns' corners: tiles two apart, their 45-degree faces sqrt(2) - 1 widths apart
+    let w = Design::thesis().tile_width;
+    assert!((c.mm / w - (2f64.sqrt() - 1.0)).abs() < 1e-3, "{c:?}");
+    assert_eq!(c.tiles.1, c.tiles.0 + 2, "{c:?}");
+}
