@@ -211,7 +211,12 @@ fn cpu_seconds() -> f64 {
         .map_or("", |r| r.1)
         .split_whitespace()
         .collect();
-    let ticks = |i: usize| fields.get(i).and_then(|f| f.parse::<f64>().ok()).unwrap_or(0.0);
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
     // utime and stime, fields 14 and 15 of stat (11 and 12 after the name), at 100 Hz
     (ticks(11) + ticks(12)) / 100.0
 }
@@ -225,7 +230,10 @@ fn cpu_seconds() -> f64 {
 #[ignore = "a benchmark: serpentines of 1,000 and 10,000 tiles with and without the clearance"]
 fn clearance_cost() {
     let sizes = std::env::var("CLEARANCE_TILES").unwrap_or_else(|_| "1000,10000".into());
-    for n in sizes.split(',').filter_map(|s| s.trim().parse::<usize>().ok()) {
+    for n in sizes
+        .split(',')
+        .filter_map(|s| s.trim().parse::<usize>().ok())
+    {
         let mut word = String::from("S*19");
         let (mut letters, mut row) = (19, 0);
         while letters + 2 < n {
