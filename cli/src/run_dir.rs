@@ -422,14 +422,7 @@ fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-
-    fn scratch(tag: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("foldchain-rundir-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
-    }
+    use crate::output::scratch;
 
     fn ours(p: &Path) -> bool {
         p.file_name()
