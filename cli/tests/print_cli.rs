@@ -14,12 +14,23 @@ use foldchain_print::read_3mf;
 mod common;
 use common::{absent, root, stderr, stdout, tool};
 
+/// Runs tool `name` with `args` from the workspace root.
+fn in_root(name: &str, args: &[&str]) -> Output {
+    tool(name).args(args).current_dir(root()).output().unwrap()
+}
+
 fn print(args: &[&str]) -> Output {
-    tool("fold-print")
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
+    in_root("fold-print", args)
+}
+
+/// fold-plan's plan of the key drawing at `tiles` tiles, as JSON, after asserting exit 0.
+fn key_plan(tiles: &str) -> Output {
+    let o = in_root(
+        "fold-plan",
+        &["shapes/key.svg", "--tiles", tiles, "--json", "--quiet"],
+    );
+    ok(&o);
+    o
 }
 
 fn ok(o: &Output) {
@@ -150,12 +161,7 @@ fn the_key_prints_its_plans_bill_of_materials() {
     let n = report["tiles"].as_u64().unwrap() as usize;
     assert_eq!(chain.len(), n);
     // the plan of fold-plan itself: the same chain
-    let plan = tool("fold-plan")
-        .args(["shapes/key.svg", "--tiles", "171", "--json", "--quiet"])
-        .current_dir(root())
-        .output()
-        .unwrap();
-    ok(&plan);
+    let plan = key_plan("171");
     let plan: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
     assert_eq!(plan["tile_list"], report["tile_list"]);
     assert!((150..=190).contains(&n), "{n}");
@@ -210,12 +216,7 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
 /// plans itself, the same warnings as fold-plan's plan of it; for a plan file, its own.
 #[test]
 fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
-    let plan = tool("fold-plan")
-        .args(["shapes/key.svg", "--tiles", "300", "--json", "--quiet"])
-        .current_dir(root())
-        .output()
-        .unwrap();
-    ok(&plan);
+    let plan = key_plan("300");
     let plan_err = String::from_utf8_lossy(&plan.stderr).into_owned();
     let mut json: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
     let warnings: Vec<String> = json["warnings"]

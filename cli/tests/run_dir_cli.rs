@@ -178,23 +178,20 @@ fn interrupts_at_twenty_moments_leave_one_whole_run() {
         let straight = if row == 0 || row == 39 { 24 } else { 23 };
         word.push_str(&format!("S*{straight}"));
     }
-    let earlier_run = || {
+    // the run of `frames` frames into `out`, to its successful end
+    let run_into = |frames: &str, out: &Path| {
         let o = tool("fold-run")
-            .args([word.as_str(), "--frames", "7", "--quiet", "--out"])
-            .arg(&dir)
+            .args([word.as_str(), "--frames", frames, "--quiet", "--out"])
+            .arg(out)
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", stderr(&o));
     };
+    let earlier_run = || run_into("7", &dir);
     // the whole new run, into a directory of its own: its names and how long it takes
     let whole = base.join("whole");
     let started = std::time::Instant::now();
-    let o = tool("fold-run")
-        .args([word.as_str(), "--frames", "3000", "--quiet", "--out"])
-        .arg(&whole)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    run_into("3000", &whole);
     let span = started.elapsed().as_secs_f64();
     let new_names = names(&whole);
     assert_eq!(frames(&whole), 3000);

@@ -9,6 +9,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+#[path = "../common/mod.rs"]
+mod common;
+
 /// Window size of every page opened, CSS pixels (device scale 1).
 pub const WINDOW: (u32, u32) = (1000, 650);
 
@@ -22,23 +25,11 @@ pub fn tmp(name: &str) -> PathBuf {
 
 /// The browser, or `None` (with a note) when there is none outside CI.
 pub fn browser() -> Option<PathBuf> {
-    let found = ["chromium", "chromium-browser", "google-chrome"]
-        .iter()
-        .find_map(|name| {
-            std::env::var_os("PATH").and_then(|paths| {
-                std::env::split_paths(&paths)
-                    .map(|d| d.join(name))
-                    .find(|p| p.is_file())
-            })
-        });
-    if found.is_none() {
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "no Chromium on PATH: CI must have it (.ci/run installs it with apt-get)"
-        );
-        eprintln!("note: no Chromium on PATH; browser test skipped");
-    }
-    found
+    common::on_path(
+        &["chromium", "chromium-browser", "google-chrome"],
+        "Chromium",
+        "browser",
+    )
 }
 
 /// Runs headless Chromium on `url` with `args` (a fresh profile, no network), one at a time
