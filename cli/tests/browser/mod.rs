@@ -1,6 +1,6 @@
 //! Headless Chromium for the viewer's tests and benchmark: a fresh profile per run, no
 //! network, standard output through a file; and reading the attributes of the page it
-//! dumps.
+//! dumps. A file that takes it also takes `common` (the PATH lookup is there).
 
 #![allow(dead_code)] // each test or bench file uses its own part
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
@@ -8,9 +8,6 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-#[path = "../common/mod.rs"]
-mod common;
 
 /// Window size of every page opened, CSS pixels (device scale 1).
 pub const WINDOW: (u32, u32) = (1000, 650);
@@ -25,7 +22,7 @@ pub fn tmp(name: &str) -> PathBuf {
 
 /// The browser, or `None` (with a note) when there is none outside CI.
 pub fn browser() -> Option<PathBuf> {
-    common::on_path(
+    crate::common::on_path(
         &["chromium", "chromium-browser", "google-chrome"],
         "Chromium",
         "browser",
