@@ -12,7 +12,7 @@ use foldchain::{BillOfMaterials, Chain};
 use foldchain_print::read_3mf;
 
 mod common;
-use common::{absent, root, stderr, stdout, tool};
+use common::{absent, root, stderr, stdout, text, tool};
 
 /// Runs tool `name` with `args` from the workspace root.
 fn in_root(name: &str, args: &[&str]) -> Output {
@@ -99,18 +99,12 @@ fn a_u_turn_prints_its_parts_plates_sheet_and_report() {
         assert!(model.objects[0].1.topology().is_sound());
         assert!(dir.join(part["picture"].as_str().unwrap()).is_file());
     }
-    let sheet = std::fs::read_to_string(dir.join("assembly.svg")).unwrap();
+    let sheet = text(&dir.join("assembly.svg"));
     assert!(usvg::Tree::from_str(&sheet, &usvg::Options::default()).is_ok());
     assert_eq!(sheet.matches(">#").count(), 5);
     assert!(sheet.contains("RI S"));
-    assert_eq!(
-        std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
-        "mine"
-    );
-    assert_eq!(
-        std::fs::read_to_string(dir.join("plates/my-plate.3mf")).unwrap(),
-        "mine too"
-    );
+    assert_eq!(text(&dir.join("notes.txt")), "mine");
+    assert_eq!(text(&dir.join("plates/my-plate.3mf")), "mine too");
     // a second run with a smaller bed needs more plates; a third with the default bed
     // removes the plates it no longer writes, and only those
     ok(&print(&[
@@ -166,7 +160,7 @@ fn the_key_prints_its_plans_bill_of_materials() {
     assert_eq!(plan["tile_list"], report["tile_list"]);
     assert!((150..=190).contains(&n), "{n}");
     assert_eq!(plate_counts(&dir), bom_by_name(&chain));
-    let sheet = std::fs::read_to_string(dir.join("assembly.svg")).unwrap();
+    let sheet = text(&dir.join("assembly.svg"));
     assert_eq!(sheet.matches(">#").count(), n);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -92,6 +92,11 @@ pub fn names(dir: &Path) -> Vec<String> {
     v
 }
 
+/// The text of the file at `path`.
+pub fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap()
+}
+
 /// The JSON file at `path`.
 pub fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
