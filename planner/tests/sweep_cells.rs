@@ -7,21 +7,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use common::{assert_sound, plan_corpus};
+use foldchain_planner::Plan;
 
-use common::assert_sound;
-use foldchain_planner::{plan_svg_file, Plan, PlanOptions};
-
-/// A drawing of the planner corpus.
-fn corpus(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("corpus/shapes")
-        .join(name)
-}
-
-/// The plan at `tiles` with the default options: sound, within 3% of the count.
+/// The plan of `corpus/shapes/{name}` at `tiles` with the default options: sound, within 3%
+/// of the count.
 fn plan(name: &str, tiles: usize) -> Plan {
-    let p = plan_svg_file(&corpus(name), &PlanOptions::default().with_tiles(tiles)).unwrap();
+    let p = plan_corpus(&format!("shapes/{name}"), tiles);
     assert_sound(&p);
     assert!(
         p.tiles.abs_diff(tiles) * 100 <= 3 * tiles,
