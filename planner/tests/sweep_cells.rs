@@ -52,14 +52,6 @@ fn a_plus_at_300_tiles_keeps_near_the_row_floor() {
     assert!(p.u_turns + p.quarter_turns <= 18, "{}", p.summary());
 }
 
-/// A drawing of the planner corpus in folder `dir`.
-fn corpus_in(dir: &str, name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("corpus")
-        .join(dir)
-        .join(name)
-}
-
 /// Where a cell's last row ends sets the phase of the next cell's rows: the route tries
 /// the exits of that row beside the next cell, not only the cheapest and the nearest. The
 /// letter Q and the trophy icon at 100 tiles left 10 and 3 tile areas empty (the Q's tail,
@@ -68,8 +60,7 @@ fn corpus_in(dir: &str, name: &str) -> PathBuf {
 #[test]
 fn the_exit_of_a_cell_is_chosen_with_the_next_cells_rows() {
     for (dir, name) in [("letters", "Q.svg"), ("icons", "bi-trophy-fill.svg")] {
-        let path = corpus_in(dir, name);
-        let p = plan_svg_file(&path, &PlanOptions::default().with_tiles(100)).unwrap();
+        let p = plan_corpus(&format!("{dir}/{name}"), 100);
         assert_sound(&p);
         assert!(p.tiles.abs_diff(100) <= 3, "{name}: {}", p.summary());
         assert_eq!(
