@@ -167,54 +167,13 @@ fn ends(
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
         let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look));
-        // and the other exits of the near end's row that lie beside the next cell: where
-        // along the last row the chain leaves sets the phase of the next cell's rows (a
-        // key's head ends its last column where the shaft's first row runs along the
-        // shaft's middle, so that the rows below it can reach into the teeth), which the
-        // look-ahead cannot see; the route's cost chooses among them
-        let spread = match (toward, near) {
-            (Some(t), Some((_, k, _))) => beside(sol, lat, pitch, frame, t, k),
-            _ => Vec::new(),
-        };
-        for (c, k, e) in plain.into_iter().chain(near).chain(spread) {
+        for (c, k, e) in plain.into_iter().chain(near) {
             if !out.iter().any(|o| o.2 == k && o.3 == e) {
                 out.push((c, look(k, e), k, e));
             }
         }
     }
     out
-}
-
-/// Exits tried per row beside the next cell (see [`ends`]): a bound on the route's work.
-const SPREAD: usize = 4;
-
-/// The ends `(cost, row, column)` of row `k` of a solved programme whose tile centres lie
-/// beside the box `t` (axis frame): their coordinate along the row within the box's extent
-/// in that direction, at most [`SPREAD`], the cheapest.
-fn beside(
-    sol: &Solved,
-    lat: Lattice,
-    pitch: f64,
-    frame: Frame,
-    t: Rect,
-    k: usize,
-) -> Vec<(f64, usize, usize)> {
-    let to_axis = frame.to_axis();
-    let along_x = frame.d.x.abs() > 0.5;
-    let (lo, hi) = if along_x { (t.x0, t.x1) } else { (t.y0, t.y1) };
-    let mut found: Vec<(f64, usize, usize)> = (0..sol.cols())
-        .filter_map(|e| {
-            let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
-            let v = if along_x { q.x } else { q.y };
-            if v < lo || v > hi {
-                return None;
-            }
-            sol.end_cost(k, e).map(|c| (c, k, e))
-        })
-        .collect();
-    found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    found.truncate(SPREAD);
-    found
 }
 
 /// True if some centre of `new` comes closer than [`MIN_GAP`] to a centre in `old`.

@@ -7,13 +7,21 @@
 
 mod common;
 
-use common::{assert_sound, plan_corpus};
-use foldchain_planner::Plan;
+use std::path::{Path, PathBuf};
 
-/// The plan of `corpus/shapes/{name}` at `tiles` with the default options: sound, within 3%
-/// of the count.
+use common::assert_sound;
+use foldchain_planner::{plan_svg_file, Plan, PlanOptions};
+
+/// A drawing of the planner corpus.
+fn corpus(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("corpus/shapes")
+        .join(name)
+}
+
+/// The plan at `tiles` with the default options: sound, within 3% of the count.
 fn plan(name: &str, tiles: usize) -> Plan {
-    let p = plan_corpus(&format!("shapes/{name}"), tiles);
+    let p = plan_svg_file(&corpus(name), &PlanOptions::default().with_tiles(tiles)).unwrap();
     assert_sound(&p);
     assert!(
         p.tiles.abs_diff(tiles) * 100 <= 3 * tiles,
@@ -50,25 +58,4 @@ fn a_u_at_300_tiles_is_arms_and_bar() {
 fn a_plus_at_300_tiles_keeps_near_the_row_floor() {
     let p = plan("plus.svg", 300);
     assert!(p.u_turns + p.quarter_turns <= 18, "{}", p.summary());
-}
-
-/// Where a cell's last row ends sets the phase of the next cell's rows: the route tries
-/// the exits of that row beside the next cell, not only the cheapest and the nearest. The
-/// letter Q and the trophy icon at 100 tiles left 10 and 3 tile areas empty (the Q's tail,
-/// the trophy's handles) when only those two exits were tried; now no part larger than 2
-/// tile areas is left empty (issue 26 item 3), and the plans stay sound and within 3%.
-#[test]
-fn the_exit_of_a_cell_is_chosen_with_the_next_cells_rows() {
-    for (dir, name) in [("letters", "Q.svg"), ("icons", "bi-trophy-fill.svg")] {
-        let p = plan_corpus(&format!("{dir}/{name}"), 100);
-        assert_sound(&p);
-        assert!(p.tiles.abs_diff(100) <= 3, "{name}: {}", p.summary());
-        assert_eq!(
-            p.metrics.largest_empty_tiles,
-            0.0,
-            "{name}: {} {:?}",
-            p.summary(),
-            p.warnings
-        );
-    }
 }
