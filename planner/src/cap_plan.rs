@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use crate::caps::{cap_plans, CapPlan};
 use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
 use crate::check::CheckMemo;
+use crate::empty::empty_rank;
 use crate::fit::plan_score;
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
@@ -223,7 +224,8 @@ fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
     inside as f64 / p.poses.len().max(1) as f64
 }
 
-/// Plans ranked: a count within the tolerance first, then no part left empty, then the fit.
+/// Plans ranked: a count within the tolerance first, then the largest part left empty
+/// (least first, in whole tile areas: [`empty_rank`]), then the fit.
 fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tol = (opts.tiles_tolerance * target as f64) as usize;
@@ -231,7 +233,7 @@ fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
         Some(_) => 0,
         None => p.tiles.abs_diff(target).saturating_sub(tol),
     };
-    let empty = |p: &Plan| p.metrics.largest_empty_tiles > 0.0;
+    let empty = |p: &Plan| empty_rank(p.metrics.largest_empty_tiles);
     miss(x)
         .cmp(&miss(y))
         .then(empty(x).cmp(&empty(y)))
@@ -269,7 +271,7 @@ fn size_group(
         } else {
             &[]
         },
-        // a plan that leaves a part empty (cost 1) keeps the retries going
+        // a plan that leaves a part empty (its cost: the tile areas) keeps the retries going
         settle_cost: 0.0,
     };
     let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
@@ -308,15 +310,14 @@ fn size_group(
         if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
             return Attempt::Nothing;
         }
-        // a count within the tolerance first, then no part left empty, then the fit
+        // a count within the tolerance first, then the least part left empty, then the
+        // fit; the search's cost is the part left empty ([`empty_rank`]), so that among
+        // widths whose plans all leave one, the least empty wins, and the retries go on
+        // while the best leaves one
         match plans.into_iter().min_by(by_rank) {
             Some(p) => {
-                let lacks = if p.metrics.largest_empty_tiles > 0.0 {
-                    1.0
-                } else {
-                    0.0
-                };
-                Attempt::Plan(p.tiles, lacks, p)
+                let empty = empty_rank(p.metrics.largest_empty_tiles) as f64;
+                Attempt::Plan(p.tiles, empty, p)
             }
             None => Attempt::Rejected(n),
         }

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
-use crate::empty::note_empty;
+use crate::empty::{empty_rank, note_empty};
 use crate::error::Rejected;
 use crate::frame::Orientation;
 use crate::plan::Plan;
@@ -77,8 +77,8 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 /// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`, ranked by
 /// `miss`, the tiles by which a count misses the asked one, then by route cost) that fold
 /// without collision and leave no part of the shape empty (measured at `near` tile
-/// widths), measured: the first [`MEASURED`] of those that rank best by (`miss`, a part
-/// left empty) in route order (the route cost estimates the fit, the measure on sample
+/// widths), measured: the first [`MEASURED`] of those that rank best by (`miss`, the
+/// largest part left empty) in route order (the route cost estimates the fit, the measure on sample
 /// points has the last word). The routes are checked in order until [`MEASURED`] plans
 /// miss by nothing and leave nothing empty. What the others said is kept in `failed`.
 #[allow(clippy::too_many_arguments)]
@@ -131,7 +131,9 @@ pub(crate) fn checked_plans(
         };
         plans.push((plan, r, *a));
     }
-    let key = |p: &Plan| (miss(p.tiles), p.metrics.largest_empty_tiles > 0.0);
+    // a part left empty ranks by its size: the plans that leave the least, in whole tile
+    // areas ([`empty_rank`])
+    let key = |p: &Plan| (miss(p.tiles), empty_rank(p.metrics.largest_empty_tiles));
     let Some(top) = plans.iter().map(|(p, ..)| key(p)).min() else {
         return Vec::new();
     };

@@ -38,6 +38,21 @@ pub(crate) const MIN_EMPTY_TILES: f64 = 2.0;
 /// that leaves a smaller part (but more than [`MIN_EMPTY_TILES`]) is returned only when no
 /// plan leaves none, with a warning saying where.
 pub(crate) const REFUSE_EMPTY_TILES: f64 = 20.0;
+/// The rank of a plan's largest empty part (`largest_empty_tiles`, tile areas) among
+/// plans: its size rounded up to whole tile areas (0 for none larger than
+/// [`MIN_EMPTY_TILES`]). Plans rank by it before their fit, so that of plans that all leave a
+/// part empty, one that leaves less wins; parts within the same tile area rank alike, so
+/// that a few samples of the measure's grid (a 64th of a tile width squared each) do not
+/// buy a plan with twice the turns (the key at 171 tiles: 2.1 tile areas in one serpentine
+/// of 22 U-turns against 2.4 in four cells with 9).
+pub(crate) fn empty_rank(tiles: f64) -> u64 {
+    if tiles > 0.0 {
+        tiles.ceil() as u64
+    } else {
+        0
+    }
+}
+
 /// The sample spacing, tile widths: an eighth, as the corpus report measures (a coarser
 /// grid splits a thin empty strip into pieces that each look small).
 const STEP: f64 = 0.125;
@@ -286,5 +301,16 @@ mod tests {
         assert!(area > 40.0 && p.x > 10.0, "{area} at {p:?}");
         assert!(b.x0 > 10.0 && b.x1 < 20.0 && b.height() > 8.0, "{b:?}");
         assert!(largest_empty_part(&shape, &rows(20), NEAR).is_none());
+    }
+
+    /// Plans rank by the empty part in whole tile areas: none ranks first, a smaller part
+    /// before a larger, parts within the same tile area alike.
+    #[test]
+    fn empty_parts_rank_by_whole_tile_areas() {
+        assert_eq!(empty_rank(0.0), 0);
+        assert!(empty_rank(0.0) < empty_rank(2.1));
+        assert_eq!(empty_rank(2.1), empty_rank(2.4));
+        assert!(empty_rank(4.7) < empty_rank(5.4));
+        assert!(empty_rank(19.7) < empty_rank(27.6));
     }
 }

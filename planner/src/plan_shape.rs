@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
-use crate::empty::note_empty;
+use crate::empty::{empty_rank, note_empty};
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
@@ -175,8 +175,8 @@ impl Found {
 
 /// Plans the shape with the turn styles `styles`: one serpentine and, where the shape
 /// splits into cells, caps joined by quarter turns; a plan replaces `found.best` when it
-/// ranks before it (a count within the tolerance, `miss`, then no part left empty, then
-/// the fit). `angles` are the shape's monotone row angles and the serpentine's directions.
+/// ranks before it (a count within the tolerance, `miss`, then the largest part left
+/// empty, least first, then the fit). `angles` are the shape's monotone row angles and the serpentine's directions.
 #[allow(clippy::too_many_arguments)]
 fn plan_styles(
     shape: &Shape,
@@ -189,10 +189,13 @@ fn plan_styles(
     found: &mut Found,
     miss: &dyn Fn(&Plan) -> usize,
 ) {
+    // the empty part is ranked by its size, not only by whether there is one: among plans
+    // that all leave a part empty, the one that leaves the least (issue 26's measure, in
+    // whole tile areas: [`empty_rank`]) wins before the fit
     let rank = |q: &Plan| {
         (
             miss(q),
-            q.metrics.largest_empty_tiles > 0.0,
+            empty_rank(q.metrics.largest_empty_tiles),
             OrdF64(plan_score(q, opts.turn_cost)),
         )
     };
