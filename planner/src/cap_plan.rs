@@ -190,9 +190,6 @@ pub(crate) fn plan_by_caps(
             .iter()
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
         if let Some(p) = size_group(shape, opts, style, name, axes, slabs, &mut failed) {
-            if slabs && centres_inside(shape, &p) < MIN_SLAB_INSIDE {
-                continue;
-            }
             if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
                 best = Some(p);
             }
@@ -302,6 +299,9 @@ fn size_group(
                 Some(_) => 0,
                 None => n.abs_diff(target).saturating_sub(tol),
             },
+            // a slab plan with much of its chain outside the shape is not kept: passed over
+            // where the routes are ranked, so that the width search ranks only plans it keeps
+            &|p| !slabs || centres_inside(shape, p) >= MIN_SLAB_INSIDE,
             &mut here,
         );
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);

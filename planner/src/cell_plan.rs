@@ -80,7 +80,9 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 /// widths), measured: the first [`MEASURED`] of those that rank best by (`miss`, the
 /// largest part left empty) in route order (the route cost estimates the fit, the measure on sample
 /// points has the last word). The routes are checked in order until [`MEASURED`] plans
-/// miss by nothing and leave nothing empty. What the others said is kept in `failed`.
+/// miss by nothing and leave nothing empty. A plan that `admit` refuses (a slab route with
+/// too much of its chain outside the shape) is passed over like one that collides, so that
+/// the plans ranked are those the caller keeps. What the others said is kept in `failed`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn checked_plans(
     shape: &Shape,
@@ -90,6 +92,7 @@ pub(crate) fn checked_plans(
     routes: &[(f64, Arc<Routed>)],
     near: f64,
     miss: &dyn Fn(usize) -> usize,
+    admit: &dyn Fn(&Plan) -> bool,
     failed: &mut Failed,
 ) -> Vec<Plan> {
     let Failed { collide, rejected } = failed;
@@ -111,7 +114,11 @@ pub(crate) fn checked_plans(
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
-        let plan = match note_empty(shape, asm.to_plan_unmeasured(&r.word, name), near) {
+        let plan = asm.to_plan_unmeasured(&r.word, name);
+        if !admit(&plan) {
+            continue;
+        }
+        let plan = match note_empty(shape, plan, near) {
             Ok(plan) => plan,
             Err(e) => {
                 let (part, mut plan) = *e;
