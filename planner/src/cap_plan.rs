@@ -55,14 +55,16 @@ const SLAB_HOPELESS_EMPTY: f64 = 0.1;
 const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
 
 /// The routes at tile width `w` of every axis with its cap decompositions (found at width
-/// `w0`), cheapest first, with their axis.
+/// `w0`), cheapest first, with their axis; with `spread`, routed with more exits per cell
+/// ([`route_sequence`]). `memo` keeps the prefix fold checks for the next call.
 fn routes_at(
     shape: &Shape,
     axes: &[(f64, Vec<CapPlan>, f64)],
     style: Style,
     w: f64,
+    memo: &CheckMemo,
+    spread: bool,
 ) -> Vec<(f64, Arc<Routed>)> {
-    let memo = CheckMemo::default();
     let mut routes: Vec<(f64, Arc<Routed>)> = axes
         .par_iter()
         .flat_map_iter(|(a, plans, w0)| {
@@ -81,7 +83,6 @@ fn routes_at(
                 }
                 p
             });
-            let memo = &memo;
             plans
                 .into_iter()
                 .flat_map(move |p| {
@@ -92,7 +93,7 @@ fn routes_at(
                         .zip(&p.cells)
                         .map(|(s, c)| (s, Some((c.n.vec(), c.either_sign))))
                         .collect();
-                    route_sequence(&seq, style, memo)
+                    route_sequence(&seq, style, memo, spread)
                         .into_iter()
                         .take(ROUTES_PER_DECOMPOSITION)
                         .filter_map(|r| r.to_routed(style))
@@ -278,32 +279,52 @@ fn size_group(
         usize::MAX
     };
     let mut at_start = true;
+    let miss = |n: usize| match opts.tile_size {
+        Some(_) => 0,
+        None => n.abs_diff(target).saturating_sub(tol),
+    };
     let found = search.run_budgeted(target, w0, budget, |w| {
-        let mut routes = routes_at(shape, axes, style, w);
-        if opts.tile_size.is_none() {
-            routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
-        }
+        let memo = CheckMemo::default();
+        let routed = |spread: bool| {
+            let mut routes = routes_at(shape, axes, style, w, &memo, spread);
+            if opts.tile_size.is_none() {
+                routes.sort_by_key(|(_, r)| miss(r.word.tiles()));
+            }
+            routes
+        };
+        let routes = routed(false);
         let Some(first) = routes.first() else {
             return Attempt::Nothing;
         };
         let n = first.1.word.tiles();
         let mut here = Failed::default();
-        let plans = checked_plans(
-            shape,
-            style,
-            w,
-            name,
-            &routes,
-            crate::empty::near(opts.turns),
-            &|n| match opts.tile_size {
-                Some(_) => 0,
-                None => n.abs_diff(target).saturating_sub(tol),
-            },
-            // a slab plan with much of its chain outside the shape is not kept: passed over
-            // where the routes are ranked, so that the width search ranks only plans it keeps
-            &|p| !slabs || centres_inside(shape, p) >= MIN_SLAB_INSIDE,
-            &mut here,
-        );
+        let check = |routes: &[(f64, Arc<Routed>)], here: &mut Failed| {
+            checked_plans(
+                shape,
+                style,
+                w,
+                name,
+                routes,
+                crate::empty::near(opts.turns),
+                &miss,
+                // a slab plan with much of its chain outside the shape is not kept: passed
+                // over where the routes are ranked, so that the width search ranks only
+                // plans it keeps
+                &|p| !slabs || centres_inside(shape, p) >= MIN_SLAB_INSIDE,
+                here,
+            )
+        };
+        let mut plans = check(&routes, &mut here);
+        // where no plan fills the shape, the routes with more exits per cell (each cell's
+        // last row left beside the next cell, at the phase that may fill it) are checked
+        // too: added to the cheapest routes, never in their place, and routed only where
+        // those leave a part empty (the work doubles there at most)
+        let fills = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
+        if !plans.iter().any(fills) {
+            let mut more = routed(true);
+            more.retain(|(a, r)| !routes.iter().any(|(b, q)| a == b && q.word == r.word));
+            plans.extend(check(&more, &mut here));
+        }
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
         failed.merge(here);
         let hopeless = least_empty.is_none_or(|e| e > SLAB_HOPELESS_EMPTY * target as f64);

@@ -144,12 +144,16 @@ pub(crate) struct Routed {
 /// cannot reach without crossing what it has laid, and rows hold `a / pitch` tile areas
 /// per unit of area (`a` the tile area). A ring's top cell filled in rows ends a cell's
 /// height away from the last cell and loses all of it; in columns it ends beside it.
+///
+/// With `spread`, also the cheapest other exits of the near end's row beside the next cell
+/// (see [`beside`]).
 fn ends(
     sol: &Solved,
     lat: Lattice,
     pitch: f64,
     frame: Frame,
     toward: Option<Rect>,
+    spread: bool,
 ) -> Vec<(f64, f64, usize, usize)> {
     let to_axis = frame.to_axis();
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
@@ -167,13 +171,54 @@ fn ends(
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
         let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look));
-        for (c, k, e) in plain.into_iter().chain(near) {
+        // and the other exits of the near end's row that lie beside the next cell: where
+        // along the last row the chain leaves sets the phase of the next cell's rows (a
+        // key's head ends its last column where the shaft's first row runs along the
+        // shaft's middle, so that the rows below it can reach into the teeth), which the
+        // look-ahead cannot see; the route's cost chooses among them
+        let others = match (spread, toward, near) {
+            (true, Some(t), Some((_, k, _))) => beside(sol, lat, pitch, frame, t, k),
+            _ => Vec::new(),
+        };
+        for (c, k, e) in plain.into_iter().chain(near).chain(others) {
             if !out.iter().any(|o| o.2 == k && o.3 == e) {
                 out.push((c, look(k, e), k, e));
             }
         }
     }
     out
+}
+
+/// Exits tried per row beside the next cell (see [`ends`]): a bound on the route's work.
+const SPREAD: usize = 4;
+
+/// The ends `(cost, row, column)` of row `k` of a solved programme whose tile centres lie
+/// beside the box `t` (axis frame): their coordinate along the row within the box's extent
+/// in that direction, at most [`SPREAD`], the cheapest.
+fn beside(
+    sol: &Solved,
+    lat: Lattice,
+    pitch: f64,
+    frame: Frame,
+    t: Rect,
+    k: usize,
+) -> Vec<(f64, usize, usize)> {
+    let to_axis = frame.to_axis();
+    let along_x = frame.d.x.abs() > 0.5;
+    let (lo, hi) = if along_x { (t.x0, t.x1) } else { (t.y0, t.y1) };
+    let mut found: Vec<(f64, usize, usize)> = (0..sol.cols())
+        .filter_map(|e| {
+            let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
+            let v = if along_x { q.x } else { q.y };
+            if v < lo || v > hi {
+                return None;
+            }
+            sol.end_cost(k, e).map(|c| (c, k, e))
+        })
+        .collect();
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    found.truncate(SPREAD);
+    found
 }
 
 /// True if some centre of `new` comes closer than [`MIN_GAP`] to a centre in `old`.
@@ -191,6 +236,7 @@ fn first_legs(
     style: Style,
     toward: Option<Rect>,
     need: Need,
+    spread: bool,
 ) -> Vec<(f64, f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
@@ -212,7 +258,7 @@ fn first_legs(
             let work = frame.work(shape);
             for lat in Lattice::phased(work.bbox(), p) {
                 let sol = solve_rows(&work, style, lat, None, None);
-                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward) {
+                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
                         cost,
@@ -298,6 +344,7 @@ fn next_legs(
     style: Style,
     toward: Option<Rect>,
     need: Need,
+    spread: bool,
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
     // only tiles near the cell can block its rows
     let cell_box = shape.bbox().inflate(2.0, 2.0);
@@ -338,7 +385,7 @@ fn next_legs(
                         || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
             let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
-            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
+            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread) {
                 let leg = Leg {
                     frame,
                     serp: sol.serpentine(lat, p, k, end),
@@ -380,13 +427,21 @@ fn allows(need: Need, n: Vec2) -> bool {
 }
 
 /// The best routes through the cells `seq` in this order, each cell's rows stacked as its
-/// [`Need`] says, cheapest first.
-pub(crate) fn route_sequence(seq: &[(&Shape, Need)], style: Style, memo: &CheckMemo) -> Vec<Route> {
+/// [`Need`] says, cheapest first; with `spread`, each cell followed by another also tries
+/// the other exits of its last row beside that cell ([`ends`]): more ways, found by the same
+/// bounded beam, that replace some of the cheapest (the caller routes both ways where the
+/// cheapest leave a part of the shape empty).
+pub(crate) fn route_sequence(
+    seq: &[(&Shape, Need)],
+    style: Style,
+    memo: &CheckMemo,
+    spread: bool,
+) -> Vec<Route> {
     let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
     let Some(&(first, need0)) = seq.first() else {
         return Vec::new();
     };
-    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0)
+    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0, spread)
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
@@ -405,7 +460,8 @@ pub(crate) fn route_sequence(seq: &[(&Shape, Need)], style: Style, memo: &CheckM
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
             let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
-            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward, need)
+            for (cost, look, leg, join_tiles) in
+                next_legs(prev, &laid, shape, style, toward, need, spread)
             {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }

@@ -455,6 +455,19 @@ impl Solved {
         best.map(|(_, c, k, e)| (c, k, e))
     }
 
+    /// The least cost of a chain whose last row is `k`, ending at column `e` (None if no
+    /// such chain, or `e` is off the lattice).
+    pub(crate) fn end_cost(&self, k: usize, e: usize) -> Option<f64> {
+        (k < self.nrows && e < self.cols)
+            .then(|| self.dp[k * self.cols + e])
+            .filter(|c| c.is_finite())
+    }
+
+    /// The number of columns of the lattice solved.
+    pub(crate) fn cols(&self) -> usize {
+        self.cols
+    }
+
     /// The serpentine on `lat` that ends in row `k` at column `e`.
     pub(crate) fn serpentine(&self, lat: Lattice, pitch: f64, k: usize, e: usize) -> Serpentine {
         Serpentine {
