@@ -59,3 +59,25 @@ fn a_plus_at_300_tiles_keeps_near_the_row_floor() {
     let p = plan("plus.svg", 300);
     assert!(p.u_turns + p.quarter_turns <= 18, "{}", p.summary());
 }
+
+/// Where a cell's last row ends sets the phase of the next cell's rows: where the cheapest
+/// routes leave a part empty, the router also tries the exits of each cell's last row
+/// beside the next cell. The letter Q and the trophy icon at 100 tiles left 10 and 3 tile
+/// areas empty (the Q's tail, the trophy's handles) with the cheapest routes only; now no
+/// part larger than 2 tile areas is left empty (issue 26 item 3), and the plans stay sound
+/// and within 3%.
+#[test]
+fn the_exit_of_a_cell_is_chosen_with_the_next_cells_rows() {
+    for name in ["letters/Q.svg", "icons/bi-trophy-fill.svg"] {
+        let p = common::plan_corpus(name, 100);
+        assert_sound(&p);
+        assert!(p.tiles.abs_diff(100) <= 3, "{name}: {}", p.summary());
+        assert_eq!(
+            p.metrics.largest_empty_tiles,
+            0.0,
+            "{name}: {} {:?}",
+            p.summary(),
+            p.warnings
+        );
+    }
+}
