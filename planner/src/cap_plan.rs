@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::caps::{cap_plans, CapPlan};
 use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
 use crate::check::CheckMemo;
-use crate::empty::empty_rank;
+use crate::empty::{empty_cost, empty_key};
 use crate::fit::plan_score;
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
@@ -223,7 +223,7 @@ fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
 }
 
 /// Plans ranked: a count within the tolerance first, then the largest part left empty
-/// (least first, in whole tile areas: [`empty_rank`]), then the fit.
+/// (least first, in whole tile areas: [`empty_key`]), then the fit.
 fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tol = (opts.tiles_tolerance * target as f64) as usize;
@@ -231,7 +231,7 @@ fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
         Some(_) => 0,
         None => p.tiles.abs_diff(target).saturating_sub(tol),
     };
-    let empty = |p: &Plan| empty_rank(p.metrics.largest_empty_tiles);
+    let empty = |p: &Plan| empty_key(p);
     miss(x)
         .cmp(&miss(y))
         .then(empty(x).cmp(&empty(y)))
@@ -332,12 +332,12 @@ fn size_group(
             return Attempt::Nothing;
         }
         // a count within the tolerance first, then the least part left empty, then the
-        // fit; the search's cost is the part left empty ([`empty_rank`]), so that among
+        // fit; the search's cost is the part left empty ([`empty_key`]), so that among
         // widths whose plans all leave one, the least empty wins, and the retries go on
         // while the best leaves one
         match plans.into_iter().min_by(by_rank) {
             Some(p) => {
-                let empty = empty_rank(p.metrics.largest_empty_tiles) as f64;
+                let empty = empty_cost(&p);
                 Attempt::Plan(p.tiles, empty, p)
             }
             None => Attempt::Rejected(n),

@@ -138,15 +138,17 @@ pub(crate) fn checked_plans(
         };
         plans.push((plan, r, *a));
     }
-    // a part left empty ranks by its size: the plans that leave the least, in whole tile
-    // areas ([`empty_rank`])
-    let key = |p: &Plan| (miss(p.tiles), empty_rank(p.metrics.largest_empty_tiles));
+    let key = |p: &Plan| (miss(p.tiles), p.metrics.largest_empty_tiles > 0.0);
     let Some(top) = plans.iter().map(|(p, ..)| key(p)).min() else {
         return Vec::new();
     };
+    plans.retain(|(p, ..)| key(p) == top);
+    // a part left empty ranks by its size: the plans that leave the least first, in whole
+    // tile areas ([`empty_rank`]; route order among equals); the caller ranks the measured
+    // plans by [`crate::empty::empty_key`], which also weighs the chain outside
+    plans.sort_by_key(|(p, ..)| empty_rank(p.metrics.largest_empty_tiles));
     plans
         .into_iter()
-        .filter(|(p, ..)| key(p) == top)
         .take(MEASURED)
         .map(|(mut plan, r, a)| {
             let orient = Orientation::along(a);

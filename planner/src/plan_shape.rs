@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
-use crate::empty::{empty_rank, note_empty};
+use crate::empty::{empty_key, note_empty};
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
@@ -191,14 +191,8 @@ fn plan_styles(
 ) {
     // the empty part is ranked by its size, not only by whether there is one: among plans
     // that all leave a part empty, the one that leaves the least (issue 26's measure, in
-    // whole tile areas: [`empty_rank`]) wins before the fit
-    let rank = |q: &Plan| {
-        (
-            miss(q),
-            empty_rank(q.metrics.largest_empty_tiles),
-            OrdF64(plan_score(q, opts.turn_cost)),
-        )
-    };
+    // whole tile areas, with little of its chain outside: [`empty_key`]) wins before the fit
+    let rank = |q: &Plan| (miss(q), empty_key(q), OrdF64(plan_score(q, opts.turn_cost)));
     let offer = |found: &mut Found, p: Plan| {
         if found.best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
             found.best = Some(p);
