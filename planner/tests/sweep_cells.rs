@@ -51,13 +51,17 @@ fn a_u_at_300_tiles_is_arms_and_bar() {
 /// so the plus needs at least 6 + 6 + 6 rows: 17 turns (all rows across one bar: 17 U-turns;
 /// one bar along its length and the two arms: 15 U-turns and 2 quarter turns). The issue's
 /// 15 (1.25 times a hand plan of 10 U-turns and 2 quarter turns) is below that floor; the
-/// plan holds at most 18 turns (one row more than the floor, where the tile count asks for
-/// it). (It still leaves a strip along the bar about 6 tile areas empty, said in a warning:
-/// not yet met.)
+/// plan holds at most 18 U-turns (one row more than the floor, where the tile count asks for
+/// it) and 19 turns in all: since plans that leave a part empty rank by its size, the plus
+/// is planned in 2 cells joined by a quarter turn (18 U-turns, 1 quarter turn, 3.9 tile areas
+/// empty) rather than one serpentine (18 U-turns, 5.7 empty). (It still leaves a strip
+/// along the bar empty, said in a warning: not yet met.)
 #[test]
 fn a_plus_at_300_tiles_keeps_near_the_row_floor() {
     let p = plan("plus.svg", 300);
-    assert!(p.u_turns + p.quarter_turns <= 18, "{}", p.summary());
+    assert!(p.u_turns <= 18, "{}", p.summary());
+    assert!(p.u_turns + p.quarter_turns <= 19, "{}", p.summary());
+    assert!(p.metrics.largest_empty_tiles < 5.0, "{}", p.summary());
 }
 
 /// Where a cell's last row ends sets the phase of the next cell's rows: where the cheapest
