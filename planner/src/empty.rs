@@ -62,20 +62,24 @@ pub(crate) const MAX_OUTSIDE_RANKED: f64 = 0.09;
 /// The key by which plans rank for the part they leave empty, before their fit (least
 /// first): none left empty first; of plans that leave one, those with at most
 /// [`MAX_OUTSIDE_RANKED`] of their chain outside, then the least part ([`empty_rank`]).
-pub(crate) fn empty_key(p: &Plan) -> (bool, bool, u64) {
+pub(crate) fn empty_key(p: &Plan) -> (bool, u8, u64) {
     let empty = p.metrics.largest_empty_tiles > 0.0;
-    (
-        empty,
-        empty && p.metrics.outside_share > MAX_OUTSIDE_RANKED,
-        empty_rank(p.metrics.largest_empty_tiles),
-    )
+    let o = p.metrics.outside_share;
+    let tier = if !empty || o <= 0.05 {
+        0
+    } else if o <= MAX_OUTSIDE_RANKED {
+        1
+    } else {
+        2
+    };
+    (empty, tier, empty_rank(p.metrics.largest_empty_tiles))
 }
 
 /// [`empty_key`] as a cost (0 for none left empty), for the tile-width search.
 pub(crate) fn empty_cost(p: &Plan) -> f64 {
     match empty_key(p) {
         (false, ..) => 0.0,
-        (true, far, rank) => rank as f64 + if far { 1e6 } else { 0.0 },
+        (true, tier, rank) => rank as f64 + 1e6 * f64::from(tier),
     }
 }
 
