@@ -21,7 +21,6 @@ use std::time::Instant;
 use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions, FoldSchedule};
 use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::Inertia;
 use foldchain::{folded_word, kinematics, Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
@@ -154,8 +153,7 @@ fn local_check(file: &str, cache: Option<&str>) {
         None => {
             let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
             let t = Instant::now();
-            let model =
-                ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()));
+            let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
             let opts = EngineOptions::default().with_model(model);
             let tl = run(&chain, &designs, &opts).expect("engine");
             println!("engine: {:.2} s", t.elapsed().as_secs_f64());

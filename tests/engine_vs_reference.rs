@@ -8,7 +8,6 @@
 
 use foldchain::engine::{energy_curve, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::Inertia;
 use foldchain::physics::DEFAULT_CUTOFF;
 use foldchain::reference::{reference_energy, run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
@@ -136,7 +135,7 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
 }
 
 fn inertial() -> ModelOptions {
-    ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+    ModelOptions::default().with_dynamics(Dynamics::Inertial)
 }
 
 #[test]

@@ -7,7 +7,7 @@
 use foldchain::engine::{joint_angles_at, run, EngineMethod, EngineOptions, StartRule};
 use foldchain::kinematics::{final_poses, poses_at_angles};
 use foldchain::model::ModelOptions;
-use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+use foldchain::physics::{DEFAULT_CUTOFF, DEFAULT_DRAG};
 use foldchain::reference::{run_reference, Method, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::{Event, EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
@@ -138,7 +138,9 @@ fn moments_from_1e_minus_6_to_1e6_scale_time_only() {
 fn micrometre_tiles() {
     // thesis 8.2.1: the design scaled by 1e-3 (30 um tiles, 3 um x 5 um magnets). With
     // Stokes drag (~ size, rotational ~ size^3) the timeline is the same as at 30 mm: forces
-    // go as size^2 (moments ~ size^3, 1/r^4), torques as size^3.
+    // go as size^2 (moments ~ size^3, 1/r^4), torques as size^3. The magnet's drag scales by
+    // the size, and the tiles' water drag with a film scaled alike (`mu A / h` ~ size,
+    // `mu J / h` ~ size^3).
     let t = Design::thesis();
     let k = 1e-3;
     let micro = Design {
@@ -149,14 +151,13 @@ fn micrometre_tiles() {
         magnet_diameter: 3.0 * k,
         magnet_height: 5.0 * k,
         wall: t.wall * k,
+        magnet_drag: Some(DEFAULT_DRAG * k),
+        water_film: t.water_film * k,
         ..t
     };
     let mo = ModelOptions::default();
     let macro_run = reference("SLLS", t, mo, Method::Dopri5);
-    let stokes = mo
-        .with_drag(mo.drag * k)
-        .with_rotational_drag(mo.rotational_drag * k * k * k);
-    let r = reference("SLLS", micro, stokes, Method::Dopri5);
+    let r = reference("SLLS", micro, mo, Method::Dopri5);
     assert_eq!(r.outcome, macro_run.outcome);
     assert_eq!(r.folded_joints(), vec![1, 2]);
     let rel = (r.duration() - macro_run.duration()).abs() / macro_run.duration();
@@ -165,8 +166,11 @@ fn micrometre_tiles() {
     // before it starts: a diagnosis, not a hang
     let r = reference(
         "SLLS",
-        micro,
-        stokes.with_static_friction(1e-6),
+        Design {
+            friction: 1e-6,
+            ..micro
+        },
+        mo,
         Method::Dopri5,
     );
     match &r.outcome {
@@ -295,7 +299,6 @@ fn summary_and_timeline_say_what_the_run_did() {
             "method": "dopri5",
             "tolerance": 1e-5,
             "drag": DEFAULT_DRAG,
-            "rotational_drag": DEFAULT_ROTATIONAL_DRAG,
         }},
         "index": "magnet k is magnet k mod 2 of tile k/2; joint events index the joint",
         "events": events,

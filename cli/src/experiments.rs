@@ -7,7 +7,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::{ForceLaw, Inertia};
+use foldchain::physics::ForceLaw;
 use foldchain::reference::pair_energies;
 use foldchain::render::pair_energy_svg;
 use foldchain::validation::experiments::{run_experiments, ExperimentResult};
@@ -35,7 +35,7 @@ impl ExperimentsReport {
 /// Runs the experiments in the four models and writes `experiment-NAME.svg` into `out`.
 pub fn experiments(out: &Path, json: bool) -> anyhow::Result<ExperimentsReport> {
     let d = Design::thesis();
-    let inertial = Dynamics::Inertial(Inertia::default());
+    let inertial = Dynamics::Inertial;
     let mut models = Vec::new();
     for dynamics in [inertial, Dynamics::Overdamped] {
         for law in [ForceLaw::PointDipole, ForceLaw::cylinder(&d)] {

@@ -6,7 +6,7 @@
 //! into its output directory ([`run_files`]), reading chains and guarding input files
 //! ([`inputs`]), the thesis' experiments ([`experiments`]), progress on stderr ([`progress`]),
 //! a run's margins ([`margins_file`]), its name ([`run_name`]), `fold-run --engine auto`'s choice
-//! ([`engine_choice`]), the named choices of the options ([`choices`]) and error messages ([`report`]). The libraries `foldchain` and
+//! ([`engine_choice`]), the named choices of the options ([`choices`]), the physical parameters ([`physics_args`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all seven tools with `cargo install --path cli` from the repository root.
@@ -18,6 +18,7 @@ pub mod inputs;
 pub mod margins_file;
 pub mod numbers;
 pub mod output;
+pub mod physics_args;
 pub mod progress;
 pub mod report;
 pub mod run_dir;

@@ -6,7 +6,9 @@ use crate::engine::progress::Progress;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
 use crate::timeline::Event;
-use crate::timeline::{EventKind, FoldRecord, Geometry, Outcome, RunFacts, SpeedLaw, Summary};
+use crate::timeline::{
+    EventKind, FoldRecord, Geometry, Outcome, Parameters, RunFacts, SpeedLaw, Summary,
+};
 
 /// The result of a run: every event, each magnet's start, the folds and the outcome.
 #[derive(Debug)]
@@ -29,6 +31,8 @@ pub struct Timeline {
     pub(crate) fold_of_joint: Vec<u32>,
     /// The local solves' tracks (`None` for the kinematic baseline).
     pub(crate) solved: Option<Box<Solved>>,
+    /// The physical parameters the run used.
+    pub parameters: Parameters,
 }
 
 /// What decides an inhibition in the engine, for its reason.
@@ -134,6 +138,7 @@ impl Timeline {
             max_moving_magnets: self.max_moving_magnets(),
             speed_law: self.speed,
         })
+        .with_parameters(self.parameters.clone())
     }
 }
 

@@ -6,8 +6,9 @@
 //! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
 //! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
 //! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
-//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
-//! drag of [`Inertia`] times the tiles downstream of the joint.
+//! `I_j (pi/2) psi'' + I_j'(psi) psi'^2 (pi/2) / 2 = tau - g_j (pi/2) psi'`, with `I_j` and
+//! `g_j` the effective inertia and drag of the joint's two free sides at its angle
+//! ([`crate::model`]'s sides: nothing is anchored).
 //!
 //! **Walls.** At a wall (0 or 1) a free unknown moving outwards bounces with the
 //! restitution, or stays there when the rebound would rise less than [`REST_HEIGHT`] of the
@@ -20,18 +21,39 @@ use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
 use crate::model::chain_model::Unknown;
+use crate::model::sides::Sides;
 use crate::model::{Dynamics, Mode, Model};
-use crate::physics::Inertia;
 
 /// A rebound that would rise less than this fraction of the range ends the bouncing.
 pub(crate) const REST_HEIGHT: f64 = 1e-3;
 
-/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
-/// damping rate (1/s), and the Coulomb friction (in drive units).
+/// A folding joint's coefficients: its sides' inertia and drag, and its sign.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct JointCoefficients {
+    sides: Sides,
+    /// +1 left, -1 right.
+    sign: f64,
+}
+
+impl JointCoefficients {
+    /// The effective inertia (kg m^2), its derivative by the fold fraction, and the
+    /// effective drag (N m s) at fold fraction `psi`.
+    fn at(&self, psi: f64) -> (f64, f64, f64) {
+        let phi = self.sign * psi.clamp(0.0, 1.0) * FRAC_PI_2;
+        let (inertia, slope) = self.sides.inertia.at(phi);
+        let (drag, _) = self.sides.drag.at(phi);
+        (inertia, slope * self.sign * FRAC_PI_2, drag)
+    }
+}
+
+/// Per unknown: for a magnet, its inverse effective mass (acceleration of the unknown per
+/// unit drive), its damping rate (1/s) and its Coulomb friction (in drive units); for a
+/// joint, its sides ([`JointCoefficients`]), whose inertia and drag depend on the fold.
 pub(crate) struct Coefficients {
     pub(crate) inv_mass: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) coulomb: Vec<f64>,
+    joints: Vec<Option<JointCoefficients>>,
 }
 
 impl Coefficients {
@@ -51,24 +73,30 @@ impl Coefficients {
         (tau, move_time, drag_time)
     }
 
-    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
-        let tiles = model.geometry.tiles();
+    pub(crate) fn new(model: &Model) -> Coefficients {
         let n = model.len();
         let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut joints = vec![None; n];
         for (i, u) in model.unknowns.iter().enumerate() {
             match *u {
                 Unknown::Magnet(k) => {
-                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
+                    let m = model.magnet_mass[k];
                     let len = model.path_length(k) * 1e-3;
                     inv_mass[i] = 1.0 / (m * len);
-                    damping[i] = inertia.drag / m;
-                    coulomb[i] = inertia.coulomb;
+                    damping[i] = model.drag / m;
+                    coulomb[i] = model.friction;
                 }
                 Unknown::Joint(j) => {
-                    let swung = (tiles - 1 - j) as f64;
-                    let inertia_j = inertia.tile_inertia * swung;
-                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
-                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
+                    if let Some(sides) = model.sides[j] {
+                        let jc = JointCoefficients {
+                            sides,
+                            sign: model.joint_sign(j),
+                        };
+                        let (inertia, _, drag) = jc.at(0.0);
+                        inv_mass[i] = 1.0 / (inertia * FRAC_PI_2);
+                        damping[i] = drag / inertia;
+                        joints[i] = Some(jc);
+                    }
                 }
             }
         }
@@ -76,6 +104,7 @@ impl Coefficients {
             inv_mass,
             damping,
             coulomb,
+            joints,
         }
     }
 }
@@ -103,22 +132,29 @@ impl fmt::Debug for InertialModel {
 impl InertialModel {
     /// The inertial coefficients of `model`, if its dynamics are inertial.
     pub(crate) fn new(model: &Model) -> Option<InertialModel> {
-        let Dynamics::Inertial(inertia) = model.options().dynamics else {
+        if model.options().dynamics != Dynamics::Inertial {
             return None;
-        };
-        let c = Coefficients::new(model, &inertia);
+        }
+        let c = Coefficients::new(model);
         // the reference's scale (its inertial driver)
         let (tau, move_time, drag_time) = c.times(model);
         Some(InertialModel {
-            restitution: inertia.restitution,
+            restitution: model.geometry.design(0).restitution,
             scale: tau.max(move_time).max(drag_time),
             first_step: tau.min(move_time),
             c,
         })
     }
 
-    /// The acceleration of unknown `g` (state index) at velocity `v` under `drive`.
-    pub(crate) fn acceleration(&self, g: usize, drive: f64, v: f64) -> f64 {
+    /// The acceleration of unknown `g` (state index) at value `y` and velocity `v` under
+    /// `drive`: a magnet's `(F - f_c) / (m L) - (gamma / m) v`; a joint's
+    /// `(tau / (pi/2) - g psi' - I' psi'^2 / 2) / I` with its sides' inertia `I` and drag `g`
+    /// at its angle ([`crate::model`]'s sides).
+    pub(crate) fn acceleration(&self, g: usize, y: f64, drive: f64, v: f64) -> f64 {
+        if let Some(jc) = &self.c.joints[g] {
+            let (inertia, slope, drag) = jc.at(y);
+            return (drive / FRAC_PI_2 - drag * v - 0.5 * slope * v * v) / inertia;
+        }
         let fc = self.c.coulomb[g];
         let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
         (drive - friction) * self.c.inv_mass[g] - self.c.damping[g] * v
@@ -145,7 +181,11 @@ impl InertialModel {
         let rebound = -self.restitution * v;
         // the drive pressing it on against the wall, as an acceleration
         let press = if wall == 1.0 { drive } else { -drive };
-        let a = press.max(0.0) * self.c.inv_mass[g];
+        let inv_mass = match &self.c.joints[g] {
+            Some(jc) => 1.0 / (jc.at(wall).0 * FRAC_PI_2),
+            None => self.c.inv_mass[g],
+        };
+        let a = press.max(0.0) * inv_mass;
         if self.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
             None
         } else {
@@ -174,7 +214,7 @@ mod tests {
     use crate::{Chain, Design};
 
     fn inertial() -> ModelOptions {
-        ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+        ModelOptions::default().with_dynamics(Dynamics::Inertial)
     }
 
     #[test]

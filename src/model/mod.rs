@@ -28,6 +28,7 @@ mod dynamics;
 mod forces;
 mod mode;
 mod options;
+mod sides;
 mod verdict;
 
 pub(crate) use chain_model::Unknown;

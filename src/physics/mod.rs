@@ -1,6 +1,6 @@
 //! The physics both simulations share: the pair law between two magnets, what a force does
 //! to the chain (its drive along a magnet's path, its torque about a hinge), which pairs
-//! interact (chain index, polarity and the cutoff), the reaction initiator, the drags, and
+//! interact (chain index, polarity and the cutoff), the reaction initiator, the drags, a tile as a rigid body on the water, and
 //! the chain's dipole energy.
 //!
 //! The event engine's force start rule ([`crate::engine::StartRule::Force`]) and the
@@ -31,18 +31,15 @@ mod drive;
 mod energy;
 mod force_law;
 mod grid;
-mod inertia;
 mod poles;
 mod ri;
+mod tile_body;
 
-pub use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+pub use drag::{magnet_drag, DEFAULT_DRAG, DEFAULT_INERTIAL_DRAG};
 pub use drive::{along_path, joints_between, torque_about};
 pub use energy::EnergyUnit;
 pub use force_law::{ForceLaw, FORCE_LAW_NAMES};
 pub use grid::pairs_within;
-pub use inertia::{
-    Inertia, DEFAULT_INERTIAL_DRAG, DEFAULT_RESTITUTION, DEFAULT_TILE_INERTIA,
-    DEFAULT_TILE_ROTATIONAL_DRAG,
-};
 pub use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
 pub use ri::ReactionInitiator;
+pub use tile_body::TileBody;

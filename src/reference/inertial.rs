@@ -60,7 +60,7 @@ impl System for Inertial<'_> {
             }
             let v = z[2 * i + 1];
             out[2 * i] = v;
-            out[2 * i + 1] = self.im.acceleration(i, work.forces.drive[i], v);
+            out[2 * i + 1] = self.im.acceleration(i, z[2 * i], work.forces.drive[i], v);
         }
     }
 }

@@ -57,7 +57,6 @@ struct ReferenceSettings {
     method: Method,
     tolerance: f64,
     drag: f64,
-    rotational_drag: f64,
 }
 
 impl ReferenceRun {
@@ -111,12 +110,15 @@ impl ReferenceRun {
             folds: self.folded_joints(),
             max_moving_magnets: self.max_moving.0,
             speed_law: match self.model.options().dynamics {
-                Dynamics::Inertial(i) => SpeedLaw::Inertial { drag: i.drag },
+                Dynamics::Inertial => SpeedLaw::Inertial {
+                    drag: self.model.drag,
+                },
                 _ => SpeedLaw::Overdamped {
-                    drag: self.model.options().drag,
+                    drag: self.model.drag,
                 },
             },
         });
+        let summary = summary.with_parameters(self.model.parameters("joint-angle reference"));
         match &self.stopped {
             Some(why) => summary.overruled("stopped", why.clone()),
             None => summary,
@@ -125,15 +127,13 @@ impl ReferenceRun {
 
     /// `timeline.json` in the event engine's format, the law named `reference`.
     pub fn timeline_json(&self) -> String {
-        let model = self.model.options();
         TimelineJson {
             tiles: self.tiles(),
             speed_law: ReferenceLaw {
                 reference: ReferenceSettings {
                     method: self.options.method,
                     tolerance: self.options.tolerance,
-                    drag: model.drag,
-                    rotational_drag: model.rotational_drag,
+                    drag: self.model.drag,
                 },
             },
             events_total: None,

@@ -1,7 +1,7 @@
 //! The summary of a run: what `summary.json` holds and `fold-run --json` prints, the same
 //! fields whichever simulation made the run.
 
-use crate::timeline::{Outcome, SpeedLaw};
+use crate::timeline::{Outcome, Parameters, SpeedLaw};
 
 /// The first collision of a run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -64,6 +64,9 @@ pub struct Summary {
     pub first_collision: Option<CollisionReport>,
     /// The speed law (`overdamped` with its drag, or `unit`).
     pub speed_law: SpeedLaw,
+    /// The physical parameters the run used (null when not known: a summary made from a
+    /// run's facts alone).
+    pub parameters: Option<Parameters>,
 }
 
 impl Summary {
@@ -90,7 +93,14 @@ impl Summary {
             reason: outcome.reason(facts.decided_by),
             first_collision: None,
             speed_law: facts.speed_law,
+            parameters: None,
         }
+    }
+
+    /// The same summary stating the parameters the run used.
+    pub fn with_parameters(mut self, parameters: Parameters) -> Summary {
+        self.parameters = Some(parameters);
+        self
     }
 
     /// The same summary with its result overruled: the run counts as `result` (not

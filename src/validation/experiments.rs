@@ -167,7 +167,7 @@ fn dynamics_name(d: Dynamics) -> &'static str {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::physics::{ForceLaw, Inertia};
+    use crate::physics::ForceLaw;
     use crate::reference::pair_energies;
 
     #[test]
@@ -177,7 +177,7 @@ mod tests {
         }
         let model = ModelOptions::default()
             .with_force_law(ForceLaw::PointDipole)
-            .with_dynamics(Dynamics::Inertial(Inertia::default()));
+            .with_dynamics(Dynamics::Inertial);
         let runs = run_experiments(&[model], 200).unwrap();
         assert_eq!(runs.len(), EXPERIMENTS.len());
         for (r, run) in &runs {

@@ -8,12 +8,10 @@ use std::process::ExitCode;
 use anyhow::{anyhow, bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::engine::{
-    EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns, DEFAULT_DRAG,
-};
+use foldchain::engine::{EngineOptions, SValue, SpeedLaw, StartRule, Summary, TileDesigns};
 use foldchain::margins::Margins;
 use foldchain::model::ModelOptions;
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::{magnet_drag, ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
 use foldchain::render::RunSource;
@@ -25,6 +23,7 @@ use foldchain_cli::engine_choice::{distinct_neighbourhoods, LOCAL_ENGINE_MAX_NEI
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, target_outline};
 use foldchain_cli::margins_file::MarginsJob;
 use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::physics_args::PhysicsArgs;
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_dir::{install_interrupt_cleanup, StagedDir};
 use foldchain_cli::run_files::{
@@ -124,10 +123,9 @@ struct Args {
     /// apart in chain index only.
     #[arg(long, value_name = "MM", value_parser = cutoff_arg, allow_hyphen_values = true)]
     distance_cutoff: Option<f64>,
-    /// Drag coefficient of the overdamped law, N s/m (0.001 to 10000; default 5): the
-    /// kinematic engine's speed law and --dynamics overdamped.
-    #[arg(long, value_name = "N_S_PER_M", value_parser = drag_arg, allow_hyphen_values = true)]
-    drag: Option<f64>,
+    /// The physical parameters (each overrides the design file's).
+    #[command(flatten)]
+    physics: PhysicsArgs,
     /// Threads of the local solves' sweeps: 1 one sweep after the other, 2 two at once (the
     /// events are the same to the last bit); default: the machine's cores, one thread under
     /// 500 tiles
@@ -188,16 +186,6 @@ fn threads_arg(s: &str) -> Result<usize, String> {
 
 fn cutoff_arg(s: &str) -> Result<f64, String> {
     number_in(s, 1e-3, 1e4, "mm", "")
-}
-
-fn drag_arg(s: &str) -> Result<f64, String> {
-    number_in(
-        s,
-        1e-3,
-        1e4,
-        "N s/m",
-        "below 0.001 the magnets' inertia matters: use --dynamics inertial",
-    )
 }
 
 fn tile_size_arg(s: &str) -> Result<f64, String> {
@@ -286,6 +274,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
         designs = designs.with_s(s_value(s)?);
         designs.check_ranges("--s")?;
     }
+    designs = args.physics.apply(designs);
+    designs.check_ranges("command line")?;
     let force_law =
         ForceLaw::named(&args.force_law, &designs.global_design()).ok_or_else(|| {
             anyhow!(
@@ -294,7 +284,8 @@ fn run(args: Args) -> anyhow::Result<u8> {
             )
         })?;
     let dynamics = args.dynamics.to_dynamics();
-    let drag = args.drag.unwrap_or(DEFAULT_DRAG);
+    // the kinematic baseline is overdamped: the magnet drag of the overdamped model
+    let drag = magnet_drag(&designs.global_design(), false);
     let speed = match args.speed {
         SpeedChoice::Unit => SpeedLaw::Unit,
         SpeedChoice::Overdamped => SpeedLaw::Overdamped { drag },
@@ -420,13 +411,12 @@ fn run(args: Args) -> anyhow::Result<u8> {
                 Some(StartRuleChoice::Distance) | None => StartRule::Distance,
             })
     } else {
-        // the local solves follow --dynamics, as the reference does (--drag is the
-        // overdamped model's drag)
+        // the local solves follow --dynamics and the design's physical parameters, as the
+        // reference does
         EngineOptions::default()
             .with_model(
                 ModelOptions::default()
                     .with_force_law(force_law)
-                    .with_drag(drag)
                     .with_dynamics(dynamics),
             )
             .with_threads(args.threads)

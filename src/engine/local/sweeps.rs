@@ -303,7 +303,7 @@ mod tests {
     fn one_thread_or_two_give_the_same_solution_bit_for_bit() {
         // two sweeps at once, the later trailing the earlier: every event time, every track
         // and the work done the same as one sweep after the other
-        let inertial = Dynamics::Inertial(Default::default());
+        let inertial = Dynamics::Inertial;
         for (word, d) in [
             ("S*30 LL S*30 RR S*30 LL S*30", inertial),
             ("S*14 LL S*14 RR S*6", Dynamics::Overdamped),
@@ -371,7 +371,7 @@ mod tests {
         same_cost(&two, &four);
         assert!(shapes_four <= shapes_two + 30, "{shapes_two} {shapes_four}");
         // the inertial local solves (fold-run's default) as well
-        let inertial = Dynamics::Inertial(Default::default());
+        let inertial = Dynamics::Inertial;
         let (short, _, _) = counts_with("S*60", inertial);
         let (long, _, _) = counts_with("S*240", inertial);
         same_cost(&short, &long);
@@ -382,7 +382,7 @@ mod tests {
         // a U-turn swinging a 20,000-tile tail turns slowly while its pair's nearly closed
         // magnets follow it: a stiff stretch (measured: 12% fewer right-hand sides)
         let word = "S*4 LL S*20000";
-        let inertial = Dynamics::Inertial(Default::default());
+        let inertial = Dynamics::Inertial;
         let with = solve_word_with(word, 0.1, inertial, true, true);
         let without = solve_word_with(word, 0.1, inertial, true, false);
         assert_same_events(&with, &without);

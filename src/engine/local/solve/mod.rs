@@ -183,14 +183,17 @@ impl Solver<'_> {
         match self.opts.inertial {
             None => {
                 for i in 0..m {
-                    f[i] = self.w.model.rate(self.globals[i], drive[i], self.modes[i]);
+                    f[i] = self
+                        .w
+                        .model
+                        .rate(self.globals[i], z[i], drive[i], self.modes[i]);
                 }
             }
             Some(im) => {
                 for i in 0..m {
                     if self.modes[i] == Mode::Free {
                         f[i] = z[m + i];
-                        f[m + i] = im.acceleration(self.globals[i], drive[i], z[m + i]);
+                        f[m + i] = im.acceleration(self.globals[i], z[i], drive[i], z[m + i]);
                     } else {
                         f[i] = 0.0;
                         f[m + i] = 0.0;
@@ -501,7 +504,7 @@ mod tests {
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {
         let o = crate::engine::local::test_support::Options {
             s: 0.1,
-            dynamics: Dynamics::Inertial(Default::default()),
+            dynamics: Dynamics::Inertial,
             reuse: true,
             rosenbrock: true,
             rest_skip,
