@@ -87,7 +87,7 @@ pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose
 /// The poses of the tiles after one at `pose`, whose joints turn by `angles`, handed to
 /// `each` in order: from tile 0's pose, [`for_each_pose_at_angles`] less tile 0; from a
 /// later tile's pose, the same numbers as from tile 0.
-pub(crate) fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+pub fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
     // the last joint angle and its transform, the last heading and its sine and cosine
     let mut joint: Option<(u64, Pose)> = None;
     let mut heading: Option<(u64, f64, f64)> = None;

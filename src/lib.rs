@@ -13,8 +13,9 @@
 //!   coordinates in [`exact`]).
 //! - Self-intersection, exactly, during every fold and in the final shape ([`collision`]), and
 //!   the counts of chains that fold cleanly ([`count`]).
-//! - The folding run: the event engine ([`engine`]), the force-integrated reference
-//!   ([`reference`](mod@reference)) and their pictures ([`render`]).
+//! - The folding run: the event engine ([`engine`]) and the force-integrated reference
+//!   ([`reference`](mod@reference)), both read through one run abstraction
+//!   ([`timeline::RunSource`]); their pictures and viewer are the `foldchain-render` crate.
 //!
 //! ```
 //! use foldchain::collision::{check_word, CheckOptions};
@@ -60,18 +61,17 @@ mod path_kind;
 pub mod physics;
 mod pose;
 pub mod reference;
-pub mod render;
 mod simulation;
 mod tile;
 pub mod timeline;
 pub mod tolerance;
 pub mod validation;
-pub mod viewer;
 mod word;
 
 pub use bom::BillOfMaterials;
 pub use chain::{Chain, MAX_TILES};
 pub use design::{Design, DesignError, InequalityCheck, Standing};
+pub use engine::{timeline_json, MAX_TIMELINE_EVENTS};
 pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
 pub use joint::{Fold, JointOutcome};
@@ -79,9 +79,6 @@ pub use number_text::short_number;
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
-pub use simulation::{
-    check_engine_run, check_reference, folded_word, simulate, timeline_json, SimulateError,
-    MAX_TIMELINE_EVENTS,
-};
+pub use simulation::{check_engine_run, check_reference, folded_word, simulate, SimulateError};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

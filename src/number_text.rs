@@ -18,8 +18,10 @@ pub fn short_number(v: f64) -> String {
         return format!("{v}");
     }
     let a = v.abs();
-    if (1e-3..1e6).contains(&a) {
-        let digits = (5 - a.log10().floor() as i32).clamp(0, 8) as usize;
+    // Rounded to six digits first: 999999.9 is 1e6 and written as such.
+    let rounded_abs = format!("{a:.5e}").parse::<f64>().unwrap_or(a);
+    if (1e-3..1e6).contains(&rounded_abs) {
+        let digits = (5 - rounded_abs.log10().floor() as i32).clamp(0, 8) as usize;
         let text = format!("{v:.digits$}");
         if text.contains('.') {
             text.trim_end_matches('0').trim_end_matches('.').to_string()

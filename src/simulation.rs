@@ -1,17 +1,14 @@
 //! A simulation as one call: the event engine's timeline of a chain, its fold schedule
 //! checked for self-intersection, and the summary of both ([`simulate`], or its two steps:
-//! [`crate::engine::run`] then [`check_engine_run`]); the timeline as
-//! JSON ([`timeline_json`]).
+//! [`crate::engine::run`] then [`check_engine_run`]); a reference run's recorded fold
+//! schedule checked the same way ([`check_reference`]).
 
 use crate::collision::{
     check_schedule, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError,
 };
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
-use crate::reference::ReferenceRun;
-use crate::render::RunSource;
-use crate::timeline::{
-    CollisionReport, FoldRecord, Summary, TileDesigns, TimelineJson, EVENT_INDEX,
-};
+use crate::reference::{joint_angle_samples, ReferenceRun};
+use crate::timeline::{CollisionReport, FoldRecord, Summary, TileDesigns, Track};
 use crate::{Chain, Fold, FoldWord};
 
 /// Why a simulation could not be made.
@@ -40,10 +37,11 @@ fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
 }
 
 /// Checks a reference run's fold schedule for collisions with the engine's checker
-/// ([`check_schedule`]): each fold's track from the run's recorded states (linear between
-/// them, thinned within [`crate::viewer::ANGLE_TOLERANCE`]; a run that recorded none has
-/// its final angles only) with its fold's end, the word of the joints that turned. Its summary, overruled
-/// (`collided`, `first_collision`) or `undecided` as [`simulate`]'s.
+/// ([`check_schedule`]): each fold's track through the run's recorded states and wall
+/// contacts, linear between them (only exactly collinear points dropped; a run that recorded
+/// none has its final angles only), with its fold's end, the word of the joints that
+/// turned. Its summary, overruled (`collided`, `first_collision`) or `undecided` as
+/// [`simulate`]'s.
 pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, SimulateError> {
     let mut summary = run.to_summary();
     if run.tiles() < 2 || run.folds.is_empty() {
@@ -54,7 +52,7 @@ pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summa
         .folds
         .iter()
         .map(|f| {
-            let tr = RunSource::joint_angle(run, f.joint);
+            let tr = Track::from_samples(&joint_angle_samples(run, f.joint), 0.0);
             let (times, angles) = tr.points.iter().map(|&(dt, a)| (tr.start + dt, a)).unzip();
             JointTrack {
                 joint: f.joint,
@@ -160,24 +158,4 @@ fn check_timeline(
         }
         Err(e) => Err(SimulateError::Schedule(e)),
     }
-}
-
-/// The most events written by [`timeline_json`] (about 70 MB): a longer run writes the first
-/// ones and says so (`"truncated": true`, `"events_total"`); the summary always counts all.
-pub const MAX_TIMELINE_EVENTS: usize = 2_000_000;
-
-/// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
-/// (index: the magnet, or the joint for fold, inhibited and stalled events), at most
-/// [`MAX_TIMELINE_EVENTS`] of them.
-pub fn timeline_json(tl: &Timeline) -> String {
-    let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
-    TimelineJson {
-        tiles: tl.tiles(),
-        speed_law: tl.speed,
-        events_total: Some(tl.events.len()),
-        truncated: Some(shown < tl.events.len()),
-        index: EVENT_INDEX,
-        events: &tl.events[..shown],
-    }
-    .to_json()
 }

@@ -11,7 +11,7 @@ use foldchain::physics::{ForceLaw, DEFAULT_DRAG};
 use foldchain::reference::{
     run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
 };
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
 

@@ -17,8 +17,8 @@ use std::time::Instant;
 use browser::{attr, attributes, chromium, tmp, url};
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns};
-use foldchain::viewer::{viewer_html, RunView};
 use foldchain::{simulate, Chain};
+use foldchain_render::viewer::{viewer_html, RunView};
 
 /// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
 /// fold word (`S*k L L S*k R R ...`).

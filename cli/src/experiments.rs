@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::ForceLaw;
 use foldchain::reference::pair_energies;
-use foldchain::render::pair_energy_svg;
 use foldchain::validation::experiments::{run_experiments, ExperimentResult};
 use foldchain::Design;
+use foldchain_render::pair_energy_svg;
 
 use crate::output::OutputDir;
 

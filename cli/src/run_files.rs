@@ -20,11 +20,9 @@ use std::path::Path;
 use foldchain::check_engine_run;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{Summary, Timeline};
-use foldchain::render::{
-    energy_svg, frame_svg, transition_svg, ChainState, FrameOptions, FrameView, RunSource,
-    DETAIL_TILES,
-};
-use foldchain::viewer::{viewer_html, viewer_html_of, RunData, RunView};
+use foldchain::timeline::{ChainState, RunSource, DETAIL_TILES};
+use foldchain_render::viewer::{viewer_html, viewer_html_of, RunData, RunView};
+use foldchain_render::{energy_svg, frame_svg, transition_svg, FrameOptions, FrameView};
 use kurbo::Point;
 
 use crate::output::{OutputDir, WriteError};

@@ -175,7 +175,11 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
     for (args, says) in [
         (vec!["SL", "--bed", "250", "--out", out], "--bed"),
         (vec!["SL", "--bed", "0,10", "--out", out], "--bed"),
-        (vec!["SL", "--clearance", "-0.1", "--out", out], "clearance"),
+        (
+            vec!["SL", "--clearance", "-0.1", "--out", out],
+            "--clearance",
+        ),
+        (vec!["SL", "--spacing", "1e9", "--out", out], "--spacing"),
         (vec!["SL", "--floor", "9", "--out", out], "floor"),
         (vec!["SL", "--bed", "20,20", "--out", out], "does not fit"),
         (vec!["nope.txt", "--out", out], "no such file"),

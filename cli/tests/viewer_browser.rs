@@ -19,7 +19,7 @@ use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions};
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
 
 /// The page's background colour.

@@ -1,14 +1,18 @@
 //! Reading the target shape from an SVG drawing: `usvg` resolves shapes, transforms, units,
 //! viewBox and `use` into paths; their segments become kurbo curves in the physical frame
-//! (y up), each sub-path is flattened to a ring, and a ring that crosses itself is refused.
+//! (y up), each sub-path is flattened to a ring, cleaned of repeated points, zero-width
+//! spikes and slivers ([`crate::simplify::clean`]), and a ring that still crosses itself is
+//! refused. `clip-path` and `mask` are applied to the filled area as a browser shows it, by
+//! polygon intersection (the `clip` module).
 
 use kurbo::{CubicBez, Line, ParamCurve, PathSeg, Point, QuadBez, Vec2};
 use usvg::tiny_skia_path::PathSegment;
 
+use crate::clip::{clip_element, ClipRef};
 use crate::error::PlanError;
 use crate::options::MAX_OUTLINE_POINTS;
 use crate::shape::{FilledPath, Ring, Shape};
-use crate::simplify::{simplify, SIMPLIFY_ABOVE};
+use crate::simplify::{clean, simplify, SIMPLIFY_ABOVE, SLIVER};
 
 /// Curve flattening tolerance, as a share of the larger side of the drawing's bounding box:
 /// every flattened curve lies within this distance of the true curve. 1e-3 of the drawing is
@@ -16,11 +20,13 @@ use crate::simplify::{simplify, SIMPLIFY_ABOVE};
 /// chain can resolve.
 pub const FLATTEN_TOLERANCE: f64 = 1e-3;
 
-/// One filled element as read: its name for messages, its sub-paths, its fill rule.
-struct Element {
+/// One filled element as read: its name for messages, its sub-paths, its fill rule, and the
+/// clip paths and masks of the groups around it (outermost first).
+struct Element<'a> {
     name: String,
     subpaths: Vec<Vec<PathSeg>>,
     even_odd: bool,
+    clips: Vec<ClipRef<'a>>,
 }
 
 impl Shape {
@@ -46,11 +52,8 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
             }
         })?;
         let mut elements: Vec<Element> = Vec::new();
-        collect_elements(
-            tree.root(),
-            &mut elements,
-            user_units_transform(data, &tree),
-        );
+        let to_user = user_units_transform(data, &tree);
+        collect_elements(tree.root(), &mut elements, to_user, &mut Vec::new());
         if elements.is_empty() {
             return Err(no_area(
                 "no visible element with a fill (fill=\"none\" and strokes do not count)",
@@ -78,6 +81,8 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
             for sp in &element.subpaths {
                 let ring = flatten(sp, tol);
                 points += ring.points.len();
+                // repeated points, zero-width spikes and slivers, invisible when drawn
+                let ring = clean(&ring, SLIVER * size);
                 if points > MAX_OUTLINE_POINTS {
                     return Err(PlanError::TooManyPoints {
                         name: name.to_string(),
@@ -113,16 +118,24 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                     rings.push(ring);
                 }
             }
-            if !rings.is_empty() {
-                paths.push(FilledPath {
-                    rings,
-                    even_odd: element.even_odd,
-                });
+            if rings.is_empty() {
+                continue;
+            }
+            let path = FilledPath {
+                rings,
+                even_odd: element.even_odd,
+            };
+            if element.clips.is_empty() {
+                paths.push(path);
+            } else {
+                paths.extend(clip_element(path, &element.clips, tol, SLIVER * size));
             }
         }
         let shape = Shape::from_paths(paths);
         if shape.is_empty() || shape.area() <= 1e-9 * size * size {
-            return Err(no_area("the filled elements enclose no area"));
+            return Err(no_area(
+                "the filled elements enclose no area (after their clip paths and masks)",
+            ));
         }
         Ok((shape, crate::units::mm_per_unit(data, &tree)))
     }
@@ -178,60 +191,37 @@ fn user_units_transform(data: &[u8], tree: &usvg::Tree) -> usvg::Transform {
 }
 
 /// The visible filled paths below `group`, in document order, as kurbo segments in the
-/// physical frame. usvg's transform is applied by usvg itself, in its own `f32` arithmetic
-/// (as the planner always has): mapping in `f64` would move every point in its eighth digit
-/// and with it the plans recorded before.
-fn collect_elements(group: &usvg::Group, out: &mut Vec<Element>, to_user: usvg::Transform) {
+/// physical frame, each with the clip paths and masks of the groups around it. usvg's
+/// transform is applied by usvg itself, in its own `f32` arithmetic (as the planner always
+/// has): mapping in `f64` would move every point in its eighth digit and with it the plans
+/// recorded before.
+fn collect_elements<'a>(
+    group: &'a usvg::Group,
+    out: &mut Vec<Element<'a>>,
+    to_user: usvg::Transform,
+    clips: &mut Vec<ClipRef<'a>>,
+) {
     for node in group.children() {
         match node {
-            usvg::Node::Group(g) => collect_elements(g, out, to_user),
+            usvg::Node::Group(g) => {
+                let before = clips.len();
+                // a group's clip and mask are in its own user space, transform included
+                let ts = g.abs_transform().post_concat(to_user);
+                if let Some(c) = g.clip_path() {
+                    clips.push(ClipRef::Path(c, ts));
+                }
+                if let Some(m) = g.mask() {
+                    clips.push(ClipRef::Mask(m, ts));
+                }
+                collect_elements(g, out, to_user, clips);
+                clips.truncate(before);
+            }
             usvg::Node::Path(p) => {
                 let Some(fill) = p.fill() else { continue };
                 if !p.is_visible() {
                     continue;
                 }
                 let ts = p.abs_transform().post_concat(to_user);
-                let map = |mut q: usvg::tiny_skia_path::Point| {
-                    ts.map_point(&mut q);
-                    Point::new(q.x as f64, -(q.y as f64))
-                };
-                let mut subpaths: Vec<Vec<PathSeg>> = Vec::new();
-                let mut cur: Vec<PathSeg> = Vec::new();
-                let mut start = Point::ZERO;
-                let mut last = Point::ZERO;
-                for seg in p.data().segments() {
-                    let next = match seg {
-                        PathSegment::MoveTo(a) => {
-                            if !cur.is_empty() {
-                                subpaths.push(std::mem::take(&mut cur));
-                            }
-                            start = map(a);
-                            last = start;
-                            continue;
-                        }
-                        PathSegment::LineTo(a) => PathSeg::Line(Line::new(last, map(a))),
-                        PathSegment::QuadTo(a, b) => {
-                            PathSeg::Quad(QuadBez::new(last, map(a), map(b)))
-                        }
-                        PathSegment::CubicTo(a, b, c) => {
-                            PathSeg::Cubic(CubicBez::new(last, map(a), map(b), map(c)))
-                        }
-                        PathSegment::Close => {
-                            let close = last != start;
-                            let line = Line::new(last, start);
-                            last = start;
-                            if !close {
-                                continue;
-                            }
-                            PathSeg::Line(line)
-                        }
-                    };
-                    last = next.end();
-                    cur.push(next);
-                }
-                if !cur.is_empty() {
-                    subpaths.push(cur);
-                }
                 let name = if p.id().is_empty() {
                     format!("filled element #{}", out.len() + 1)
                 } else {
@@ -240,13 +230,59 @@ fn collect_elements(group: &usvg::Group, out: &mut Vec<Element>, to_user: usvg::
                 let even_odd = fill.rule() == usvg::FillRule::EvenOdd;
                 out.push(Element {
                     name,
-                    subpaths,
+                    subpaths: path_segments(p, ts),
                     even_odd,
+                    clips: clips.clone(),
                 });
             }
             _ => {}
         }
     }
+}
+
+/// The sub-paths of `p` under the transform `ts` (usvg's `f32` arithmetic), as kurbo
+/// segments in the physical frame (y negated).
+pub(crate) fn path_segments(p: &usvg::Path, ts: usvg::Transform) -> Vec<Vec<PathSeg>> {
+    let map = |mut q: usvg::tiny_skia_path::Point| {
+        ts.map_point(&mut q);
+        Point::new(q.x as f64, -(q.y as f64))
+    };
+    let mut subpaths: Vec<Vec<PathSeg>> = Vec::new();
+    let mut cur: Vec<PathSeg> = Vec::new();
+    let mut start = Point::ZERO;
+    let mut last = Point::ZERO;
+    for seg in p.data().segments() {
+        let next = match seg {
+            PathSegment::MoveTo(a) => {
+                if !cur.is_empty() {
+                    subpaths.push(std::mem::take(&mut cur));
+                }
+                start = map(a);
+                last = start;
+                continue;
+            }
+            PathSegment::LineTo(a) => PathSeg::Line(Line::new(last, map(a))),
+            PathSegment::QuadTo(a, b) => PathSeg::Quad(QuadBez::new(last, map(a), map(b))),
+            PathSegment::CubicTo(a, b, c) => {
+                PathSeg::Cubic(CubicBez::new(last, map(a), map(b), map(c)))
+            }
+            PathSegment::Close => {
+                let close = last != start;
+                let line = Line::new(last, start);
+                last = start;
+                if !close {
+                    continue;
+                }
+                PathSeg::Line(line)
+            }
+        };
+        last = next.end();
+        cur.push(next);
+    }
+    if !cur.is_empty() {
+        subpaths.push(cur);
+    }
+    subpaths
 }
 
 /// Flattens a sub-path (closed implicitly, as a fill is) to a ring within `tol`.
@@ -257,7 +293,7 @@ fn collect_elements(group: &usvg::Group, out: &mut Vec<Element>, to_user: usvg::
 /// before the refactor to kurbo, kept on purpose: kurbo's own adaptive flattening
 /// (`kurbo::flatten`) places fewer, different points, which changes the polygons and so the
 /// plans recorded in tests/golden.
-fn flatten(segs: &[PathSeg], tol: f64) -> Ring {
+pub(crate) fn flatten(segs: &[PathSeg], tol: f64) -> Ring {
     let mut pts: Vec<Point> = Vec::new();
     let push = |pts: &mut Vec<Point>, p: Point| {
         if pts.last() != Some(&p) {
@@ -466,6 +502,97 @@ mod tests {
             matches!(e, PlanError::BadSvg { .. }) && e.to_string().contains("y.svg"),
             "{e}"
         );
+    }
+
+    /// A square clipped to a circle (clip-path on the element, through a transformed
+    /// group): the disc's area, not the square's; nothing outside the disc.
+    #[test]
+    fn clip_path_cuts_the_fill() {
+        let t = svg(
+            r#"<defs><clipPath id="c"><circle cx="50" cy="50" r="30"/></clipPath></defs>
+            <g transform="translate(5 0)"><rect x="-5" y="0" width="100" height="100" clip-path="url(#c)"/></g>"#,
+        );
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        let disc = std::f64::consts::PI * 900.0;
+        assert!((s.area() - disc).abs() / disc < 0.01, "{}", s.area());
+        // the clip is in the clipped element's user space: centred at (55, 50) on the page
+        assert!(s.contains(Point::new(80.0, -50.0)) && !s.contains(Point::new(22.0, -50.0)));
+        assert!(!s.contains(Point::new(5.0, -5.0)));
+    }
+
+    /// clipPathUnits="objectBoundingBox" and a clip path with its own transform and its own
+    /// clip path: the region is the intersection of both.
+    #[test]
+    fn clip_units_transforms_and_nested_clips() {
+        let t = svg(r#"<defs>
+            <clipPath id="half" clipPathUnits="objectBoundingBox"><rect width="0.5" height="1"/></clipPath>
+            <clipPath id="low" transform="translate(0 50)" clip-path="url(#half)"><rect width="100" height="50"/></clipPath>
+            </defs><rect x="20" y="20" width="60" height="60" clip-path="url(#low)"/>"#);
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        // x from 20 to 50 (the left half of the rect's box), y from 50 to 80
+        assert!((s.area() - 900.0).abs() < 1e-3, "{}", s.area());
+        let b = s.bbox();
+        assert!(
+            (b.x0 - 20.0).abs() < 1e-4 && (b.x1 - 50.0).abs() < 1e-4,
+            "{b:?}"
+        );
+        assert!(
+            (b.y0 + 80.0).abs() < 1e-4 && (b.y1 + 50.0).abs() < 1e-4,
+            "{b:?}"
+        );
+    }
+
+    /// A mask of a white square with a black disc on it: the disc under it shows as a
+    /// crescent (white shows, black hides); a grey at 40% brightness hides.
+    #[test]
+    fn a_mask_shows_where_it_is_bright() {
+        let t = svg(
+            r#"<defs><mask id="m" maskUnits="userSpaceOnUse" x="0" y="0" width="100" height="100">
+            <rect width="100" height="100" fill="white"/><circle cx="70" cy="50" r="30" fill="black"/>
+            <rect x="0" y="0" width="100" height="20" fill="rgb(102,102,102)"/></mask></defs>
+            <circle cx="50" cy="50" r="40" mask="url(#m)"/>"#,
+        );
+        let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+        assert!(s.contains(Point::new(15.0, -50.0)));
+        assert!(!s.contains(Point::new(60.0, -50.0)), "the black disc hides");
+        assert!(
+            !s.contains(Point::new(50.0, -15.0)),
+            "the dark grey band hides"
+        );
+        assert!(s.contains(Point::new(50.0, -25.0)), "below the band");
+        let full = std::f64::consts::PI * 1600.0;
+        assert!(
+            s.area() < 0.6 * full && s.area() > 0.2 * full,
+            "{}",
+            s.area()
+        );
+    }
+
+    /// Everything clipped away: no filled area, said so.
+    #[test]
+    fn a_clip_that_leaves_nothing_is_no_area() {
+        let t = svg(
+            r#"<defs><clipPath id="c"><rect x="200" y="200" width="5" height="5"/></clipPath></defs>
+            <rect width="50" height="50" clip-path="url(#c)"/>"#,
+        );
+        let e = Shape::from_svg_data(t.as_bytes(), "c.svg").unwrap_err();
+        assert!(matches!(e, PlanError::NoFilledArea { .. }), "{e}");
+        assert!(e.to_string().contains("clip"), "{e}");
+    }
+
+    /// An outline with a zero-width spike whose way back is off its way out by a rounding
+    /// error (as font outlines carry them): read as the square, not refused as crossing.
+    #[test]
+    fn a_zero_width_spike_is_not_a_crossing() {
+        // out from (40, 10) to (40, -20) and back to (39.99999, 10.00001), then on along
+        // the top: the way back crosses the edge before the way out
+        let t = svg(r#"<path d="M10 10H40V-20L39.99999 10.00001H90V90H10Z"/>"#);
+        let s = Shape::from_svg_data(t.as_bytes(), "spike.svg").unwrap();
+        assert!((s.area() - 6400.0).abs() < 1e-2, "{}", s.area());
+        // a real crossing is still refused
+        let t = svg(r#"<path id="x" d="M10 10H40V-20L35 20H90V80H10Z"/>"#);
+        let e = Shape::from_svg_data(t.as_bytes(), "x.svg").unwrap_err();
+        assert!(matches!(e, PlanError::SelfIntersecting { .. }), "{e}");
     }
 
     #[test]

@@ -38,6 +38,7 @@ mod cell_search;
 mod cells;
 mod centre_grid;
 mod check;
+mod clip;
 mod drawing;
 mod empty;
 mod error;

@@ -77,7 +77,8 @@ pub fn assembly_svg(title: &str, tiles: &[SheetTile<'_>], joints: Option<&[PathK
     let top = 118.0;
     let cols = SHEET_COLUMNS.min(tiles.len().max(1));
     let rows = tiles.len().div_ceil(SHEET_COLUMNS).max(1);
-    let width = left + cols as f64 * cell_w + 30.0;
+    // wide enough for the instructions above the tiles
+    let width = (left + cols as f64 * cell_w + 30.0).max(880.0);
     let height = top + rows as f64 * cell_h + 20.0;
     let mut s = String::new();
     let _ = writeln!(

@@ -1,6 +1,6 @@
 //! A print job: from a chain, a plan or a shape to every file a maker needs, as names and
 //! bytes (the caller writes them): one part file per part the chain uses (`parts/RS.3mf`)
-//! with a picture of it (`parts/RS.svg`), the plates laying the bill of materials out on the
+//! with a picture of it (`parts/RS.png`), the plates laying the bill of materials out on the
 //! bed (`plates/plate-1.3mf`, ...), the assembly sheet (`assembly.svg`) and `parts.json`
 //! (counts, volumes, printing time estimates and their basis).
 
@@ -16,7 +16,7 @@ use crate::assembly::{assembly_svg, SheetTile};
 use crate::options::{Format, PrintOptions};
 use crate::plate::lay_out;
 use crate::threemf::{to_3mf, Item, Object};
-use crate::{mesh_svg, to_stl, Mesh, PrintError, TilePart, View};
+use crate::{mesh_png, to_stl, Mesh, PrintError, TilePart, View};
 
 /// Where the chain comes from.
 #[derive(Clone, Debug)]
@@ -198,7 +198,7 @@ pub fn is_job_file(name: &str) -> bool {
             let stem = rest
                 .strip_suffix(".3mf")
                 .or_else(|| rest.strip_suffix(".stl"))
-                .or_else(|| rest.strip_suffix(".svg"));
+                .or_else(|| rest.strip_suffix(".png"));
             stem.is_some_and(|s| {
                 let (part, design) = s.split_once("-d").unwrap_or((s, "1"));
                 ["SS", "RS", "SR", "RR", "LR", "RL"].contains(&part)
@@ -280,7 +280,7 @@ pub fn print_job(
         parts.push((
             PartEntry {
                 file: format!("parts/{label}.{ext}"),
-                picture: format!("parts/{label}.svg"),
+                picture: format!("parts/{label}.png"),
                 label,
                 part,
                 reads: [tile.to_string(), tile.turned().to_string()],
@@ -314,13 +314,13 @@ pub fn print_job(
                 }],
             )?,
         });
-        let caption = format!(
-            "{}: reads {} (turned: {}), {:.0} mm3, {} needed",
-            e.label, e.reads[0], e.reads[1], e.volume_mm3, e.count
-        );
+        let png = mesh_png(&tp.mesh, &View::default()).ok_or_else(|| PrintError::Format {
+            name: e.picture.clone(),
+            reason: "the PNG encoder failed".into(),
+        })?;
         files.push(OutputFile {
             path: e.picture.clone(),
-            bytes: mesh_svg(&tp.mesh, &caption, &View::default()).into_bytes(),
+            bytes: png,
         });
     }
     // plates: the footprint is the widest tile's
@@ -525,7 +525,7 @@ mod tests {
             "plates/plate-12.3mf",
             "plates/plate-1.stl",
             "parts/RS.3mf",
-            "parts/RR-d2.svg",
+            "parts/RR-d2.png",
         ] {
             assert!(is_job_file(n), "{n}");
         }

@@ -46,7 +46,7 @@ pub use options::{
     DEFAULT_FLOOR, DEFAULT_MARK_DEPTH, DEFAULT_MARK_HEIGHT, DEFAULT_MARK_STROKE, DEFAULT_MIN_WALL,
     THESIS_HEIGHT,
 };
-pub use picture::{mesh_svg, View};
+pub use picture::{mesh_png, mesh_svg, View};
 pub use plate::{grid, lay_out, Placement};
 pub use solid::{prism_with_pockets, triangulate, FaceError, Pocket};
 pub use stl::{from_stl, to_stl};

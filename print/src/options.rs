@@ -37,7 +37,9 @@ pub const DEFAULT_ARC_TOLERANCE: f64 = 0.002;
 /// `fold-tolerance --printer` uses) plus the magnet's diameter tolerance (+-0.05 mm, the
 /// catalogue value `fold-tolerance` uses): 0.25 mm for FDM, 0.15 mm for resin.
 pub fn default_clearance(printer: Printer) -> f64 {
-    2.0 * printer.tolerance() + Tolerances::printed(printer).diameter
+    let c = 2.0 * printer.tolerance() + Tolerances::printed(printer).diameter;
+    // to the micrometre, so that 0.15 is not written 0.15000000000000002
+    (c * 1e6).round() / 1e6
 }
 
 /// How one tile part is built. Lengths in mm.

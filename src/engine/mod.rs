@@ -28,6 +28,7 @@ mod progress;
 mod queue;
 mod result;
 mod run;
+mod run_source;
 mod schedule;
 mod speed;
 mod start_rule;
@@ -40,6 +41,7 @@ pub use local::{
 };
 pub use result::{fold_angle, joint_angles_at, Timeline};
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
+pub use run_source::{timeline_json, MAX_TIMELINE_EVENTS};
 pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
 pub use speed::Motion;
 pub use start_rule::{StartRule, DRIVE_TOLERANCE, ROOT_TOLERANCE, START_TOLERANCE};

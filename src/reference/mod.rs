@@ -36,6 +36,7 @@ mod options;
 mod pictures;
 mod recorder;
 mod run_result;
+mod run_source;
 pub mod stiff;
 
 pub use crate::ode::{Method, StepStats};
@@ -43,7 +44,8 @@ pub use driver::run_reference;
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub use pictures::{
     pair_energies, reference_energy, reference_final_state, reference_state, reference_state_near,
-    reference_transition, state_budget, state_energy, PairEnergies, STATE_BUDGET_BYTES,
+    reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
 };
 pub use run_result::ReferenceRun;
+pub(crate) use run_source::joint_angle_samples;
 pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

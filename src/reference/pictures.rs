@@ -1,7 +1,7 @@
 //! The reference run as pictures: the chain's state (tile poses, magnet positions, what is
 //! moving) at a recorded time, the energy curve and the transition diagram's data, drawn from
 //! the reference's own recorded states, in the shapes the event engine's pictures take
-//! ([`crate::render`]).
+//! (the `foldchain-render` crate reads them through [`crate::timeline::RunSource`]).
 //!
 //! The reference records its state on an evenly spaced time grid
 //! ([`Recording::Grid`], at most [`STATE_BUDGET_BYTES`] of states). A step frame shows the
@@ -17,7 +17,7 @@ use crate::physics::{EnergyUnit, Pole};
 #[cfg(doc)]
 use crate::reference::options::Recording;
 use crate::reference::run_result::ReferenceRun;
-use crate::render::{ChainState, MagnetTrack, TransitionData, DETAIL_TILES};
+use crate::timeline::{ChainState, MagnetTrack, PairEnergies, TransitionData, DETAIL_TILES};
 use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
@@ -247,21 +247,6 @@ pub fn reference_final_state(run: &ReferenceRun) -> ChainState {
         state.folding.iter_mut().for_each(|f| *f = false);
     }
     state
-}
-
-/// The energy curves of a run (thesis figures 7.7, 7.8), one point per recorded state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PairEnergies {
-    /// The times, s.
-    pub times: Vec<f64>,
-    /// Per adjacent pair (the RI with magnet 0, then magnet `k` with `k + 1`), its energy at
-    /// each time, J.
-    pub pairs: Vec<Vec<f64>>,
-    /// The chain's total dipole energy at each time, J.
-    pub total: Vec<f64>,
-    /// The phase boundaries: the times a magnet started or arrived, or a fold started or
-    /// ended, s.
-    pub phases: Vec<f64>,
 }
 
 /// The energy curves of `run` from its recorded states (or its final state alone).

@@ -36,7 +36,7 @@ pub struct ReferenceRun {
     /// bounce, an arrival, a fold closing): `(time s, state index, the wall 0 or 1)`, in
     /// time order (empty when not recording). An even grid of states straddles such a
     /// corner and cuts it (a fold's bounce by up to its speed times the grid spacing): the
-    /// tracks drawn from the states ([`crate::render::RunSource`]) keep these points too.
+    /// tracks drawn from the states ([`crate::timeline::RunSource`]) keep these points too.
     pub walls: Vec<(f64, usize, f64)>,
     /// When the chain came to rest (or integration stopped), s.
     pub end_time: f64,

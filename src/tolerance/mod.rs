@@ -21,7 +21,6 @@
 //! ```
 
 mod optimize;
-mod plot;
 mod rng;
 mod sample;
 mod sensitivity;
@@ -32,7 +31,6 @@ mod wilson;
 pub use optimize::{
     candidate_design_json, candidate_designs, evaluate, optimize, Candidate, Search, SearchOptions,
 };
-pub use plot::tradeoff_svg;
 pub use rng::SplitMix64;
 pub use sample::{draw_designs, nudged};
 pub use sensitivity::{sensitivities, Sensitivity};

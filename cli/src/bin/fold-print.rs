@@ -9,8 +9,9 @@ use clap::Parser;
 use foldchain::timeline::TileDesigns;
 use foldchain_cli::choices::{FormatChoice, PrinterChoice};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
+use foldchain_cli::numbers::{count_in, number_in};
 use foldchain_cli::output::{create_dir_all, OutputDir};
-use foldchain_cli::report::print_error;
+use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_planner::{PlanOptions, Turns};
 use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
@@ -27,7 +28,7 @@ use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, Prin
   fold-print S*40 --bed 180,180 --spacing 4 --out strip
 
 Writes into --out DIR: parts/PART.3mf (one per part the chain uses: SS, RS, SR, RR, LR, RL;
-a part turned by 180 degrees is the other tile type it reads as) with a picture parts/PART.svg,
+a part turned by 180 degrees is the other tile type it reads as) with a picture parts/PART.png,
 plates/plate-K.3mf (the bill of materials laid out on the bed), assembly.svg (the chain tile by
 tile: type, part, orientation, the RI's side and the magnets' poles) and parts.json (counts,
 volumes, printing time estimates and their basis). Only these names are replaced; anything
@@ -51,14 +52,14 @@ struct Args {
     /// The printer: its tolerance sets the default clearance.
     #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
     printer: PrinterChoice,
-    /// Channel width minus magnet diameter, mm (default from --printer).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    /// Channel width minus magnet diameter, 0 to 2 mm (default from --printer).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = clearance_arg)]
     clearance: Option<f64>,
-    /// Tile height, mm (the thesis' 7.5 by default).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    /// Tile height, 0.5 to 1000 mm (the thesis' 7.5 by default).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = height_arg)]
     height: Option<f64>,
-    /// Floor under the channels, mm (default 1.2).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
+    /// Floor under the channels, 0.1 to 1000 mm, less than the height (default 1.2).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = floor_arg)]
     floor: Option<f64>,
     /// The output directory (created if needed).
     #[arg(long, value_name = "DIR")]
@@ -69,19 +70,14 @@ struct Args {
     /// The print bed, mm: W,H.
     #[arg(long, value_name = "W,H", default_value = "250,210")]
     bed: String,
-    /// Gap between neighbouring tiles on a plate, mm.
-    #[arg(
-        long,
-        value_name = "MM",
-        default_value_t = 5.0,
-        allow_hyphen_values = true
-    )]
+    /// Gap between neighbouring tiles on a plate, 0 to 1000 mm.
+    #[arg(long, value_name = "MM", default_value = "5", allow_hyphen_values = true, value_parser = spacing_arg)]
     spacing: f64,
     /// Print parts.json on stdout instead of the summary.
     #[arg(long)]
     json: bool,
     /// SHAPE.svg only: about this many tiles.
-    #[arg(long)]
+    #[arg(long, value_parser = tiles_arg)]
     tiles: Option<usize>,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
@@ -89,18 +85,30 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            print_error("fold-print", &e);
-            let unplannable = matches!(
-                e.downcast_ref::<PrintError>(),
-                Some(PrintError::Plan(p)) if !p.is_bad_input()
-            );
-            ExitCode::from(if unplannable { 1 } else { 2 })
-        }
+    match parse_args::<Args>("fold-print") {
+        Ok(args) => finish("fold-print", run(&args).map(|()| 0)),
+        Err(code) => code,
     }
+}
+
+fn clearance_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 2.0, "mm", "")
+}
+
+fn height_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.5, 1000.0, "mm", "")
+}
+
+fn floor_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.1, 1000.0, "mm", "")
+}
+
+fn spacing_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 1000.0, "mm", "")
+}
+
+fn tiles_arg(s: &str) -> Result<usize, String> {
+    count_in(s, 1, 2_000_000, "tiles").map(|n| n as usize)
 }
 
 /// `W,H` in mm.
@@ -210,7 +218,11 @@ fn run(args: &Args) -> anyhow::Result<()> {
         let owned = |n: &str| is_job_file(&format!("{sub}/{n}"));
         refuse_overwrite_in(&input_refs, &out.join(sub), &owned, "--out")?;
     }
-    let job = print_job(&source, &designs, &opts)?;
+    // a shape that cannot be planned keeps the planner's own exit code (1)
+    let job = print_job(&source, &designs, &opts).map_err(|e| match e {
+        PrintError::Plan(p) => anyhow::Error::new(p),
+        e => anyhow::Error::new(e),
+    })?;
     let mut root = OutputDir::create(out)?;
     create_dir_all(&out.join("parts"))?;
     create_dir_all(&out.join("plates"))?;
@@ -244,7 +256,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         return Ok(());
     }
     println!(
-        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {} mm ({})",
+        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {:.3} mm ({})",
         r.name,
         r.tiles,
         r.parts.len(),

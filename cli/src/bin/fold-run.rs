@@ -14,7 +14,7 @@ use foldchain::model::ModelOptions;
 use foldchain::physics::{magnet_drag, ForceLaw, FORCE_LAW_NAMES};
 use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, state_budget, ReferenceOptions, ReferenceRun};
-use foldchain::render::RunSource;
+use foldchain::timeline::RunSource;
 use foldchain::{check_reference, simulate, Chain};
 use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,

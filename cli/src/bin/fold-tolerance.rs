@@ -15,8 +15,8 @@ use foldchain::margins::{ChainModel, MarginOptions, Margins};
 use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_design_json, candidate_designs, optimize, sensitivities, study, tradeoff_svg,
-    Candidate, Parameter, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    candidate_design_json, candidate_designs, optimize, sensitivities, study, Candidate, Parameter,
+    SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
@@ -25,6 +25,7 @@ use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::outln;
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
+use foldchain_render::tradeoff_svg;
 
 /// Will it fold when printed? Margins, manufacturing tolerances and a design search.
 #[derive(Parser, Debug)]

@@ -1,11 +1,10 @@
-//! Line plots with axes: the energy curve (thesis figure 7.5), and the axes shared with the
-//! transition diagram.
+//! Axes of a line plot: data ranges mapped to pixels, a frame with round ticks and light grid
+//! lines, shared by every plot of the crate (energy curves, transition diagram, trade-off).
 
-use svg::node::element::{Line, Polyline, Rectangle, Text};
+use svg::node::element::{Line, Rectangle, Text};
 use svg::Document;
 
-use crate::engine::{EnergySample, FoldRecord};
-use crate::render::{document, num, points, to_text};
+use crate::{document, num};
 
 /// A plot area: data ranges mapped to pixels.
 pub(crate) struct Axes {
@@ -142,66 +141,4 @@ fn fmt_tick(v: f64) -> String {
         let s = format!("{v:.4}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     }
-}
-
-/// The total dipole energy against time, with the windows of `folds` shaded (a fold that
-/// never closed, `end` NaN, to the end of the curve).
-pub fn energy_svg(folds: &[FoldRecord], curve: &[EnergySample], title: &str) -> String {
-    let t1 = curve.last().map_or(1.0, |c| c.time).max(1e-9);
-    // millijoules read better than joules
-    let ys: Vec<f64> = curve.iter().map(|c| c.energy_j * 1e3).collect();
-    let (mut lo, mut hi) = ys
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &y| {
-            (a.min(y), b.max(y))
-        });
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-        lo -= 1.0;
-        hi += 1.0;
-    }
-    let pad = 0.05 * (hi - lo);
-    let ax = Axes {
-        x0: 0.0,
-        x1: t1,
-        y0: lo - pad,
-        y1: hi + pad,
-        left: 80.0,
-        top: 34.0,
-        width: 640.0,
-        height: 340.0,
-    };
-    let mut doc = ax.open(title, "time (s)", "total dipole energy (mJ)");
-    // shade at most 200 fold windows
-    for f in folds.iter().take(200) {
-        let end = if f.end.is_nan() { t1 } else { f.end };
-        doc = doc.add(
-            Rectangle::new()
-                .set("x", num(ax.px(f.start)))
-                .set("y", num(ax.top))
-                .set("width", num((ax.px(end) - ax.px(f.start)).max(0.5)))
-                .set("height", num(ax.height))
-                .set("fill", "#1a56b8")
-                .set("fill-opacity", "0.08"),
-        );
-    }
-    let pts = curve
-        .iter()
-        .zip(&ys)
-        .map(|(c, &y)| (ax.px(c.time), ax.py(y)));
-    doc = doc.add(
-        Polyline::new()
-            .set("points", points(pts))
-            .set("fill", "none")
-            .set("stroke", "#c5221f")
-            .set("stroke-width", "2"),
-    );
-    if !folds.is_empty() {
-        doc = doc.add(
-            Text::new("shaded: folds turning")
-                .set("x", num(ax.left + 8.0))
-                .set("y", num(ax.top + 16.0))
-                .set("fill", "#1a56b8"),
-        );
-    }
-    to_text(&doc)
 }

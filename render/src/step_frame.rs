@@ -13,12 +13,10 @@ use kurbo::{Point, Rect};
 use svg::node::element::{Circle, Group, Polygon, Polyline, Text};
 use svg::Document;
 
-use crate::engine::Geometry;
-use crate::render::{document, num, points, to_text, ChainState};
-use crate::{Fold, Octagon, Pose};
+use foldchain::timeline::{ChainState, Geometry, DETAIL_TILES};
+use foldchain::{Fold, Octagon, Pose};
 
-/// Chains up to this many tiles are drawn in detail (outlines, paths, magnets, hinges).
-pub const DETAIL_TILES: usize = 400;
+use crate::{document, num, points, to_text};
 
 /// Tiles drawn over the lean polyline of a long chain, at most (moving or colliding ones).
 const LEAN_TILES_SHOWN: usize = 2000;

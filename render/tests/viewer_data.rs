@@ -8,10 +8,9 @@ use std::collections::HashSet;
 use foldchain::engine::{
     run, EnergySample, EngineMethod, EngineOptions, FoldRecord, Geometry, Timeline,
 };
-use foldchain::render::{ChainState, RunSource, TransitionData};
-use foldchain::timeline::TileDesigns;
-use foldchain::viewer::{RunData, RunView, Track};
+use foldchain::timeline::{ChainState, RunSource, TileDesigns, Track, TransitionData};
 use foldchain::Chain;
+use foldchain_render::viewer::{RunData, RunView};
 
 /// A timeline that does not say which magnets travel alike: every track sampled.
 struct NoKeys<'a>(&'a Timeline);

@@ -4,9 +4,10 @@
 
 use svg::node::element::{Circle, Polyline, Text};
 
-use crate::render::plot::Axes;
-use crate::render::{num, points, to_text};
-use crate::tolerance::{Candidate, Search};
+use foldchain::tolerance::{Candidate, Search};
+
+use crate::axes::Axes;
+use crate::{num, points, to_text};
 
 const COLOURS: [&str; 5] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"];
 

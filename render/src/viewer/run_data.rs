@@ -3,17 +3,17 @@
 //! angle as [`Track`]s), packed small. Tracks of the same shape are stored once and shared
 //! (on the event engine's serpentines nearly all are), so the page carries per magnet a
 //! start time (f64), a shape and a path number, and per folding joint the same; the typed
-//! arrays travel as base64 ([`crate::viewer::base64`]).
+//! arrays travel as base64.
 
 use std::collections::HashMap;
 
-use crate::kinematics::{compose_poses, for_each_pose_at_angles};
-use crate::Pose;
+use foldchain::kinematics::{compose_poses, for_each_pose_at_angles};
+use foldchain::timeline::{RunSource, Track, TrackKey};
+use foldchain::Pose;
 use rustc_hash::FxHashMap;
 
-use crate::render::{RunSource, TrackKey};
 use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
-use crate::viewer::{PathForm, RunView, Track};
+use crate::viewer::{PathForm, RunView};
 
 /// A packed integer array: bytes per value (1, 2 or 4) and the little-endian bytes in base64.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -219,7 +219,7 @@ fn box_times(end: f64, joints: &[(usize, Track)]) -> Vec<f64> {
 
 /// The box `[min x, min y, max x, max y]` of the centres of `tiles` tiles of width `w` at
 /// `times`, the joints that turn following `joints` (the rest straight): the box of
-/// [`crate::kinematics::poses_at_angles`] at every time, bit for bit, without every pass.
+/// [`foldchain::kinematics::poses_at_angles`] at every time, bit for bit, without every pass.
 fn centres_box(tiles: usize, w: f64, joints: &[(usize, Track)], mut times: Vec<f64>) -> [f64; 4] {
     let mut b = [
         f64::INFINITY,
@@ -268,12 +268,16 @@ fn centres_box(tiles: usize, w: f64, joints: &[(usize, Track)], mut times: Vec<f
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::kinematics::poses_at_angles;
+    use foldchain::engine::{run, EngineOptions};
+    use foldchain::kinematics::poses_at_angles;
+    use foldchain::timeline::TileDesigns;
+    use foldchain::Chain;
 
     #[test]
     fn the_box_is_every_passes_poses_bit_for_bit() {
         for word in ["S*30 LL S*30 RR S*30", "LSLLSR", "S*12 L S*5 R S*12", "S"] {
-            let tl = crate::engine::thesis_timeline(word);
+            let chain = Chain::parse(word).unwrap();
+            let tl = run(&chain, &TileDesigns::default(), &EngineOptions::default()).unwrap();
             let tiles = tl.tiles();
             let joints: Vec<(usize, Track)> = (0..tiles.saturating_sub(1))
                 .map(|j| (j, RunSource::joint_angle(&tl, j)))

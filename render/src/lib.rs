@@ -1,26 +1,46 @@
-//! SVG pictures of a run: step frames and the final shape ([`frame_svg`]), the transition
-//! diagram (magnet position against time, thesis figure 6.3, [`transition_svg`]) and the
-//! energy curve (thesis figure 7.5, [`energy_svg`]). Documents are built with the [`svg`]
-//! crate, which escapes every text and attribute; world coordinates are millimetres seen from
-//! above, y up (so L folds turn left on the page).
+//! # foldchain-render
 //!
-//! The pictures draw plain data ([`ChainState`], [`TransitionData`], energy samples and fold
-//! windows), so the event engine and the force-integrated reference draw the same pictures
-//! from their own results.
+//! Pictures of a folding run, apart from the numerics that make it: step frames and the final
+//! shape ([`frame_svg`]), the transition diagram (magnet position against time, thesis
+//! figure 6.3, [`transition_svg`]), the energy curve (thesis figure 7.5, [`energy_svg`]), the
+//! pair energies of an experiment (figures 7.7 and 7.8, [`pair_energy_svg`]), the design
+//! search's trade-off ([`tradeoff_svg`]) and the animated page that plays runs
+//! ([`viewer`]).
+//!
+//! Every picture reads a run through [`foldchain::timeline::RunSource`] (or the plain data it
+//! returns), which the event engine's timeline and the reference integrator's run both
+//! implement: this crate imports neither simulation, and the core library does not import
+//! this crate. Documents are built with the [`svg`] crate, which escapes every text and
+//! attribute; world coordinates are millimetres seen from above, y up (so L folds turn left
+//! on the page).
+//!
+//! ```
+//! use foldchain::engine::{run, EngineOptions};
+//! use foldchain::timeline::{RunSource, TileDesigns};
+//! use foldchain::Chain;
+//! use foldchain_render::{frame_svg, FrameOptions, FrameView};
+//!
+//! let chain = Chain::parse("SLLS").unwrap();
+//! let tl = run(&chain, &TileDesigns::default(), &EngineOptions::default()).unwrap();
+//! let last = tl.final_state();
+//! let view = FrameView::around(last.poses.iter().copied(), tl.geometry().w);
+//! let svg = frame_svg(tl.geometry(), &last, &view, &FrameOptions::default());
+//! assert!(svg.starts_with("<svg"));
+//! ```
 
-mod frame;
+mod axes;
+mod energy_plot;
 mod pair_energy;
-pub(crate) mod plot;
-mod source;
-mod state;
+mod step_frame;
+mod tradeoff;
 mod transition;
+pub mod viewer;
 
-pub use frame::{frame_svg, FrameOptions, FrameView, DETAIL_TILES};
+pub use energy_plot::energy_svg;
 pub use pair_energy::pair_energy_svg;
-pub use plot::energy_svg;
-pub use source::{RunSource, TrackKey};
-pub use state::ChainState;
-pub use transition::{transition_svg, MagnetTrack, TransitionData};
+pub use step_frame::{frame_svg, FrameOptions, FrameView};
+pub use tradeoff::tradeoff_svg;
+pub use transition::transition_svg;
 
 use std::fmt::Write;
 

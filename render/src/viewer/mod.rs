@@ -8,7 +8,7 @@
 //!
 //! The page computes the chain itself, as the library does: joint angles and magnet travel
 //! from [`Track`]s (piecewise linear within [`ANGLE_TOLERANCE`] and [`TRAVEL_TOLERANCE`]),
-//! tile poses by composing the octagon chain's hinge turns ([`crate::kinematics`]), magnets
+//! tile poses by composing the octagon chain's hinge turns ([`foldchain::kinematics`]), magnets
 //! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
 //! about 28 bytes per tile on the event engine's serpentines.
 //!
@@ -32,13 +32,13 @@
 mod base64;
 mod path_form;
 mod run_data;
-mod track;
 
-use crate::render::RunSource;
+use foldchain::timeline::RunSource;
+#[cfg(doc)]
+use foldchain::timeline::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 
 pub use path_form::PathForm;
 pub use run_data::{PackedInts, RunData};
-pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 
 const TEMPLATE: &str = include_str!("assets/viewer.html");
 const STYLE: &str = include_str!("assets/viewer.css");

@@ -3,7 +3,7 @@
 //! path's own points ([`MagnetPath::point_at`]) so the page places magnets where the library
 //! does.
 
-use crate::magnet_path::{MagnetPath, PathEnd};
+use foldchain::magnet_path::{MagnetPath, PathEnd};
 
 /// A path as the page evaluates it: the point at arc length `u` is
 /// `(rest + dir * u, 0)` on the straight part, and on the arc
@@ -109,7 +109,7 @@ fn circle_through(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> Option<(f64, f
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::{Design, PathKind};
+    use foldchain::{Design, PathKind};
 
     #[test]
     fn closed_form_places_magnets_where_the_library_does() {

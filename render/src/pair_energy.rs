@@ -5,9 +5,10 @@
 use svg::node::element::{Line, Polyline, Text};
 use svg::Document;
 
-use crate::reference::PairEnergies;
-use crate::render::plot::Axes;
-use crate::render::{document, num, points, to_text};
+use foldchain::timeline::PairEnergies;
+
+use crate::axes::Axes;
+use crate::{document, num, points, to_text};
 
 /// Colours of the pair curves, in turn.
 const COLOURS: [&str; 8] = [
