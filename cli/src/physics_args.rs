@@ -1,5 +1,6 @@
 //! The physical parameters on the command line (`--magnet-mass`, `--tile-mass`, `--drag`,
-//! `--friction`, `--restitution`, `--viscosity`, `--water-film`, `--form-drag`): each
+//! `--friction`, `--restitution`, `--viscosity`, `--water-film`, `--form-drag`,
+//! `--water-density`): each
 //! overrides the design file's field of the same meaning (`foldchain::Design`), for every
 //! model the tool runs.
 
@@ -15,7 +16,7 @@ pub struct PhysicsArgs {
     /// Magnet mass, g (default: the design's, 0.265 g: a 3 x 5 mm NdFeB cylinder).
     #[arg(long, value_name = "G", value_parser = mass_arg, allow_hyphen_values = true)]
     pub magnet_mass: Option<f64>,
-    /// Mass of a tile without its magnets, g (default: the design's, 4.5 g).
+    /// Mass of a tile without its magnets, g (default: the design's, 3 g).
     #[arg(long, value_name = "G", value_parser = mass_arg, allow_hyphen_values = true)]
     pub tile_mass: Option<f64>,
     /// Drag of a magnet in its channel, N s/m, for every model and the kinematic speed law
@@ -32,13 +33,16 @@ pub struct PhysicsArgs {
     /// Dynamic viscosity of the water, Pa s (default 1e-3).
     #[arg(long, value_name = "PA_S", value_parser = viscosity_arg, allow_hyphen_values = true)]
     pub viscosity: Option<f64>,
-    /// Thickness of the sheared water under a tile, mm (default 1).
+    /// Thickness of the sheared water under a tile, mm (default 0.25).
     #[arg(long, value_name = "MM", value_parser = film_arg, allow_hyphen_values = true)]
     pub water_film: Option<f64>,
     /// Form drag coefficient of a tile's immersed edge (default 0: none; only the free-body
     /// reference with inertial dynamics integrates it).
     #[arg(long, value_name = "CD", value_parser = form_drag_arg, allow_hyphen_values = true)]
     pub form_drag: Option<f64>,
+    /// Density of the water, kg/m^3 (default 998): a tile's draft and its form drag.
+    #[arg(long, value_name = "KG_PER_M3", value_parser = density_arg, allow_hyphen_values = true)]
+    pub water_density: Option<f64>,
 }
 
 impl PhysicsArgs {
@@ -61,6 +65,7 @@ impl PhysicsArgs {
             set(&mut d.water_viscosity, p.viscosity);
             set(&mut d.water_film, p.water_film);
             set(&mut d.form_drag, p.form_drag);
+            set(&mut d.water_density, p.water_density);
         })
     }
 
@@ -75,6 +80,7 @@ impl PhysicsArgs {
             ("--viscosity", self.viscosity),
             ("--water-film", self.water_film),
             ("--form-drag", self.form_drag),
+            ("--water-density", self.water_density),
         ]
         .into_iter()
         .filter_map(|(name, v)| v.map(|_| name))
@@ -87,7 +93,7 @@ fn mass_arg(s: &str) -> Result<f64, String> {
 }
 
 fn drag_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 1e-6, 1e4, "N s/m", "")
+    number_in(s, 1e-3, 1e4, "N s/m", "")
 }
 
 fn friction_arg(s: &str) -> Result<f64, String> {
@@ -104,6 +110,10 @@ fn viscosity_arg(s: &str) -> Result<f64, String> {
 
 fn film_arg(s: &str) -> Result<f64, String> {
     number_in(s, 1e-3, 1000.0, "mm", "")
+}
+
+fn density_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 1.0, 20_000.0, "kg/m^3", "from air to mercury")
 }
 
 fn form_drag_arg(s: &str) -> Result<f64, String> {

@@ -7,7 +7,7 @@ use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
 use crate::timeline::Event;
 use crate::timeline::{
-    EventKind, FoldRecord, Geometry, Outcome, Parameters, RunFacts, SpeedLaw, Summary,
+    EventKind, FoldRecord, FreeMotion, Geometry, Outcome, Parameters, RunFacts, SpeedLaw, Summary,
 };
 
 /// The result of a run: every event, each magnet's start, the folds and the outcome.
@@ -33,6 +33,8 @@ pub struct Timeline {
     pub(crate) solved: Option<Box<Solved>>,
     /// The physical parameters the run used.
     pub parameters: Parameters,
+    /// How the chain moved on the water (`None` for the kinematic baseline).
+    pub free_motion: Option<FreeMotion>,
 }
 
 /// What decides an inhibition in the engine, for its reason.
@@ -128,7 +130,7 @@ impl Timeline {
     /// The run's summary (the collision check's verdict is added by
     /// [`crate::simulate`]).
     pub fn summary(&self) -> Summary {
-        Summary::new(RunFacts {
+        let summary = Summary::new(RunFacts {
             tiles: self.tiles(),
             outcome: &self.outcome,
             decided_by: DECIDED_BY,
@@ -138,7 +140,11 @@ impl Timeline {
             max_moving_magnets: self.max_moving_magnets(),
             speed_law: self.speed,
         })
-        .with_parameters(self.parameters.clone())
+        .with_parameters(self.parameters.clone());
+        match &self.free_motion {
+            Some(f) => summary.with_free_motion(f.clone()),
+            None => summary,
+        }
     }
 }
 

@@ -218,7 +218,7 @@ fn run_local_engine(
         Dynamics::Inertial => SpeedLaw::Inertial { drag: model.drag },
         _ => speed,
     };
-    Ok(Timeline {
+    let mut timeline = Timeline {
         speed: reported,
         force_law: opts.model.force_law,
         motions,
@@ -230,8 +230,11 @@ fn run_local_engine(
         fold_of_joint: local.fold_of_joint,
         solved: Some(Box::new(local.solved)),
         parameters: model.parameters("event engine"),
+        free_motion: None,
         geometry: Geometry::from_designs(chain, designs)?,
-    })
+    };
+    timeline.free_motion = Some(model.free_motion(&timeline));
+    Ok(timeline)
 }
 
 /// A run in the making.
@@ -445,6 +448,7 @@ impl Runner {
         let parameters = kinematic_parameters(&self.geometry, &self.opts);
         Timeline {
             parameters,
+            free_motion: None,
             geometry: self.geometry,
             speed: self.opts.speed,
             force_law: self.opts.force_law,

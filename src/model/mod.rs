@@ -26,6 +26,7 @@ mod chain_model;
 mod coefficients;
 mod dynamics;
 mod forces;
+mod free_motion;
 mod mode;
 mod options;
 mod sides;

@@ -144,6 +144,18 @@ impl TwoBody {
         ]
     }
 
+    /// Side A's angular velocity per unit rate of the joint's angle at `phi`, with no net
+    /// angular momentum (or drag torque): `-(b + c) / (a + b + 2c)`. Near -1 when side A is
+    /// the lighter (it turns, the other barely), near 0 when it is the heavier.
+    pub(crate) fn common_turn(&self, phi: f64) -> f64 {
+        let c = -self.k * (phi + self.delta).cos();
+        let den = self.a + self.b + 2.0 * c;
+        if den <= 0.0 {
+            return -0.5;
+        }
+        -(self.b + c) / den
+    }
+
     /// The effective coefficient of the joint's angle at `phi` (radians, the sign of the
     /// turn) and its derivative by `phi`.
     pub(crate) fn at(&self, phi: f64) -> (f64, f64) {
@@ -167,6 +179,47 @@ pub(crate) struct Sides {
     pub(crate) inertia: TwoBody,
     /// The drag moments (the tiles' water film).
     pub(crate) drag: TwoBody,
+    /// The first mass moments about the hinge (for the hinge's own motion).
+    pub(crate) mass_first: FirstMoments,
+    /// The first drag moments about the hinge.
+    pub(crate) drag_first: FirstMoments,
+}
+
+/// Both sides' total and first moments about the hinge, in the frame of the tile before the
+/// joint at angle 0 (side B straight, before it turns).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FirstMoments {
+    /// The two sides' total (mass, kg, or drag, N s/m).
+    pub(crate) total: f64,
+    /// Side A's first moment about the hinge.
+    pub(crate) a: Vec2,
+    /// Side B's first moment about the hinge at angle 0.
+    pub(crate) b: Vec2,
+}
+
+impl Sides {
+    /// The velocity field of a turn at unit rate (1 rad/s of the joint's angle, at angle
+    /// `phi`) with no net momentum (`inertial`: the mass weights; else the drag weights, the
+    /// overdamped pair's force-free motion): side A's angular velocity, side B's, and the
+    /// hinge's velocity (m/s), in the frame of the tile before the joint.
+    pub(crate) fn unit_turn(&self, phi: f64, inertial: bool) -> (f64, f64, Vec2) {
+        let (two, first) = if inertial {
+            (&self.inertia, &self.mass_first)
+        } else {
+            (&self.drag, &self.drag_first)
+        };
+        let omega_a = two.common_turn(phi);
+        let omega_b = omega_a + 1.0;
+        let (s, c) = phi.sin_cos();
+        let sb = Vec2::new(c * first.b.x - s * first.b.y, s * first.b.x + c * first.b.y);
+        let perp = |v: Vec2| Vec2::new(-v.y, v.x);
+        let hinge = if first.total > 0.0 {
+            -(perp(first.a) * omega_a + perp(sb) * omega_b) / first.total
+        } else {
+            Vec2::ZERO
+        };
+        (omega_a, omega_b, hinge)
+    }
 }
 
 /// Each joint's sides (`None` for a joint that does not fold), for the chain of `geometry`
@@ -242,6 +295,16 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
             out[t] = Some(Sides {
                 inertia: TwoBody::of((before_mass.m, sa, ja), (after_mass[t + 1].m, sb, jb)),
                 drag: TwoBody::of((before_drag.m, da, ga), (after_drag[t + 1].m, db, gb)),
+                mass_first: FirstMoments {
+                    total: before_mass.m + after_mass[t + 1].m,
+                    a: sa,
+                    b: sb,
+                },
+                drag_first: FirstMoments {
+                    total: before_drag.m + after_drag[t + 1].m,
+                    a: da,
+                    b: db,
+                },
             });
         }
         t += 1;

@@ -118,7 +118,9 @@ impl ReferenceRun {
                 },
             },
         });
-        let summary = summary.with_parameters(self.model.parameters("joint-angle reference"));
+        let summary = summary
+            .with_parameters(self.model.parameters("joint-angle reference"))
+            .with_free_motion(self.model.free_motion(self));
         match &self.stopped {
             Some(why) => summary.overruled("stopped", why.clone()),
             None => summary,

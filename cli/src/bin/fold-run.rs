@@ -601,6 +601,17 @@ fn print_summary(name: &str, s: &Summary, out_dir: &Path, json: bool) -> anyhow:
     if let Some(r) = &s.reason {
         outln!("  {r}");
     }
+    if let Some(f) = &s.free_motion {
+        if let (Some(tile), Some(at)) = (f.fastest_tile, f.fastest_at_s) {
+            outln!(
+                "  on the water: fastest tile {tile} at {:.3} m/s ({:.4} s); the first tile turned {:.1} degrees, the last {:.1}",
+                f.max_tile_speed_m_s,
+                at,
+                f.first_tile_turn_deg,
+                f.last_tile_turn_deg
+            );
+        }
+    }
     Ok(())
 }
 
