@@ -140,14 +140,15 @@ fn inertial() -> ModelOptions {
 
 #[test]
 fn inertial_engine_events_are_the_inertial_references() {
-    // a serpentine repeats its U-turns: a cached unit must not stand for a joint that
-    // swings a different tail (its inertia grows with the tiles it swings)
+    // a serpentine repeats its U-turns: a cached unit must not stand for a joint whose sides
+    // differ (its inertia and drag are those of the whole chain either side)
     let serpentine = "S*8 L L S*8 R R S*8 L L S*8 R R S*8";
     for (word, s, most) in [
         ("SL", 0.3, 1.0),
         ("LL", 0.3, 1.0),
         ("SSLS", 0.05, 1.0),
-        (serpentine, 0.3, 5.0),
+        // its U-turns turn rafts of up to 45 tiles on the water: some 11 s
+        (serpentine, 0.3, 30.0),
     ] {
         let chain = Chain::parse(word).unwrap();
         let designs = TileDesigns::global(Design::thesis().with_s(s));

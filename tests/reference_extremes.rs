@@ -249,7 +249,16 @@ fn summary_and_timeline_say_what_the_run_did() {
         Method::Dopri5,
     );
     // the summary, in the engine's fields, holds the run's own values
-    let json: serde_json::Value = serde_json::from_str(&r.to_summary().to_json()).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&r.to_summary().to_json()).unwrap();
+    // the parameters the run used, defaults filled in; no free motion without recorded states
+    let parameters = json.as_object_mut().unwrap().remove("parameters").unwrap();
+    assert_eq!(parameters["model"], "joint-angle reference");
+    assert_eq!(parameters["magnet_drag_n_s_per_m"], DEFAULT_DRAG);
+    assert_eq!(parameters["water_viscosity_pa_s"], 1e-3);
+    assert_eq!(
+        json.as_object_mut().unwrap().remove("free_motion"),
+        Some(serde_json::Value::Null)
+    );
     let duration = r.duration();
     assert!(duration > 0.0 && duration <= r.end_time);
     let want = serde_json::json!({
@@ -386,11 +395,11 @@ fn engine_pose_drift_1m_tiles() {
 
 #[test]
 fn stiff_case_ros2_finishes_in_a_twentieth_of_the_steps() {
-    // heavy, slowly folding tiles (rotational drag 1e7 times the default): the folds take
+    // heavy, slowly folding tiles (water 1e9 times as viscous): the folds take
     // about 1e6 magnet time scales, the magnets of each folding pair follow their balances,
     // and Dormand-Prince is held to its stability bound while ROS2 (L-stable) is not.
     // Counts, not wall times: the step counts are deterministic.
-    let case = foldchain::reference::select_cases(&["SLLS rot x1e7".to_string()])
+    let case = foldchain::reference::select_cases(&["SLLS visc x1e9".to_string()])
         .unwrap()
         .remove(0);
     assert!(case.stiff);

@@ -118,9 +118,11 @@ impl ReferenceRun {
                 },
             },
         });
-        let summary = summary
-            .with_parameters(self.model.parameters("joint-angle reference"))
-            .with_free_motion(self.model.free_motion(self));
+        let mut summary = summary.with_parameters(self.model.parameters("joint-angle reference"));
+        // the joints' angles against time are known only from recorded states
+        if !self.states.is_empty() {
+            summary = summary.with_free_motion(self.model.free_motion(self));
+        }
         match &self.stopped {
             Some(why) => summary.overruled("stopped", why.clone()),
             None => summary,
