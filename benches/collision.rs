@@ -19,9 +19,9 @@
 use std::time::Instant;
 
 use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions, FoldSchedule};
-use foldchain::engine::{fold_schedule, run, EngineMethod, EngineOptions, SValue, TileDesigns};
+use foldchain::engine::{run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::{folded_word, kinematics, Fold, FoldWord};
+use foldchain::{Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
 fn serpentine(tiles: usize, row: usize) -> FoldWord {
@@ -99,10 +99,10 @@ fn main() {
         });
     }
     let w = FoldWord::from_folds(folds);
-    let poses = kinematics::final_poses(&w);
+    let poses = w.final_poses();
     let (all, r) = median(5, || check_word(&w, &opts));
     let (finals, _) = median(5, || final_overlap(&poses));
-    let (kin, _) = median(5, || kinematics::final_poses(&w));
+    let (kin, _) = median(5, || w.final_poses());
     println!();
     println!("The {}-tile serpentine of rows of 1,000:", w.tiles());
     println!("| part | seconds (median of 5) |");
@@ -130,7 +130,7 @@ fn main() {
             println!("| {tiles} | {row} | - | engine refused the chain | - |");
             continue;
         };
-        let (word, schedule) = (folded_word(&tl), fold_schedule(&tl));
+        let (word, schedule) = (tl.folded_word(), tl.fold_schedule());
         let (s, r) = median(3, || check_schedule(&word, &schedule, &opts));
         let v = match &r {
             Ok(()) => "clean".to_string(),
@@ -157,7 +157,7 @@ fn local_check(file: &str, cache: Option<&str>) {
             let opts = EngineOptions::default().with_model(model);
             let tl = run(&chain, &designs, &opts).expect("engine");
             println!("engine: {:.2} s", t.elapsed().as_secs_f64());
-            let (w, s) = (folded_word(&tl), fold_schedule(&tl));
+            let (w, s) = (tl.folded_word(), tl.fold_schedule());
             if let Some(c) = cache {
                 let json = serde_json::to_string(&(w.to_string(), &s)).expect("json");
                 std::fs::write(c, json).expect("write cache");

@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use foldchain::{kinematics, ExactPose, Fold, FoldWord, Pose, QuarterTurns};
+use foldchain::{ExactPose, Fold, FoldWord, Pose, QuarterTurns};
 
 /// Tile width for the `f64` poses, mm (the thesis' tiles); drift is reported in tile widths.
 const W: f64 = 30.0;
@@ -134,9 +134,9 @@ fn main() {
     for &n in &SIZES {
         let (word, serpentine) = serpentine_word(n, 0x5EED ^ n as u64);
         assert_eq!(word.tiles(), n);
-        let angles = kinematics::final_angles(&word);
-        let t_exact = time(|| kinematics::final_poses(black_box(&word)));
-        let t_float = time(|| kinematics::poses_at_angles(black_box(&angles), W));
+        let angles = word.final_angles();
+        let t_exact = time(|| black_box(&word).final_poses());
+        let t_float = time(|| Pose::chain_at_angles(black_box(&angles), W));
         // the memory cost alone: a fresh Vec of n poses, every page written
         let t_fill = time(|| {
             (0..n)
@@ -146,8 +146,8 @@ fn main() {
                 })
                 .collect::<Vec<_>>()
         });
-        let exact = kinematics::final_poses(&word);
-        let float = kinematics::poses_at_angles(&angles, W);
+        let exact = word.final_poses();
+        let float = Pose::chain_at_angles(&angles, W);
         let (d_serp, _) = drift(&exact, &float, 0..serpentine + 1);
         let (d_all, h_all) = drift(&exact, &float, 0..n);
         let bytes =
@@ -174,8 +174,8 @@ fn main() {
     println!("|---:|---:|---:|---:|");
     for &n in &SIZES {
         let word = FoldWord::from_folds(vec![Fold::L; n - 1]);
-        let exact = kinematics::final_poses(&word);
-        let float = kinematics::poses_at_angles(&kinematics::final_angles(&word), W);
+        let exact = word.final_poses();
+        let float = Pose::chain_at_angles(&word.final_angles(), W);
         let (d, h) = drift(&exact, &float, 0..n);
         println!("| {n} | {} | {d:.2e} | {h:.2e} |", n - 1);
     }

@@ -13,7 +13,7 @@ use crate::{ChainError, Fold, FoldWord, JointOutcome, Tile};
 /// The largest number of tiles the parsers accept: twenty million, far beyond any chain built
 /// and within what the checks and the engine handle in a minute or so and a few GiB; a guard
 /// against hostile run-length counts such as `SS*99999999999`.
-pub const MAX_TILES: usize = 20_000_000;
+pub(crate) const MAX_TILES: usize = 20_000_000;
 
 /// A chain of tiles, from the reaction-initiator end. Its JSON form is
 /// `{"tiles":["SS","SL",...]}`.
@@ -50,7 +50,25 @@ impl TryFrom<ChainJson> for Chain {
 }
 
 impl Chain {
-    /// A chain from its tiles; fails on an empty list or more than [`MAX_TILES`] tiles.
+    /// Reads a chain from a command-line argument: if it names an existing file, the file's
+    /// contents (lines starting with `#` are comments); otherwise the argument itself (a fold
+    /// word, a tile list or JSON).
+    ///
+    /// ```
+    /// use foldchain::Chain;
+    ///
+    /// assert_eq!(Chain::read_arg("SLLS").unwrap(), Chain::parse("SLLS").unwrap());
+    /// ```
+    pub fn read_arg(arg: &str) -> Result<Chain, crate::input::InputError> {
+        crate::input::read_chain_arg(arg)
+    }
+
+    /// The largest number of tiles the parsers accept: twenty million, far beyond any chain
+    /// built and within what the checks and the engine handle in a minute or so and a few
+    /// GiB; a guard against hostile run-length counts such as `SS*99999999999`.
+    pub const MAX_TILES: usize = MAX_TILES;
+
+    /// A chain from its tiles; fails on an empty list or more than [`Chain::MAX_TILES`] tiles.
     pub fn from_tiles(tiles: Vec<Tile>) -> Result<Chain, ChainError> {
         if tiles.is_empty() {
             return Err(ChainError::Empty);

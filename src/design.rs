@@ -9,16 +9,16 @@
 use std::f64::consts::PI;
 
 /// Permeability of free space, H/m (the thesis' value, 4 pi 1e-7).
-pub const MU0: f64 = 4.0 * PI * 1e-7;
+pub(crate) const MU0: f64 = 4.0 * PI * 1e-7;
 
 /// Default wall thickness of a curved path's final point, mm ([`Design::wall`]).
-pub const DEFAULT_WALL: f64 = 0.8;
+pub(crate) const DEFAULT_WALL: f64 = 0.8;
 
 /// Density of sintered NdFeB, g/cm^3 (manufacturers quote 7.4 to 7.6).
-pub const NDFEB_DENSITY: f64 = 7.5;
+pub(crate) const NDFEB_DENSITY: f64 = 7.5;
 
 /// Default magnet mass, g: a 3 mm x 5 mm cylinder of NdFeB at [`NDFEB_DENSITY`] (0.2651 g).
-pub const DEFAULT_MAGNET_MASS: f64 = 0.265;
+pub(crate) const DEFAULT_MAGNET_MASS: f64 = 0.265;
 
 /// Tile and magnet design. Lengths in millimetres, mass in grams, remanence in tesla.
 ///
@@ -87,6 +87,8 @@ pub struct Design {
     /// the thesis saw magnets bounce, 7.3.1).
     pub restitution: f64,
     /// Dynamic viscosity of the water, Pa s. Default 1.0e-3 (water at 20 C; 0.89e-3 at 25 C).
+    /// 0 (no water drag) is taken by the inertial models only, as an idealisation; design
+    /// files and command lines are held to 1e-5 (air) or more.
     pub water_viscosity: f64,
     /// Thickness of the sheared water under a tile, mm. Default 0.25. Estimate: a tile
     /// (with [`Design::tile_mass`] and its magnets) floats about 4.75 mm deep in the thesis'
@@ -204,7 +206,7 @@ pub struct InequalityCheck {
 /// The physical range of one design field that a design file or a command line may give
 /// ([`Design::check_ranges`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldRange {
+pub(crate) struct FieldRange {
     /// The field's name in the design JSON.
     pub name: &'static str,
     /// The smallest value.
@@ -222,7 +224,7 @@ pub struct FieldRange {
 /// The physical ranges of the design fields held to a fixed range; the lengths inside a tile
 /// (`d`, `s`, `e`, `c`, `magnet_diameter`) are bounded by the tile's own size
 /// ([`Design::validate`]).
-pub const RANGES: [FieldRange; 13] = [
+pub(crate) const RANGES: [FieldRange; 13] = [
     FieldRange {
         name: "tile_width",
         min: 0.01,
@@ -331,8 +333,9 @@ pub const RANGES: [FieldRange; 13] = [
 
 /// The widest values [`Design::validate`] takes for any field, in the field's unit (zero
 /// aside, where a field may be zero): far beyond any tile or magnet, so that no product of
-/// them overflows or vanishes.
-pub const NUMERIC_RANGE: (f64, f64) = (1e-9, 1e9);
+/// them overflows or vanishes (the smallest, 1e-15, leaves room for the library's stress
+/// cases such as `s = 1e-12 d`; a fourth power of it, 1e-60, is still far from underflow).
+pub(crate) const NUMERIC_RANGE: (f64, f64) = (1e-15, 1e9);
 
 fn short(v: f64) -> String {
     crate::short_number(v)
@@ -340,7 +343,7 @@ fn short(v: f64) -> String {
 
 /// Relative tolerance under which two sides count as equal (so `s = e/3` given as a fraction
 /// of `e` is recognised as the edge despite rounding): 1e-12.
-pub const EQUALITY_TOLERANCE: f64 = 1e-12;
+pub(crate) const EQUALITY_TOLERANCE: f64 = 1e-12;
 
 impl Design {
     /// The thesis design.
@@ -385,7 +388,7 @@ impl Design {
         self.c.unwrap_or(0.5 * self.magnet_diameter + self.wall)
     }
 
-    /// The mass of one magnet as a cylinder of NdFeB ([`NDFEB_DENSITY`]), g: 0.265 g for the
+    /// The mass of one magnet as a cylinder of NdFeB (7.5 g/cm^3), g: 0.265 g for the
     /// thesis' 3 mm x 5 mm magnets.
     pub fn cylinder_mass(&self) -> f64 {
         self.magnet_volume_m3() * 1e6 * NDFEB_DENSITY
@@ -417,7 +420,7 @@ impl Design {
     /// Checks that every parameter is a finite number of the right sign, that the lengths
     /// make a tile that can be built (the path inside the tile's half, the tile's two magnets
     /// at rest at least a magnet diameter apart), and that no value is so large or small
-    /// that the arithmetic overflows ([`NUMERIC_RANGE`]). A design file or command line is
+    /// that the arithmetic overflows (1e-15 to 1e9 in the field's unit). A design file or command line is
     /// held to the narrower physical ranges of [`Design::check_ranges`] as well.
     pub fn validate(&self) -> Result<(), DesignError> {
         let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
@@ -617,7 +620,7 @@ impl Design {
     }
 
     /// Checks [`Design::validate`] and the physical ranges a design file or a command line
-    /// is held to ([`RANGES`]): values outside them are almost certainly a typing error
+    /// is held to (the ranges a tile can have: see the message of each field): values outside them are almost certainly a typing error
     /// (a tile 30 m wide, a magnet of 100 T), and far outside them the models have not been
     /// tried. The library's own studies (moments scaled by 10^6, micrometre tiles) use
     /// [`Design::validate`] alone.
@@ -670,7 +673,7 @@ impl Design {
         self.validate()
     }
 
-    fn positive_fields(&self) -> [(&'static str, f64, &'static str); 11] {
+    fn positive_fields(&self) -> [(&'static str, f64, &'static str); 10] {
         [
             ("tile_width", self.tile_width, "mm"),
             ("d", self.d, "mm"),
@@ -680,7 +683,6 @@ impl Design {
             ("remanence", self.remanence, "T"),
             ("magnet_mass", self.magnet_mass, "g"),
             ("tile_mass", self.tile_mass, "g"),
-            ("water_viscosity", self.water_viscosity, "Pa s"),
             ("water_film", self.water_film, "mm"),
             ("water_density", self.water_density, "kg/m^3"),
         ]
@@ -695,6 +697,9 @@ impl Design {
         if let Some(g) = self.magnet_drag {
             v.push(("magnet_drag", g, "N s/m"));
         }
+        // 0 (no water drag) is an idealisation the library takes (momentum studies); a design
+        // file or command line is held to the physical range ([`Design::check_ranges`])
+        v.push(("water_viscosity", self.water_viscosity, "Pa s"));
         v.push(("friction", self.friction, "N"));
         v.push(("restitution", self.restitution, ""));
         v.push(("form_drag", self.form_drag, ""));

@@ -6,7 +6,7 @@ use std::path::{Path as FsPath, PathBuf};
 use crate::{Chain, ChainError};
 
 /// The largest chain file read, in bytes (256 MiB): a guard against reading a huge file whole.
-pub const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
+pub(crate) const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
 
 /// Why a chain argument could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -44,7 +44,7 @@ pub enum InputError {
 
 /// Reads a chain from a command-line argument: if it names an existing file, the file's
 /// contents (lines starting with `#` are comments); otherwise the argument itself.
-pub fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
+pub(crate) fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
     let path = FsPath::new(arg);
     if path.is_file() {
         let size = std::fs::metadata(path)

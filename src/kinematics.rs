@@ -8,12 +8,12 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+use crate::exact::{ExactPoint, ExactPose, Surd};
 use crate::pose::wrap_angle;
 use crate::{Fold, FoldWord, Octagon, Pose};
 
 /// The offset from one tile centre to the next in the first tile's frame, exactly.
-pub fn exact_step(fold: Fold) -> ExactPoint {
+pub(crate) fn exact_step(fold: Fold) -> ExactPoint {
     match fold {
         Fold::S => ExactPoint::new(Surd::new(2, 0), Surd::ZERO),
         Fold::L => ExactPoint::new(Surd::new(0, 2), Surd::new(0, 2)),
@@ -22,7 +22,7 @@ pub fn exact_step(fold: Fold) -> ExactPoint {
 }
 
 /// The exact final pose of every tile of a designed chain, all folds made.
-pub fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
+pub(crate) fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
     let mut poses = Vec::with_capacity(word.tiles());
     let mut pose = ExactPose::default();
     poses.push(pose);
@@ -34,7 +34,7 @@ pub fn final_poses(word: &FoldWord) -> Vec<ExactPose> {
 }
 
 /// The pose of the tile after a joint with fold `fold`, exactly.
-pub fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
+pub(crate) fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
     ExactPose {
         centre: pose.transform(exact_step(fold)),
         heading: pose.heading.turned(fold.quarter_turns() as i64),
@@ -43,12 +43,12 @@ pub fn next_exact_pose(pose: ExactPose, fold: Fold) -> ExactPose {
 
 /// The world position of the hinge of joint `joint` (between tiles `joint` and `joint + 1`),
 /// exactly, given the pose of tile `joint`. `None` for a straight joint.
-pub fn exact_hinge(pose: ExactPose, fold: Fold) -> Option<ExactPoint> {
+pub(crate) fn exact_hinge(pose: ExactPose, fold: Fold) -> Option<ExactPoint> {
     Octagon::exact_hinge(fold).map(|h| pose.transform(h))
 }
 
 /// The final signed angle of each joint: +pi/2 for L, -pi/2 for R, 0 for S.
-pub fn final_angles(word: &FoldWord) -> Vec<f64> {
+pub(crate) fn final_angles(word: &FoldWord) -> Vec<f64> {
     word.folds()
         .iter()
         .map(|f| f.quarter_turns() as f64 * FRAC_PI_2)
@@ -57,7 +57,7 @@ pub fn final_angles(word: &FoldWord) -> Vec<f64> {
 
 /// The pose of the next tile relative to a tile whose joint is turned by `angle` radians
 /// (positive = left), for tiles of width `w`: a rotation about the hinge on the turning side.
-pub fn joint_transform(angle: f64, w: f64) -> Pose {
+pub(crate) fn joint_transform(angle: f64, w: f64) -> Pose {
     let o = Octagon::new(w);
     let left = angle >= 0.0;
     let (hx, hy) = o.hinge(left);
@@ -69,7 +69,7 @@ pub fn joint_transform(angle: f64, w: f64) -> Pose {
 
 /// The pose of every tile for joint angles `angles` (one per joint, radians, positive = left,
 /// each within `[-pi/2, pi/2]`), composing `f64` transforms from tile 0 at the origin.
-pub fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
+pub(crate) fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
     let mut poses = Vec::with_capacity(angles.len() + 1);
     for_each_pose_at_angles(angles, w, |p| poses.push(p));
     poses
@@ -79,7 +79,7 @@ pub fn poses_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
 /// the same numbers bit for bit (`Pose::then` of [`joint_transform`]s), but a joint's
 /// transform and a heading's sine and cosine are computed again only when the angle changes,
 /// which along a straight run it does not.
-pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+pub(crate) fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
     each(Pose::IDENTITY);
     compose_poses(Pose::IDENTITY, angles, w, each);
 }
@@ -87,7 +87,7 @@ pub fn for_each_pose_at_angles(angles: &[f64], w: f64, mut each: impl FnMut(Pose
 /// The poses of the tiles after one at `pose`, whose joints turn by `angles`, handed to
 /// `each` in order: from tile 0's pose, [`for_each_pose_at_angles`] less tile 0; from a
 /// later tile's pose, the same numbers as from tile 0.
-pub fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
+pub(crate) fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMut(Pose)) {
     // the last joint angle and its transform, the last heading and its sine and cosine
     let mut joint: Option<(u64, Pose)> = None;
     let mut heading: Option<(u64, f64, f64)> = None;
@@ -118,9 +118,64 @@ pub fn compose_poses(mut pose: Pose, angles: &[f64], w: f64, mut each: impl FnMu
     }
 }
 
-/// The final headings as exact quarter turns, for callers that need only headings.
-pub fn final_headings(word: &FoldWord) -> Vec<QuarterTurns> {
-    final_poses(word).into_iter().map(|p| p.heading).collect()
+impl FoldWord {
+    /// The exact final pose of every tile, all folds made: tile 0 at the origin heading +x; a
+    /// straight joint puts the next centre `w` ahead, a fold the next centre at
+    /// `(w/sqrt2, +-w/sqrt2)` in the tile's frame, exactly ([`ExactPose`]).
+    ///
+    /// ```
+    /// use foldchain::FoldWord;
+    ///
+    /// // a tight U-turn: the return row runs sqrt2 * w from the first, exactly
+    /// let poses = FoldWord::parse("SSLLSS").unwrap().final_poses();
+    /// let w = 30.0;
+    /// let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
+    /// assert!((pitch - 2f64.sqrt() * w).abs() < 1e-12);
+    /// ```
+    pub fn final_poses(&self) -> Vec<ExactPose> {
+        final_poses(self)
+    }
+
+    /// The final signed angle of each joint, radians: +pi/2 for L, -pi/2 for R, 0 for S (the
+    /// angles [`Pose::chain_at_angles`] takes).
+    pub fn final_angles(&self) -> Vec<f64> {
+        final_angles(self)
+    }
+}
+
+impl Pose {
+    /// The pose of every tile of a chain of tiles of width `w` whose joints turn by `angles`
+    /// (one per joint, radians, positive = left, each within `[-pi/2, pi/2]`), composing
+    /// `f64` transforms from tile 0 at the origin heading +x. At a word's
+    /// [`FoldWord::final_angles`](crate::FoldWord::final_angles) they agree with its exact
+    /// [`FoldWord::final_poses`](crate::FoldWord::final_poses).
+    ///
+    /// ```
+    /// use foldchain::{FoldWord, Pose};
+    ///
+    /// let word = FoldWord::parse("SLLS").unwrap();
+    /// let poses = Pose::chain_at_angles(&word.final_angles(), 30.0);
+    /// let exact = word.final_poses();
+    /// assert_eq!(poses.len(), 5);
+    /// assert!((poses[4].y - exact[4].centre.y.to_f64(30.0)).abs() < 1e-9);
+    /// ```
+    pub fn chain_at_angles(angles: &[f64], w: f64) -> Vec<Pose> {
+        poses_at_angles(angles, w)
+    }
+
+    /// The poses of [`Pose::chain_at_angles`] handed to `each` in tile order, without storing
+    /// them (the same numbers bit for bit; a joint's transform and a heading's sine and cosine
+    /// are computed again only when the angle changes).
+    pub fn for_each_at_angles(angles: &[f64], w: f64, each: impl FnMut(Pose)) {
+        for_each_pose_at_angles(angles, w, each)
+    }
+
+    /// The poses of the tiles after one at this pose, whose joints turn by `angles`, handed to
+    /// `each` in order: from tile 0's pose, [`Pose::for_each_at_angles`] less tile 0; from a
+    /// later tile's pose, the same numbers as from tile 0.
+    pub fn compose_at_angles(self, angles: &[f64], w: f64, each: impl FnMut(Pose)) {
+        compose_poses(self, angles, w, each)
+    }
 }
 
 #[cfg(test)]

@@ -2,15 +2,15 @@
 //!
 //! Design and simulation of self-folding magnetic tile chains: octagon tiles holding magnets
 //! in walled paths, which fold into a shape fixed by the order of the paths once a reaction
-//! initiator starts them (see `SPEC.md` and the thesis it follows).
+//! initiator starts them (the model and the thesis it follows: `docs/physics.md`).
 //!
 //! This crate is the core model and computes only; the command-line tools live in the
 //! `foldchain-cli` crate.
 //! - Paths, tiles and joints ([`PathKind`], [`Tile`], [`JointOutcome`]); chains in their three
 //!   forms ([`Chain`], [`FoldWord`], JSON); the tile design with the path-length inequalities
 //!   ([`Design`]) and its bill of materials ([`BillOfMaterials`]).
-//! - Exact and floating-point kinematics of the octagon chain ([`kinematics`], with exact
-//!   coordinates in [`exact`]).
+//! - Exact and floating-point kinematics of the octagon chain ([`FoldWord::final_poses`],
+//!   [`Pose::chain_at_angles`], with exact coordinates in [`exact`]).
 //! - Self-intersection, exactly, during every fold and in the final shape ([`collision`]), and
 //!   the counts of chains that fold cleanly ([`count`]).
 //! - The folding run: the event engine ([`engine`]) and the force-integrated reference
@@ -19,13 +19,13 @@
 //!
 //! ```
 //! use foldchain::collision::{check_word, CheckOptions};
-//! use foldchain::{kinematics, Chain, Design};
+//! use foldchain::{Chain, Design};
 //!
 //! // A tight U-turn: two left folds, one LL tile.
 //! let chain = Chain::parse("SSLLSS").unwrap();
 //! assert_eq!(chain.to_tile_list(), "SS SS SL LL LS SS SS");
 //! let word = chain.to_word().unwrap();
-//! let poses = kinematics::final_poses(&word);
+//! let poses = word.final_poses();
 //! // the return row runs sqrt2 * w from the first, exactly
 //! let w = 30.0;
 //! let pitch = poses[4].centre.y.to_f64(w) - poses[2].centre.y.to_f64(w);
@@ -45,12 +45,12 @@ pub mod collision;
 pub mod count;
 pub mod design;
 pub mod engine;
+mod engine_choice;
 mod error;
 pub mod exact;
-mod frame;
-pub mod input;
+mod input;
 mod joint;
-pub mod kinematics;
+mod kinematics;
 pub mod magnet_path;
 pub mod margins;
 pub mod model;
@@ -60,25 +60,30 @@ mod ode;
 mod path_kind;
 pub mod physics;
 mod pose;
+mod progress;
 pub mod reference;
+mod rng;
 mod simulation;
 mod tile;
+mod tile_frame;
 pub mod timeline;
 pub mod tolerance;
-pub mod validation;
 mod word;
 
 pub use bom::BillOfMaterials;
-pub use chain::{Chain, MAX_TILES};
+pub use chain::Chain;
+pub(crate) use chain::MAX_TILES;
 pub use design::{Design, DesignError, InequalityCheck, Standing};
-pub use engine::{timeline_json, MAX_TIMELINE_EVENTS};
+pub use engine_choice::{auto_engine, AutoEngine, EngineKind};
 pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
+pub use input::InputError;
 pub use joint::{Fold, JointOutcome};
 pub use number_text::short_number;
 pub use octagon::Octagon;
 pub use path_kind::PathKind;
 pub use pose::Pose;
-pub use simulation::{check_engine_run, check_reference, folded_word, simulate, SimulateError};
+pub use progress::{NoProgress, Progress};
+pub use simulation::{check_engine_run, check_reference, simulate, SimulateError};
 pub use tile::{ParseTileError, Part, Tile};
 pub use word::FoldWord;

@@ -13,7 +13,7 @@
 //! ([`Design::fold_clearance`]; `c` instead when a design gives it), so
 //! `x_F = w/2 - r - k sqrt2`. After the fold the two magnets of the pair sit `2k` apart
 //! (4.6 mm for the thesis design with its 0.8 mm wall). The thesis' layout `c` = 2.8 mm (a
-//! 1.3 mm wall) leaves the last fold of a chain stalled short of its end: see README,
+//! 1.3 mm wall) leaves the last fold of a chain stalled short of its end: see docs/physics.md,
 //! "The end-of-chain stall". The arc runs from `Q` (the rest point moved
 //! `s` towards the next magnet) to `F` and is tangent at `F` to the tile's cross axis (the
 //! thesis' "horizontal" line through the final point: its figures draw the chain vertically):

@@ -8,7 +8,7 @@ use crate::collision::{
 };
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
 use crate::reference::{joint_angle_samples, ReferenceRun};
-use crate::timeline::{CollisionReport, FoldRecord, Summary, TileDesigns, Track};
+use crate::timeline::{CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track};
 use crate::{Chain, Fold, FoldWord};
 
 /// Why a simulation could not be made.
@@ -23,8 +23,15 @@ pub enum SimulateError {
     Schedule(ScheduleError),
 }
 
+impl Timeline {
+    /// The fold word of what actually folds: each joint's fold if it turned, else S.
+    pub fn folded_word(&self) -> FoldWord {
+        folded_word(self)
+    }
+}
+
 /// The fold word of what actually folds: each joint's fold if it turned, else S.
-pub fn folded_word(tl: &Timeline) -> FoldWord {
+pub(crate) fn folded_word(tl: &Timeline) -> FoldWord {
     word_of_folds(tl.tiles(), &tl.folds)
 }
 
@@ -82,7 +89,7 @@ fn overrule(
     undecided: Option<String>,
 ) -> Summary {
     if let Some(c) = collision {
-        summary = summary.overruled("collided", c.to_string());
+        summary = summary.overruled(RunResult::Collided, c.to_string());
         summary.first_collision = Some(CollisionReport {
             time: c.time,
             joint: c.joint,
@@ -91,7 +98,7 @@ fn overrule(
     }
     if let Some(msg) = undecided {
         summary.completed = false;
-        summary.result = "undecided";
+        summary.result = RunResult::Undecided;
         summary.reason = Some(msg);
     }
     summary
@@ -119,10 +126,10 @@ pub fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, 
     if let Some(why) = solve_stopped(tl) {
         // a stall's reason already ends with it
         if summary.reason.as_deref().is_some_and(|r| r.contains(&why)) {
-            summary.result = "stopped";
+            summary.result = RunResult::Stopped;
             summary.completed = false;
         } else {
-            summary = summary.overruled("stopped", why);
+            summary = summary.overruled(RunResult::Stopped, why);
         }
     }
     Ok(overrule(summary, collision, undecided))

@@ -9,7 +9,7 @@ mod common;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 use common::{fold, word};
-use foldchain::{kinematics, ExactPoint, ExactPose, Fold, FoldWord, Octagon, QuarterTurns, Surd};
+use foldchain::{ExactPoint, ExactPose, Fold, FoldWord, Octagon, Pose, QuarterTurns, Surd};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------------------------
@@ -56,8 +56,8 @@ fn angle_gap(a: f64, b: f64) -> f64 {
 
 /// Checks exact against f64 poses for `word` at width `w`; returns (max drift, bound).
 fn compare_exact_f64(word: &FoldWord, w: f64) -> Result<(f64, f64), TestCaseError> {
-    let exact = kinematics::final_poses(word);
-    let float = kinematics::poses_at_angles(&kinematics::final_angles(word), w);
+    let exact = word.final_poses();
+    let float = Pose::chain_at_angles(&word.final_angles(), w);
     prop_assert_eq!(exact.len(), word.tiles());
     prop_assert_eq!(float.len(), word.tiles());
     // headings: the exact quarter-turn count, unwrapped, gives q_max
@@ -116,7 +116,7 @@ proptest! {
         angles in prop::collection::vec(-FRAC_PI_2..=FRAC_PI_2, 1..200),
         w in 0.1f64..100.0,
     ) {
-        let poses = kinematics::poses_at_angles(&angles, w);
+        let poses = Pose::chain_at_angles(&angles, w);
         let o = Octagon::new(w);
         for (k, &a) in angles.iter().enumerate() {
             let (hx, hy) = o.hinge(a >= 0.0);
@@ -171,7 +171,7 @@ proptest! {
     /// share one whole face; at a fold that face ends at the hinge.
     #[test]
     fn neighbours_are_w_apart_and_share_a_face(w in word(600)) {
-        let poses = kinematics::final_poses(&w);
+        let poses = w.final_poses();
         for (k, &f) in w.folds().iter().enumerate() {
             let (a, b) = (poses[k], poses[k + 1]);
             prop_assert_eq!(norm2(b.centre - a.centre), W_SQUARED, "joint {}", k);
@@ -184,7 +184,8 @@ proptest! {
             prop_assert_eq!(shared.len(), 2, "joint {} shares {:?}", k, shared);
             let (i, j) = (shared[0], shared[1]);
             prop_assert!(j - i == 1 || (i == 0 && j == 7), "not a face: {i} {j}");
-            match kinematics::exact_hinge(a, f) {
+            // the hinge in the world: the tile frame's hinge placed by the pose of tile k
+            match Octagon::exact_hinge(f).map(|h| a.transform(h)) {
                 None => prop_assert_eq!(f, Fold::S),
                 Some(h) => {
                     prop_assert!(va.contains(&h) && vb.contains(&h), "hinge not shared");
@@ -210,8 +211,8 @@ proptest! {
     /// The mirrored word gives the mirrored poses, exactly: y -> -y, heading -> -heading.
     #[test]
     fn mirrored_word_mirrors_poses(w in word(2000)) {
-        let p = kinematics::final_poses(&w);
-        let m = kinematics::final_poses(&w.mirrored());
+        let p = w.final_poses();
+        let m = w.mirrored().final_poses();
         prop_assert_eq!(p.len(), m.len());
         for (a, b) in p.iter().zip(&m) {
             prop_assert_eq!(b.centre, mirrored(a.centre));
@@ -223,10 +224,10 @@ proptest! {
     /// its poses are the same shape: a quarter-turn rotation and a translation, exactly.
     #[test]
     fn reversed_chain_is_the_same_shape(w in word(600)) {
-        let p = kinematics::final_poses(&w);
+        let p = w.final_poses();
         let mut folds: Vec<Fold> = w.folds().iter().rev().map(|f| f.mirrored()).collect();
         folds.shrink_to_fit();
-        let r = kinematics::final_poses(&FoldWord::from_folds(folds));
+        let r = FoldWord::from_folds(folds).final_poses();
         let last = p[p.len() - 1];
         let back = last.heading.turned(2); // the far end's tile, facing the other way
         let undo = QuarterTurns::new(-(back.get() as i64));
@@ -245,12 +246,12 @@ fn u_turn_pitches_for_any_row_length() {
     for row in 1..40 {
         let straight = "S".repeat(row);
         let tight = FoldWord::parse(&format!("{straight}LL{straight}")).unwrap();
-        let p = kinematics::final_poses(&tight);
+        let p = tight.final_poses();
         // tile `row` ends the first row, tile `row + 2` starts the return row
         let d = p[row + 2].centre - p[row].centre;
         assert_eq!(d, ExactPoint::new(Surd::ZERO, Surd::new(0, 4)), "row {row}");
         let loose = FoldWord::parse(&format!("{straight}LSL{straight}")).unwrap();
-        let p = kinematics::final_poses(&loose);
+        let p = loose.final_poses();
         let d = p[row + 3].centre - p[row].centre;
         assert_eq!(d, ExactPoint::new(Surd::ZERO, Surd::new(2, 4)), "row {row}");
         // the return rows run back exactly over the first

@@ -7,7 +7,9 @@
 mod common;
 
 use common::{run_length, word};
-use foldchain::{Chain, ChainError, Fold, FoldWord, Tile, MAX_TILES};
+use foldchain::{Chain, ChainError, Fold, FoldWord, Tile};
+
+const MAX_TILES: usize = Chain::MAX_TILES;
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------------------------

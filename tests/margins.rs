@@ -3,7 +3,7 @@
 //! it stalls, and at the magnet the margins name.
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::margins::{margins, ChainModel, MarginOptions, Weakest};
+use foldchain::margins::{ChainModel, MarginOptions, Margins, Weakest};
 use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::{Outcome, TileDesigns};
 use foldchain::{Chain, Design};
@@ -34,7 +34,7 @@ fn margins_agree_with_the_reference_on_short_chains() {
     ] {
         for word in ["SS", "SL", "LS", "LL", "SSL", "SLS", "LLS", "RSL"] {
             let chain = Chain::parse(word).unwrap();
-            let m = margins(
+            let m = Margins::of(
                 &ChainModel::new(&chain, &[design]).unwrap(),
                 &MarginOptions::default(),
             );
@@ -83,7 +83,7 @@ fn a_stalled_mover_stops_where_the_reference_stops() {
         c: Some(2.8),
         ..Design::thesis()
     };
-    let m = margins(
+    let m = Margins::of(
         &ChainModel::new(&chain, &[design]).unwrap(),
         &MarginOptions::default(),
     );
@@ -111,11 +111,11 @@ fn every_tile_may_differ() {
     let mut designs = vec![d; chain.len()];
     designs[3].remanence *= 1.02;
     designs[4].tile_width += 0.1;
-    let m = margins(
+    let m = Margins::of(
         &ChainModel::new(&chain, &designs).unwrap(),
         &MarginOptions::default(),
     );
-    let uniform = margins(
+    let uniform = Margins::of(
         &ChainModel::new(&chain, &[d]).unwrap(),
         &MarginOptions::default(),
     );
@@ -153,7 +153,7 @@ fn the_margins_edge_is_the_references_edge() {
     // margins alone; the reference completes just inside it and stalls just outside
     let smallest = |word: &str, d: Design| {
         let chain = Chain::parse(word).unwrap();
-        margins(
+        Margins::of(
             &ChainModel::new(&chain, &[d]).unwrap(),
             &MarginOptions::default(),
         )

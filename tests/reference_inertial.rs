@@ -7,10 +7,8 @@
 use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::{ForceLaw, DEFAULT_DRAG};
-use foldchain::reference::{
-    run_reference, state_budget, Recording, ReferenceOptions, ReferenceRun,
-};
+use foldchain::physics::ForceLaw;
+use foldchain::reference::{run_reference, Recording, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
 use foldchain::{Chain, Design, FoldWord};
@@ -64,7 +62,7 @@ fn overdamped_is_the_limit_of_negligible_mass() {
     let od = ModelOptions::default();
     let light = Design {
         magnet_mass: 0.0265,
-        magnet_drag: Some(DEFAULT_DRAG),
+        magnet_drag: Some(5.0), /* the overdamped default */
         ..d
     };
     let word = "SS";
@@ -195,7 +193,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
     let d = run(
         "LLL",
         Design::thesis(),
-        inertial().with_distance_cutoff(90.0),
+        inertial().with_distance_cutoff(Some(90.0)),
     );
     assert_eq!(d.outcome, Outcome::Completed);
     assert_eq!(d.folded_joints(), r.folded_joints());
@@ -207,7 +205,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
         run(
             "S*9",
             Design::thesis(),
-            inertial().with_distance_cutoff(90.0),
+            inertial().with_distance_cutoff(Some(90.0)),
         ),
     );
     assert_eq!(a.events.len(), b.events.len());
@@ -216,7 +214,7 @@ fn the_chain_index_cutoff_misses_touching_tiles_far_apart_in_index() {
     let bad = run_reference(
         &Chain::parse("SS").unwrap(),
         &TileDesigns::default(),
-        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(-1.0)),
+        &ReferenceOptions::default().with_model(inertial().with_distance_cutoff(Some(-1.0))),
     );
     assert!(bad.is_err());
 }
@@ -234,9 +232,7 @@ fn recorded_fold_tracks_keep_each_bounce_peak() {
         &TileDesigns::global(Design::thesis().with_s(0.0)),
         &ReferenceOptions::default()
             .with_model(inertial())
-            .with_record(Recording::Grid {
-                max_states: state_budget(chain.len()),
-            }),
+            .with_record(Recording::within_budget(chain.len())),
     )
     .unwrap();
     assert!(r.walls.windows(2).all(|w| w[0].0 <= w[1].0));

@@ -16,8 +16,8 @@ use rayon::prelude::*;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::reference::{run_reference, state_budget, Recording, ReferenceOptions};
-use foldchain::timeline::{Summary, TileDesigns};
+use foldchain::reference::{run_reference, Recording, ReferenceOptions};
+use foldchain::timeline::{RunResult, Summary, TileDesigns};
 use foldchain::{check_reference, simulate, Chain, Design};
 
 /// The inertial dynamics with the default parameters (fold-run's default).
@@ -39,9 +39,7 @@ fn verdicts(word: &str, s: f64, dynamics: Dynamics) -> (Summary, Summary, bool) 
     .unwrap();
     let ro = ReferenceOptions::default()
         .with_model(model)
-        .with_record(Recording::Grid {
-            max_states: state_budget(chain.len()),
-        });
+        .with_record(Recording::within_budget(chain.len()));
     let run = run_reference(&chain, &designs, &ro).unwrap();
     let r = check_reference(&run, &CheckOptions::default()).unwrap();
     let same_hit = match (&e.first_collision, &r.first_collision) {
@@ -236,7 +234,7 @@ fn a_local_solve_that_gives_up_is_stopped_not_stalled() {
     // stall
     let e = run(EngineOptions::default().max_steps);
     assert!(
-        !["stopped", "stalled"].contains(&e.result),
+        ![RunResult::Stopped, RunResult::Stalled].contains(&e.result),
         "{}: {:?}",
         e.result,
         e.reason

@@ -12,7 +12,7 @@ use foldchain::tolerance::Printer;
 pub enum DynamicsChoice {
     /// First order, drag only: the stiff limit of negligible mass.
     Overdamped,
-    /// Mass, drag and walls the magnets and folds bounce at (README, "Physical parameters").
+    /// Mass, drag and walls the magnets and folds bounce at (docs/physics.md, "Physical parameters").
     Inertial,
 }
 

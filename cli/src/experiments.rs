@@ -8,10 +8,9 @@ use std::path::{Path, PathBuf};
 
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::physics::ForceLaw;
-use foldchain::reference::pair_energies;
-use foldchain::validation::experiments::{run_experiments, ExperimentResult};
 use foldchain::Design;
 use foldchain_render::pair_energy_svg;
+use foldchain_validation::experiments::{run_experiments, ExperimentResult};
 
 use crate::output::OutputDir;
 
@@ -54,7 +53,7 @@ pub fn experiments(out: &Path, json: bool) -> anyhow::Result<ExperimentsReport> 
                 "{}: {} ({}, {}), {}",
                 r.name, r.chain, r.dynamics, r.force_law, r.outcome
             );
-            let svg = pair_energy_svg(&pair_energies(run), &title);
+            let svg = pair_energy_svg(&run.pair_energies(), &title);
             let stem = r.name.replace(['.', ' '], "-").to_lowercase();
             dir.write(&format!("experiment-{stem}.svg"), svg.as_bytes())?;
         }

@@ -6,15 +6,17 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
-use foldchain::input::read_chain_arg;
 use foldchain::Chain;
-use foldchain_planner::{Plan, Shape};
+use foldchain_planner::{plan_svg_file_reporting, Plan, PlanOptions, Shape, Turns};
+
+use crate::progress::Progress;
+use crate::run_name::{inline_name, stem};
 
 /// Reads a chain argument: a fold word, a tile list, JSON, or a file holding one. A name that
 /// looks like a file (it has an extension or a directory) but is not there gets "no such
 /// file, and not a fold word", with a pointer to `fold-plan`/`fold-run` for SVG shapes.
 pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
-    match read_chain_arg(arg) {
+    match Chain::read_arg(arg) {
         Ok(chain) => Ok(chain),
         Err(e) => {
             let path = Path::new(arg.trim());
@@ -145,6 +147,115 @@ pub fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f6
             .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
             .collect(),
     )
+}
+
+/// A chain as a tool's arguments name it: `CHAIN` (a fold word, a tile list, a file holding
+/// one, or a `SHAPE.svg` to plan), or `--plan PLAN.json`, with the planner's options for a
+/// shape.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ChainArgs<'a> {
+    /// The positional `CHAIN`.
+    pub chain: Option<&'a str>,
+    /// `--plan`.
+    pub plan: Option<&'a Path>,
+    /// `--tiles` (a shape only).
+    pub tiles: Option<usize>,
+    /// `--tile-size` (a shape only).
+    pub tile_size: Option<f64>,
+    /// `--turns` (a shape only).
+    pub turns: Option<Turns>,
+}
+
+/// The chain a tool works on, with its name, the outline it was planned for (if any) and
+/// the input files it came from.
+#[derive(Clone, Debug)]
+pub struct ResolvedChain {
+    /// The chain.
+    pub chain: Chain,
+    /// Its name: the file's stem, or the word itself when short.
+    pub name: String,
+    /// The target outline in the chain's frame, in tile widths (empty when none).
+    pub target: Vec<Vec<(f64, f64)>>,
+    /// The files read (an output must not replace them).
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads the chain `args` name; a shape is planned (progress to `progress`), a shape that
+/// cannot be planned is the planner's error (exit 1). Options that apply only to a shape are
+/// refused for anything else.
+pub fn resolve_chain(args: &ChainArgs<'_>, progress: &Progress) -> anyhow::Result<ResolvedChain> {
+    let shape_opts = args.tiles.is_some() || args.tile_size.is_some() || args.turns.is_some();
+    let is_svg = |a: &str| a.to_ascii_lowercase().ends_with(".svg");
+    if shape_opts && !args.chain.is_some_and(is_svg) {
+        bail!("--tiles, --tile-size and --turns apply only to a SHAPE.svg (a plan or a chain has its tiles already)");
+    }
+    match (args.chain, args.plan) {
+        (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
+        (None, None) => bail!(
+            "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
+        ),
+        (None, Some(plan_path)) => {
+            let (chain, plan) = read_plan_file(plan_path)?;
+            // the plan names its shape file; drawn when it is still there
+            let shape = Path::new(&plan.source);
+            let target = if shape.is_file() {
+                target_outline(&plan, shape).unwrap_or_default()
+            } else {
+                Vec::new()
+            };
+            Ok(ResolvedChain {
+                chain,
+                name: stem(plan_path),
+                target,
+                files: vec![plan_path.to_path_buf()],
+            })
+        }
+        (Some(arg), None) if is_svg(arg) => {
+            let path = Path::new(arg);
+            let mut po = PlanOptions::default();
+            if let Some(n) = args.tiles {
+                po = po.with_tiles(n);
+            }
+            if let Some(w) = args.tile_size {
+                po = po.with_tile_size(w);
+            }
+            if let Some(t) = args.turns {
+                po = po.with_turns(t);
+            }
+            progress.stage("planning the shape");
+            let report = |stage: &str, done: u64, total: u64| {
+                progress.update_in(&format!("planning: {stage}"), "steps", done, total)
+            };
+            let plan = plan_svg_file_reporting(path, &po, &report)?;
+            let word = plan
+                .fold_word()
+                .with_context(|| format!("plan of {}", path.display()))?;
+            Ok(ResolvedChain {
+                chain: word.to_chain(),
+                name: stem(path),
+                target: target_outline(&plan, path).unwrap_or_default(),
+                files: vec![path.to_path_buf()],
+            })
+        }
+        (Some(arg), None) => {
+            let chain = read_chain(arg)?;
+            let file = Path::new(arg).is_file();
+            Ok(ResolvedChain {
+                name: if file {
+                    stem(Path::new(arg))
+                } else {
+                    inline_name(arg, &chain)
+                },
+                chain,
+                target: Vec::new(),
+                files: if file {
+                    vec![PathBuf::from(arg)]
+                } else {
+                    Vec::new()
+                },
+            })
+        }
+    }
 }
 
 #[cfg(test)]

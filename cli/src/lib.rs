@@ -12,8 +12,8 @@
 //! Install all seven tools with `cargo install --path cli` from the repository root.
 
 pub mod choices;
-pub mod engine_choice;
 pub mod experiments;
+pub mod fold_run;
 pub mod inputs;
 pub mod margins_file;
 pub mod numbers;

@@ -2,7 +2,7 @@
 //! every fold ([`foldchain::margins`]), the smallest of them and where, for chains up to
 //! [`MAX_MARGIN_TILES`] tiles.
 
-use foldchain::margins::{margins, ChainModel, MarginOptions, Margins, Weakest};
+use foldchain::margins::{ChainModel, MarginOptions, Margins, Weakest};
 use foldchain::physics::ForceLaw;
 use foldchain::timeline::TileDesigns;
 use foldchain::{Chain, Design};
@@ -22,7 +22,7 @@ struct MarginsFile<'a> {
 }
 
 /// The criterion the margins judge by, as the files and tools state it.
-pub const CRITERION: &str = "margins are fractions of the tile's bond force (starts) or of the bond force times the pair's lever about the hinge (folds), on quasi-static poses (README, Margins); the chain folds as designed when every one is positive (holds: the resting chain keeps each magnet in place before the RI comes)";
+pub const CRITERION: &str = "margins are fractions of the tile's bond force (starts) or of the bond force times the pair's lever about the hinge (folds), on quasi-static poses (docs/tolerances.md, Margins); the chain folds as designed when every one is positive (holds: the resting chain keeps each magnet in place before the RI comes)";
 
 /// The margins of `chain` with `designs` under `law`, and their JSON text; `None` for a chain
 /// longer than [`MAX_MARGIN_TILES`] or one whose paths cannot be built.
@@ -41,13 +41,7 @@ pub fn run_margins(
         index.iter().map(|&i| list[i as usize]).collect()
     };
     let model = ChainModel::new(chain, &per_tile).ok()?;
-    let m = margins(
-        &model,
-        &MarginOptions {
-            force_law: law,
-            ..MarginOptions::default()
-        },
-    );
+    let m = Margins::of(&model, &MarginOptions::default().with_force_law(law));
     let file = MarginsFile {
         criterion: CRITERION,
         force_law: law,

@@ -35,8 +35,9 @@ fn temp_name(name: &str) -> String {
     format!(".{name}.tmp{}", std::process::id())
 }
 
-/// Is `file` one of [`write_atomic`]'s temporary names for one of `names`, from any process?
-fn is_temp_of(file: &str, is_ours: &dyn Fn(&str) -> bool) -> bool {
+/// Is `file` one of [`write_atomic`]'s temporary names for a name `is_ours` accepts, from any
+/// process?
+pub fn is_temp_of(file: &str, is_ours: &dyn Fn(&str) -> bool) -> bool {
     let Some(rest) = file.strip_prefix('.') else {
         return false;
     };
@@ -119,6 +120,18 @@ impl OutputDir {
         write_atomic(&self.dir.join(name), bytes)?;
         self.written.push(name.to_string());
         Ok(())
+    }
+
+    /// Writes `value` as pretty JSON and a newline into `name`, as [`OutputDir::write`].
+    pub fn write_json(
+        &mut self,
+        name: &str,
+        value: &impl serde::Serialize,
+    ) -> Result<(), WriteError> {
+        let mut text = serde_json::to_string_pretty(value)
+            .map_err(|e| WriteError::new(&self.dir.join(name), e.into()))?;
+        text.push('\n');
+        self.write(name, text.as_bytes())
     }
 
     /// Removes the files that `stale` claims (names the tool owns, such as step frames) but

@@ -80,7 +80,23 @@ pub fn install_interrupt_cleanup() {
     let _ = ctrlc::set_handler(|| {
         if let Ok(mut staging) = STAGING.lock() {
             if let Some(dir) = staging.take() {
-                let _ = std::fs::remove_dir_all(&dir);
+                // renamed first, so that the writer's next file fails instead of landing
+                // in a directory being removed; a file it had open when the rename came
+                // may still appear, hence the retries
+                let mut trash = dir.clone().into_os_string();
+                trash.push(".interrupted");
+                let trash = PathBuf::from(trash);
+                let gone = if std::fs::rename(&dir, &trash).is_ok() {
+                    trash
+                } else {
+                    dir
+                };
+                for _ in 0..20 {
+                    if std::fs::remove_dir_all(&gone).is_ok() || !gone.exists() {
+                        break;
+                    }
+                    std::thread::sleep(std::time::Duration::from_millis(10));
+                }
             }
         }
         std::process::exit(130);
@@ -317,7 +333,10 @@ fn clear_stale(parent: &Path, name: &OsString, target: &Path, owns: fn(&Path) ->
     };
     for entry in entries.flatten() {
         let file_name = entry.file_name().to_string_lossy().into_owned();
-        let pid = file_name.strip_prefix(&prefix);
+        // `.NAME.fold-staging.PID`, or with `.interrupted` when Ctrl-C could not finish
+        let pid = file_name
+            .strip_prefix(&prefix)
+            .map(|p| p.strip_suffix(".interrupted").unwrap_or(p));
         if !pid.is_some_and(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit())) {
             continue;
         }

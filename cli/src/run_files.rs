@@ -20,7 +20,7 @@ use std::path::Path;
 use foldchain::check_engine_run;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{Summary, Timeline};
-use foldchain::timeline::{ChainState, RunSource, DETAIL_TILES};
+use foldchain::timeline::{ChainState, RunSource};
 use foldchain_render::viewer::{viewer_html, viewer_html_of, RunData, RunView};
 use foldchain_render::{energy_svg, frame_svg, transition_svg, FrameOptions, FrameView};
 use kurbo::Point;
@@ -123,7 +123,7 @@ pub fn write_compare_page(
 pub fn default_frames(tiles: usize) -> usize {
     match tiles {
         0..=50 => 40,
-        51..=DETAIL_TILES => 24,
+        51..=ChainState::DETAIL_TILES => 24,
         401..=20_000 => 12,
         _ => 6,
     }
@@ -144,7 +144,8 @@ pub fn is_run_file(name: &str) -> bool {
 }
 
 /// Is the entry at `path`, in a run's output directory, one `fold-run` owns (replaced by
-/// the next run into that directory): one of [`is_run_file`]'s names, or `engine/` or
+/// the next run into that directory): one of [`is_run_file`]'s names or a temporary name of
+/// one (a killed run's torn file), or `engine/` or
 /// `reference/` of `--compare` holding nothing but such files. Everything else is a user's,
 /// and stays.
 pub fn owns_run_entry(path: &Path) -> bool {
@@ -154,14 +155,15 @@ pub fn owns_run_entry(path: &Path) -> bool {
     let Ok(meta) = std::fs::symlink_metadata(path) else {
         return false;
     };
+    // a file being written when a run was killed: `.NAME.tmpPID`
+    let ours = |n: &str| is_run_file(n) || crate::output::is_temp_of(n, &is_run_file);
     if meta.is_file() {
-        return is_run_file(&name);
+        return ours(&name);
     }
     if meta.is_dir() && (name == "engine" || name == "reference") {
         return std::fs::read_dir(path).is_ok_and(|entries| {
             entries.flatten().all(|e| {
-                e.file_type().is_ok_and(|t| t.is_file())
-                    && is_run_file(&e.file_name().to_string_lossy())
+                e.file_type().is_ok_and(|t| t.is_file()) && ours(&e.file_name().to_string_lossy())
             })
         });
     }
@@ -308,9 +310,7 @@ pub fn write_prepared_run_files(
         &|n| is_step_frame(n) || n == "index.html" || n == "margins.json",
         &is_run_file,
     )?;
-    let mut summary_json = summary.to_json();
-    summary_json.push('\n');
-    out.write("summary.json", summary_json.as_bytes())?;
+    out.write_json("summary.json", summary)?;
     Ok(out.written().to_vec())
 }
 
@@ -433,7 +433,7 @@ fn frame_view(
         let shown: Vec<usize> = (0..state.tiles())
             .filter(|&i| view.shows(&state.poses[i], w))
             .collect();
-        if shown.len() <= DETAIL_TILES {
+        if shown.len() <= ChainState::DETAIL_TILES {
             let g = source.geometry();
             state.magnets = vec![(f64::NAN, f64::NAN); g.magnets()];
             for k in shown.into_iter().flat_map(|i| [2 * i, 2 * i + 1]) {

@@ -56,7 +56,7 @@ pub fn stdout_failure() -> Option<std::io::Error> {
     STDOUT_FAILURE.lock().ok().and_then(|mut f| f.take())
 }
 
-/// `println!` that a closed pipe does not crash ([`line`]).
+/// `println!` that a closed pipe does not crash ([`line`](crate::stdout::line)).
 #[macro_export]
 macro_rules! outln {
     () => {
@@ -67,7 +67,7 @@ macro_rules! outln {
     };
 }
 
-/// `eprintln!` that a closed stderr does not crash ([`err_line`]).
+/// `eprintln!` that a closed stderr does not crash ([`err_line`](crate::stdout::err_line)).
 #[macro_export]
 macro_rules! errln {
     ($($arg:tt)*) => {

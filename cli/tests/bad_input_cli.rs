@@ -15,6 +15,7 @@ fn tool(name: &str) -> Command {
         "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
         "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
         "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
+        "fold-print" => env!("CARGO_BIN_EXE_fold-print"),
         _ => env!("CARGO_BIN_EXE_fold-validate"),
     };
     Command::new(path)
@@ -132,6 +133,12 @@ fn a_closed_pipe_ends_a_tool_quietly() {
         ("fold-run", vec!["SLLS", "--json", "--out", "OUT"]),
         ("fold-check", vec!["S*40", "--json"]),
         ("fold-enum", vec!["--max-tiles", "9", "--json"]),
+        ("fold-print", vec!["SLLS", "--quiet", "--out", "OUT"]),
+        ("fold-tolerance", vec!["SL", "--samples", "20"]),
+        (
+            "fold-plan",
+            vec!["../shapes/square.svg", "--tiles", "12", "--quiet"],
+        ),
     ] {
         let out = d.join(t);
         let args: Vec<&str> = args
@@ -166,5 +173,26 @@ fn a_closed_pipe_ends_a_tool_quietly() {
             "{t}: {status:?} {err}"
         );
     }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn fold_print_refuses_a_file_as_out_before_any_work() {
+    // found by the options fuzz: the refusal came after the parts were built, below a
+    // progress line, so it was not one line
+    let d = scratch("print-out-file");
+    let file = d.join("afile");
+    std::fs::write(&file, "not a directory").unwrap();
+    let o = tool("fold-print")
+        .env("FOLDCHAIN_PROGRESS_SECONDS", "0")
+        .args(["SLLS", "--out"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("not a directory"), "{err}");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a directory");
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -14,6 +14,7 @@ fn tool(name: &str) -> Command {
         "fold-run" => env!("CARGO_BIN_EXE_fold-run"),
         "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
         "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
+        "fold-tolerance" => env!("CARGO_BIN_EXE_fold-tolerance"),
         _ => env!("CARGO_BIN_EXE_fold-validate"),
     };
     Command::new(path)
@@ -360,4 +361,33 @@ fn a_long_count_is_never_silent_off_a_terminal() {
         first.contains("valid words") && first.contains("roughly"),
         "{first}"
     );
+}
+
+#[test]
+fn long_runs_and_studies_are_never_silent_off_a_terminal() {
+    // issue 29: a 300,000-tile fold-run and fold-tolerance "S*999" print progress within 5 s
+    // when stderr is not a terminal (the first line after 2 s, a thread of its own, so one
+    // long library call is heard from too); here the interval is shortened to keep the
+    // cases small. --quiet silences both.
+    let d = tmp("progress");
+    for quiet in [false, true] {
+        let mut run = tool("fold-run");
+        run.env("FOLDCHAIN_PROGRESS_SECONDS", "0.02")
+            .args(["S*3000 LL S*3000", "--frames", "2", "--out"])
+            .arg(d.join(format!("run-{quiet}")));
+        let mut study = tool("fold-tolerance");
+        study
+            .env("FOLDCHAIN_PROGRESS_SECONDS", "0.02")
+            .args(["S*99", "--samples", "400"]);
+        if quiet {
+            run.arg("--quiet");
+            study.arg("--quiet");
+        }
+        let (r, t) = (run.output().unwrap(), study.output().unwrap());
+        assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+        assert_eq!(t.status.code(), Some(0), "{}", stderr(&t));
+        let (re, te) = (stderr(&r), stderr(&t));
+        assert_eq!(re.contains("fold-run: event engine"), !quiet, "{re}");
+        assert_eq!(te.contains("fold-tolerance: samples:"), !quiet, "{te}");
+    }
 }

@@ -51,6 +51,14 @@ fn plan(name: &str, tiles: usize) -> Plan {
 /// The plan folds, holds the count within the cell planner's reach (the default 3%
 /// tolerance, and a few tiles of a whole row), and its chain is the word it states.
 fn assert_sound(p: &Plan, tiles: usize) {
+    // a part left empty (2 to 20 tile areas) is said, in the plan and on stderr
+    assert_eq!(
+        p.metrics.largest_empty_tiles > 0.0,
+        !p.warnings.is_empty(),
+        "{:?}",
+        p.warnings
+    );
+    assert!(p.metrics.largest_empty_tiles <= 20.0);
     let word = p.fold_word().unwrap();
     assert_eq!(word.tiles(), p.tiles);
     assert_eq!(p.poses.len(), p.tiles);
@@ -64,12 +72,12 @@ fn assert_sound(p: &Plan, tiles: usize) {
 }
 
 /// The dog at the default 200 tiles: every route at the width the count settled on left
-/// the hind leg (or the tail) empty; routes at a width a little either side fill it.
+/// the hind leg (or the tail) empty and the shape was refused; it plans now (a part it
+/// leaves empty is said: issue 26 asks for none, not met yet at this count).
 #[test]
 fn dog_plans_at_200_tiles() {
     let p = plan("dog.svg", 200);
     assert_sound(&p, 200);
-    assert!(p.cells >= 2, "{} cells", p.cells);
 }
 
 /// The dog at 700 tiles (exit 1 before: the routes at the settled width left the tail's
@@ -81,15 +89,14 @@ fn dog_plans_at_700_tiles() {
     assert_sound(&p, 700);
 }
 
-/// The ring at 300 tiles plans by cells as before the cell search was bounded (3 cells),
-/// with both passes of the size search sharing the widths routed (15.6 s before, 2.3 s after
-/// on the loaded 2-core machine; not timed here).
+/// The ring at 300 tiles plans by cells (caps around its hole), leaving no part empty.
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn ring_plans_at_300_tiles_by_cells() {
     let p = plan("ring.svg", 300);
     assert_sound(&p, 300);
-    assert_eq!(p.cells, 3, "{} cells", p.cells);
+    assert!(p.cells >= 3, "{} cells", p.cells);
+    assert_eq!(p.metrics.largest_empty_tiles, 0.0);
 }
 
 /// The frame at 2000 tiles: a chain ten times the default plans by cells (the route

@@ -425,7 +425,7 @@ fn irregular_long_chains_use_the_kinematic_engine_and_say_so() {
     assert!(matches!(irregular.status.code(), Some(0 | 1)));
     let err = String::from_utf8_lossy(&irregular.stderr);
     assert!(
-        err.contains("2501 tiles with")
+        err.contains("2,501 tiles with")
             && err.contains("distinct joint neighbourhoods: the kinematic engine"),
         "{err}"
     );
@@ -434,19 +434,24 @@ fn irregular_long_chains_use_the_kinematic_engine_and_say_so() {
 #[test]
 fn a_start_rule_with_the_local_engine_is_refused() {
     // --start-rule is the kinematic engine's; with --engine local it would be ignored
+    // (and so is --speed: `--speed unit --engine local` once ran the kinematic engine
+    // silently)
     let d = tmp("start-rule-local");
-    let o = bin()
-        .args(["SS", "--engine", "local", "--start-rule", "force", "--out"])
-        .arg(d.join("out"))
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("--start-rule is the kinematic engine's option"),
-        "{err}"
-    );
-    assert!(!d.join("out").exists());
+    for (flag, value) in [("--start-rule", "force"), ("--speed", "unit")] {
+        let o = bin()
+            .args(["SS", "--engine", "local", flag, value, "--out"])
+            .arg(d.join("out"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("--speed and --start-rule are the kinematic engine's options")
+                && err.lines().count() == 1,
+            "{err}"
+        );
+        assert!(!d.join("out").exists());
+    }
 }
 
 #[test]

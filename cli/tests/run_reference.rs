@@ -177,10 +177,14 @@ fn reference_pictures_show_where_a_stalled_chain_stopped() {
 
 #[test]
 fn reference_refuses_long_chains() {
+    // refused before any work: the output directory is not even created
+    let dir = std::env::temp_dir().join(format!("foldchain-ref-long-{}", std::process::id()));
     let out = Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(["S*3000", "--reference"])
+        .args(["S*3000", "--reference", "--out"])
+        .arg(&dir)
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("at most 2000"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("at most 2,000"));
+    assert!(!dir.exists());
 }

@@ -1,7 +1,7 @@
 //! Assembly of a plan: a checked fold word and the frames it was laid in become a [`Plan`]
 //! (poses from the exact kinematics, mapped into the drawing, the parts list, the fit).
 
-use foldchain::{kinematics, BillOfMaterials, FoldWord};
+use foldchain::{BillOfMaterials, FoldWord};
 use kurbo::{Affine, Point, Vec2};
 
 use crate::fit::measure;
@@ -38,7 +38,7 @@ impl Assembly<'_> {
     /// True if the exact kinematics of `word` put the tile centres where `centres` (work
     /// frame) says, within 1e-6 tile widths.
     pub(crate) fn agrees(&self, word: &FoldWord, centres: &[Point]) -> bool {
-        let exact = kinematics::final_poses(word);
+        let exact = word.final_poses();
         exact.len() == centres.len()
             && exact.iter().zip(centres).all(|(p, c)| {
                 let (x, y) = p.centre.to_f64(1.0);
@@ -54,7 +54,7 @@ impl Assembly<'_> {
         let c2s = self.work_to_svg * c2w;
         // directions move by the linear part only
         let c2s_linear = c2s.with_translation(Vec2::ZERO);
-        let exact = kinematics::final_poses(word);
+        let exact = word.final_poses();
         let chain_centres: Vec<Point> = exact
             .iter()
             .map(|p| {
@@ -108,6 +108,7 @@ impl Assembly<'_> {
             metrics,
             chain_to_svg: c2s.as_coeffs(),
             poses,
+            warnings: Vec::new(),
         }
     }
 }

@@ -37,6 +37,7 @@ pub(crate) fn measure(work: &Shape, centres: &[Point], w: f64) -> Metrics {
         outside_share: share(out, total),
         shape_area: work.area() * w * w,
         chain_area: centres.len() as f64 * oct_area * w * w,
+        largest_empty_tiles: 0.0,
     }
 }
 

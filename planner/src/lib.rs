@@ -33,9 +33,9 @@
 //! shape.
 
 mod assembly;
+mod cap_plan;
+mod caps;
 mod cell_plan;
-mod cell_search;
-mod cells;
 mod centre_grid;
 mod check;
 mod clip;

@@ -32,6 +32,12 @@ pub struct Metrics {
     pub shape_area: f64,
     /// The chain's area (tiles times the octagon area), SVG user units squared.
     pub chain_area: f64,
+    /// The largest part of the shape the plan leaves empty, in tile areas: a connected
+    /// region at least half a tile inside the outline and farther than 0.95 tile widths
+    /// from every tile centre ([`crate::EmptyPart`]); 0 when there is none larger than two
+    /// tile areas.
+    #[serde(default)]
+    pub largest_empty_tiles: f64,
 }
 
 impl Metrics {
@@ -89,6 +95,10 @@ pub struct Plan {
     pub chain_to_svg: [f64; 6],
     /// One pose per tile centre, SVG user units.
     pub poses: Vec<PlanPose>,
+    /// What the plan falls short in (a part of the shape left empty, a tile count outside
+    /// the asked tolerance), one sentence each; empty for a plan that meets every aim.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
@@ -144,12 +154,11 @@ impl Plan {
     /// The one-line summary `fold-plan` prints.
     pub fn summary(&self) -> String {
         format!(
-            "{} tiles, {} {} U-turns, {} 90-degree turns, {} cell(s), axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
-            self.tiles,
-            self.u_turns,
-            self.turns,
-            self.quarter_turns,
-            self.cells,
+            "{}, {}, {}, {}, axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
+            plural(self.tiles, "tile", "tiles"),
+            plural(self.u_turns, &format!("{} U-turn", self.turns), &format!("{} U-turns", self.turns)),
+            plural(self.quarter_turns, "90-degree turn", "90-degree turns"),
+            plural(self.cells, "cell", "cells"),
             self.axis_deg,
             self.tile_size,
             mm(self.tile_mm),
@@ -159,4 +168,9 @@ impl Plan {
             100.0 * self.metrics.outside_share
         )
     }
+}
+
+/// `n` and the noun in the number it takes: `1 cell`, `2 cells`.
+pub(crate) fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }

@@ -7,10 +7,10 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::cell_plan::{axes, plan_by_cells, CellFailure};
-use crate::cell_search::CellSearch;
-use crate::cells::cells_of;
-use crate::empty::empty_part;
+use crate::cap_plan::plan_by_caps;
+use crate::caps;
+use crate::cell_plan::{axes, CellFailure};
+use crate::empty::note_empty;
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
@@ -43,6 +43,34 @@ pub(crate) fn plan_shape(
     .into_iter()
     .map(|s| s.priced(opts.turn_cost))
     .collect();
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let tiles_est = opts
+        .tile_size
+        .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
+    // one chain cannot cross a gap: a drawing in separate parts is refused at once
+    let parts = separate_parts(shape, tiles_est);
+    if parts.len() > 1 {
+        let list: Vec<String> = parts
+            .iter()
+            .take(4)
+            .map(|b| {
+                format!(
+                    "x {:.0} to {:.0}, y {:.0} to {:.0}",
+                    b.x0, b.x1, -b.y1, -b.y0
+                )
+            })
+            .collect();
+        return Err(PlanError::Unplannable {
+            name: name.into(),
+            reason: format!(
+                "the drawing is in {} separate parts ({}{}); one chain cannot cross the gaps between them: join the parts in the drawing, or plan each on its own",
+                parts.len(),
+                list.join("; "),
+                if parts.len() > 4 { "; ..." } else { "" }
+            ),
+            rejected: None,
+        });
+    }
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
     let mut failures: Vec<String> = Vec::new();
@@ -55,11 +83,6 @@ pub(crate) fn plan_shape(
         &mut failures,
         progress,
     );
-    // the size a tight serpentine would have, for the questions below
-    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
-    let tiles_est = opts
-        .tile_size
-        .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
     // the best plan rejected for an empty part, for a preview of where
     let mut rejected: Option<Box<Rejected>> = None;
     let mut reject = |r: Box<Rejected>| {
@@ -71,9 +94,10 @@ pub(crate) fn plan_shape(
         }
     };
     if let Some(p) = best.take() {
-        match empty_part(shape, &p) {
-            None => best = Some(p),
-            Some(part) => {
+        match note_empty(shape, p, crate::empty::near(opts.turns)) {
+            Ok(p) => best = Some(p),
+            Err(e) => {
+                let (part, p) = *e;
                 failures.push(format!("one serpentine {part}"));
                 reject(Box::new(Rejected {
                     plan: p,
@@ -82,8 +106,7 @@ pub(crate) fn plan_shape(
             }
         }
     }
-    let parts = separate_parts(shape, tiles_est);
-    if monotone.is_empty() || parts > 1 {
+    if monotone.is_empty() {
         // one serpentine over a shape that is monotone in no direction (or in separate
         // parts) bridges its gaps: kept only while little of the chain lies outside
         if let Some(p) = best.take() {
@@ -105,42 +128,35 @@ pub(crate) fn plan_shape(
         None => q.tiles.abs_diff(target).saturating_sub(tol),
         Some(_) => 0,
     };
-    // cells joined by turns, for shapes that split into several cells along some axis and
-    // plans small enough to route (a monotone shape keeps the better fit of the two)
+    // plans are ranked: a count within the tolerance, then no part left empty, then fit
+    let rank = |q: &Plan| {
+        (
+            miss(q),
+            q.metrics.largest_empty_tiles > 0.0,
+            OrdF64(plan_score(q, opts.turn_cost)),
+        )
+    };
+    // caps joined by quarter turns, for shapes that are not one serpentine (and, up to
+    // MAX_CELL_TILES tiles, for every shape: a monotone shape keeps the better of the two)
     if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
-        // when no plan within the count's tolerance is found, the routes are searched again
-        // with widths a little either side of those whose routes were all rejected (the
-        // cells then meet the rows at other phases); a shape that plans keeps the first
-        // search's plan. Both searches of a style share its budget and routed widths.
-        let searches: Vec<CellSearch> = styles.iter().map(|_| CellSearch::default()).collect();
-        for retry in [false, true] {
-            if retry && best.as_ref().is_some_and(|b| miss(b) == 0) {
-                break;
-            }
-            progress("planning by cells", 0, 1);
-            let by_cells: Vec<Result<Plan, CellFailure>> = styles
-                .par_iter()
-                .zip(&searches)
-                .map(|(&style, search)| plan_by_cells(shape, opts, style, name, retry, search))
-                .collect();
-            progress("planning by cells", 1, 1);
-            for r in by_cells {
-                match r {
-                    Ok(p) => {
-                        // a count within the tolerance first, then the better fit
-                        let key = |q: &Plan| (miss(q), plan_score(q, opts.turn_cost));
-                        if best.as_ref().is_none_or(|b| {
-                            let (a, b) = (key(&p), key(b));
-                            a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
-                        }) {
-                            best = Some(p);
-                        }
+        progress("planning by caps", 0, 1);
+        let by_caps: Vec<Result<Plan, CellFailure>> = styles
+            .par_iter()
+            .map(|&style| plan_by_caps(shape, opts, style, name))
+            .collect();
+        progress("planning by caps", 1, 1);
+        for r in by_caps {
+            match r {
+                Ok(p) => {
+                    // a count within the tolerance first, then the better fit
+                    if best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
+                        best = Some(p);
                     }
-                    Err((e, r)) => {
-                        failures.push(format!("by cells: {e}"));
-                        if let Some(r) = r {
-                            reject(r);
-                        }
+                }
+                Err((e, r)) => {
+                    failures.push(format!("by caps: {e}"));
+                    if let Some(r) = r {
+                        reject(r);
                     }
                 }
             }
@@ -148,7 +164,7 @@ pub(crate) fn plan_shape(
     }
     best.ok_or_else(|| PlanError::Unplannable {
         name: name.into(),
-        reason: unplannable_reason(shape, parts, monotone.is_empty(), failures),
+        reason: unplannable_reason(shape, monotone.is_empty(), failures),
         rejected,
     })
 }
@@ -193,18 +209,9 @@ fn best_serpentine(
 }
 
 /// Why no plan was found: what is wrong with the shape, then what each planner said.
-fn unplannable_reason(
-    shape: &Shape,
-    parts: usize,
-    nowhere_monotone: bool,
-    mut failures: Vec<String>,
-) -> String {
+fn unplannable_reason(shape: &Shape, nowhere_monotone: bool, mut failures: Vec<String>) -> String {
     let mut reason = String::new();
-    if parts > 1 {
-        reason = format!(
-            "the shape is in {parts} separate parts and one chain would have to bridge the gaps between them; "
-        );
-    } else if nowhere_monotone {
+    if nowhere_monotone {
         let pieces = (0..12)
             .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
             .min()
@@ -218,17 +225,41 @@ fn unplannable_reason(
     reason
 }
 
-/// The number of separate parts of the shape, at about `tiles` tiles (parts smaller than a
-/// tile are not counted).
-fn separate_parts(shape: &Shape, tiles: usize) -> usize {
+/// The separate parts of the shape at about `tiles` tiles, by their bounding boxes in the
+/// physical frame (parts smaller than half a tile are not counted).
+fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
     let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
-    cells_of(&shape.scaled(1.0 / w)).components()
+    caps::parts(&shape.scaled(1.0 / w))
+        .into_iter()
+        .map(|b| kurbo::Rect::new(b.x0 * w, b.y0 * w, b.x1 * w, b.y1 * w))
+        .collect()
 }
 
-/// True if some sweep axis splits the shape into two or more cells at about `tiles` tiles.
+/// True if along some sweep axis the cheapest cap decomposition at about `tiles` tiles has
+/// more than one cell (a shape that one serpentine fills as well needs no caps).
 fn splits_into_cells(shape: &Shape, tiles: usize) -> bool {
     let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
-    axes(shape)
-        .iter()
-        .any(|&a| cells_of(&shape.rotated(-a).scaled(1.0 / w)).cells.len() > 1)
+    axes(shape).iter().any(|&a| {
+        caps::cap_plans(&shape.rotated(-a).scaled(1.0 / w), TIGHT.pitch)
+            .first()
+            .is_some_and(|p| p.cells.len() > 1)
+    })
+}
+
+/// An f64 ordered by `total_cmp`, for ranking keys.
+#[derive(Clone, Copy, PartialEq)]
+struct OrdF64(f64);
+
+impl Eq for OrdF64 {}
+
+impl PartialOrd for OrdF64 {
+    fn partial_cmp(&self, other: &OrdF64) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for OrdF64 {
+    fn cmp(&self, other: &OrdF64) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
+    }
 }

@@ -17,7 +17,7 @@ use svg::Document;
 use crate::empty::EmptyPart;
 use crate::error::{PlanError, Rejected};
 use crate::options::Turns;
-use crate::plan::{mm, Plan};
+use crate::plan::{mm, plural, Plan};
 use crate::shape::Shape;
 
 /// The preview of `plan` over the shape in the SVG file `shape_path`.
@@ -129,8 +129,12 @@ fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
     // short lines: a tall drawing makes a narrow picture
     let lines = [
         format!(
-            "{}: {} tiles, {} {} U-turns, {} quarter turns, {} cell(s)",
-            plan.source, plan.tiles, plan.u_turns, plan.turns, plan.quarter_turns, plan.cells
+            "{}: {}, {}, {}, {}",
+            plan.source,
+            plural(plan.tiles, "tile", "tiles"),
+            plural(plan.u_turns, &format!("{} U-turn", plan.turns), &format!("{} U-turns", plan.turns)),
+            plural(plan.quarter_turns, "quarter turn", "quarter turns"),
+            plural(plan.cells, "cell", "cells")
         ),
         format!(
             "tile {} mm, folded {:.0} x {:.0} mm",
@@ -139,7 +143,7 @@ fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
             plan.extent_mm[1]
         ),
         format!(
-            "fit: {:.1}% of the shape covered (at most {:.1}%), {:.1}% of the chain outside it",
+            "fit: {:.1}% of the shape covered (rows this far apart cover {:.1}% of a long band), {:.1}% of the chain outside it",
             100.0 * plan.metrics.covered_share,
             100.0 * row_band_share(plan),
             100.0 * plan.metrics.outside_share

@@ -26,7 +26,6 @@ use std::sync::Arc;
 use foldchain::{Fold, FoldWord};
 use kurbo::{Affine, Point, Rect, Vec2};
 
-use crate::cells::Cells;
 use crate::centre_grid::CentreGrid;
 use crate::check::CheckMemo;
 use crate::options::Turns;
@@ -191,7 +190,7 @@ fn first_legs(
     shape: &Shape,
     style: Style,
     toward: Option<Rect>,
-    memo: &CheckMemo,
+    need: Need,
 ) -> Vec<(f64, f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
@@ -202,6 +201,9 @@ fn first_legs(
         Vec2::new(0.0, -1.0),
     ] {
         for n in [d.turn_90(), -d.turn_90()] {
+            if !allows(need, n) {
+                continue;
+            }
             let frame = Frame {
                 o: Point::ZERO,
                 d,
@@ -209,7 +211,6 @@ fn first_legs(
             };
             let work = frame.work(shape);
             for lat in Lattice::phased(work.bbox(), p) {
-                memo.spend(lat.nrows * lat.cols);
                 let sol = solve_rows(&work, style, lat, None, None);
                 for (cost, look, k, e) in ends(&sol, lat, p, frame, toward) {
                     let serp = sol.serpentine(lat, p, k, e);
@@ -296,7 +297,7 @@ fn next_legs(
     shape: &Shape,
     style: Style,
     toward: Option<Rect>,
-    memo: &CheckMemo,
+    need: Need,
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
     // only tiles near the cell can block its rows
     let cell_box = shape.bbox().inflate(2.0, 2.0);
@@ -316,6 +317,9 @@ fn next_legs(
             .chain(&join.tiles)
             .fold(Rect::from_points(e, e), |b, &q| b.union_pt(q));
         for &n in &join.sides {
+            if !allows(need, n) {
+                continue;
+            }
             let frame = Frame {
                 o: join.start,
                 d: join.d,
@@ -333,7 +337,6 @@ fn next_legs(
                     && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
                         || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
-            memo.spend(lat.nrows * lat.cols);
             let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward) {
                 let leg = Leg {
@@ -364,15 +367,26 @@ fn end_key(leg: &Leg) -> EndKey {
     [r(e.x), r(e.y), r(h.x), r(h.y), r(side.x), r(side.y)]
 }
 
-/// The best routes through the cells in `order`, cheapest first.
-pub(crate) fn route_order(
-    cells: &Cells,
-    order: &[usize],
-    style: Style,
-    memo: &CheckMemo,
-) -> Vec<Route> {
-    let centre = |i: usize| order.get(i).map(|&c| cells.cells[c].shape.bbox());
-    let mut beam: Vec<Route> = first_legs(&cells.cells[order[0]].shape, style, centre(1), memo)
+/// The stacking side a cell's rows must take (`Some((n, either))`: `n`, or `-n` too when
+/// `either`), or any (`None`).
+pub(crate) type Need = Option<(Vec2, bool)>;
+
+/// True if a cell whose rows are stacked towards `n` meets `need`.
+fn allows(need: Need, n: Vec2) -> bool {
+    match need {
+        None => true,
+        Some((m, either)) => (n - m).hypot() < 1e-9 || (either && (n + m).hypot() < 1e-9),
+    }
+}
+
+/// The best routes through the cells `seq` in this order, each cell's rows stacked as its
+/// [`Need`] says, cheapest first.
+pub(crate) fn route_sequence(seq: &[(&Shape, Need)], style: Style, memo: &CheckMemo) -> Vec<Route> {
+    let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
+    let Some(&(first, need0)) = seq.first() else {
+        return Vec::new();
+    };
+    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0)
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
@@ -383,8 +397,7 @@ pub(crate) fn route_order(
             }
         })
         .collect();
-    for (at, &cell) in order.iter().enumerate().skip(1) {
-        let shape = &cells.cells[cell].shape;
+    for (at, &(shape, need)) in seq.iter().enumerate().skip(1) {
         let toward = centre(at + 1);
         // every extension, cheapest first; the overlap test (the costly part) runs only
         // until the beam is full
@@ -392,7 +405,7 @@ pub(crate) fn route_order(
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
             let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
-            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward, memo)
+            for (cost, look, leg, join_tiles) in next_legs(prev, &laid, shape, style, toward, need)
             {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }

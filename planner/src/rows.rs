@@ -237,6 +237,45 @@ fn tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64], diff: &mut [f64]) 
     }
 }
 
+/// The farthest a row end may lie from the outline along its row (tile widths) for rows
+/// `pitch` apart without leaving a strip of the shape that the empty-part measure
+/// ([`crate::empty`], reach `near` = 0.95 for tight rows, 1.45 for loose) counts: beside
+/// the end, half a row pitch across, at half a tile from the outline, lies a point
+/// `sqrt(near^2 - (pitch / 2)^2)` beyond the end tile's centre. 1.134 for tight rows, 1.30
+/// for loose.
+fn gap_ok(pitch: f64) -> f64 {
+    let near = crate::empty::NEAR + (pitch - SQRT_2).max(0.0) / 2.0;
+    0.5 + (near * near - pitch * pitch / 4.0).max(0.0).sqrt()
+}
+
+/// Ends farther than this from the outline are priced by the uncovered area alone (the row
+/// stops well inside the shape, and the area term sees it).
+const GAP_MAX: f64 = 3.0;
+/// The price of a row end that leaves such a strip, in tile areas: about the strip's area
+/// over the row pitch beside it.
+const GAP_PRICE: f64 = 1.0;
+
+/// Sets `gaps[j]` to the prices of a row ending at column `j` (centre `x0 + j`) towards -x
+/// and towards +x: [`GAP_PRICE`] where the outline along the row (the intervals `iv` of its
+/// line) lies between [`gap_ok`] and [`GAP_MAX`] beyond the end tile's centre.
+fn edge_gaps(iv: &[(f64, f64)], x0: f64, pitch: f64, gaps: &mut [(f64, f64)]) {
+    let ok = gap_ok(pitch);
+    let price = |gap: f64| {
+        if gap > ok && gap < GAP_MAX {
+            GAP_PRICE
+        } else {
+            0.0
+        }
+    };
+    for (j, g) in gaps.iter_mut().enumerate() {
+        let x = x0 + j as f64;
+        *g = match iv.iter().find(|&&(a, b)| a <= x && x <= b) {
+            Some(&(a, b)) => (price(x - a), price(b - x)),
+            None => (0.0, 0.0),
+        };
+    }
+}
+
 /// True where a tile centred at the point (work frame) would overlap a tile laid before.
 pub(crate) type Blocked<'a> = &'a (dyn Fn(Point) -> bool + Sync);
 
@@ -280,6 +319,8 @@ pub(crate) fn solve_rows(
     // pre[k * w1 + m]: cost of the tiles in columns 0..m of row k
     let mut pre = vec![0.0; nrows * w1];
     let mut turn = vec![0.0; nrows * cols];
+    // gaps[k * cols + j]: the prices of row k ending at column j towards -x and +x
+    let mut gaps = vec![(0.0, 0.0); nrows * cols];
     let mut cover = vec![0.0; cols];
     let mut diff = vec![0.0; w1];
     for k in 0..nrows {
@@ -290,6 +331,12 @@ pub(crate) fn solve_rows(
             let taken = blocked.is_some_and(|b| b(Point::new(x0 + j as f64, y)));
             pr[j + 1] = pr[j] + if taken { BLOCKED } else { tile_cost(cover[j]) };
         }
+        edge_gaps(
+            &work.intervals_at(y),
+            x0,
+            p,
+            &mut gaps[k * cols..(k + 1) * cols],
+        );
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
@@ -331,10 +378,11 @@ pub(crate) fn solve_rows(
             let e = if rightward { i } else { cols - 1 - i };
             // the cost of a row from s to e is base(e) + term_s(s):
             // rightward: pre[e + 1] - pre[s]; leftward: pre[s + 1] - pre[e]
+            let (gl, gr) = gaps[k * cols + e];
             let (term_s, base) = if rightward {
-                (-pk(e), pk(e + 1))
+                (-pk(e) + gl, pk(e + 1) + gr)
             } else {
-                (pk(e + 1), -pk(e))
+                (pk(e + 1) + gr, -pk(e) + gl)
             };
             if !first_after && first_ok(e) {
                 lower(&mut first_min, term_s, e);

@@ -206,6 +206,7 @@ pub(crate) fn size_style(
         explore,
         shrink_when_empty: Some(0.97),
         retries: &[],
+        settle_cost: f64::INFINITY,
     };
     let stage = format!("sizing the {} serpentine", style.turns);
     let total = (SECANT_STEPS + NUDGES.len()) as u64;

@@ -55,10 +55,69 @@ pub(crate) struct FilledPath {
 }
 
 /// The target shape: the union of filled paths, each filled by its own rule.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Shape {
     paths: Vec<FilledPath>,
     bbox: Rect,
+    /// The edges bucketed by height, built on the first row query.
+    index: std::sync::OnceLock<EdgeIndex>,
+}
+
+impl PartialEq for Shape {
+    fn eq(&self, other: &Shape) -> bool {
+        self.paths == other.paths
+    }
+}
+
+/// The edges of a shape bucketed by height: bucket `i` holds every edge (with the index of
+/// its filled path) whose height range meets `[y0 + i h, y0 + (i + 1) h]`, so a row query
+/// looks at the edges near its line only, not at every edge of the outline.
+#[derive(Clone, Debug)]
+struct EdgeIndex {
+    y0: f64,
+    /// Buckets per unit of height.
+    per: f64,
+    buckets: Vec<Vec<(usize, Point, Point)>>,
+}
+
+impl EdgeIndex {
+    fn new(paths: &[FilledPath], bbox: Rect) -> EdgeIndex {
+        let edges: usize = paths
+            .iter()
+            .flat_map(|p| &p.rings)
+            .map(|r| r.points.len())
+            .sum();
+        let h = bbox.height().max(1e-12);
+        // about two edges a bucket on average, at most 65,536 buckets
+        let n = (edges / 2).clamp(1, 1 << 16);
+        let per = n as f64 / h;
+        let mut buckets: Vec<Vec<(usize, Point, Point)>> = vec![Vec::new(); n];
+        for (pi, p) in paths.iter().enumerate() {
+            for (a, b) in p.rings.iter().flat_map(Ring::edges) {
+                let lo = a.y.min(b.y);
+                let hi = a.y.max(b.y);
+                let i0 = (((lo - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
+                let i1 = (((hi - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
+                for bucket in &mut buckets[i0..=i1] {
+                    bucket.push((pi, a, b));
+                }
+            }
+        }
+        EdgeIndex {
+            y0: bbox.y0,
+            per,
+            buckets,
+        }
+    }
+
+    /// The edges (with their path) that may cross the line at `y`, grouped by path.
+    fn near(&self, y: f64) -> &[(usize, Point, Point)] {
+        let i = ((y - self.y0) * self.per).floor();
+        if !(i >= 0.0 && (i as usize) < self.buckets.len()) {
+            return &[];
+        }
+        &self.buckets[i as usize]
+    }
 }
 
 impl Shape {
@@ -84,7 +143,11 @@ impl Shape {
         {
             b = Rect::new(b.x0.min(p.x), b.y0.min(p.y), b.x1.max(p.x), b.y1.max(p.y));
         }
-        Shape { paths, bbox: b }
+        Shape {
+            paths,
+            bbox: b,
+            index: std::sync::OnceLock::new(),
+        }
     }
 
     /// Whether the shape has no filled path.
@@ -151,27 +214,97 @@ impl Shape {
         )
     }
 
+    /// The shape clipped to the box `r` (each ring by Sutherland-Hodgman against the box's
+    /// four sides: a ring that leaves the box and comes back keeps a stretch along the side,
+    /// which has no area and adds no interval).
+    pub(crate) fn clipped(&self, r: Rect) -> Shape {
+        let clip = |pts: Vec<Point>,
+                    inside: &dyn Fn(Point) -> bool,
+                    cross: &dyn Fn(Point, Point) -> Point| {
+            let n = pts.len();
+            let mut out = Vec::with_capacity(n + 4);
+            for i in 0..n {
+                let (a, b) = (pts[i], pts[(i + 1) % n]);
+                match (inside(a), inside(b)) {
+                    (true, true) => out.push(b),
+                    (true, false) => out.push(cross(a, b)),
+                    (false, true) => {
+                        out.push(cross(a, b));
+                        out.push(b);
+                    }
+                    (false, false) => {}
+                }
+            }
+            out
+        };
+        let at_x = |x: f64| {
+            move |a: Point, b: Point| {
+                let t = (x - a.x) / (b.x - a.x);
+                Point::new(x, a.y + t * (b.y - a.y))
+            }
+        };
+        let at_y = |y: f64| {
+            move |a: Point, b: Point| {
+                let t = (y - a.y) / (b.y - a.y);
+                Point::new(a.x + t * (b.x - a.x), y)
+            }
+        };
+        Shape::from_paths(
+            self.paths
+                .iter()
+                .map(|p| FilledPath {
+                    even_odd: p.even_odd,
+                    rings: p
+                        .rings
+                        .iter()
+                        .filter_map(|ring| {
+                            let mut pts = ring.points.clone();
+                            pts = clip(pts, &|q| q.x >= r.x0, &at_x(r.x0));
+                            pts = clip(pts, &|q| q.x <= r.x1, &at_x(r.x1));
+                            pts = clip(pts, &|q| q.y >= r.y0, &at_y(r.y0));
+                            pts = clip(pts, &|q| q.y <= r.y1, &at_y(r.y1));
+                            (pts.len() >= 3).then_some(Ring { points: pts })
+                        })
+                        .collect(),
+                })
+                .filter(|p| !p.rings.is_empty())
+                .collect(),
+        )
+    }
+
     /// The intervals (sorted, disjoint) where the horizontal line at `y` lies inside the
     /// shape.
     pub fn intervals_at(&self, y: f64) -> Vec<(f64, f64)> {
+        let index = self
+            .index
+            .get_or_init(|| EdgeIndex::new(&self.paths, self.bbox));
+        let edges = index.near(y);
         let mut all: Vec<(f64, f64)> = Vec::new();
         let mut crossings: Vec<(f64, i32)> = Vec::new();
-        for p in &self.paths {
+        let mut at = 0;
+        while at < edges.len() {
+            // the edges of one filled path lie together in the bucket
+            let pi = edges[at].0;
+            let mut end = at;
             crossings.clear();
-            for (a, b) in p.rings.iter().flat_map(Ring::edges) {
+            while end < edges.len() && edges[end].0 == pi {
+                let (_, a, b) = edges[end];
                 // half-open rule: counts each vertex once
                 if (a.y <= y) != (b.y <= y) {
                     let t = (y - a.y) / (b.y - a.y);
                     crossings.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
                 }
+                end += 1;
             }
+            at = end;
+            let even_odd = self.paths[pi].even_odd;
             crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
             let mut wind = 0i32;
             let mut start = 0.0;
             for &(x, d) in &crossings {
-                let was = if p.even_odd { wind % 2 != 0 } else { wind != 0 };
+                let was = if even_odd { wind % 2 != 0 } else { wind != 0 };
                 wind += d;
-                let now = if p.even_odd { wind % 2 != 0 } else { wind != 0 };
+                let now = if even_odd { wind % 2 != 0 } else { wind != 0 };
                 if !was && now {
                     start = x;
                 } else if was && !now && x > start {

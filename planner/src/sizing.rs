@@ -36,6 +36,10 @@ pub(crate) struct SizeSearch {
     /// Factors tried in turn on the width whose rejected plans (see [`Attempt::Rejected`])
     /// missed the target least, after the steps, while no plan within the tolerance is found.
     pub retries: &'static [f64],
+    /// A plan within the tolerance ends the steps and the retries only if its cost is at most
+    /// this (`f64::INFINITY`: any plan; 0 for a planner whose cost says what a plan lacks,
+    /// so that a plan that lacks something keeps the search going).
+    pub settle_cost: f64,
 }
 
 /// What a planner made at one width.
@@ -106,7 +110,7 @@ impl SizeSearch {
             if step >= self.secant_steps {
                 match &best {
                     None => break,
-                    Some((0, ..)) if !self.explore => break,
+                    Some((0, c, ..)) if !self.explore && *c <= self.settle_cost => break,
                     Some((_, _, bw, _)) => w = bw * self.nudges[step - self.secant_steps],
                 }
             }
@@ -150,19 +154,32 @@ impl SizeSearch {
                 }
             }
             if step < self.secant_steps {
-                if miss == 0 && !self.explore && best.is_some() {
+                let good = best
+                    .as_ref()
+                    .is_some_and(|b| b.0 == 0 && b.1 <= self.settle_cost);
+                if good && !self.explore {
                     break;
                 }
-                settled |= miss == 0;
+                settled |= good;
                 w = match (too_many, too_few) {
                     (Some(a), Some(b)) if a < b => (a * b).sqrt(),
                     _ => w * (n.max(1) as f64 / target as f64).sqrt(),
                 };
             }
         }
-        if let Some((_, base)) = rejected {
+        // retries around the rejected width that missed least, or around the best plan's
+        // width when that plan lacks something (its cost above `settle_cost`)
+        let base = match (&best, rejected) {
+            (Some(b), _) if b.0 == 0 && b.1 > self.settle_cost => Some(b.2),
+            (_, Some((_, w))) => Some(w),
+            _ => None,
+        };
+        if let Some(base) = base {
             for &f in self.retries {
-                if best.as_ref().is_some_and(|b| b.0 == 0) {
+                if best
+                    .as_ref()
+                    .is_some_and(|b| b.0 == 0 && b.1 <= self.settle_cost)
+                {
                     break;
                 }
                 let w = base * f;
@@ -199,6 +216,7 @@ mod tests {
             explore: false,
             shrink_when_empty: Some(0.97),
             retries: &[],
+            settle_cost: f64::INFINITY,
         };
         let f = s
             .run(500, 5.0, |w| Some((count(w), 0.0, count(w))))
@@ -225,6 +243,7 @@ mod tests {
             explore: false,
             shrink_when_empty: None,
             retries: &[],
+            settle_cost: f64::INFINITY,
         };
         let f = s
             .run(107, 9.5, |w| Some((count(w), 0.0, count(w))))
@@ -244,6 +263,7 @@ mod tests {
             explore: true,
             shrink_when_empty: None,
             retries: &[],
+            settle_cost: f64::INFINITY,
         };
         let f = s
             .run(100, 10.0, |w| Some((count(w), cost(count(w)), count(w))))
@@ -268,6 +288,7 @@ mod tests {
             explore: false,
             shrink_when_empty: None,
             retries: &[0.995, 1.005, 0.99, 1.01],
+            settle_cost: f64::INFINITY,
         };
         let mut widths = Vec::new();
         let f = s
@@ -308,6 +329,7 @@ mod tests {
             explore: false,
             shrink_when_empty: None,
             retries: &[],
+            settle_cost: f64::INFINITY,
         };
         let f = s.run(10, 1.0, |_| {
             calls += 1;

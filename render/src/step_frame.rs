@@ -2,7 +2,7 @@
 //! parts and a collision highlighted and a time stamp. It draws a [`ChainState`], so the
 //! event engine and the reference integrator share it.
 //!
-//! A frame shows the tiles whose centres lie in its view: up to [`DETAIL_TILES`] of them are
+//! A frame shows the tiles whose centres lie in its view: up to [`ChainState::DETAIL_TILES`] of them are
 //! drawn in detail; more are drawn lean: the chain as one thick polyline through the tile
 //! centres (straight runs merged into one segment), the tiles near moving magnets over it,
 //! and no magnets or paths, so a frame of a 100,000-tile chain stays a few megabytes at most.
@@ -13,7 +13,7 @@ use kurbo::{Point, Rect};
 use svg::node::element::{Circle, Group, Polygon, Polyline, Text};
 use svg::Document;
 
-use foldchain::timeline::{ChainState, Geometry, DETAIL_TILES};
+use foldchain::timeline::{ChainState, Geometry};
 use foldchain::{Fold, Octagon, Pose};
 
 use crate::{document, num, points, to_text};
@@ -190,7 +190,7 @@ pub fn frame_svg(
     let shown: Vec<usize> = (0..state.tiles())
         .filter(|&i| view.shows(&state.poses[i], w))
         .collect();
-    if shown.len() <= DETAIL_TILES {
+    if shown.len() <= ChainState::DETAIL_TILES {
         doc = draw_detail(
             doc,
             geometry,
@@ -256,7 +256,7 @@ pub fn frame_svg(
     to_text(&doc)
 }
 
-/// The tiles `shown` (at most [`DETAIL_TILES`]): outlines, paths, hinges of fold joints and
+/// The tiles `shown` (at most [`ChainState::DETAIL_TILES`]): outlines, paths, hinges of fold joints and
 /// magnets (when the state has them).
 #[allow(clippy::too_many_arguments)]
 fn draw_detail(

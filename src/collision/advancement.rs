@@ -23,7 +23,7 @@ use rustc_hash::FxHashMap;
 
 use super::block_cover::BlockCache;
 use super::block_pairs::near_pairs;
-use super::blocks::Segment;
+use super::blocks::{Contact, Segment};
 use super::chain_tree::ChainTree;
 use super::pieces::{check_in_pieces, piece_count, Piece};
 use super::windows::{track_breakpoints, Windows};
@@ -201,18 +201,7 @@ impl<'a> Walk<'a> {
             ends.push(self.joints);
             let covers = blocks.covers(&tree, &ends);
             let segment = Segment::new(&tree, covers, ta, tb, &moving, tolerance);
-            // neighbouring blocks, carried like the other pairs
-            for b in 1..segment.blocks() {
-                let span = segment.span(b - 1, b);
-                if certified.get(&span).is_some_and(|&t| t >= tb) {
-                    continue;
-                }
-                let until = windows.until(span.0, span.3).max(tb);
-                segment.rotation_contact(b, until, &mut piece.best);
-                if until > tb {
-                    certified.insert(span, until);
-                }
-            }
+            neighbour_contacts(&segment, &windows, &mut certified, tb, &mut piece.best);
             pairs.clear();
             near_pairs(&segment, |a, b| pairs.push((a, b)));
             for &(a, b) in &pairs {
@@ -247,6 +236,28 @@ impl<'a> Walk<'a> {
 
 /// Two blocks by their runs of tiles: first and last tile of each.
 type Span = (usize, usize, usize, usize);
+
+/// The contacts of neighbouring blocks of `segment` (ending at `tb`), carried like the other
+/// pairs: each certified clean until its joints' next breakpoint.
+fn neighbour_contacts(
+    segment: &Segment,
+    windows: &Windows,
+    certified: &mut FxHashMap<Span, f64>,
+    tb: f64,
+    best: &mut Option<Contact>,
+) {
+    for b in 1..segment.blocks() {
+        let span = segment.span(b - 1, b);
+        if certified.get(&span).is_some_and(|&t| t >= tb) {
+            continue;
+        }
+        let until = windows.until(span.0, span.3).max(tb);
+        segment.rotation_contact(b, until, best);
+        if until > tb {
+            certified.insert(span, until);
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests;

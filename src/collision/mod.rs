@@ -52,6 +52,7 @@ use std::fmt;
 /// How a chain is checked.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
+#[non_exhaustive]
 pub struct CheckOptions {
     /// Overlap depth, in tile widths, below which two outlines count as touching: each outline
     /// is inset by this much during sweeps. Default `1e-7`.

@@ -18,9 +18,9 @@ use super::blocks::Contact;
 use super::ScheduleError;
 
 /// Segments a piece holds at least: 8,192. Shorter schedules are checked in one piece.
-pub const SEGMENTS_PER_PIECE: usize = 8192;
+pub(crate) const SEGMENTS_PER_PIECE: usize = 8192;
 /// Most pieces a schedule is checked in: 8.
-pub const MAX_PIECES: usize = 8;
+pub(crate) const MAX_PIECES: usize = 8;
 
 /// How many pieces a schedule of `segments` segments is checked in: one per
 /// [`SEGMENTS_PER_PIECE`], at most [`MAX_PIECES`]. A fresh start costs about a few hundred

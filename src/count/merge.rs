@@ -81,6 +81,14 @@ pub struct CountReport {
 }
 
 impl CountReport {
+    /// Adds up the reports of all the parts of one sharded search, given as `(file name,
+    /// JSON text)`: the valid counts are summed, the time too. Refuses a report that is not a
+    /// shard, a part given twice or missing, parts of different searches, and random-chain
+    /// probabilities (they are not counts: run `--random` unsharded).
+    pub fn merge(files: &[(String, String)]) -> Result<CountReport, MergeError> {
+        merge_reports(files)
+    }
+
     /// Reads a report from JSON text.
     pub fn from_json(text: &str) -> Result<CountReport, serde_json::Error> {
         serde_json::from_str(text)
@@ -179,7 +187,7 @@ fn same_search(a: &CountReport, b: &CountReport) -> Result<(), String> {
 /// text)`: the valid counts are summed, the time too. Refuses a report that is not a shard, a
 /// part given twice or missing, parts of different searches, and random-chain probabilities
 /// (they are not counts: run `--random` unsharded).
-pub fn merge_reports(files: &[(String, String)]) -> Result<CountReport, MergeError> {
+pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, MergeError> {
     let mut parts: Vec<(&str, Shard, CountReport)> = Vec::with_capacity(files.len());
     for (file, text) in files {
         let report = CountReport::from_json(text).map_err(|e| MergeError::Json {

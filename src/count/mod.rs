@@ -15,7 +15,7 @@
 //! alike, so only words whose first turn is L are searched and counted twice.
 //!
 //! Large counts split into disjoint shards ([`CountOptions::with_shard`]) whose reports add up
-//! with [`merge_reports`]; [`estimate_random`] samples the random-chain probability beyond
+//! with [`CountReport::merge`]; [`RandomEstimate::sample`] samples the random-chain probability beyond
 //! exact reach.
 
 mod first_hit;
@@ -24,14 +24,15 @@ mod merge;
 mod random;
 mod search;
 
-pub use merge::{merge_reports, CountReport, MergeError, Shard};
-pub use random::{estimate_random, RandomEstimate};
+pub use merge::{CountReport, MergeError, Shard};
+pub use random::RandomEstimate;
 
 use crate::collision::CheckOptions;
 use search::{search, Scope};
 
 /// What to count.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub struct CountOptions {
     /// Shortest chain counted, in tiles. Default 2.
     pub min_tiles: usize,
@@ -66,6 +67,10 @@ impl Default for CountOptions {
 }
 
 impl CountOptions {
+    /// The largest chain length counted (the weights of the random-chain probability are
+    /// exact integers up to this length).
+    pub const MAX_TILES: usize = MAX_COUNT_TILES;
+
     /// Counts chains of `min` to `max` tiles.
     pub fn with_tiles(mut self, min: usize, max: usize) -> CountOptions {
         self.min_tiles = min;
@@ -131,7 +136,7 @@ pub enum CountError {
 
 /// The largest chain length counted (the weights of the random-chain probability are exact
 /// integers up to this length).
-pub const MAX_COUNT_TILES: usize = 40;
+pub(crate) const MAX_COUNT_TILES: usize = 40;
 
 /// One row of the table: chains of `tiles` tiles.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -300,7 +305,7 @@ mod tests {
         let exact = rows[4].p_random.unwrap();
         let mut covered = 0;
         for seed in 1..=10 {
-            let est = estimate_random(6, 20_000, seed, &CheckOptions::default());
+            let est = RandomEstimate::sample(6, 20_000, seed, &CheckOptions::default());
             covered += (est.low <= exact && exact <= est.high) as usize;
             assert!((est.p - exact).abs() < 0.02, "{est:?} vs {exact}");
         }

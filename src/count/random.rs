@@ -8,6 +8,7 @@
 use rayon::prelude::*;
 
 use crate::collision::{check_word, CheckOptions};
+use crate::rng::{mix64, SplitMix64};
 use crate::{Fold, FoldWord};
 
 /// Estimate of the random-chain probability by sampling, with its 95% (Wilson) interval.
@@ -27,10 +28,28 @@ pub struct RandomEstimate {
     pub high: f64,
 }
 
+impl RandomEstimate {
+    /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds
+    /// the part that propagation reaches and counts those that reach the end and fold
+    /// cleanly, with a 95% Wilson interval. Deterministic for a given `seed` (and independent
+    /// across lengths for one seed).
+    ///
+    /// ```
+    /// use foldchain::collision::CheckOptions;
+    /// use foldchain::count::RandomEstimate;
+    ///
+    /// let est = RandomEstimate::sample(6, 2000, 1, &CheckOptions::default());
+    /// assert!(est.low <= est.p && est.p <= est.high);
+    /// ```
+    pub fn sample(tiles: usize, samples: u64, seed: u64, opts: &CheckOptions) -> RandomEstimate {
+        estimate_random(tiles, samples, seed, opts)
+    }
+}
+
 /// Samples `samples` chains of `tiles` tiles drawn uniformly from the nine tiles, folds the
 /// part that propagation reaches and counts those that reach the end and fold cleanly.
 /// Deterministic for a given `seed` (and independent across lengths for one seed).
-pub fn estimate_random(
+pub(crate) fn estimate_random(
     tiles: usize,
     samples: u64,
     seed: u64,
@@ -43,7 +62,7 @@ pub fn estimate_random(
         .map(|c| {
             // independent streams: each chunk starts at a hashed point of the 2^64 cycle (a
             // plain `seed ^ c` start would make the chunks shifted copies of one stream)
-            let mut rng = SplitMix64(mix64(
+            let mut rng = SplitMix64::new(mix64(
                 seed.wrapping_mul(0xD1B5_4A32_D192_ED03)
                     ^ (tiles as u64).wrapping_mul(0x8CB9_2BA7_2F3D_8DD7)
                     ^ c,
@@ -99,24 +118,4 @@ fn wilson(k: u64, n: u64) -> (f64, f64, f64) {
     let centre = (p + z * z / (2.0 * n)) / den;
     let half = z * ((p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt()) / den;
     (p, (centre - half).max(0.0), (centre + half).min(1.0))
-}
-
-/// The SplitMix64 finaliser: a bijective hash of 64 bits.
-fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// A small, fast, seedable generator (SplitMix64): enough for sampling chains.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        mix64(self.0)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        ((self.next() >> 11) as f64 / (1u64 << 53) as f64 * n as f64) as u64
-    }
 }

@@ -57,7 +57,7 @@ fn window(tl: &Timeline, unit: EnergyUnit) -> Option<(f64, f64)> {
 
 /// The total energy at `samples` (at least 2) evenly spaced times from 0 to the end of the
 /// run.
-pub fn energy_curve(tl: &Timeline, samples: usize) -> Vec<EnergySample> {
+pub(crate) fn energy_curve(tl: &Timeline, samples: usize) -> Vec<EnergySample> {
     let samples = samples.max(2);
     let moment = tl.geometry.design(0).moment();
     let mut base = 0.0;

@@ -3,9 +3,10 @@
 //! events; the fold schedule it implies; and the energy of the chain over time.
 //!
 //! - [`run`]: the event queue and its rules ([`EngineOptions`], [`StartRule`], the speed law
-//!   [`Motion`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
-//! - [`fold_angle`], [`joint_angles_at`]: the fold law; [`fold_schedule`]: the folds as
-//!   tracks for the collision check; [`energy_curve`]: the total dipole energy.
+//!   [`SpeedLaw`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
+//! - [`Timeline::joint_angles_at`]: the fold law; [`Timeline::fold_schedule`]: the folds as
+//!   tracks for the collision check; [`RunSource::energy`](crate::timeline::RunSource::energy):
+//!   the total dipole energy.
 //!
 //! ```
 //! use foldchain::engine::{run, EngineOptions};
@@ -24,34 +25,31 @@
 mod energy;
 mod fold_law;
 mod local;
-mod progress;
 mod queue;
 mod result;
 mod run;
 mod run_source;
+mod run_state;
 mod schedule;
 mod speed;
 mod start_rule;
 mod trigger;
 
-pub use energy::energy_curve;
-pub use local::{
-    AUTO_MIN_TILES, DEFAULT_LOCAL_TOLERANCE, MAX_SWEEPS, OFFSET_QUANTUM, SHAPE_TOLERANCE,
-    SWEEP_TOLERANCE,
-};
-pub use result::{fold_angle, joint_angles_at, Timeline};
+pub(crate) use energy::energy_curve;
+pub(crate) use local::DEFAULT_LOCAL_TOLERANCE;
+pub(crate) use result::fold_angle;
+pub(crate) use result::joint_angles_at;
+pub use result::Timeline;
 pub use run::{run, EngineError, EngineMethod, EngineOptions};
-pub use run_source::{timeline_json, MAX_TIMELINE_EVENTS};
-pub use schedule::{fold_schedule, ANGLE_TOLERANCE};
-pub use speed::Motion;
-pub use start_rule::{StartRule, DRIVE_TOLERANCE, ROOT_TOLERANCE, START_TOLERANCE};
+pub(crate) use schedule::fold_schedule;
+pub use start_rule::StartRule;
+pub(crate) use start_rule::DRIVE_TOLERANCE;
 
 // The shared vocabulary the engine's results are written in, where the command-line tools and
 // the pictures have long found it (one home: `crate::timeline`, `crate::physics`).
-pub use crate::physics::DEFAULT_DRAG;
 pub use crate::timeline::{
-    joint_of_magnet, CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry,
-    Outcome, SValue, SpeedLaw, Summary, TileDesigns, LENGTH_TOLERANCE,
+    CollisionReport, EnergySample, Event, EventKind, FoldRecord, Geometry, Outcome, SValue,
+    SpeedLaw, Summary, TileDesigns,
 };
 
 /// The engine's timeline of `word` with the thesis design and the default options, for tests.

@@ -2,7 +2,7 @@
 //! the outcome ([`Timeline`]); where every magnet is and every joint's angle at any time.
 
 use crate::engine::local::Solved;
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
 use crate::timeline::Event;
@@ -41,8 +41,25 @@ pub struct Timeline {
 const DECIDED_BY: &str = "opposite curves, thesis Table 7.1";
 
 impl Timeline {
-    pub(crate) fn progress(&self) -> Progress<'_> {
-        Progress {
+    /// Every joint's angle at time `t`, radians, positive = left (joints that never fold
+    /// stay at 0): the angles [`crate::Pose::chain_at_angles`] takes.
+    ///
+    /// ```
+    /// use foldchain::engine::{run, EngineOptions};
+    /// use foldchain::timeline::TileDesigns;
+    /// use foldchain::Chain;
+    ///
+    /// let tl = run(&Chain::parse("SLLS").unwrap(), &TileDesigns::default(), &EngineOptions::default()).unwrap();
+    /// let end = tl.joint_angles_at(tl.duration());
+    /// assert_eq!(end.len(), 4);
+    /// assert!((end[1] - std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+    /// ```
+    pub fn joint_angles_at(&self, t: f64) -> Vec<f64> {
+        joint_angles_at(self, t)
+    }
+
+    pub(crate) fn progress(&self) -> RunState<'_> {
+        RunState {
             start: &self.start,
             motions: &self.motions,
             folds: &self.folds,
@@ -75,7 +92,7 @@ impl Timeline {
 
     /// Magnet `k`'s closed-form motion law (the kinematic baseline's; a local-solve run
     /// keeps it for comparison only: its times are [`Timeline::travel_at`]'s).
-    pub fn motion(&self, k: usize) -> &Motion {
+    pub(crate) fn motion(&self, k: usize) -> &Motion {
         self.motions.of(k)
     }
 
@@ -155,7 +172,7 @@ pub fn fold_angle(timeline: &Timeline, fold: &FoldRecord, t: f64) -> f64 {
 }
 
 /// Every joint's angle at time `t` (joints that never fold stay at 0).
-pub fn joint_angles_at(timeline: &Timeline, t: f64) -> Vec<f64> {
+pub(crate) fn joint_angles_at(timeline: &Timeline, t: f64) -> Vec<f64> {
     let mut a = vec![0.0; timeline.tiles().saturating_sub(1)];
     for f in &timeline.folds {
         a[f.joint] = fold_angle(timeline, f, t);

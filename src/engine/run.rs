@@ -11,9 +11,9 @@
 //! exactly on arrival (`s = e/3`) never counts as moving together with it.
 
 use crate::engine::local::run_local;
-use crate::engine::progress::Progress;
 use crate::engine::queue::Queue;
 use crate::engine::result::Timeline;
+use crate::engine::run_state::RunState;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
@@ -40,10 +40,11 @@ pub enum EngineMethod {
 
 /// Engine options. Default: local solves ([`EngineMethod::Local`]) of the reference's
 /// default model ([`ModelOptions::default`]) at tolerance
-/// [`crate::engine::DEFAULT_LOCAL_TOLERANCE`]. The kinematic baseline's defaults: the
+/// 1e-8. The kinematic baseline's defaults: the
 /// overdamped speed law with the default drag, the distance rule (the thesis'
 /// inequalities), the point-dipole pair law.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct EngineOptions {
     /// How events are timed.
     pub method: EngineMethod,
@@ -55,12 +56,10 @@ pub struct EngineOptions {
     pub speed: SpeedLaw,
     /// The kinematic baseline's rule that starts each magnet.
     pub start: StartRule,
-    /// The pair law of the kinematic force start rule and the energy curve.
-    pub force_law: ForceLaw,
     /// Threads of the local solves' sweeps: 1 runs them one after the other, 2 or more
     /// runs two at once, the later trailing the earlier (more than 2 are not used); 0, the
     /// default: [`std::thread::available_parallelism`], but one thread for a chain of fewer
-    /// than [`crate::engine::AUTO_MIN_TILES`] tiles or when the engine runs on a rayon
+    /// than 500 tiles or when the engine runs on a rayon
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
     /// Most steps of one local solve (one joint's unit over one window) before it gives up:
@@ -78,7 +77,6 @@ impl Default for EngineOptions {
             tolerance: DEFAULT_LOCAL_TOLERANCE,
             speed: SpeedLaw::default(),
             start: StartRule::default(),
-            force_law: ForceLaw::default(),
             threads: 0,
             max_steps: 1_000_000,
         }
@@ -102,7 +100,6 @@ impl EngineOptions {
 
     /// Another pair law (of the local solves' model too).
     pub fn with_force_law(mut self, force_law: ForceLaw) -> EngineOptions {
-        self.force_law = force_law;
         self.model.force_law = force_law;
         self
     }
@@ -116,7 +113,6 @@ impl EngineOptions {
     /// Other model options for the local solves.
     pub fn with_model(mut self, model: ModelOptions) -> EngineOptions {
         self.model = model;
-        self.force_law = model.force_law;
         self
     }
 
@@ -275,8 +271,8 @@ impl Runner {
         }
     }
 
-    fn progress(&self) -> Progress<'_> {
-        Progress {
+    fn progress(&self) -> RunState<'_> {
+        RunState {
             start: &self.start,
             motions: &self.motions,
             folds: &self.folds,
@@ -393,7 +389,7 @@ impl Runner {
         let rule = ForceRule {
             geometry: &self.geometry,
             progress: self.progress(),
-            law: self.opts.force_law,
+            law: self.opts.model.force_law,
             cutoff,
         };
         let found = rule.start(&mut cache, m, t);
@@ -451,7 +447,7 @@ impl Runner {
             free_motion: None,
             geometry: self.geometry,
             speed: self.opts.speed,
-            force_law: self.opts.force_law,
+            force_law: self.opts.model.force_law,
             motions: self.motions,
             start: self.start,
             events: self.events,
@@ -472,7 +468,7 @@ fn kinematic_parameters(geometry: &Geometry, opts: &EngineOptions) -> Parameters
     Parameters {
         model: "kinematic baseline",
         dynamics: "kinematic",
-        force_law: opts.force_law.name(),
+        force_law: opts.model.force_law.name(),
         cutoff: match opts.start {
             StartRule::Force { cutoff } => cutoff,
             StartRule::Distance => 1,

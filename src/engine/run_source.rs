@@ -146,12 +146,12 @@ fn transition(tl: &Timeline, first: usize, last: usize) -> TransitionData {
 
 /// The most events written by [`timeline_json`] (about 70 MB): a longer run writes the first
 /// ones and says so (`"truncated": true`, `"events_total"`); the summary always counts all.
-pub const MAX_TIMELINE_EVENTS: usize = 2_000_000;
+pub(crate) const MAX_TIMELINE_EVENTS: usize = 2_000_000;
 
 /// All events as JSON: `{"tiles": n, "speed_law": ..., "events": [[t, "kind", index], ...]}`
 /// (index: the magnet, or the joint for fold, inhibited and stalled events), at most
-/// [`MAX_TIMELINE_EVENTS`] of them.
-pub fn timeline_json(tl: &Timeline) -> String {
+/// 2,000,000 of them (`MAX_TIMELINE_EVENTS`).
+pub(crate) fn timeline_json(tl: &Timeline) -> String {
     let shown = tl.events.len().min(MAX_TIMELINE_EVENTS);
     TimelineJson {
         tiles: tl.tiles(),

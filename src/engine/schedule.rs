@@ -1,6 +1,6 @@
 //! The fold schedule handed to the collision check: each fold of a timeline as a
 //! piecewise-linear [`JointTrack`], sampled adaptively: an interval is halved until the fold
-//! law ([`crate::engine::fold_angle`]) at its midpoint lies within [`ANGLE_TOLERANCE`] of the
+//! law ([`crate::engine::result::fold_angle`]) at its midpoint lies within [`ANGLE_TOLERANCE`] of the
 //! chord, so the track follows the law within that tolerance.
 
 use crate::collision::{FoldSchedule, JointTrack};
@@ -13,13 +13,21 @@ use crate::timeline::FoldRecord;
 /// within a few thousandths of `w` of each other: at 1e-3 rad the chords cut each bounce's
 /// peak and hid true contacts there (SRLLLRR at s = 0.1 mm: tiles 1 and 6 overlap by
 /// 2.7e-3 w in the law while joints 3 and 4 bounce).
-pub const ANGLE_TOLERANCE: f64 = 1e-4;
+pub(crate) const ANGLE_TOLERANCE: f64 = 1e-4;
 
 /// Deepest halving of a schedule interval.
 const MAX_DEPTH: u32 = 14;
 
+impl Timeline {
+    /// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
+    /// one adaptively sampled angle track per fold.
+    pub fn fold_schedule(&self) -> FoldSchedule {
+        fold_schedule(self)
+    }
+}
+
 /// The fold schedule: one adaptively sampled track per fold.
-pub fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
+pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
     let tracks = timeline
         .folds
         .iter()

@@ -30,7 +30,7 @@
 //! to the last bit): the tests check it. About 0.35 us per tile in the engine on a straight
 //! run or a serpentine, next to the distance rule's 0.22 (BENCHMARKS.md, "Force start rule").
 
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::physics::ForceLaw;
 use crate::timeline::Geometry;
 
@@ -40,28 +40,29 @@ mod cache;
 mod exact;
 #[cfg(test)]
 mod fast_tests;
-mod window;
+mod neighbourhood;
 
 pub(crate) use answer::ForceStart;
 pub(crate) use cache::ForceCache;
-use window::Window;
+use neighbourhood::Neighbourhood;
 
 /// A drive smaller than this fraction of the bonded rest force counts as zero (the
 /// reference's balance tolerance), so an exact balance (`s = 0`) starts nothing on a
 /// rounding error: 1e-12.
-pub const DRIVE_TOLERANCE: f64 = 1e-12;
+pub(crate) const DRIVE_TOLERANCE: f64 = 1e-12;
 
 /// The root search takes false-position (Illinois) steps until the start is bracketed to
 /// this fraction of the mover's duration, then bisects to the clock's last bit (as the exact
 /// rule does, so that both end on the same number): 1e-12.
-pub const ROOT_TOLERANCE: f64 = 1e-12;
+pub(crate) const ROOT_TOLERANCE: f64 = 1e-12;
 
 /// The force rule's start, fast and cached, is within this fraction of the mover's duration
 /// of the exact rule's: 1e-9 (the search ends on the same last bit of the clock as the exact
 /// rule's bisection unless the drive crosses its threshold more than once within a sample
 /// step; the cache merges neighbourhoods whose starts differ by some 100 units of the clock's
 /// last bit).
-pub const START_TOLERANCE: f64 = 1e-9;
+#[cfg(test)]
+pub(crate) const START_TOLERANCE: f64 = 1e-9;
 
 /// Samples of the drive along the mover's path.
 const PATH_SAMPLES: usize = 64;
@@ -89,7 +90,7 @@ pub enum StartRule {
 /// The force rule's view of a run: the chain, the run so far, the law and the cutoff.
 pub(crate) struct ForceRule<'a> {
     pub(crate) geometry: &'a Geometry,
-    pub(crate) progress: Progress<'a>,
+    pub(crate) progress: RunState<'a>,
     pub(crate) law: ForceLaw,
     pub(crate) cutoff: usize,
 }
@@ -97,7 +98,7 @@ pub(crate) struct ForceRule<'a> {
 /// The rule's sample times for magnet `m`, its mover having started at `t0`: `t0`, 64 along
 /// the mover's path (equal steps of arc length), and 16 after its arrival while any magnet
 /// within reach behind `m` still moves.
-fn sample_times(progress: &Progress<'_>, cutoff: usize, m: usize, t0: f64) -> Vec<f64> {
+fn sample_times(progress: &RunState<'_>, cutoff: usize, m: usize, t0: f64) -> Vec<f64> {
     let motion = *progress.motion(m - 1);
     let mover_end = t0 + motion.duration();
     // the last moment anything within reach behind `m` still moves
@@ -137,7 +138,7 @@ impl ForceRule<'_> {
         let threshold = self.threshold();
         let times = sample_times(&self.progress, self.cutoff, m, t0);
         let tol = ROOT_TOLERANCE * self.progress.motion(m - 1).duration();
-        let mut win = Window::new(self.geometry, self.progress, self.law, self.cutoff, m);
+        let mut win = Neighbourhood::new(self.geometry, self.progress, self.law, self.cutoff, m);
         let v0 = win.drive(t0);
         if v0 > threshold {
             return ForceStart::At(t0);
@@ -189,7 +190,7 @@ impl ForceRule<'_> {
 /// `tol`, then bisection until its ends are neighbouring numbers of the clock, as the exact
 /// rule's bisection ends; the bracket's upper end, where the drive is above the threshold.
 fn root(
-    win: &mut Window<'_>,
+    win: &mut Neighbourhood<'_>,
     threshold: f64,
     below: (f64, f64),
     above: (f64, f64),

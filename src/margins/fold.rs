@@ -9,8 +9,8 @@
 //! the pair's second magnet about the hinge (the torque the bond force would give at the
 //! pair): positive means the fold turns all the way, negative that it stops or never starts.
 
+use crate::margins::placed_tiles::{PlacedTiles, State};
 use crate::margins::start::full_angle;
-use crate::margins::window::{State, Window};
 use crate::margins::{ChainModel, FoldMargin, MarginOptions};
 
 /// The quasi-static state of joint `j`'s fold at angle `turn`.
@@ -48,7 +48,7 @@ pub(crate) fn fold_margin(model: &ChainModel, opts: &MarginOptions, j: usize) ->
     let last = model.magnets() - 1;
     let lo = (2 * j + 2).saturating_sub(cutoff);
     let hi = (2 * j + 1 + cutoff).min(last);
-    let mut w = Window::new(if lo < cutoff { 0 } else { lo }, hi);
+    let mut w = PlacedTiles::new(if lo < cutoff { 0 } else { lo }, hi);
     let n = opts.fold_samples.max(1);
     let mut worst = (f64::INFINITY, 0.0);
     let mut lever = 0.0;

@@ -5,14 +5,14 @@
 //! itself. At `s = 0` it is zero (the marginal cascade); a printed tile whose `s` comes out
 //! smaller than its neighbour's can make it negative.
 
+use crate::margins::placed_tiles::PlacedTiles;
 use crate::margins::start::Posed;
-use crate::margins::window::Window;
 use crate::margins::{ChainModel, HoldMargin, MarginOptions};
 
 /// Every magnet's hold margin.
 pub(crate) fn hold_margins(model: &ChainModel, opts: &MarginOptions) -> Vec<HoldMargin> {
     let n = model.magnets();
-    let mut window = Window::new(0, n - 1);
+    let mut window = PlacedTiles::new(0, n - 1);
     window.place(
         model,
         &Posed {

@@ -2,7 +2,7 @@
 //! reaction initiator comes, the drive margin of every magnet's start and the torque margin
 //! of every fold, from the shared physics ([`crate::physics`]) on quasi-static
 //! configurations of the chain (see [`start`](self) and [`fold`](self) below, in
-//! [`margins`]'s documentation). A chain whose every margin is positive folds as designed in
+//! [`Margins::of`]'s documentation). A chain whose every margin is positive folds as designed in
 //! this model; the smallest margin says how near it is to stalling, and where.
 //!
 //! Margins are fractions of the bond force of the magnet's tile
@@ -10,12 +10,12 @@
 //! 1% of the force that holds a tile's two magnets together.
 //!
 //! ```
-//! use foldchain::margins::{margins, ChainModel, MarginOptions};
+//! use foldchain::margins::{ChainModel, MarginOptions, Margins};
 //! use foldchain::{Chain, Design};
 //!
 //! let chain = Chain::parse("SLLS").unwrap();
 //! let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
-//! let m = margins(&model, &MarginOptions::default());
+//! let m = Margins::of(&model, &MarginOptions::default());
 //! assert_eq!(m.starts.len(), 2 * chain.len() - 1);
 //! assert_eq!(m.folds.len(), 2);
 //! assert!(m.folds_as_designed(), "{:?}", m.weakest());
@@ -24,8 +24,8 @@
 mod fold;
 mod hold;
 mod model;
+mod placed_tiles;
 mod start;
-mod window;
 
 pub use model::{ChainModel, MarginError};
 
@@ -34,6 +34,7 @@ use crate::physics::{ForceLaw, DEFAULT_CUTOFF};
 /// How the margins are computed. Default: the point-dipole law, the physics' default
 /// chain-index cutoff (3), 32 samples along a mover's path and 16 over a fold's turn.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct MarginOptions {
     /// The pair law.
     pub force_law: ForceLaw,
@@ -56,12 +57,26 @@ impl Default for MarginOptions {
     }
 }
 
+impl MarginOptions {
+    /// Another pair law.
+    pub fn with_force_law(mut self, force_law: ForceLaw) -> MarginOptions {
+        self.force_law = force_law;
+        self
+    }
+
+    /// Another chain-index cutoff (taken as at least 1).
+    pub fn with_cutoff(mut self, cutoff: usize) -> MarginOptions {
+        self.cutoff = cutoff;
+        self
+    }
+}
+
 /// The drive margin of one magnet's start.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StartMargin {
     /// The magnet.
     pub magnet: usize,
-    /// The joint it belongs to ([`crate::timeline::joint_of_magnet`]).
+    /// The joint it belongs to (magnets `2j + 1` and `2j + 2` belong to joint `j`).
     pub joint: usize,
     /// The largest force along its path while it waits, over its tile's bond force.
     pub margin: f64,
@@ -187,6 +202,22 @@ pub struct Margins {
 }
 
 impl Margins {
+    /// Every margin of `model` under `opts`: each start's, hold's and fold's room, and the
+    /// weakest of them (see the module documentation for the poses they are taken in).
+    ///
+    /// ```
+    /// use foldchain::margins::{ChainModel, MarginOptions, Margins};
+    /// use foldchain::{Chain, Design};
+    ///
+    /// let chain = Chain::parse("SLLS").unwrap();
+    /// let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
+    /// let m = Margins::of(&model, &MarginOptions::default());
+    /// assert!(m.folds_as_designed());
+    /// ```
+    pub fn of(model: &ChainModel, opts: &MarginOptions) -> Margins {
+        margins(model, opts)
+    }
+
     /// The smallest margin of all, and where.
     pub fn weakest(&self) -> Option<Weakest> {
         let starts = self.starts.iter().map(|s| Weakest::Start {
@@ -263,7 +294,7 @@ impl Margins {
 /// everything before it arrived and everything after it at rest. Where assembly overlaps
 /// (`s < e/3`) the real chain is somewhere between these poses; the test suite checks the
 /// verdict against the force-integrated reference on the three-tile experiments.
-pub fn margins(model: &ChainModel, opts: &MarginOptions) -> Margins {
+pub(crate) fn margins(model: &ChainModel, opts: &MarginOptions) -> Margins {
     let opts = MarginOptions {
         cutoff: opts.cutoff.max(1),
         ..*opts

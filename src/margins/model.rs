@@ -159,7 +159,7 @@ impl ChainModel {
     }
 
     /// The reaction initiator.
-    pub fn ri(&self) -> ReactionInitiator {
+    pub(crate) fn ri(&self) -> ReactionInitiator {
         self.ri
     }
 

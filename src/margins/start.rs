@@ -20,7 +20,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::margins::window::{State, Window};
+use crate::margins::placed_tiles::{PlacedTiles, State};
 use crate::margins::{ChainModel, MarginOptions, StartMargin};
 use crate::physics::ForceLaw;
 use crate::timeline::joint_of_magnet;
@@ -88,7 +88,7 @@ pub(crate) fn start_margin(
     let last = model.magnets() - 1;
     let joint = joint_of_magnet(m);
     let lo = m.saturating_sub(1 + cutoff).saturating_sub(1);
-    let mut window = Window::new(if lo <= cutoff { 0 } else { lo }, (m + cutoff).min(last));
+    let mut window = PlacedTiles::new(if lo <= cutoff { 0 } else { lo }, (m + cutoff).min(last));
     let rest = Posed {
         model,
         ends_below: 0,
@@ -167,50 +167,19 @@ pub(crate) fn start_margin(
         prev = (x, dm);
     }
     if stall.is_none() && best.1 > 0.0 && best.1 < 1.0 {
-        // refine an interior maximum by golden-section search between its neighbours
-        let h = 1.0 / n as f64;
-        let (mut a, mut b) = ((best.1 - h).max(0.0), (best.1 + h).min(1.0));
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..GOLDEN_STEPS {
-            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-            if sweep.at(x1).0 > sweep.at(x2).0 {
-                b = x2;
-            } else {
-                a = x1;
-            }
-        }
-        let x = 0.5 * (a + b);
-        let dm = sweep.at(x).0;
-        if dm > best.0 {
-            best = (dm, x);
-        }
+        best = sweep.refine_maximum(best, 1.0 / n as f64);
     }
     let fold_joint = (m % 2 == 1 && m >= 3)
         .then(|| (m - 3) / 2)
         .filter(|&j| model.fold(j) != Fold::S);
     if let (None, Some(j)) = (stall, fold_joint) {
-        // the pair has closed; its fold turns while the torque turns it
-        let samples = opts.fold_samples.max(1);
-        let full = full_angle(model.fold(j));
-        let mut state = Posed {
-            ends_below: m,
-            moving: [None, None],
-            ..sweep.base
-        };
-        for i in 0..=samples {
-            state.turn = Some((j, full * i as f64 / samples as f64));
-            sweep.window.place(model, &state);
-            let dm = sweep.window.drive(model, law, cutoff, m, 0.0);
-            if dm > best.0 {
-                best = (dm, 1.0);
-            }
-            if start.is_none() && dm > threshold {
-                start = Some(1.0);
-            }
-            if sweep.window.torque(model, law, cutoff, j, full.signum()) <= 0.0 {
-                break;
-            }
-        }
+        sweep.turn_fold(
+            j,
+            opts.fold_samples.max(1),
+            threshold,
+            &mut best,
+            &mut start,
+        );
     }
     let mover_len = model.length(m - 1);
     StartMargin {
@@ -223,13 +192,71 @@ pub(crate) fn start_margin(
     }
 }
 
+impl Sweep<'_, '_> {
+    /// The closed pair's fold `j` turning while the torque turns it (`samples` steps of its
+    /// quarter turn): the drive on magnet `m` at each step raises `best` (at fraction 1) and
+    /// starts it past `threshold`.
+    fn turn_fold(
+        &mut self,
+        j: usize,
+        samples: usize,
+        threshold: f64,
+        best: &mut (f64, f64),
+        start: &mut Option<f64>,
+    ) {
+        let (model, law, cutoff, m) = (self.model, self.law, self.cutoff, self.m);
+        let full = full_angle(model.fold(j));
+        let mut state = Posed {
+            ends_below: m,
+            moving: [None, None],
+            ..self.base
+        };
+        for i in 0..=samples {
+            state.turn = Some((j, full * i as f64 / samples as f64));
+            self.window.place(model, &state);
+            let dm = self.window.drive(model, law, cutoff, m, 0.0);
+            if dm > best.0 {
+                *best = (dm, 1.0);
+            }
+            if start.is_none() && dm > threshold {
+                *start = Some(1.0);
+            }
+            if self.window.torque(model, law, cutoff, j, full.signum()) <= 0.0 {
+                break;
+            }
+        }
+    }
+
+    /// An interior maximum `best` (drive, fraction) of the samples `h` apart refined by
+    /// golden-section search between its neighbours; `best` if the search finds no more.
+    fn refine_maximum(&mut self, best: (f64, f64), h: f64) -> (f64, f64) {
+        let (mut a, mut b) = ((best.1 - h).max(0.0), (best.1 + h).min(1.0));
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..GOLDEN_STEPS {
+            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+            if self.at(x1).0 > self.at(x2).0 {
+                b = x2;
+            } else {
+                a = x1;
+            }
+        }
+        let x = 0.5 * (a + b);
+        let dm = self.at(x).0;
+        if dm > best.0 {
+            (dm, x)
+        } else {
+            best
+        }
+    }
+}
+
 /// A sweep of the movers before magnet `m`, by the fraction `x` of their way.
 struct Sweep<'a, 'w> {
     model: &'a ChainModel,
     law: ForceLaw,
     cutoff: usize,
     m: usize,
-    window: &'w mut Window,
+    window: &'w mut PlacedTiles,
     base: Posed<'a>,
     /// A closing pair `(a, where a starts, b)`; `None`: magnet `m - 1` alone.
     pair: Option<(usize, f64, usize)>,

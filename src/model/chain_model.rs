@@ -40,7 +40,7 @@ use crate::{Chain, Octagon, Pose};
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
 /// on a rounding error: 1e-12.
-pub const BALANCE_TOLERANCE: f64 = 1e-12;
+pub(crate) const BALANCE_TOLERANCE: f64 = 1e-12;
 
 /// What a model may take that the joint-angle model cannot integrate.
 #[derive(Clone, Copy, Debug, Default)]
@@ -189,6 +189,15 @@ impl Model {
                 why: "the joint-angle model and the event engine take the water's drag as linear; only the free-body reference with inertial dynamics integrates form drag",
             });
         }
+        if !inertial {
+            if let Some(t) = (0..tiles).find(|&t| geometry.design(t).water_viscosity <= 0.0) {
+                return Err(ModelError::Unsupported {
+                    name: "water_viscosity",
+                    value: geometry.design(t).water_viscosity,
+                    why: "the overdamped dynamics turn a fold at its torque over the water's drag: they need water with a viscosity above 0 (the inertial dynamics take 0)",
+                });
+            }
+        }
         let drag = magnet_drag(&d0, inertial);
         let magnet_mass: Vec<f64> = (0..n)
             .map(|k| geometry.design(k / 2).magnet_mass * 1e-3)
@@ -323,7 +332,7 @@ impl Model {
 
     /// The longest time a fold takes under the bonded rest torque against its drag alone,
     /// s: the slowest of the model's time scales (0 without folds).
-    pub(crate) fn slowest_fold_time(&self) -> f64 {
+    pub fn slowest_fold_time(&self) -> f64 {
         (0..self.joint_var.len())
             .filter(|&j| self.sides[j].is_some())
             .map(|j| self.joint_drag(j, 0.0) * FRAC_PI_2 / self.torque_scale)

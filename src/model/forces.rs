@@ -13,9 +13,9 @@ use std::f64::consts::FRAC_PI_2;
 
 use kurbo::{Point, Vec2};
 
-use crate::frame::Frame;
 use crate::model::{Mode, Model, Unknown};
 use crate::physics::{along_path, joints_between, pairs_within, torque_about, Pole};
+use crate::tile_frame::TileFrame;
 
 /// Everything the forces give at one state, with the scratch of one evaluation.
 #[derive(Clone, Debug, Default)]
@@ -25,7 +25,7 @@ pub(crate) struct Forces {
     pub(crate) positions: Vec<Point>,
     /// Drive of each unknown (force along the path, N, or torque towards folding, N m).
     pub(crate) drive: Vec<f64>,
-    frames: Vec<Frame>,
+    frames: Vec<TileFrame>,
     tangents: Vec<Vec2>,
     force: Vec<Vec2>,
     hinges: Vec<Point>,
@@ -44,7 +44,7 @@ impl Model {
     /// through a magnet's arrival, so a step that overshoots it keeps its order and the
     /// arrival is found on the step's dense output (the driver never keeps a state
     /// beyond the range).
-    fn local_continued(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
+    pub(crate) fn local_continued(&self, k: usize, x: f64) -> ((f64, f64), (f64, f64)) {
         let p = self.path(k);
         let len = self.lengths[k];
         let u = x * len;
@@ -186,16 +186,16 @@ impl Model {
     /// The tile frames at state `y` into `frames` (the poses of
     /// [`crate::kinematics::poses_at_angles`] at [`Model::joint_angles`] for `y` in
     /// `[0, 1]`).
-    fn frames(&self, y: &[f64], frames: &mut Vec<Frame>) {
+    fn frames(&self, y: &[f64], frames: &mut Vec<TileFrame>) {
         frames.clear();
-        frames.resize(self.geometry.tiles(), Frame::default());
+        frames.resize(self.geometry.tiles(), TileFrame::default());
         frames[0].cos = 1.0;
         self.frames_from(y, 0, self.joint_var.len(), frames);
     }
 
     /// The frames of tiles `first + 1..=last` from the frame of tile `first` (already in
     /// `frames`, which holds every tile), as [`Model::frames`].
-    fn frames_from(&self, y: &[f64], first: usize, last: usize, frames: &mut [Frame]) {
+    fn frames_from(&self, y: &[f64], first: usize, last: usize, frames: &mut [TileFrame]) {
         let mut f = frames[first];
         let half = 0.5 * self.geometry.w;
         for j in first..last {
@@ -319,7 +319,7 @@ impl Model {
     }
 }
 
-/// The model's drives and rates on a [`Forces`] scratch.
+/// The model's drives and rates on a `Forces` scratch.
 impl Model {
     /// Drives at state `y` with the model's cutoff.
     pub(crate) fn forces(&self, y: &[f64], out: &mut Forces) {

@@ -1,7 +1,7 @@
 //! The physical model both simulations integrate: the chain's unknowns (each magnet's
 //! fraction of path travelled, each folding joint's fraction of fold made), the drives on
 //! them from the pair forces of [`crate::physics`], how they answer the drives (overdamped
-//! rates or inertial accelerations, [`Dynamics`]), where each is held ([`Mode`]: at its
+//! rates or inertial accelerations, [`Dynamics`]), where each is held (its mode: at its
 //! start, free, at its end) and when it switches, and how a run ended from the state it came
 //! to rest in.
 //!
@@ -9,17 +9,19 @@
 //! ([`crate::reference`](mod@crate::reference)) the whole chain at once; both step it with the
 //! integrators of the crate's `ode` module, so the two differ only in what they integrate together.
 //!
-//! ```
-//! use foldchain::model::{Model, ModelOptions};
-//! use foldchain::timeline::TileDesigns;
-//! use foldchain::Chain;
+//! Public: the model of a chain ([`Model`], which a reference run's states index), its
+//! options ([`ModelOptions`], [`Dynamics`]) and why it cannot be built ([`ModelError`]).
 //!
-//! // a straight tile, a tight U-turn (two left folds), a straight tile: a magnet unknown per
-//! // magnet, a fold unknown per folding joint
-//! let chain = Chain::parse("SLLS").unwrap();
-//! let model = Model::new(&chain, &TileDesigns::default(), &ModelOptions::default()).unwrap();
-//! assert_eq!(model.len(), 10 + 2);
-//! assert!(model.joint_var(0).is_none() && model.joint_var(1).is_some());
+//! ```
+//! use foldchain::model::{Dynamics, ModelOptions};
+//!
+//! // the defaults: overdamped, the dipole law, three neighbours each way
+//! let opts = ModelOptions::default();
+//! assert_eq!(opts.dynamics, Dynamics::Overdamped);
+//! assert_eq!(opts.cutoff, ModelOptions::DEFAULT_CUTOFF);
+//! // the masses, drags and the water are the design's (`foldchain::Design`)
+//! let inertial = opts.with_dynamics(Dynamics::Inertial);
+//! assert!(inertial.dynamics.is_inertial());
 //! ```
 
 mod chain_model;
@@ -32,9 +34,10 @@ mod options;
 mod sides;
 mod verdict;
 
-pub(crate) use chain_model::Unknown;
-pub use chain_model::{Model, ModelError, BALANCE_TOLERANCE};
-pub(crate) use coefficients::{at_wall, InertialModel};
+pub use chain_model::Model;
+pub use chain_model::ModelError;
+pub(crate) use chain_model::{Allow, Unknown};
+pub(crate) use coefficients::{at_wall, InertialModel, REST_HEIGHT};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;
 pub(crate) use mode::{condition, Mode};

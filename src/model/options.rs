@@ -5,9 +5,10 @@
 use crate::model::Dynamics;
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF};
 
-/// Options of the model. Defaults: cutoff [`DEFAULT_CUTOFF`], the point-dipole law,
+/// Options of the model. Defaults: cutoff [`ModelOptions::DEFAULT_CUTOFF`] (3), the point-dipole law,
 /// overdamped dynamics, no distance cutoff.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ModelOptions {
     /// Pairs at most this many apart in chain index interact (at least 1).
     pub cutoff: usize,
@@ -16,7 +17,7 @@ pub struct ModelOptions {
     /// How the chain answers the forces (default [`Dynamics::Overdamped`]).
     pub dynamics: Dynamics,
     /// Pairs nearer than this (mm) interact too, however far apart in chain index (found on
-    /// a grid, [`crate::physics::pairs_within`]); `None` (the default) for the chain-index
+    /// a grid); `None` (the default) for the chain-index
     /// cutoff alone. Such pairs lie outside the Jacobian's band, which ROS2 then only
     /// approximates. 90 mm (three tile widths) keeps every pair whose force exceeds 0.07% of
     /// the bonded rest force ((14.4 / 90)^4).
@@ -35,6 +36,10 @@ impl Default for ModelOptions {
 }
 
 impl ModelOptions {
+    /// The default chain-index cutoff of the pair forces: each magnet feels its three nearest
+    /// neighbours each way.
+    pub const DEFAULT_CUTOFF: usize = DEFAULT_CUTOFF;
+
     /// Another chain-index cutoff.
     pub fn with_cutoff(mut self, cutoff: usize) -> ModelOptions {
         self.cutoff = cutoff;
@@ -50,9 +55,11 @@ impl ModelOptions {
         self.dynamics = dynamics;
         self
     }
-    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index).
-    pub fn with_distance_cutoff(mut self, mm: f64) -> ModelOptions {
-        self.distance_cutoff = Some(mm);
+
+    /// A distance cutoff, mm (pairs nearer than it interact whatever their chain index;
+    /// `None`: the chain-index cutoff alone).
+    pub fn with_distance_cutoff(mut self, mm: Option<f64>) -> ModelOptions {
+        self.distance_cutoff = mm;
         self
     }
 }

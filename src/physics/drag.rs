@@ -8,7 +8,7 @@ use crate::Design;
 /// Default drag of a magnet in its channel in the overdamped model, N s/m: 5, an assumed
 /// value that makes a straight-path move of the thesis design take about a third of a
 /// second (the overdamped model is the stiff limit of negligible mass, for validation).
-pub const DEFAULT_DRAG: f64 = 5.0;
+pub(crate) const DEFAULT_DRAG: f64 = 5.0;
 
 /// Default drag of a magnet in its channel in the inertial model, N s/m: 0.05. Estimate:
 /// water pushed round a 3 mm magnet and sheared in a thin film under its 7 mm^2 base
@@ -17,7 +17,7 @@ pub const DEFAULT_DRAG: f64 = 5.0;
 /// oil up to 1 N s/m): range 1e-3 to 1 N s/m. With the 0.265 g magnet its inertial time
 /// `m / gamma` is 5 ms, short against a move (tens of ms): the motion is inertial but well
 /// damped, and the magnet bounces at its path's end as the thesis saw (7.3.1).
-pub const DEFAULT_INERTIAL_DRAG: f64 = 0.05;
+pub(crate) const DEFAULT_INERTIAL_DRAG: f64 = 0.05;
 
 /// The drag of a magnet in its channel, N s/m: the design's, or the dynamics' default
 /// ([`DEFAULT_INERTIAL_DRAG`] when `inertial`, else [`DEFAULT_DRAG`]).

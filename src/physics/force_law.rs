@@ -35,9 +35,12 @@ pub enum ForceLaw {
 }
 
 /// The names `--force-law` accepts, as [`ForceLaw::named`] reads them.
-pub const FORCE_LAW_NAMES: [&str; 2] = ["dipole", "cylinder"];
+pub(crate) const FORCE_LAW_NAMES: [&str; 2] = ["dipole", "cylinder"];
 
 impl ForceLaw {
+    /// The laws' names, as [`ForceLaw::named`] reads them.
+    pub const NAMES: [&'static str; 2] = FORCE_LAW_NAMES;
+
     /// The finite-cylinder law for the magnets of `design`.
     pub fn cylinder(design: &Design) -> ForceLaw {
         let nm = |mm: f64| (mm * 1e6).round().max(1.0) as u64;
@@ -47,7 +50,7 @@ impl ForceLaw {
         }
     }
 
-    /// The law called `name` ([`FORCE_LAW_NAMES`]: `dipole` or `cylinder`), for the magnets of
+    /// The law called `name` ([`ForceLaw::NAMES`]: `dipole` or `cylinder`), for the magnets of
     /// `design`; `None` for another name.
     pub fn named(name: &str, design: &Design) -> Option<ForceLaw> {
         match name {

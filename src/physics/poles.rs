@@ -14,7 +14,7 @@
 use std::ops::RangeInclusive;
 
 /// Default chain-index cutoff of the pair forces (see the module documentation).
-pub const DEFAULT_CUTOFF: usize = 3;
+pub(crate) const DEFAULT_CUTOFF: usize = 3;
 
 /// A magnet of the chain by chain index, or the reaction initiator (magnet `-1`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -19,7 +19,7 @@ use crate::{Design, Octagon};
 
 /// A tile's mass, inertia and water drag, SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TileBody {
+pub(crate) struct TileBody {
     /// Mass of the printed tile, magnets excluded, kg.
     pub mass: f64,
     /// Moment of inertia about its centre, magnets excluded, kg m^2.
@@ -28,27 +28,33 @@ pub struct TileBody {
     pub drag: f64,
     /// Linear drag of a turn about its centre, N m s.
     pub rotational_drag: f64,
-    /// Form drag factor `rho C_d (w draft) / 2`, kg/m (0: none).
+    /// Form drag factor of a translation `rho C_d (w draft) / 2`, kg/m (0: none).
     pub form: f64,
+    /// Form drag factor of a turn about the centre, kg m^2: each of the eight sides of length
+    /// `a` pushing water at the normal speed `w t` (`t` along the side from its middle),
+    /// `rho C_d draft a^4 / 8` summed over the sides (0: none).
+    pub rotational_form: f64,
     /// The depth at which the tile floats with its magnets, m.
     pub draft: f64,
 }
 
 impl TileBody {
     /// The tile of `design`.
-    pub fn of(design: &Design) -> TileBody {
+    pub(crate) fn of(design: &Design) -> TileBody {
         let w = design.tile_width * 1e-3;
         let (area, polar) = octagon_moments(w);
         let mass = design.tile_mass * 1e-3;
         let per_film = design.water_viscosity / (design.water_film * 1e-3);
         let total = mass + 2.0 * design.magnet_mass * 1e-3;
         let draft = total / (design.water_density * area);
+        let k = 0.5 * design.water_density * design.form_drag * draft;
         TileBody {
             mass,
             inertia: mass * polar / area,
             drag: per_film * area,
             rotational_drag: per_film * polar,
-            form: 0.5 * design.water_density * design.form_drag * w * draft,
+            form: k * w,
+            rotational_form: k * Octagon::new(w).side().powi(4),
             draft,
         }
     }
@@ -56,7 +62,7 @@ impl TileBody {
 
 /// The area (m^2) and the polar area moment about the centre (m^4) of a regular octagon
 /// `w` metres across the flats: triangles from the centre to each side.
-fn octagon_moments(w: f64) -> (f64, f64) {
+pub(crate) fn octagon_moments(w: f64) -> (f64, f64) {
     let v = Octagon::new(w).vertices();
     let (mut area, mut polar) = (0.0, 0.0);
     for i in 0..8 {

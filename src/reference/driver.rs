@@ -185,24 +185,14 @@ impl Driver {
         let slowest = scale.max(self.model.slowest_fold_time());
         let mut h = scale * 1e-3 * tol.powf(1.0 / (f64::from(q) + 1.0));
         let mut stopped = None;
-        let mut rec = match self.opts.record {
-            Recording::Off => None,
-            Recording::Grid { max_states } => {
-                Some(Recorder::new(max_states, scale * 1e-3, &self.y))
-            }
-        };
+        let mut rec = self.recorder(scale);
         loop {
             free.clear();
             free.extend((0..n).filter(|&i| self.modes[i] == Mode::Free));
             if free.is_empty() {
                 break;
             }
-            let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
-            let since = (self.t - self.log.last_event).max(scale);
-            if fastest * since < 1e-9 {
-                break;
-            }
-            if fastest * since < 1e-2 && self.settled(&free, &f) {
+            if self.at_rest(&free, &f, scale) {
                 break;
             }
             if let Some(why) = self.stop_reason(free.len(), h, slowest) {
@@ -283,6 +273,26 @@ impl Driver {
         }
         let states = rec.map(|r| r.finish(self.t, &self.y)).unwrap_or_default();
         self.finish(stopped, states)
+    }
+
+    /// The recorder of the states the options ask for (`None`: none recorded).
+    fn recorder(&self, scale: f64) -> Option<Recorder> {
+        match self.opts.record {
+            Recording::Off => None,
+            Recording::Grid { max_states } => {
+                Some(Recorder::new(max_states, scale * 1e-3, &self.y))
+            }
+        }
+    }
+
+    /// Whether the free unknowns `free` (rates `f`) have come to rest: none has moved by a
+    /// billionth of its range in the time since the last event (at least the time scale
+    /// `scale`), or they move by less than a hundredth and every one is settling on a
+    /// stable balance ([`Self::settled`]).
+    fn at_rest(&mut self, free: &[usize], f: &[f64], scale: f64) -> bool {
+        let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
+        let since = (self.t - self.log.last_event).max(scale);
+        fastest * since < 1e-9 || (fastest * since < 1e-2 && self.settled(free, f))
     }
 
     /// Whether every free unknown is settling on a stable balance inside its range: its

@@ -9,9 +9,9 @@
 //! - [`run_reference`]: the hybrid driver, which locates every event on real integrator steps
 //!   and switches the unknowns' modes there; its result ([`ReferenceRun`]) carries the
 //!   engine's event kinds and summary fields.
-//! - [`stiff`]: the stiff cases and the study of both integrators on them.
-//! - The pictures' data from the reference's recorded states ([`reference_state`],
-//!   [`reference_energy`], [`reference_transition`]).
+//! - The pictures' data from the reference's recorded states, through
+//!   [`RunSource`](crate::timeline::RunSource) (the stiff cases and the study of both
+//!   integrators on them are the `foldchain-validation` crate's).
 //!
 //! ```
 //! use foldchain::reference::{run_reference, Method, ReferenceOptions};
@@ -30,6 +30,7 @@
 
 mod driver;
 mod event_log;
+pub mod free_body;
 pub(crate) mod inertial;
 mod locate;
 mod options;
@@ -37,15 +38,11 @@ mod pictures;
 mod recorder;
 mod run_result;
 mod run_source;
-pub mod stiff;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
+pub use free_body::{run_free_body, FreeBodyError, FreeBodyOptions, FreeBodyRun};
 pub use options::{Recording, ReferenceError, ReferenceOptions};
-pub use pictures::{
-    pair_energies, reference_energy, reference_final_state, reference_state, reference_state_near,
-    reference_transition, state_budget, state_energy, STATE_BUDGET_BYTES,
-};
+pub(crate) use pictures::{pair_energies, state_budget};
 pub use run_result::ReferenceRun;
 pub(crate) use run_source::joint_angle_samples;
-pub use stiff::{run_stiff_study, select_cases, StiffCase, StiffError, StiffStudy, STIFF_CASES};

@@ -23,9 +23,28 @@ pub enum Recording {
     },
 }
 
+impl Recording {
+    /// A grid of states within a memory budget for a chain of `tiles` tiles: 48 MiB worth
+    /// (one state is 8 bytes per unknown, at most three unknowns per tile), from 64 to 4,096
+    /// states (about 1,000 at 2,000 tiles). What the pictures and the viewer of a run need.
+    ///
+    /// ```
+    /// use foldchain::reference::Recording;
+    ///
+    /// assert_eq!(Recording::within_budget(10), Recording::Grid { max_states: 4096 });
+    /// assert!(matches!(Recording::within_budget(2000), Recording::Grid { max_states } if max_states > 1000));
+    /// ```
+    pub fn within_budget(tiles: usize) -> Recording {
+        Recording::Grid {
+            max_states: crate::reference::state_budget(tiles),
+        }
+    }
+}
+
 /// Options of a reference run. Defaults: Dormand-Prince, tolerance 1e-8, the model's
 /// defaults, at most 2,000,000 steps, no states recorded ([`Recording::Off`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ReferenceOptions {
     /// The integrator.
     pub method: Method,

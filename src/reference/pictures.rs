@@ -22,11 +22,11 @@ use crate::timeline::{EnergySample, EventKind};
 
 /// Memory the recorded states of a reference run may take, bytes: 48 MiB, at most 4,096
 /// states (one state is 8 bytes per unknown, at most three unknowns per tile).
-pub const STATE_BUDGET_BYTES: usize = 48 << 20;
+pub(crate) const STATE_BUDGET_BYTES: usize = 48 << 20;
 
 /// The states recorded for a chain of `tiles`: [`STATE_BUDGET_BYTES`] worth, from 64 to
 /// 4,096 (about 1,000 at 2,000 tiles).
-pub fn state_budget(tiles: usize) -> usize {
+pub(crate) fn state_budget(tiles: usize) -> usize {
     (STATE_BUDGET_BYTES / (24 * tiles.max(1) + 32)).clamp(64, 4096)
 }
 
@@ -137,7 +137,7 @@ pub fn state_energy(run: &ReferenceRun, y: &[f64]) -> f64 {
 /// The energy curve: for each of `samples` evenly spaced times from 0 to
 /// [`ReferenceRun::end_time`], the recorded state nearest it (each state once, at its own
 /// time), the last point the final state.
-pub fn reference_energy(run: &ReferenceRun, samples: usize) -> Vec<EnergySample> {
+pub(crate) fn reference_energy(run: &ReferenceRun, samples: usize) -> Vec<EnergySample> {
     let states = recorded(run);
     let samples = samples.max(2);
     let mut picked: Vec<usize> = (0..samples)
@@ -250,7 +250,7 @@ pub fn reference_final_state(run: &ReferenceRun) -> ChainState {
 }
 
 /// The energy curves of `run` from its recorded states (or its final state alone).
-pub fn pair_energies(run: &ReferenceRun) -> PairEnergies {
+pub(crate) fn pair_energies(run: &ReferenceRun) -> PairEnergies {
     let states: Vec<(f64, &[f64])> = if run.states.is_empty() {
         vec![(run.end_time, run.final_state.as_slice())]
     } else {

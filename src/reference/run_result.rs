@@ -9,7 +9,7 @@ use crate::model::Model;
 use crate::ode::{Method, StepStats};
 use crate::reference::options::ReferenceOptions;
 use crate::timeline::{
-    Event, FoldRecord, Outcome, RunFacts, SpeedLaw, Summary, TimelineJson, EVENT_INDEX,
+    Event, FoldRecord, Outcome, RunFacts, RunResult, SpeedLaw, Summary, TimelineJson, EVENT_INDEX,
 };
 
 /// The result of a reference run.
@@ -60,6 +60,12 @@ struct ReferenceSettings {
 }
 
 impl ReferenceRun {
+    /// The energy of each pair of neighbouring magnets against time, from the recorded states
+    /// (or the final state alone): what the thesis' experiments plot.
+    pub fn pair_energies(&self) -> crate::timeline::PairEnergies {
+        crate::reference::pair_energies(self)
+    }
+
     /// Number of tiles.
     pub fn tiles(&self) -> usize {
         self.model.geometry.tiles()
@@ -89,12 +95,12 @@ impl ReferenceRun {
         self.model.positions(&self.final_state)
     }
 
-    /// `completed`, `inhibited`, `stalled`, or `stopped` when integration stopped early.
-    pub fn result_name(&self) -> &'static str {
+    /// The outcome's result, or [`RunResult::Stopped`] when integration stopped early.
+    pub fn result(&self) -> RunResult {
         if self.stopped.is_some() {
-            "stopped"
+            RunResult::Stopped
         } else {
-            self.outcome.name()
+            RunResult::from(&self.outcome)
         }
     }
 
@@ -124,7 +130,7 @@ impl ReferenceRun {
             summary = summary.with_free_motion(self.model.free_motion(self));
         }
         match &self.stopped {
-            Some(why) => summary.overruled("stopped", why.clone()),
+            Some(why) => summary.overruled(RunResult::Stopped, why.clone()),
             None => summary,
         }
     }

@@ -6,7 +6,7 @@ use crate::{Fold, Pose};
 
 /// Chains up to this many tiles carry their magnets' positions in a [`ChainState`] and are
 /// drawn in detail (outlines, paths, magnets, hinges); longer ones are drawn lean.
-pub const DETAIL_TILES: usize = 400;
+pub(crate) const DETAIL_TILES: usize = 400;
 
 /// The chain at time `time`: what a step frame draws.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,7 +16,7 @@ pub struct ChainState {
     /// Pose of every tile (world frame, mm).
     pub poses: Vec<Pose>,
     /// World position of every magnet, mm (magnet `k` is magnet `k mod 2` of tile `k / 2`);
-    /// empty for a chain drawn lean (more than [`DETAIL_TILES`] tiles), whose frames show no
+    /// empty for a chain drawn lean (more than [`ChainState::DETAIL_TILES`] tiles), whose frames show no
     /// magnets (it would be 32 MB per frame at a million tiles).
     pub magnets: Vec<(f64, f64)>,
     /// Whether each magnet is moving.
@@ -29,6 +29,10 @@ pub struct ChainState {
 }
 
 impl ChainState {
+    /// Chains up to this many tiles carry their magnets' positions and are drawn in detail
+    /// (outlines, paths, magnets, hinges); longer ones are drawn lean.
+    pub const DETAIL_TILES: usize = DETAIL_TILES;
+
     /// Number of tiles.
     pub fn tiles(&self) -> usize {
         self.poses.len()

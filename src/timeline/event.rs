@@ -91,7 +91,7 @@ impl serde::Serialize for Event {
 /// is no physical start (a 10 nm change of `s` moves it by several percent of the run). Both
 /// simulations then report a magnet's start when it has travelled this fraction of its path:
 /// 0.01.
-pub const S0_START_FRACTION: f64 = 0.01;
+pub(crate) const S0_START_FRACTION: f64 = 0.01;
 
 /// The start fraction of a chain: [`S0_START_FRACTION`] when any of its tiles has `s = 0`,
 /// else 0 (a start is reported when the magnet is first driven off its rest point).

@@ -19,7 +19,7 @@ use crate::{Chain, Design, Fold, PathKind, Tile};
 /// Far above the rounding of the rest points and `s = e/3` given as a fraction (about 1e-15
 /// relative) and far below anything physical, so the sequential edge `s = e/3` triggers at
 /// the path end rather than stalling on a rounding error.
-pub const LENGTH_TOLERANCE: f64 = 1e-9;
+pub(crate) const LENGTH_TOLERANCE: f64 = 1e-9;
 
 /// Why the geometry of a chain cannot be built.
 #[derive(Debug, thiserror::Error)]
@@ -49,7 +49,10 @@ pub struct Geometry {
 
 impl Geometry {
     /// The geometry of `chain` with `designs`, checked (`design` names them in errors).
-    pub fn from_designs(chain: &Chain, designs: &TileDesigns) -> Result<Geometry, GeometryError> {
+    pub(crate) fn from_designs(
+        chain: &Chain,
+        designs: &TileDesigns,
+    ) -> Result<Geometry, GeometryError> {
         designs.validate("design")?;
         let (list, per_tile) = designs.resolve(chain.len());
         Ok(Geometry::new(chain, list, per_tile)?)
@@ -159,7 +162,7 @@ impl Geometry {
     }
 
     /// The reaction initiator: tile 0's design at the tile edge.
-    pub fn ri(&self) -> ReactionInitiator {
+    pub(crate) fn ri(&self) -> ReactionInitiator {
         ReactionInitiator::of(self.design(0))
     }
 

@@ -16,7 +16,7 @@ use serde_json::ser::{CompactFormatter, Formatter};
 use crate::timeline::Event;
 
 /// How the events index the chain, written into every timeline.
-pub const EVENT_INDEX: &str =
+pub(crate) const EVENT_INDEX: &str =
     "magnet k is magnet k mod 2 of tile k/2; joint events index the joint";
 
 /// A timeline as its JSON writes it; `L` is the speed law's form.

@@ -2,7 +2,7 @@
 //! designs of the tiles and the chain at rest they make ([`TileDesigns`], [`Geometry`]); the
 //! events, folds and outcome of a run ([`Event`], [`FoldRecord`], [`Outcome`]), its energy
 //! curve ([`EnergySample`]), its summary ([`Summary`]) and its `timeline.json`
-//! ([`TimelineJson`]); and the run itself as its readers see it ([`RunSource`]): the chain at
+//! ([`RunSource::timeline_json`]); and the run itself as its readers see it ([`RunSource`]): the chain at
 //! any time ([`ChainState`]), the transition diagram's data ([`TransitionData`]) and each
 //! magnet's travel and joint's angle against time ([`Track`]).
 //!
@@ -12,21 +12,15 @@
 //! crate) read runs through [`RunSource`] alone.
 //!
 //! ```
-//! use foldchain::timeline::{Outcome, RunFacts, SpeedLaw, Summary};
+//! use foldchain::engine::{run, EngineOptions};
+//! use foldchain::timeline::{Outcome, RunResult, TileDesigns};
+//! use foldchain::Chain;
 //!
-//! let outcome = Outcome::Completed;
-//! let summary = Summary::new(RunFacts {
-//!     tiles: 3,
-//!     outcome: &outcome,
-//!     decided_by: "an example",
-//!     duration_s: 1.0,
-//!     events: 9,
-//!     folds: vec![1],
-//!     max_moving_magnets: 2,
-//!     speed_law: SpeedLaw::Unit,
-//! });
+//! let tl = run(&Chain::parse("SLLS").unwrap(), &TileDesigns::default(), &EngineOptions::default()).unwrap();
+//! assert_eq!(tl.outcome, Outcome::Completed);
+//! let summary = tl.summary();
 //! assert!(summary.completed);
-//! assert_eq!(summary.result, "completed");
+//! assert_eq!(summary.result, RunResult::Completed);
 //! ```
 
 mod chain_state;
@@ -39,6 +33,7 @@ mod json;
 mod outcome;
 mod pair_energies;
 mod parameters;
+mod run_result;
 mod run_source;
 mod speed_law;
 mod summary;
@@ -46,19 +41,25 @@ mod tile_designs;
 mod track;
 mod transition;
 
-pub use chain_state::{ChainState, DETAIL_TILES};
+pub use chain_state::ChainState;
+pub(crate) use chain_state::DETAIL_TILES;
 pub use energy_sample::EnergySample;
-pub use event::{joint_of_magnet, start_fraction, Event, EventKind, S0_START_FRACTION};
+pub(crate) use event::{joint_of_magnet, start_fraction};
+pub use event::{Event, EventKind};
 pub use fold_record::FoldRecord;
 pub use free_motion::FreeMotion;
-pub use geometry::{Geometry, GeometryError, LENGTH_TOLERANCE};
-pub use json::{TimelineJson, EVENT_INDEX};
+pub use geometry::Geometry;
+pub(crate) use geometry::{GeometryError, LENGTH_TOLERANCE};
+pub(crate) use json::{TimelineJson, EVENT_INDEX};
 pub use outcome::Outcome;
 pub use pair_energies::PairEnergies;
 pub use parameters::Parameters;
+pub use run_result::RunResult;
 pub use run_source::{RunSource, TrackKey};
 pub use speed_law::SpeedLaw;
-pub use summary::{CollisionReport, RunFacts, Summary};
-pub use tile_designs::{BadSValue, DesignsError, SValue, TileDesigns, TileOverride};
-pub use track::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+pub(crate) use summary::RunFacts;
+pub use summary::{CollisionReport, Summary};
+pub use tile_designs::{DesignsError, SValue, TileDesigns, TileOverride};
+pub use track::Track;
+pub(crate) use track::{ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
 pub use transition::{MagnetTrack, TransitionData};

@@ -36,11 +36,7 @@ pub enum Outcome {
 impl Outcome {
     /// `completed`, `inhibited` or `stalled`.
     pub fn name(&self) -> &'static str {
-        match self {
-            Outcome::Completed => "completed",
-            Outcome::Inhibited { .. } => "inhibited",
-            Outcome::Stalled { .. } => "stalled",
-        }
+        crate::timeline::RunResult::from(self).name()
     }
 
     /// When propagation stopped, s (infinite when it completed).

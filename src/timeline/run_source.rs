@@ -27,16 +27,16 @@ pub trait RunSource {
     /// `timeline.json`.
     fn timeline_json(&self) -> String;
     /// Magnet `k`'s travel along its path (mm of arc length from its rest point) against
-    /// time, within [`TRAVEL_TOLERANCE`](crate::timeline::TRAVEL_TOLERANCE): what the viewer plays.
+    /// time, within [`Track::TRAVEL_TOLERANCE`]: what the viewer plays.
     fn magnet_travel(&self, k: usize) -> Track;
     /// Joint `j`'s signed angle (radians, positive = left) against time, within
-    /// [`ANGLE_TOLERANCE`](crate::timeline::ANGLE_TOLERANCE): what the viewer turns the tiles by.
+    /// [`Track::ANGLE_TOLERANCE`]: what the viewer turns the tiles by.
     fn joint_angle(&self, j: usize) -> Track;
     /// Which magnets travel alike, so that a caller samples each such track once: a key and
     /// magnet `k`'s [`RunSource::magnet_travel`] start, where magnets of equal keys have the
     /// same travel law from their starts on, over the same duration (their tracks differ by
     /// the rounding of their absolute times only: some 1e-13 s, far below
-    /// [`TRAVEL_TOLERANCE`](crate::timeline::TRAVEL_TOLERANCE) at any speed a magnet has).
+    /// [`Track::TRAVEL_TOLERANCE`] at any speed a magnet has).
     /// `None` (the default) when the source cannot tell.
     fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
         let _ = k;

@@ -1,7 +1,7 @@
 //! The summary of a run: what `summary.json` holds and `fold-run --json` prints, the same
 //! fields whichever simulation made the run.
 
-use crate::timeline::{FreeMotion, Outcome, Parameters, SpeedLaw};
+use crate::timeline::{FreeMotion, Outcome, Parameters, RunResult, SpeedLaw};
 
 /// The first collision of a run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -15,9 +15,9 @@ pub struct CollisionReport {
     pub tiles: (usize, usize),
 }
 
-/// The facts of a run a summary reports (see [`Summary::new`]).
+/// The facts of a run a summary reports (see `Summary::new`).
 #[derive(Clone, Debug, PartialEq)]
-pub struct RunFacts<'a> {
+pub(crate) struct RunFacts<'a> {
     /// Number of tiles.
     pub tiles: usize,
     /// How propagation ended.
@@ -45,7 +45,7 @@ pub struct Summary {
     pub completed: bool,
     /// `completed`, `inhibited`, `stalled`, or what overruled the outcome (`collided`,
     /// `stopped`, `undecided`).
-    pub result: &'static str,
+    pub result: RunResult,
     /// Time of the last event, s (mm of travel at unit speed).
     pub duration_s: f64,
     /// Number of events in `timeline.json`.
@@ -74,12 +74,12 @@ pub struct Summary {
 
 impl Summary {
     /// The summary of a run with `facts`, its result the outcome's.
-    pub fn new(facts: RunFacts) -> Summary {
+    pub(crate) fn new(facts: RunFacts) -> Summary {
         let outcome = facts.outcome;
-        let result = outcome.name();
+        let result = RunResult::from(outcome);
         Summary {
             tiles: facts.tiles,
-            completed: result == "completed",
+            completed: result == RunResult::Completed,
             result,
             duration_s: facts.duration_s,
             events: facts.events,
@@ -115,7 +115,7 @@ impl Summary {
 
     /// The same summary with its result overruled: the run counts as `result` (not
     /// completed), and `why` goes before the outcome's reason.
-    pub fn overruled(mut self, result: &'static str, why: String) -> Summary {
+    pub(crate) fn overruled(mut self, result: RunResult, why: String) -> Summary {
         self.result = result;
         self.completed = false;
         self.reason = Some(match self.reason {
@@ -123,11 +123,6 @@ impl Summary {
             None => why,
         });
         self
-    }
-
-    /// Pretty JSON.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).unwrap_or_default()
     }
 }
 
@@ -155,7 +150,7 @@ mod tests {
         assert!(s.completed);
         assert_eq!(
             (s.result, s.inhibited_at, s.stalled_at),
-            ("completed", None, None)
+            (RunResult::Completed, None, None)
         );
         assert_eq!(s.reason, None);
         let inhibited = Outcome::Inhibited {
@@ -168,14 +163,14 @@ mod tests {
         assert!(!s.completed);
         assert_eq!(
             (s.result, s.inhibited_at, s.stalled_at),
-            ("inhibited", Some(2), None)
+            (RunResult::Inhibited, Some(2), None)
         );
         let reason = s.reason.clone().unwrap();
         assert!(
             reason.contains("joint 2") && reason.contains("9.000 mm") && reason.ends_with("(test)"),
             "{reason}"
         );
-        let s = s.overruled("stopped", "step limit".into());
+        let s = s.overruled(RunResult::Stopped, "step limit".into());
         assert_eq!(s.result, "stopped");
         assert_eq!(s.reason.unwrap(), format!("step limit; {reason}"));
         let stalled = Outcome::Stalled {
@@ -184,14 +179,17 @@ mod tests {
             magnet: 3,
             reason: "why".into(),
         };
-        let s = Summary::new(facts(&stalled)).overruled("collided", "tiles 0 and 4".into());
+        let s =
+            Summary::new(facts(&stalled)).overruled(RunResult::Collided, "tiles 0 and 4".into());
         assert_eq!(
             (s.result, s.completed, s.stalled_at),
-            ("collided", false, Some(1))
+            (RunResult::Collided, false, Some(1))
         );
         assert_eq!(s.reason.as_deref(), Some("tiles 0 and 4; why"));
-        let json: serde_json::Value = serde_json::from_str(&s.to_json()).unwrap();
+        let json: serde_json::Value = serde_json::to_value(&s).unwrap();
         assert_eq!(json["speed_law"], "unit");
         assert_eq!(json["folds"], serde_json::json!([1, 2]));
+        // the result is written as its name, as when it was a string
+        assert_eq!(json["result"], "collided");
     }
 }

@@ -21,24 +21,16 @@ pub enum SValue {
     FractionOfE(f64),
 }
 
-/// A value of `s` that could not be read.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("bad value of s '{text}': expected a length in mm (0.3, 0.3mm) or a fraction of e (e/3, 0.25e, 0.25*e), finite and >= 0")]
-pub struct BadSValue {
-    /// The text given.
-    pub text: String,
-}
-
 impl SValue {
     /// Reads `0.3`, `0.3mm`, `1e-3` (a number in any float notation is millimetres), `e/3`,
     /// `2e/9`, `0.25e`, `0.25*e` or `e`.
-    pub fn parse(text: &str) -> Result<SValue, BadSValue> {
-        let bad = || BadSValue {
+    pub fn parse(text: &str) -> Result<SValue, DesignsError> {
+        let bad = || DesignsError::BadS {
             text: text.to_string(),
         };
         let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
         let t = t.to_ascii_lowercase();
-        let num = |s: &str| -> Result<f64, BadSValue> {
+        let num = |s: &str| -> Result<f64, DesignsError> {
             if s.is_empty() {
                 return Ok(1.0);
             }
@@ -153,6 +145,12 @@ pub enum DesignsError {
         from: usize,
         /// Last tile.
         to: usize,
+    },
+    /// A value of `s` that could not be read ([`SValue::parse`]).
+    #[error("bad value of s '{text}': expected a length in mm (0.3, 0.3mm) or a fraction of e (e/3, 0.25e, 0.25*e), finite and >= 0")]
+    BadS {
+        /// The text given.
+        text: String,
     },
 }
 

@@ -6,11 +6,11 @@
 
 /// How closely a magnet's travel track follows the run, mm: 1 um, far below a pixel at any
 /// zoom the viewer offers on 30 mm tiles.
-pub const TRAVEL_TOLERANCE: f64 = 1e-3;
+pub(crate) const TRAVEL_TOLERANCE: f64 = 1e-3;
 
 /// How closely a joint's angle track follows the run, radians: 1e-5 rad. A tile `n` tiles
 /// beyond a hinge moves by at most `1e-5 * n * w` (3 um per 10 tiles on 30 mm tiles).
-pub const ANGLE_TOLERANCE: f64 = 1e-5;
+pub(crate) const ANGLE_TOLERANCE: f64 = 1e-5;
 
 /// Deepest halving of an interval in [`Track::sample`] (8 * 2^16 intervals at most).
 const MAX_DEPTH: u32 = 16;
@@ -26,6 +26,13 @@ pub struct Track {
 }
 
 impl Track {
+    /// How closely a magnet's travel track follows the run, mm: 1 um, far below a pixel at
+    /// any zoom the viewer offers on 30 mm tiles.
+    pub const TRAVEL_TOLERANCE: f64 = TRAVEL_TOLERANCE;
+    /// How closely a joint's angle track follows the run, radians: 1e-5 rad (a tile `n` tiles
+    /// beyond a hinge moves by at most `1e-5 * n * w`).
+    pub const ANGLE_TOLERANCE: f64 = ANGLE_TOLERANCE;
+
     /// A quantity that never changes.
     pub fn constant(value: f64) -> Track {
         Track {

@@ -23,6 +23,7 @@ use crate::{Chain, Design, PathKind};
 /// thesis' `e`); walls 0.2 mm thinner, as designed and 0.2 mm thicker; the study's defaults
 /// with 1,000 samples per candidate.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SearchOptions {
     /// The folding probability a design must keep (the lower end of its 95% interval is
     /// not asked for: the estimate itself).
@@ -55,6 +56,32 @@ impl Default for SearchOptions {
     }
 }
 
+impl SearchOptions {
+    /// Another target probability.
+    pub fn with_target(mut self, target: f64) -> SearchOptions {
+        self.target = target;
+        self
+    }
+
+    /// Another study of each candidate.
+    pub fn with_study(mut self, study: StudyOptions) -> SearchOptions {
+        self.study = study;
+        self
+    }
+
+    /// Another engine to time the assembly.
+    pub fn with_engine(mut self, engine: EngineOptions) -> SearchOptions {
+        self.engine = engine;
+        self
+    }
+
+    /// Search per-tile `s` (straight runs against turns) or not.
+    pub fn with_per_tile_s(mut self, per_tile_s: bool) -> SearchOptions {
+        self.per_tile_s = per_tile_s;
+        self
+    }
+}
+
 /// One design tried.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Candidate {
@@ -78,6 +105,19 @@ pub struct Candidate {
 }
 
 impl Candidate {
+    /// The per-tile designs of this candidate for `chain`: `base` with the wall moved, `s`
+    /// set per kind (straight runs, turn tiles).
+    pub fn designs(&self, chain: &Chain, base: &Design) -> Vec<Design> {
+        candidate_designs(chain, base, self)
+    }
+
+    /// This candidate as a design file (`{"global": ..., "tiles": [...]}`, the form
+    /// [`crate::timeline::TileDesigns::from_json`] reads): `base` with the wall moved and the
+    /// straight runs' `s`, the turn tiles' `s` as overrides, runs of turn tiles in one entry.
+    pub fn design_file(&self, chain: &Chain, base: &Design) -> serde_json::Value {
+        candidate_design_json(chain, base, self)
+    }
+
     /// Whether it is inside the inequalities, assembles cleanly and reaches `target`.
     pub fn meets(&self, target: f64) -> bool {
         self.infeasible.is_none() && self.assembly_s.is_some() && self.probability >= target
@@ -97,20 +137,34 @@ pub struct Search {
     pub most_probable: Option<Candidate>,
 }
 
+impl Search {
+    /// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of
+    /// tile): first one `s` for every tile, for every wall step (the trade-off); then, at the
+    /// wall step whose best probability is highest, every pair of `s` on straight runs and on
+    /// turns.
+    pub fn run(chain: &Chain, base: &Design, opts: &SearchOptions) -> Result<Search, MarginError> {
+        optimize(chain, base, opts)
+    }
+}
+
 /// Whether a tile belongs to a turn (it holds a curved path).
 fn is_turn(tile: &crate::Tile) -> bool {
     tile.first != PathKind::S || tile.second != PathKind::S
 }
 
 /// The per-tile designs of a candidate: the base with the wall moved, `s` set per kind.
-pub fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Design> {
+pub(crate) fn candidate_designs(chain: &Chain, base: &Design, c: &Candidate) -> Vec<Design> {
     designs_of(chain, base, c.s_straight, c.s_turn, c.wall_step)
 }
 
 /// A candidate as a design file (`{"global": ..., "tiles": [...]}`, the form
 /// [`TileDesigns::from_json`] reads): the base with the wall moved and the straight runs'
 /// `s`, the turn tiles' `s` as overrides, runs of turn tiles in one entry.
-pub fn candidate_design_json(chain: &Chain, base: &Design, c: &Candidate) -> serde_json::Value {
+pub(crate) fn candidate_design_json(
+    chain: &Chain,
+    base: &Design,
+    c: &Candidate,
+) -> serde_json::Value {
     let mut global = nudged(base, Parameter::Wall, c.wall_step).with_s(c.s_straight);
     // the grid's steps are decimal: keep the file free of binary rounding
     global.wall = (global.wall * 1e9).round() / 1e9;
@@ -200,7 +254,11 @@ pub fn evaluate(
 /// Searches the grid of `opts` around `base` (its wall and magnets; `s` per kind of tile):
 /// first one `s` for every tile, for every wall step (the trade-off); then, at the wall step
 /// whose best probability is highest, every pair of `s` on straight runs and on turns.
-pub fn optimize(chain: &Chain, base: &Design, opts: &SearchOptions) -> Result<Search, MarginError> {
+pub(crate) fn optimize(
+    chain: &Chain,
+    base: &Design,
+    opts: &SearchOptions,
+) -> Result<Search, MarginError> {
     let base_candidate = evaluate(chain, base, (base.s, base.s, 0.0), opts)?;
     let mut candidates = Vec::new();
     for &w in &opts.wall_steps {

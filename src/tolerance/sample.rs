@@ -1,7 +1,8 @@
 //! One printed chain: each tile's design drawn within the tolerances around its nominal
 //! design, and a design nudged in one parameter (for sensitivities).
 
-use crate::tolerance::{Parameter, SplitMix64, Tolerances};
+use crate::rng::SplitMix64;
+use crate::tolerance::{Parameter, Tolerances};
 use crate::Design;
 
 /// `design` with parameter `p` moved by `delta` (mm, or relative for the remanence).

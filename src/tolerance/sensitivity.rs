@@ -28,6 +28,18 @@ pub struct Sensitivity {
     pub step: f64,
 }
 
+impl Sensitivity {
+    /// Every parameter's sensitivity, at the `nominal` designs (one, or one per tile).
+    pub fn all(
+        chain: &Chain,
+        nominal: &[Design],
+        tol: &Tolerances,
+        opts: &MarginOptions,
+    ) -> Result<Vec<Sensitivity>, MarginError> {
+        sensitivities(chain, nominal, tol, opts)
+    }
+}
+
 /// The smallest margin of `chain` with every tile's design moved in `p` by `delta`.
 fn smallest(
     chain: &Chain,
@@ -44,7 +56,7 @@ fn smallest(
 }
 
 /// Every parameter's sensitivity, at the nominal designs.
-pub fn sensitivities(
+pub(crate) fn sensitivities(
     chain: &Chain,
     nominal: &[Design],
     tol: &Tolerances,

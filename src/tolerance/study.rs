@@ -5,11 +5,13 @@ use rayon::prelude::*;
 use crate::count::Shard;
 use crate::margins::{margins, ChainModel, MarginError, MarginOptions, Margins};
 use crate::tolerance::{draw_designs, wilson_interval, Tolerances, Z95};
-use crate::{Chain, Design};
+use crate::{Chain, Design, NoProgress, Progress};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// What a study draws and how. Default: 10,000 samples, seed 1, all of them (no shard),
 /// FDM tolerances, the default margins.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct StudyOptions {
     /// Samples in the whole study (a shard draws its share of them).
     pub samples: u64,
@@ -32,6 +34,38 @@ impl Default for StudyOptions {
             tolerances: Tolerances::default(),
             margins: MarginOptions::default(),
         }
+    }
+}
+
+impl StudyOptions {
+    /// Another number of samples in the whole study.
+    pub fn with_samples(mut self, samples: u64) -> StudyOptions {
+        self.samples = samples;
+        self
+    }
+
+    /// Another seed.
+    pub fn with_seed(mut self, seed: u64) -> StudyOptions {
+        self.seed = seed;
+        self
+    }
+
+    /// Only the samples of part `shard` (`None`: all of them).
+    pub fn with_shard(mut self, shard: Option<Shard>) -> StudyOptions {
+        self.shard = shard;
+        self
+    }
+
+    /// Other tolerances.
+    pub fn with_tolerances(mut self, tolerances: Tolerances) -> StudyOptions {
+        self.tolerances = tolerances;
+        self
+    }
+
+    /// Other margin options.
+    pub fn with_margins(mut self, margins: MarginOptions) -> StudyOptions {
+        self.margins = margins;
+        self
     }
 }
 
@@ -64,6 +98,18 @@ pub struct Study {
     pub nominal: Margins,
 }
 
+impl Study {
+    /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per
+    /// tile) and judges each by its margins.
+    pub fn run(
+        chain: &Chain,
+        nominal: &[Design],
+        opts: &StudyOptions,
+    ) -> Result<Study, MarginError> {
+        study(chain, nominal, opts)
+    }
+}
+
 /// A spread of smallest margins over the samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MarginSpread {
@@ -83,15 +129,34 @@ struct Outcome {
 
 /// Draws the samples of `opts` around the per-tile `nominal` designs (one, or one per tile)
 /// and judges each by its margins.
-pub fn study(chain: &Chain, nominal: &[Design], opts: &StudyOptions) -> Result<Study, MarginError> {
+pub(crate) fn study(
+    chain: &Chain,
+    nominal: &[Design],
+    opts: &StudyOptions,
+) -> Result<Study, MarginError> {
+    study_reporting(chain, nominal, opts, &NoProgress)
+}
+
+/// [`Study::run`], saying how many samples are judged (stage `samples`) as it goes.
+pub fn study_reporting(
+    chain: &Chain,
+    nominal: &[Design],
+    opts: &StudyOptions,
+    progress: &dyn Progress,
+) -> Result<Study, MarginError> {
     let nominal_model = ChainModel::new(chain, nominal)?;
     let nominal_margins = margins(&nominal_model, &opts.margins);
     let (k, m) = opts.shard.map_or((0, 1), |s| (s.k as u64 - 1, s.m as u64));
     let indices: Vec<u64> = (k..opts.samples).step_by(m as usize).collect();
     let tiles = chain.len();
+    let total = indices.len() as u64;
+    let judged = AtomicU64::new(0);
+    progress.update("samples", 0, total);
     let outcomes: Vec<Result<Outcome, MarginError>> = indices
         .par_iter()
         .map_init(Vec::new, |designs, &i| {
+            let done = judged.fetch_add(1, Ordering::Relaxed);
+            progress.update("samples", done, total);
             draw_designs(nominal, tiles, &opts.tolerances, opts.seed, i, designs);
             let model = ChainModel::new(chain, designs)?;
             let mg = margins(&model, &opts.margins);

@@ -7,8 +7,9 @@ use std::process::ExitCode;
 use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
 use foldchain_cli::inputs::read_chain;
-use foldchain_cli::numbers::number_in;
+use foldchain_cli::numbers::{number_in, thousands};
 use foldchain_cli::outln;
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 
 /// Checks that a chain of tiles folds sequentially from the reaction-initiator end without
@@ -40,6 +41,9 @@ struct Args {
     /// Print the verdict as JSON.
     #[arg(long)]
     json: bool,
+    /// No progress on stderr (long chains take seconds).
+    #[arg(long)]
+    quiet: bool,
 }
 
 fn main() -> ExitCode {
@@ -62,7 +66,10 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     let opts = CheckOptions::default()
         .with_final_only(args.final_only)
         .with_tolerance(args.tolerance);
+    let progress = Progress::new("fold-check", "", ProgressMode::detect(args.quiet));
+    progress.stage(&format!("checking {} tiles", thousands(chain.len() as u64)));
     let verdict = check_chain(&chain, &opts);
+    progress.finish();
     if args.json {
         let out = serde_json::json!({ "tiles": chain.len(), "final_only": args.final_only, "result": verdict });
         outln!("{out}");

@@ -8,10 +8,8 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::count::{
-    count_valid, estimate_random, merge_reports, CountOptions, CountReport, CountRow, Shard,
-    MAX_COUNT_TILES,
-};
+use foldchain::count::{count_valid, CountOptions, CountReport, CountRow, RandomEstimate, Shard};
+const MAX_COUNT_TILES: usize = CountOptions::MAX_TILES;
 use foldchain_cli::numbers::count_in;
 use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -140,7 +138,7 @@ fn merge(args: &Args) -> anyhow::Result<()> {
             .with_context(|| format!("{}: cannot read the shard report", path.display()))?;
         files.push((path.display().to_string(), text));
     }
-    let merged = merge_reports(&files)?;
+    let merged = CountReport::merge(&files)?;
     if args.json {
         outln!("{}", serde_json::to_string(&merged)?);
     } else {
@@ -221,7 +219,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
             // time a small sample of the longest chains to say what the full one costs
             let probe = 2_000.min(samples);
             let t0 = Instant::now();
-            estimate_random(max_tiles, probe, args.seed, &check);
+            RandomEstimate::sample(max_tiles, probe, args.seed, &check);
             let secs =
                 t0.elapsed().as_secs_f64() * (samples as f64 / probe as f64) * sampled as f64;
             if secs > WARN_SECONDS {
@@ -233,7 +231,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         }
         for (i, row) in rows.iter_mut().filter(|r| r.p_random.is_none()).enumerate() {
             progress.update("sampling random chains", i as u64, sampled);
-            let est = estimate_random(row.tiles, samples, args.seed, &check);
+            let est = RandomEstimate::sample(row.tiles, samples, args.seed, &check);
             row.p_random = Some(est.p);
             row.p_propagates = Some((7.0f64 / 9.0).powi(row.tiles as i32 - 1));
             row.p_random_exact = Some(format!(

@@ -11,8 +11,10 @@ use foldchain_cli::choices::{FormatChoice, PrinterChoice};
 use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
 use foldchain_cli::numbers::{count_in, number_in};
 use foldchain_cli::output::{create_dir_all, OutputDir};
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_name::{inline_name, stem};
+use foldchain_cli::{errln, outln};
 use foldchain_planner::{PlanOptions, Turns};
 use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
 
@@ -76,6 +78,10 @@ struct Args {
     /// Print parts.json on stdout instead of the summary.
     #[arg(long)]
     json: bool,
+    /// No progress on stderr (planning a shape and writing a long chain's plates take
+    /// seconds).
+    #[arg(long)]
+    quiet: bool,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = tiles_arg)]
     tiles: Option<usize>,
@@ -218,17 +224,36 @@ fn run(args: &Args) -> anyhow::Result<()> {
         let owned = |n: &str| is_job_file(&format!("{sub}/{n}"));
         refuse_overwrite_in(&input_refs, &out.join(sub), &owned, "--out")?;
     }
+    // refused before the work, not after it
+    if out.exists() && !out.is_dir() {
+        anyhow::bail!(
+            "--out {}: exists and is not a directory; give a directory for the parts and plates",
+            out.display()
+        );
+    }
+    let progress = Progress::new("fold-print", "files", ProgressMode::detect(args.quiet));
+    progress.stage("planning and building the parts");
     // a shape that cannot be planned keeps the planner's own exit code (1)
     let job = print_job(&source, &designs, &opts).map_err(|e| match e {
         PrintError::Plan(p) => anyhow::Error::new(p),
         e => anyhow::Error::new(e),
-    })?;
+    });
+    let job = match job {
+        Ok(job) => job,
+        Err(e) => {
+            progress.finish();
+            return Err(e);
+        }
+    };
     let mut root = OutputDir::create(out)?;
     create_dir_all(&out.join("parts"))?;
     create_dir_all(&out.join("plates"))?;
-    for f in &job.files {
+    let total = job.files.len() as u64;
+    for (i, f) in job.files.iter().enumerate() {
+        progress.update("writing", i as u64, total);
         root.write(&f.path, &f.bytes)?;
     }
+    progress.finish();
     // files of an earlier run under our names that this run did not write (a sixth plate
     // when there are five now), and torn temporary files of ours
     for sub in ["parts", "plates"] {
@@ -252,33 +277,42 @@ fn run(args: &Args) -> anyhow::Result<()> {
                 .unwrap_or_default(),
         )
         .into_owned();
-        print!("{text}");
+        foldchain_cli::stdout::text(&text);
         return Ok(());
     }
-    println!(
-        "{}: {} tiles, {} part(s), {} plate(s) of {} x {} mm; clearance {:.3} mm ({})",
+    outln!(
+        "{}: {}, {}, {} of {} x {} mm; clearance {:.3} mm ({})",
         r.name,
-        r.tiles,
-        r.parts.len(),
-        r.plates.len(),
+        plural(r.tiles, "tile", "tiles"),
+        plural(r.parts.len(), "part", "parts"),
+        plural(r.plates.len(), "plate", "plates"),
         opts.bed.width,
         opts.bed.depth,
         r.clearance_mm,
         args.printer
     );
     for p in &r.parts {
-        println!(
+        outln!(
             "  {:<6} x{:<5} reads {}/{}  {:>7.0} mm3  thinnest wall {:.2} mm  {}",
-            p.label, p.count, p.reads[0], p.reads[1], p.volume_mm3, p.thinnest_wall_mm, p.file
+            p.label,
+            p.count,
+            p.reads[0],
+            p.reads[1],
+            p.volume_mm3,
+            p.thinnest_wall_mm,
+            p.file
         );
     }
     for p in &r.plates {
-        println!(
+        outln!(
             "  {}: {} tiles, {:.0} mm3, about {:.0} min",
-            p.file, p.tiles, p.volume_mm3, p.print_minutes
+            p.file,
+            p.tiles,
+            p.volume_mm3,
+            p.print_minutes
         );
     }
-    println!(
+    outln!(
         "  magnets: {} ({} x {} mm); total {:.0} mm3, about {:.1} h of printing (parts.json says how it is estimated)",
         r.magnets.count,
         r.magnets.diameter_mm,
@@ -286,13 +320,18 @@ fn run(args: &Args) -> anyhow::Result<()> {
         r.total_volume_mm3,
         r.total_print_minutes / 60.0
     );
-    println!(
+    outln!(
         "  wrote {} files into {}",
         root.written().len(),
         out.display()
     );
     for w in &r.design_warnings {
-        eprintln!("fold-print: warning: {w}");
+        errln!("fold-print: warning: {w}");
     }
     Ok(())
+}
+
+/// `n` and the noun in the number it takes: `1 plate`, `2 plates`.
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }

@@ -7,24 +7,27 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{anyhow, bail, Context};
+use anyhow::{anyhow, bail};
 use clap::Parser;
 use foldchain::count::Shard;
 use foldchain::engine::EngineOptions;
 use foldchain::margins::{ChainModel, MarginOptions, Margins};
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    candidate_design_json, candidate_designs, optimize, sensitivities, study, Candidate, Parameter,
-    SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
+    study_reporting, Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions,
+    Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
-use foldchain_cli::inputs::read_chain;
+use foldchain_cli::inputs::{refuse_overwrite, resolve_chain, ChainArgs};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::outln;
+use foldchain_cli::output::{create_dir_all, write_atomic};
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
-use foldchain_planner::{plan_svg_file, PlanOptions, Turns};
+use foldchain_planner::Turns;
 use foldchain_render::tradeoff_svg;
 
 /// Will it fold when printed? Margins, manufacturing tolerances and a design search.
@@ -42,10 +45,10 @@ use foldchain_render::tradeoff_svg;
 Tolerances (--tol KEY=VALUE, uniform within +-VALUE on every tile independently): s, e,
 wall, width (lengths, mm; d=X is width=2X since d = w/2), br (remanence, relative or %),
 diameter, height (magnet, mm). Defaults: printed dimensions +-0.1 mm (--printer fdm) or
-+-0.05 mm (resin), remanence +-2.5%, magnet dimensions +-0.05 mm (sources in README).
++-0.05 mm (resin), remanence +-2.5%, magnet dimensions +-0.05 mm (sources in docs/tolerances.md).
 
 A sample folds when every magnet's start and every fold has a positive margin
-(quasi-static: see README, \"Margins\").
+(quasi-static: see docs/tolerances.md).
 
 Exit codes: 0 report printed, 1 --optimize found no design reaching --target, 2 bad input."
 )]
@@ -96,6 +99,9 @@ struct Args {
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = tiles_arg)]
     tiles: Option<usize>,
+    /// No progress on stderr.
+    #[arg(long)]
+    quiet: bool,
     /// SHAPE.svg only: tight, loose or auto.
     #[arg(long)]
     turns: Option<Turns>,
@@ -138,40 +144,38 @@ fn tiles_arg(s: &str) -> Result<usize, String> {
     count_in(s, 1, 2_000_000, "tiles").map(|n| n as usize)
 }
 
-/// The chain and a name for it.
-fn read_input(args: &Args) -> anyhow::Result<(Chain, String)> {
-    let arg = &args.chain;
-    if arg.to_ascii_lowercase().ends_with(".svg") {
-        let path = Path::new(arg);
-        let mut po = PlanOptions::default();
-        if let Some(n) = args.tiles {
-            po = po.with_tiles(n);
-        }
-        if let Some(t) = args.turns {
-            po = po.with_turns(t);
-        }
-        let plan = plan_svg_file(path, &po).map_err(|e| anyhow!(e))?;
-        let word = plan
-            .fold_word()
-            .with_context(|| format!("plan of {}", path.display()))?;
-        let name = path
-            .file_stem()
-            .map_or("shape".into(), |s| s.to_string_lossy().into_owned());
-        return Ok((word.to_chain(), name));
-    }
-    if args.tiles.is_some() || args.turns.is_some() {
-        bail!("--tiles and --turns apply only to a SHAPE.svg");
-    }
-    let chain = read_chain(arg)?;
-    let name = match chain.to_word() {
-        Ok(w) if w.to_string().len() <= 40 => w.to_string(),
-        _ => format!("chain-{}-tiles", chain.len()),
-    };
-    Ok((chain, name))
+fn run(args: &Args) -> anyhow::Result<u8> {
+    let progress = Progress::new(
+        "fold-tolerance",
+        "samples",
+        ProgressMode::detect(args.quiet),
+    );
+    let code = work(args, &progress);
+    progress.finish();
+    code
 }
 
-fn run(args: &Args) -> anyhow::Result<u8> {
-    let (chain, name) = read_input(args)?;
+/// The study or the search; `progress` is finished before anything is printed.
+fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
+    let input = resolve_chain(
+        &ChainArgs {
+            chain: Some(&args.chain),
+            tiles: args.tiles,
+            turns: args.turns,
+            ..ChainArgs::default()
+        },
+        progress,
+    )?;
+    let (chain, name) = (input.chain, input.name);
+    if let Some(plot) = &args.plot {
+        let inputs: Vec<&Path> = input
+            .files
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(args.design.as_deref())
+            .collect();
+        refuse_overwrite(&inputs, plot, "--plot")?;
+    }
     let printer = args.printer.to_printer();
     let mut tolerances = Tolerances::printed(printer);
     for t in &args.tol {
@@ -209,7 +213,7 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     };
     if let Some(s) = &args.s {
         designs = designs.with_s(SValue::parse(s)?);
-        designs.validate("--s")?;
+        designs.check_ranges("--s")?;
     }
     let dynamic = designs.global_design().dynamic_fields_set();
     if let Some(field) = dynamic.first() {
@@ -233,28 +237,26 @@ fn run(args: &Args) -> anyhow::Result<u8> {
             args.force_law
         )
     })?;
-    let opts = StudyOptions {
-        samples: args.samples,
-        seed: args.seed,
-        shard,
-        tolerances,
-        margins: MarginOptions {
-            force_law,
-            ..MarginOptions::default()
-        },
-    };
+    let opts = StudyOptions::default()
+        .with_samples(args.samples)
+        .with_seed(args.seed)
+        .with_shard(shard)
+        .with_tolerances(tolerances)
+        .with_margins(MarginOptions::default().with_force_law(force_law));
     if args.optimize {
         if designs.has_overrides() {
             bail!("--optimize searches per-tile s itself: give a plain design (no \"tiles\")");
         }
-        return search(args, &chain, &name, &nominal[0], &opts);
+        return search(args, &chain, &name, &nominal[0], &opts, progress);
     }
     // the margins' own errors (a design whose curved path cannot be built) are bad input
     ChainModel::new(&chain, &nominal)?;
     let started = Instant::now();
-    let result = study(&chain, &nominal, &opts)?;
-    let sens = sensitivities(&chain, &nominal, &tolerances, &opts.margins)?;
+    let result = study_reporting(&chain, &nominal, &opts, progress)?;
+    progress.stage("sensitivities");
+    let sens = Sensitivity::all(&chain, &nominal, &tolerances, &opts.margins)?;
     let secs = started.elapsed().as_secs_f64();
+    progress.finish();
     if args.json {
         let report = Report {
             chain: chain.to_tile_list(),
@@ -275,7 +277,7 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     Ok(0)
 }
 
-const CRITERION: &str = "a sample folds when every hold, start and fold margin is positive (quasi-static poses, README \"Margins\")";
+const CRITERION: &str = "a sample folds when every hold, start and fold margin is positive (quasi-static poses, docs/tolerances.md)";
 
 #[derive(serde::Serialize)]
 struct Report<'a> {
@@ -382,104 +384,110 @@ fn search(
     name: &str,
     base: &Design,
     opts: &StudyOptions,
+    progress: &Progress,
 ) -> anyhow::Result<u8> {
     let target = args.target.unwrap_or(DEFAULT_TARGET);
-    let so = SearchOptions {
-        target,
-        study: StudyOptions {
-            samples: args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES),
-            ..*opts
-        },
-        engine: EngineOptions::default().with_force_law(opts.margins.force_law),
-        ..SearchOptions::default()
-    };
+    let so = SearchOptions::default()
+        .with_target(target)
+        .with_study(opts.with_samples(args.search_samples.unwrap_or(DEFAULT_SEARCH_SAMPLES)))
+        .with_engine(EngineOptions::default().with_force_law(opts.margins.force_law));
     let started = Instant::now();
-    let result = optimize(chain, base, &so)?;
+    progress.stage("design search");
+    let result = Search::run(chain, base, &so)?;
     let plot = args
         .plot
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("out/{name}-tradeoff.svg")));
     if let Some(dir) = plot.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        create_dir_all(dir)?;
     }
     let title = format!(
         "{name}: folding probability against assembly time ({} samples per design)",
         so.study.samples
     );
-    std::fs::write(&plot, tradeoff_svg(&result, target, &title))
-        .with_context(|| format!("cannot write {}", plot.display()))?;
+    write_atomic(&plot, tradeoff_svg(&result, target, &title).as_bytes())?;
     if args.json {
+        progress.finish();
         outln!("{}", serde_json::to_string_pretty(&result)?);
-    } else {
-        outln!(
-            "{name}: {} tiles, {} designs tried, {} samples each, in {:.1} s",
-            chain.len(),
-            result.candidates.len(),
-            so.study.samples,
-            started.elapsed().as_secs_f64()
-        );
-        outln!("trade-off over s (one s for every tile):");
-        outln!("  wall     s mm   P       95% interval      assembly s  margin");
-        for c in result
-            .candidates
-            .iter()
-            .filter(|c| c.s_straight == c.s_turn)
-        {
-            outln!("  {}", row(c));
-        }
-        outln!("base design:  {}", row(&result.base));
-        match &result.best {
-            Some(b) => outln!(
-                "fastest design with P >= {}: s {} mm on straight runs, {} mm on turns, wall {:+.2} mm: {}",
-                target, b.s_straight, b.s_turn, b.wall_step, row(b)
-            ),
-            None => outln!("no design tried reaches P >= {target}"),
-        }
-        if let Some(m) = &result.most_probable {
-            outln!(
-                "most probable: s {} / {} mm, wall {:+.2} mm: {}",
-                m.s_straight,
-                m.s_turn,
-                m.wall_step,
-                row(m)
-            );
-        }
-        // the base, the chosen and the most probable design again, with the study's full
-        // sample count, and the last two as design files
-        let confirm = |c: &Candidate| -> anyhow::Result<Study> {
-            Ok(study(chain, &candidate_designs(chain, base, c), opts)?)
-        };
-        let b = confirm(&result.base)?;
-        outln!(
-            "with {} samples: base design P = {:.4} ({:.4} to {:.4})",
-            b.samples,
-            b.probability,
-            b.interval.0,
-            b.interval.1
-        );
-        let stem = plot.with_extension("");
-        for (label, file, c) in [
-            ("chosen", "chosen", &result.best),
-            ("most probable", "most-probable", &result.most_probable),
-        ] {
-            let Some(c) = c else { continue };
-            let s = confirm(c)?;
-            let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
-            let mut text = serde_json::to_string_pretty(&candidate_design_json(chain, base, c))?;
-            text.push('\n');
-            std::fs::write(&path, text)
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            outln!(
-                "with {} samples: {label} design P = {:.4} ({:.4} to {:.4}); design file {}",
-                s.samples,
-                s.probability,
-                s.interval.0,
-                s.interval.1,
-                path.display()
-            );
-        }
-        outln!("wrote {}", plot.display());
+        return Ok(if result.best.is_some() { 0 } else { 1 });
     }
+    // the base, the chosen and the most probable design again, with the study's full sample
+    // count, and the last two as design files
+    let confirm = |c: &Candidate| -> anyhow::Result<Study> {
+        Ok(study_reporting(
+            chain,
+            &c.designs(chain, base),
+            opts,
+            progress,
+        )?)
+    };
+    let base_study = confirm(&result.base)?;
+    let stem = plot.with_extension("");
+    let mut confirmed = Vec::new();
+    for (label, file, c) in [
+        ("chosen", "chosen", &result.best),
+        ("most probable", "most-probable", &result.most_probable),
+    ] {
+        let Some(c) = c else { continue };
+        let s = confirm(c)?;
+        let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
+        let mut text = serde_json::to_string_pretty(&c.design_file(chain, base))?;
+        text.push('\n');
+        write_atomic(&path, text.as_bytes())?;
+        confirmed.push((label, s, path));
+    }
+    progress.finish();
+    outln!(
+        "{name}: {} tiles, {} designs tried, {} samples each, in {:.1} s",
+        chain.len(),
+        result.candidates.len(),
+        so.study.samples,
+        started.elapsed().as_secs_f64()
+    );
+    outln!("trade-off over s (one s for every tile):");
+    outln!("  wall     s mm   P       95% interval      assembly s  margin");
+    for c in result
+        .candidates
+        .iter()
+        .filter(|c| c.s_straight == c.s_turn)
+    {
+        outln!("  {}", row(c));
+    }
+    outln!("base design:  {}", row(&result.base));
+    match &result.best {
+        Some(b) => outln!(
+            "fastest design with P >= {}: s {} mm on straight runs, {} mm on turns, wall {:+.2} mm: {}",
+            target, b.s_straight, b.s_turn, b.wall_step, row(b)
+        ),
+        None => outln!("no design tried reaches P >= {target}"),
+    }
+    if let Some(m) = &result.most_probable {
+        outln!(
+            "most probable: s {} / {} mm, wall {:+.2} mm: {}",
+            m.s_straight,
+            m.s_turn,
+            m.wall_step,
+            row(m)
+        );
+    }
+    outln!(
+        "with {} samples: base design P = {:.4} ({:.4} to {:.4})",
+        base_study.samples,
+        base_study.probability,
+        base_study.interval.0,
+        base_study.interval.1
+    );
+    for (label, s, path) in confirmed {
+        outln!(
+            "with {} samples: {label} design P = {:.4} ({:.4} to {:.4}); design file {}",
+            s.samples,
+            s.probability,
+            s.interval.0,
+            s.interval.1,
+            path.display()
+        );
+    }
+    outln!("wrote {}", plot.display());
     Ok(if result.best.is_some() { 0 } else { 1 })
 }
 

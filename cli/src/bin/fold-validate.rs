@@ -4,7 +4,7 @@
 //! Prints the work-precision table (or `--json`), writes `work-precision.svg` and
 //! `work-precision.json` into the output directory. Exit 0, or 2 for bad input.
 //!
-//! `--stiff` runs the stiff study instead ([`foldchain::reference::stiff`]): each stiff case
+//! `--stiff` runs the stiff study instead ([`foldchain_validation::stiff`]): each stiff case
 //! and non-stiff control with both integrators, their step counts, printed as a table (or
 //! `--json`); nothing is written.
 
@@ -13,18 +13,20 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::Parser;
-use foldchain::physics::{ForceLaw, FORCE_LAW_NAMES};
-use foldchain::reference::stiff::{run_stiff_study, select_cases};
-use foldchain::reference::STIFF_CASES;
-use foldchain::validation::scenes::all_scenes;
-use foldchain::validation::{validate, ValidateOptions};
+use foldchain::physics::ForceLaw;
+const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::Design;
 use foldchain_cli::choices::DynamicsChoice;
 use foldchain_cli::experiments::experiments;
 use foldchain_cli::numbers::number_in;
 use foldchain_cli::output::OutputDir;
+use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args_with};
 use foldchain_cli::{errln, outln};
+use foldchain_validation::scenes::all_scenes;
+use foldchain_validation::stiff::STIFF_CASES;
+use foldchain_validation::stiff::{run_stiff_study, select_cases};
+use foldchain_validation::{validate, ValidateOptions};
 
 /// Runs every scene with a reference at a tight tolerance, then the event engine and each
 /// integrator (Dormand-Prince 5(4), ROS2) along a ladder of tolerances, and reports each
@@ -39,6 +41,9 @@ struct Args {
     /// Print the rows as JSON instead of the table.
     #[arg(long)]
     json: bool,
+    /// No progress on stderr.
+    #[arg(long)]
+    quiet: bool,
     /// Run only this scene (repeatable), e.g. "3-tile SL".
     #[arg(long = "scene")]
     scenes: Vec<String>,
@@ -71,7 +76,7 @@ struct Args {
     #[arg(long, default_value = "dipole", value_parser = FORCE_LAW_NAMES)]
     force_law: String,
     /// The reference's dynamics: overdamped (first order, the stiff limit) or inertial
-    /// (mass, drag, bouncing walls; README, "Physical parameters").
+    /// (mass, drag, bouncing walls; docs/physics.md, "Physical parameters").
     #[arg(long, value_enum, default_value_t = DynamicsChoice::Overdamped)]
     dynamics: DynamicsChoice,
 }
@@ -111,12 +116,12 @@ fn force_law(name: &str) -> anyhow::Result<ForceLaw> {
 /// `--stiff`: the study's table or JSON.
 fn stiff(args: &Args) -> anyhow::Result<String> {
     let cases = select_cases(&args.cases)?;
-    let quiet = args.json;
+    let progress = Progress::new("fold-validate", "", ProgressMode::detect(args.quiet));
     let study = run_stiff_study(&cases, &mut |case, method| {
-        if !quiet {
-            errln!("fold-validate: stiff: {case}: {}", method.name());
-        }
-    })?;
+        progress.stage(&format!("stiff: {case}: {}", method.name()));
+    });
+    progress.finish();
+    let study = study?;
     Ok(if args.json {
         format!("{}\n", study.to_json())
     } else {
@@ -165,7 +170,11 @@ fn main() -> ExitCode {
 
 fn run(args: &Args) -> anyhow::Result<u8> {
     if args.experiments {
-        let report = experiments(&args.out, args.json)?;
+        let progress = Progress::new("fold-validate", "", ProgressMode::detect(args.quiet));
+        progress.stage("the thesis' experiments in four models");
+        let report = experiments(&args.out, args.json);
+        progress.finish();
+        let report = report?;
         foldchain_cli::stdout::text(&report.text);
         if !args.json {
             for f in &report.files {
@@ -190,15 +199,15 @@ fn run(args: &Args) -> anyhow::Result<u8> {
             args.out.display()
         );
     }
-    let quiet = args.json;
+    let progress = Progress::new("fold-validate", "", ProgressMode::detect(args.quiet));
     let v = validate(&opts, &mut |scene, method, tol| {
-        if !quiet {
-            errln!(
-                "fold-validate: {scene}: {method}{}",
-                tol.map(|t| format!(" at {t:.0e}")).unwrap_or_default()
-            );
-        }
-    })?;
+        progress.stage(&format!(
+            "{scene}: {method}{}",
+            tol.map(|t| format!(" at {t:.0e}")).unwrap_or_default()
+        ));
+    });
+    progress.finish();
+    let v = v?;
     let mut out = OutputDir::create(&args.out)?;
     out.write("work-precision.svg", v.to_svg().as_bytes())?;
     out.write("work-precision.json", v.to_json().as_bytes())?;

@@ -42,12 +42,50 @@ pub fn browser() -> Option<PathBuf> {
 }
 
 /// Runs headless Chromium on `url` with `args` (a fresh profile, no network), one at a time
-/// in this process, each for at most a minute; returns its standard output.
+/// in this process, each for at most a minute; returns its standard output. The page's
+/// viewport is [`WINDOW`] both for `--screenshot` and for `--dump-dom` (whose pages
+/// Chromium gives a viewport shorter than the window: [`dump_dom_window`]).
 pub fn chromium(exe: &Path, url: &str, args: &[String]) -> String {
     // one browser at a time: pages report their drawing time, which a second browser
     // competing for the two cores would double
     static ONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
     let _one = ONE.lock().unwrap_or_else(|e| e.into_inner());
+    let window = if args.iter().any(|a| a == "--dump-dom") {
+        dump_dom_window(exe)
+    } else {
+        WINDOW
+    };
+    launch(exe, url, args, window)
+}
+
+/// The window that gives a `--dump-dom` page the viewport [`WINDOW`]: headless Chromium
+/// takes the height of its own bars from the window there (139 px in Chromium 148) but not
+/// for `--screenshot`; measured once per process on a page that reports its viewport.
+pub fn dump_dom_window(exe: &Path) -> (u32, u32) {
+    static MEASURED: std::sync::OnceLock<(u32, u32)> = std::sync::OnceLock::new();
+    *MEASURED.get_or_init(|| {
+        let dir = tmp("viewport");
+        let page = dir.join("viewport.html");
+        std::fs::write(
+            &page,
+            "<html><body><script>document.body.setAttribute('data-viewport', \
+             innerWidth + 'x' + innerHeight);</script></body></html>",
+        )
+        .unwrap();
+        let dom = launch(exe, &url(&page, ""), &["--dump-dom".into()], WINDOW);
+        let _ = std::fs::remove_dir_all(&dir);
+        let seen = attributes(&dom, "body", "data-viewport");
+        let (w, h) = attr(&seen, "data-viewport").split_once('x').unwrap();
+        let (w, h): (u32, u32) = (w.parse().unwrap(), h.parse().unwrap());
+        (
+            WINDOW.0 + WINDOW.0.saturating_sub(w),
+            WINDOW.1 + WINDOW.1.saturating_sub(h),
+        )
+    })
+}
+
+/// Runs headless Chromium on `url` with `args` in a window of `window` CSS pixels.
+fn launch(exe: &Path, url: &str, args: &[String], window: (u32, u32)) -> String {
     let profile = tmp(&format!("profile-{}", rand_tag()));
     // standard output to a file: a pipe would fill up and stall the browser
     let dump = profile.with_extension("out");
@@ -64,7 +102,7 @@ pub fn chromium(exe: &Path, url: &str, args: &[String]) -> String {
             "--hide-scrollbars",
             "--force-device-scale-factor=1",
         ])
-        .arg(format!("--window-size={},{}", WINDOW.0, WINDOW.1))
+        .arg(format!("--window-size={},{}", window.0, window.1))
         .arg(format!("--user-data-dir={}", profile.display()))
         .args(args)
         .arg(url)

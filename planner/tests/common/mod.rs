@@ -97,7 +97,7 @@ pub fn assert_sound(p: &Plan) {
     assert_eq!(p.bom.values().sum::<usize>(), p.tiles);
     assert!(word.first_opposite_pair().is_none(), "LR/RL tiles used");
     let m = p.chain_to_svg;
-    let exact = foldchain::kinematics::final_poses(&word);
+    let exact = word.final_poses();
     assert_eq!(exact.len(), p.poses.len());
     for (e, q) in exact.iter().zip(&p.poses) {
         let (x, y) = e.centre.to_f64(1.0);

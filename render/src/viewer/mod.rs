@@ -7,35 +7,49 @@
 //! [`RunView`]s).
 //!
 //! The page computes the chain itself, as the library does: joint angles and magnet travel
-//! from [`Track`]s (piecewise linear within [`ANGLE_TOLERANCE`] and [`TRAVEL_TOLERANCE`]),
-//! tile poses by composing the octagon chain's hinge turns ([`foldchain::kinematics`]), magnets
+//! from [`Track`]s (piecewise linear within [`Track::ANGLE_TOLERANCE`] and [`Track::TRAVEL_TOLERANCE`]),
+//! tile poses by composing the octagon chain's hinge turns ([`foldchain::Pose::compose_at_angles`]), magnets
 //! from their paths in closed form ([`PathForm`]). The data is packed small ([`RunData`]):
 //! about 28 bytes per tile on the event engine's serpentines.
 //!
+//! The camera follows the fold unless told otherwise: it frames the part of the chain that
+//! has folded with the next few tiles, grows with it and ends framed on the final shape;
+//! while playing it glides, and a paused page shows the same view at the same time. Any pan
+//! or zoom, the `fit` button (the whole run) or a `view=` box takes the camera over. The
+//! caption says what has happened up to the shown time (`folding: 3 of 9 folds done, 2
+//! magnets moving`), then the outcome once the run has ended.
+//!
 //! State for tests and people: the URL hash `#t=SECONDS` (or `#t=end`) opens the page paused
-//! at that time, `view=X0,Y0,X1,Y1` (world mm) on that box, `follow=1` following the part
-//! that moves; `<body>` carries `data-time`, `data-folded` (joints at 90 degrees),
+//! at that time, `view=X0,Y0,X1,Y1` (world mm) on that box, `follow=0` on the whole run
+//! without following; `<body>` carries `data-time`, `data-folded` (joints at 90 degrees),
 //! `data-moving` (magnets moving), `data-collision` (the two tiles, once they have met),
-//! `data-render-ms` (the last frame's drawing time), `data-renderer` and `data-view` (CSS
-//! pixels per mm and the pixel position of the world origin in the first panel), updated on
+//! `data-status` (the caption's words), `data-follow`, `data-render-ms` (the drawing time of
+//! the last full redraw: at load the opening frame is drawn, then, once the page is idle,
+//! drawn again in full and flushed to pixels, so this is what each later redraw costs;
+//! while playing, each frame's), `data-first-render-ms` (the opening frame, flushed to
+//! pixels, which also pays for compiling the script), `data-renderer`, `data-view` (CSS
+//! pixels per mm and the pixel position of the world origin in the first panel) and
+//! `data-panel` (the first panel's left, top, width and height, CSS pixels), updated on
 //! every frame; each panel (`<section data-run=...>`) carries its own `data-folded`,
-//! `data-moving` and `data-collision`. Hash options for tests: `poses=1` puts every tile's
-//! pose on each panel's `data-poses`, `probe=T1,T2,...` the poses at those times on
-//! `data-poses-1`, `data-poses-2`, ..., `detail=all` draws every part of every tile whatever
-//! its size on screen, `renderer=2d|raster` chooses the drawing, and `bench=N` draws `N`
-//! frames on load, each flushed to pixels, and reports their median and slowest.
+//! `data-moving`, `data-collision` and `data-status`. Hash options for tests: `poses=1` puts
+//! every tile's pose on each panel's `data-poses`, `probe=T1,T2,...` the poses at those
+//! times on `data-poses-1`, `data-poses-2`, ..., `views=T1,T2,...` the following camera's
+//! view at those times on `<body>`'s `data-view-1`, ... (as `data-view`), `detail=all` draws every part of every tile
+//! whatever its size on screen, `renderer=2d|raster` chooses the drawing, and `bench=N`
+//! draws `N` frames on load, each flushed to pixels, and reports their median and slowest.
 //!
 //! Drawing: with many tiles in view the page rasterises the chain itself into a pixel buffer
 //! (Chromium's canvas and its software WebGL are far too slow for 10^4 tiles on a headless
-//! machine: `BENCHMARKS.md`); with few, the canvas draws them with smooth edges.
+//! machine: `BENCHMARKS.md`), each tile's octagon stamped from a sprite made once per
+//! frame size and turn; with few, the canvas draws them with smooth edges.
 
-mod base64;
 mod path_form;
 mod run_data;
+mod typed_arrays;
 
 use foldchain::timeline::RunSource;
 #[cfg(doc)]
-use foldchain::timeline::{Track, ANGLE_TOLERANCE, TRAVEL_TOLERANCE};
+use foldchain::timeline::Track;
 
 pub use path_form::PathForm;
 pub use run_data::{PackedInts, RunData};

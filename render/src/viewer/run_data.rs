@@ -7,12 +7,11 @@
 
 use std::collections::HashMap;
 
-use foldchain::kinematics::{compose_poses, for_each_pose_at_angles};
 use foldchain::timeline::{RunSource, Track, TrackKey};
 use foldchain::Pose;
 use rustc_hash::FxHashMap;
 
-use crate::viewer::base64::{encode_f32, encode_f64, encode_uint};
+use crate::viewer::typed_arrays::{encode_f32, encode_f64, encode_uint};
 use crate::viewer::{PathForm, RunView};
 
 /// A packed integer array: bytes per value (1, 2 or 4) and the little-endian bytes in base64.
@@ -247,13 +246,13 @@ fn centres_box(tiles: usize, w: f64, joints: &[(usize, Track)], mut times: Vec<f
         }
         match first {
             None => {}
-            Some(_) if poses.is_empty() => for_each_pose_at_angles(&angles, w, |p| {
+            Some(_) if poses.is_empty() => Pose::for_each_at_angles(&angles, w, |p| {
                 grow(p);
                 poses.push(p);
             }),
             Some(first) => {
                 let mut i = first;
-                compose_poses(poses[first], &angles[first..], w, |p| {
+                poses[first].compose_at_angles(&angles[first..], w, |p| {
                     i += 1;
                     grow(p);
                     poses[i] = p;
@@ -269,7 +268,6 @@ fn centres_box(tiles: usize, w: f64, joints: &[(usize, Track)], mut times: Vec<f
 mod tests {
     use super::*;
     use foldchain::engine::{run, EngineOptions};
-    use foldchain::kinematics::poses_at_angles;
     use foldchain::timeline::TileDesigns;
     use foldchain::Chain;
 
@@ -296,7 +294,7 @@ mod tests {
                 for (j, tr) in &joints {
                     angles[*j] = tr.value_at(t);
                 }
-                for p in poses_at_angles(&angles, w) {
+                for p in Pose::chain_at_angles(&angles, w) {
                     expect = [
                         expect[0].min(p.x),
                         expect[1].min(p.y),

@@ -1,4 +1,4 @@
-//! What the sweeps keep besides the tracks ([`crate::engine::local::sweeps`]): the cache of
+//! What the sweeps keep besides the tracks ([`crate::engine::local::relaxation`]): the cache of
 //! unit solutions shared by every sweep ([`Cache`]), a sweep's shapes by kind of unknown
 //! ([`Library`]) and each shape's anchor crossing ([`Anchors`]).
 //!

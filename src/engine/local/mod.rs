@@ -17,26 +17,24 @@
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
 mod cache;
+mod relaxation;
 mod solve;
 mod sweep;
-mod sweeps;
 #[cfg(test)]
 mod test_support;
 mod trajectory;
-mod window;
+mod unit_forces;
 
 use std::f64::consts::FRAC_PI_2;
 
-pub use sweep::{OFFSET_QUANTUM, SHAPE_TOLERANCE, SWEEP_TOLERANCE};
-pub(crate) use sweeps::ChainSolution;
-pub use sweeps::{AUTO_MIN_TILES, MAX_SWEEPS};
+pub(crate) use relaxation::ChainSolution;
 
 use crate::model::{Mode, Model};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
 use crate::Fold;
 
 /// Default tolerance of the local solves (fraction of a path or fold): 1e-8.
-pub const DEFAULT_LOCAL_TOLERANCE: f64 = 1e-8;
+pub(crate) const DEFAULT_LOCAL_TOLERANCE: f64 = 1e-8;
 
 /// What the engine takes from a chain solution.
 pub(crate) struct Solved {
@@ -98,7 +96,7 @@ pub(crate) fn run_local(model: &Model, tol: f64, threads: usize, max_steps: usiz
         rosenbrock: true,
         rest_skip: true,
     };
-    let chain = sweeps::solve_chain(model, opts, threads);
+    let chain = relaxation::solve_chain(model, opts, threads);
     let g = &model.geometry;
     let n = g.magnets();
     let joints = g.tiles().saturating_sub(1);

@@ -1,6 +1,6 @@
 //! One sweep over the chain ([`sweep`]): every unit solved in turn from the RI end, with the
 //! units before it on this sweep's tracks and the units after it on the sweep before's
-//! ([`crate::engine::local::sweeps`] tells the method).
+//! ([`crate::engine::local::relaxation`] tells the method).
 //!
 //! A sweep reads the sweep before as a stream of unit results ([`UnitOut`]: the unit's
 //! entry and origin, from which its tracks follow, and the shapes it made), and writes its
@@ -17,7 +17,7 @@ use std::sync::{Arc, Condvar, Mutex, PoisonError};
 use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
-use crate::engine::local::window::{unit_vars, Inputs, Var, Window};
+use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
 use crate::model::Model;
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
@@ -25,15 +25,15 @@ use crate::model::Model;
 pub(crate) const ANCHOR_FRACTION: f64 = 0.5;
 
 /// Sweeps stop when no event moved by more than this fraction of the run's duration: 1e-6.
-pub const SWEEP_TOLERANCE: f64 = 1e-6;
+pub(crate) const SWEEP_TOLERANCE: f64 = 1e-6;
 /// Input offsets in a cache key are rounded to this many of the model's time scales: 1e-7.
-pub const OFFSET_QUANTUM: f64 = 1e-7;
+pub(crate) const OFFSET_QUANTUM: f64 = 1e-7;
 /// A new shape within this (fraction of a path or fold, and fraction of its duration for
 /// its end) of the same unknown's one unit back, shifted by the difference of the two
 /// units' origins, is stored as that one: 1e-4, 0.5 um on a 5 mm path. Two solves of the
 /// same steady motion on different steps differ by some 1e-5: a magnet that creeps off a
 /// near balance amplifies the interpolation error of its inputs.
-pub const SHAPE_TOLERANCE: f64 = 1e-4;
+pub(crate) const SHAPE_TOLERANCE: f64 = 1e-4;
 
 /// A sweep hands its unit results on in chunks of at most this many units, or at every
 /// local solve (a chunk of look-ups is cheap to wait for; a solve is not): 64.
@@ -252,7 +252,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             break;
         }
         let j = u as isize - 1;
-        let w = Window::new(model, j, cutoff);
+        let w = UnitForces::new(model, j, cutoff);
         let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
         if !before.read_to(model, need, k, &mut shapes, &mut magnets, &mut joints) {
             complete = false;
@@ -424,7 +424,7 @@ fn shared_shape(
     library: &Library,
     magnets: &[Track],
     joints: &[Track],
-    w: &Window,
+    w: &UnitForces,
     i: usize,
     shape: &Shape,
     start: f64,
@@ -476,7 +476,7 @@ impl Saved {
 /// Moves the moving tracks of unit `w`'s window after its unknowns (the magnets after its
 /// last one, the joints after its own) by `shift`, keeping what they were in `saved`.
 fn shift_downstream(
-    w: &Window,
+    w: &UnitForces,
     magnets: &mut [Track],
     joints: &mut [Track],
     shift: f64,
@@ -533,7 +533,7 @@ fn change(old: &(Arc<Entry>, f64), new: &Arc<Entry>, t_ref: f64) -> f64 {
 }
 
 /// The cache key of unit `w` with input tracks `tracks` and origin `t_ref`.
-fn window_key(w: &Window, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
+fn window_key(w: &UnitForces, tracks: &[Track], t_ref: f64, quantum: f64, key: &mut Vec<i64>) {
     let g = &w.model.geometry;
     key.clear();
     let first = w.vars.iter().find_map(|v| match v {

@@ -2,8 +2,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
+use crate::engine::local::relaxation::{solve_chain_with, ChainSolution};
 use crate::engine::local::solve::{InertialModel, SolveOptions};
-use crate::engine::local::sweeps::{solve_chain_with, ChainSolution};
 use crate::model::{Dynamics, Model, ModelOptions};
 use crate::timeline::{start_fraction, TileDesigns};
 use crate::{Chain, Design};

@@ -141,7 +141,7 @@ pub(crate) const REST: u32 = 0;
 /// A shape id's bits above this one number the sweep that made it (0: [`REST`]), those
 /// below number it among that sweep's shapes, in the order the sweep made them: ids that
 /// do not depend on how the sweeps are spread over threads. 2^28 shapes a sweep, and 15
-/// sweeps at most ([`crate::engine::local::MAX_SWEEPS`] is 8).
+/// sweeps at most ([`MAX_SWEEPS`](crate::engine::local::relaxation::MAX_SWEEPS) is 8).
 const SWEEP_SHIFT: u32 = 28;
 
 /// A shape placed in time: the unknown's value at `t` is `shape.at(t - offset)`.

@@ -15,14 +15,14 @@
 //! Two neighbourhoods with one key differ by less than one quantum in each offset (some 100
 //! units of the clock's last bit), so the cached start differs from the exact one by about a
 //! quantum times the start's sensitivity to a neighbour's start (of order one): within the
-//! rule's stated [`crate::engine::START_TOLERANCE`] (the tests check it against the uncached
+//! rule's stated [`START_TOLERANCE`](crate::engine::start_rule::START_TOLERANCE) (the tests check it against the uncached
 //! search).
 
 use rustc_hash::FxHashMap;
 
-use crate::engine::progress::Progress;
+use crate::engine::run_state::RunState;
 use crate::engine::start_rule::answer::ForceStart;
-use crate::engine::start_rule::window::ARRIVED_MARGIN;
+use crate::engine::start_rule::neighbourhood::ARRIVED_MARGIN;
 use crate::physics::reach;
 use crate::timeline::Geometry;
 
@@ -52,7 +52,7 @@ impl ForceCache {
     fn fill_key(
         &mut self,
         g: &Geometry,
-        progress: &Progress<'_>,
+        progress: &RunState<'_>,
         cutoff: usize,
         m: usize,
         t0: f64,
@@ -114,7 +114,7 @@ impl ForceCache {
     pub(crate) fn start(
         &mut self,
         g: &Geometry,
-        progress: &Progress<'_>,
+        progress: &RunState<'_>,
         cutoff: usize,
         m: usize,
         t0: f64,

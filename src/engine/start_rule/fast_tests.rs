@@ -5,8 +5,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use crate::engine::progress::Progress;
-use crate::engine::start_rule::window::Window;
+use crate::engine::run_state::RunState;
+use crate::engine::start_rule::neighbourhood::Neighbourhood;
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, START_TOLERANCE};
 use crate::engine::{run, EngineOptions, StartRule};
 use crate::physics::ForceLaw;
@@ -51,7 +51,7 @@ fn replay(word: &str, design: Design, law: ForceLaw, cutoff: usize, speed: Speed
             let j = (m - 1) / 2 - 1;
             fold_of_joint[j] = tl.fold_of_joint[j];
         }
-        let progress = Progress {
+        let progress = RunState {
             start: &start,
             motions: &tl.motions,
             folds: &tl.folds,
@@ -96,7 +96,7 @@ fn replay(word: &str, design: Design, law: ForceLaw, cutoff: usize, speed: Speed
                 time
             }
         };
-        let mut win = Window::new(g, progress, law, cutoff, m);
+        let mut win = Neighbourhood::new(g, progress, law, cutoff, m);
         for t in [t0, at, 0.5 * (t0 + at), at + 0.01 * tol.max(1e-12), t0] {
             assert_eq!(
                 win.drive(t).to_bits(),

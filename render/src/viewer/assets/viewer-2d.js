@@ -4,6 +4,8 @@
 // parts, so tiles go in batches).
 
 const BATCH = 200;
+// the collision ring's width, CSS pixels
+const RING_PX = 2.5;
 
 function sx(v, x) { return v.ox + x * v.k; }
 function sy(v, y) { return v.oy - y * v.k; }
@@ -29,28 +31,39 @@ function drawUnder(p) {
   ctx.stroke();
 }
 
-// the RI and the collision ring, on `ctx` (cleared first when it is an overlay)
-function drawOver(p, ctx, clear) {
+// the RI and the collision ring where they are drawn, CSS pixels: the RI's centre and
+// radius, the ring's centre and radius (null without a collision); places the RI's label
+// (text in the page: the canvas's first text costs tens of milliseconds)
+function overMarks(p) {
   const r = p.run, v = p.view, k = v.k;
-  ctx.setTransform(p.dpr, 0, 0, p.dpr, 0, 0);
-  if (clear) ctx.clearRect(0, 0, p.cssW, p.cssH);
   const rx = r.px[0] + r.pc[0] * r.ri[0] - r.ps[0] * r.ri[1];
   const ry = r.py[0] + r.ps[0] * r.ri[0] + r.pc[0] * r.ri[1];
-  const rr = Math.max(r.magnetR * k, 3);
-  ctx.beginPath();
-  ctx.arc(sx(v, rx), sy(v, ry), rr, 0, 2 * Math.PI);
-  ctx.fillStyle = COL.ri;
-  ctx.fill();
-  ctx.font = '11px sans-serif';
-  ctx.textAlign = 'right';
-  ctx.fillText('RI', sx(v, rx) - rr - 3, sy(v, ry) + 4);
+  const m = { x: sx(v, rx), y: sy(v, ry), r: Math.max(r.magnetR * k, 3), ring: null };
+  p.riLabel.style.transform = 'translate(' + (m.x - m.r - 3).toFixed(1) + 'px,' +
+    m.y.toFixed(1) + 'px) translate(-100%,-50%)';
   if (r.hit) {
     const a = r.hit[0], b = r.hit[1];
     const span = Math.hypot(r.px[a] - r.px[b], r.py[a] - r.py[b]) * k;
+    m.ring = { x: sx(v, 0.5 * (r.px[a] + r.px[b])), y: sy(v, 0.5 * (r.py[a] + r.py[b])),
+      r: Math.max(0.5 * span + r.w * k, 14) };
+  }
+  return m;
+}
+
+// the RI and the collision ring on the overlay canvas
+function drawOver(p) {
+  const ctx = p.overCtx, m = overMarks(p);
+  ctx.setTransform(p.dpr, 0, 0, p.dpr, 0, 0);
+  ctx.clearRect(0, 0, p.cssW, p.cssH);
+  p.overDrawn = true;
+  ctx.beginPath();
+  ctx.arc(m.x, m.y, m.r, 0, 2 * Math.PI);
+  ctx.fillStyle = COL.ri;
+  ctx.fill();
+  if (m.ring) {
     ctx.beginPath();
-    ctx.arc(sx(v, 0.5 * (r.px[a] + r.px[b])), sy(v, 0.5 * (r.py[a] + r.py[b])),
-      Math.max(0.5 * span + r.w * k, 14), 0, 2 * Math.PI);
-    ctx.lineWidth = 2.5;
+    ctx.arc(m.ring.x, m.ring.y, m.ring.r, 0, 2 * Math.PI);
+    ctx.lineWidth = RING_PX;
     ctx.strokeStyle = COL.hit;
     ctx.stroke();
   }

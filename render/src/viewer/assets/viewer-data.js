@@ -69,6 +69,26 @@ function decode(d) {
   r.magnetMoving = new Uint8Array(2 * n);
   r.mx = new Float64Array(2 * n); r.my = new Float64Array(2 * n);
   r.hx = new Float64Array(r.joint.length); r.hy = new Float64Array(r.joint.length);
+  // when each magnet stops moving (-Infinity for those that never move)
+  r.mEnd = new Float64Array(2 * n);
+  for (let k = 0; k < 2 * n; k++) {
+    const s = r.mShape[k];
+    r.mEnd[k] = s !== 0 && shapeMoves(r, s) ? r.mStart[k] + shapeLength(r, s) : -Infinity;
+  }
+  // the magnets that move, by start time, with the latest end so far: those moving at t are
+  // among the ones after the first whose latest end so far is past t and that have started
+  const movers = [];
+  for (let k = 0; k < 2 * n; k++) if (r.mEnd[k] > -Infinity) movers.push(k);
+  movers.sort(function (a, b) { return r.mStart[a] - r.mStart[b]; });
+  r.mOrder = Uint32Array.from(movers);
+  r.mOrderStart = new Float64Array(movers.length);
+  r.mOrderEnd = new Float64Array(movers.length);
+  let latest = -Infinity;
+  movers.forEach(function (k, q) {
+    latest = Math.max(latest, r.mEnd[k]);
+    r.mOrderStart[q] = r.mStart[k];
+    r.mOrderEnd[q] = latest;
+  });
   // a joint's fold direction: the sign of its largest angle
   r.jSign = new Float64Array(r.joint.length);
   for (let i = 0; i < r.joint.length; i++) {
@@ -133,11 +153,19 @@ function update(r, t) {
     if (Math.abs(a) >= HALF_PI * (1 - 1e-6)) folded++;
     if (shapeMoves(r, s) && dt >= 0 && dt < shapeLength(r, s)) r.turning[j] = 1;
   }
-  // poses: kinematics::poses_at_angles
+  // poses: kinematics::poses_at_angles; tiles before the first joint still to settle are
+  // where they end (once prepareCamera has recorded the final poses)
   const w = r.w, hw = 0.5 * w, h = r.hingeY;
-  let x = 0, y = 0, ang = 0, c = 1, s = 0;
+  let x = 0, y = 0, ang = 0, c = 1, s = 0, from = 0;
   r.px[0] = 0; r.py[0] = 0; r.pa[0] = 0; r.pc[0] = 1; r.ps[0] = 0;
-  for (let j = 0; j + 1 < n; j++) {
+  if (r.settle) {
+    from = settledAt(r, t);
+    const e = from + 1;
+    r.px.set(r.fx.subarray(0, e)); r.py.set(r.fy.subarray(0, e)); r.pa.set(r.fa.subarray(0, e));
+    r.pc.set(r.fc.subarray(0, e)); r.ps.set(r.fs.subarray(0, e));
+    x = r.px[from]; y = r.py[from]; ang = r.pa[from]; c = r.pc[from]; s = r.ps[from];
+  }
+  for (let j = from; j + 1 < n; j++) {
     const a = r.angle[j];
     let lx = w, ly = 0;
     if (a !== 0) {
@@ -156,19 +184,21 @@ function update(r, t) {
   }
   // what moves
   let moving = 0;
-  r.cls.fill(0);
-  for (let k = 0; k < 2 * n; k++) {
-    const sh = r.mShape[k];
-    let m = 0;
-    if (sh !== 0 && shapeMoves(r, sh)) {
-      const dt = t - r.mStart[k];
-      m = dt >= 0 && dt < shapeLength(r, sh) && t < r.end ? 1 : 0;
+  const mm = r.magnetMoving, cls = r.cls;
+  cls.fill(0);
+  mm.fill(0);
+  if (t < r.end) {
+    const os = r.mOrderStart, oe = r.mOrderEnd;
+    let lo = 0, hi = os.length;
+    while (lo < hi) { const m = (lo + hi) >> 1; if (oe[m] <= t) lo = m + 1; else hi = m; }
+    for (let q = lo; q < os.length && os[q] <= t; q++) {
+      const k = r.mOrder[q];
+      if (t < r.mEnd[k]) { mm[k] = 1; moving++; cls[k >> 1] = 1; }
     }
-    r.magnetMoving[k] = m;
-    if (m) { moving++; r.cls[k >> 1] = 1; }
   }
-  for (let j = 0; j + 1 < n; j++) {
-    if (r.turning[j]) { r.cls[j] = 2; r.cls[j + 1] = 2; }
+  for (let q = 0; q < r.joint.length; q++) {
+    const j = r.joint[q];
+    if (r.turning[j]) { cls[j] = 2; cls[j + 1] = 2; }
   }
   r.hit = null;
   if (r.collision) {
@@ -198,4 +228,68 @@ function placeDetail(r, t) {
     r.hx[q] = r.px[j] + r.pc[j] * hx - r.ps[j] * hy;
     r.hy[q] = r.py[j] + r.ps[j] * hx + r.pc[j] * hy;
   }
+}
+
+// ---------- what the camera follows ----------
+// The final poses' running box (tiles 0..i) and each joint's settling time (when it
+// reaches its final angle) as a prefix maximum: tiles up to the first joint still to settle
+// are in their final pose. Leaves the chain at its end.
+function prepareCamera(r) {
+  const n = r.tiles;
+  update(r, r.end);
+  r.bx0 = new Float64Array(n); r.by0 = new Float64Array(n);
+  r.bx1 = new Float64Array(n); r.by1 = new Float64Array(n);
+  r.fx = Float64Array.from(r.px); r.fy = Float64Array.from(r.py); r.fa = Float64Array.from(r.pa);
+  r.fc = Float64Array.from(r.pc); r.fs = Float64Array.from(r.ps);
+  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  for (let i = 0; i < n; i++) {
+    x0 = Math.min(x0, r.px[i]); y0 = Math.min(y0, r.py[i]);
+    x1 = Math.max(x1, r.px[i]); y1 = Math.max(y1, r.py[i]);
+    r.bx0[i] = x0; r.by0[i] = y0; r.bx1[i] = x1; r.by1[i] = y1;
+  }
+  const settle = new Float64Array(Math.max(n - 1, 0)).fill(-Infinity);
+  for (let q = 0; q < r.joint.length; q++) {
+    const j = r.joint[q], s = r.jShape[q];
+    if (shapeMoves(r, s)) settle[j] = Math.max(settle[j], r.jStart[q] + shapeLength(r, s));
+  }
+  for (let j = 1; j < n - 1; j++) settle[j] = Math.max(settle[j], settle[j - 1]);
+  r.settle = settle;
+  // the folded part's reach on a grid of REACH_STEPS over the run, made to grow at most
+  // twice as fast as on average by growing earlier (a pass from the end): where the reach
+  // leaps (a straight row settles at once) it grows steadily before the leap instead
+  const reach = new Float64Array(REACH_STEPS + 1);
+  for (let i = 0; i <= REACH_STEPS; i++) reach[i] = foldedTo(r, r.end * i / REACH_STEPS);
+  const most = 2 * Math.max(reach[REACH_STEPS] - reach[0], 1) / REACH_STEPS;
+  for (let i = REACH_STEPS - 1; i >= 0; i--) reach[i] = Math.max(reach[i], reach[i + 1] - most);
+  r.reach = reach;
+}
+
+// grid steps of the folded part's smoothed reach
+const REACH_STEPS = 1024;
+
+// how far the folded part reaches at time t, smoothed (prepareCamera), in tiles
+function reachAt(r, t) {
+  if (!(r.end > 0) || t >= r.end) return r.tiles - 1;
+  const u = Math.max(t, 0) / r.end * REACH_STEPS, i = Math.min(Math.floor(u), REACH_STEPS - 1);
+  return r.reach[i] + (u - i) * (r.reach[i + 1] - r.reach[i]);
+}
+
+// the first tile that may be away from its final pose at time t (tiles before it are where
+// they end)
+function settledAt(r, t) {
+  let lo = 0, hi = r.settle.length;
+  while (lo < hi) { const m = (lo + hi) >> 1; if (r.settle[m] <= t) lo = m + 1; else hi = m; }
+  return lo;
+}
+
+// how far the folded part reaches at time t, in tiles, continuous in t: from the first
+// unsettled tile when the last joint before it settled to the next such tile when the
+// joint holding it back settles
+function foldedTo(r, t) {
+  const j = settledAt(r, t);
+  if (j >= r.settle.length) return r.tiles - 1;
+  const from = j > 0 ? Math.max(r.settle[j - 1], 0) : 0, to = r.settle[j];
+  if (!(to > from) || t <= from) return j;
+  const next = settledAt(r, to);
+  return j + (next - j) * Math.min((t - from) / (to - from), 1);
 }

@@ -5,7 +5,7 @@
 
 use crate::engine::local::solve::step::interpolate;
 use crate::engine::local::solve::{LocalEvent, Solver, M, Z};
-use crate::engine::local::window::Var;
+use crate::engine::local::unit_forces::Var;
 use crate::model::{at_wall, InertialModel};
 use crate::model::{Mode, Model};
 use crate::ode::locate::bisect;

@@ -1,7 +1,7 @@
 //! One unit's local solve: its unknowns integrated in time with every other magnet and
 //! joint on its track (upstream: solved; downstream: at rest, or the previous sweep's),
 //! by Dormand-Prince 5(4) with adaptive steps ([`step`]), or by RODAS4 ([`rosenbrock`])
-//! while an inertial unit is stiff (Hairer's test on the Dormand-Prince stages); the
+//! while a unit is stiff (Hairer's test on the Dormand-Prince stages); the
 //! error is measured on the positions, a velocity's as the position error it makes in the
 //! unit's inertial time (the magnets' fast relaxation is no reason for small steps once it
 //! has died out). The rates and the switches
@@ -25,7 +25,7 @@ mod step;
 pub(crate) use crate::model::InertialModel;
 
 use crate::engine::local::trajectory::Shape;
-use crate::engine::local::window::{Inputs, Scratch, Window};
+use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces};
 use crate::model::Mode;
 use crate::ode::locate::bisect;
 use crate::ode::{hermite, integral};
@@ -99,7 +99,7 @@ pub(crate) struct Solution {
 
 /// A local solve in progress.
 pub(super) struct Solver<'a> {
-    w: &'a Window<'a>,
+    w: &'a UnitForces<'a>,
     inputs: Inputs<'a>,
     opts: SolveOptions<'a>,
     t_ref: f64,
@@ -213,7 +213,7 @@ impl Solver<'_> {
 }
 
 /// Solves unit `w` against `inputs`.
-pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
+pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
     let tracks = w.input_tracks(&inputs);
     let first = tracks
         .iter()
@@ -342,8 +342,8 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
                 break;
             };
             let margin = s.release_margin(&d);
-            // (inertial units: the overdamped rows of fold-validate stay as they were)
-            let skip = opts.rest_skip && opts.inertial.is_some() && margin < 0.0;
+            // (overdamped units too: a neighbour of a slow fold waits through its long track)
+            let skip = opts.rest_skip && margin < 0.0;
             if let Some((tp, mp)) = rest_prev.filter(|&(tp, _)| skip && tp < tau) {
                 let rate = ((margin - mp) / (tau - tp)).abs();
                 for _ in 1..MAX_SKIP {
@@ -401,12 +401,13 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
         // the method: Dormand-Prince until its step is bounded by stability (Hairer's test,
         // h |lambda| > 3.25, three attempts in a row), RODAS4 until the step it takes is
         // one Dormand-Prince could take stably (h |J| < 1, three steps in a row)
-        // (inertial units only: an overdamped unit's stiff stretches are short, and
-        // Dormand-Prince, more accurate at the same tolerance, keeps its events closer)
+        // (overdamped units too: with both free sides a fold's drag grows as the sum of r^2
+        // over the chain either side, so a U-turn in a long serpentine turns for days while
+        // its pair's magnets relax in tenths of a second)
         let other = if stiff {
             st.stiffness < 1.0 && err <= 1.0
         } else {
-            opts.rosenbrock && opts.inertial.is_some() && st.stiffness > 3.25
+            opts.rosenbrock && st.stiffness > 3.25
         };
         streak = if other { streak + 1 } else { 0 };
         if streak >= 3 {
@@ -498,7 +499,7 @@ pub(crate) fn solve(w: &Window, inputs: Inputs, opts: SolveOptions) -> (f64, Sol
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
-    use crate::engine::local::sweeps::ChainSolution;
+    use crate::engine::local::relaxation::ChainSolution;
     use crate::model::Dynamics;
 
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {

@@ -1,0 +1,203 @@
+//! Planning by caps: along each axis the shape is peeled into caps ([`crate::caps`]), whose
+//! order and stacking directions fold in sequence by construction; each decomposition is
+//! laid out exactly by the cell router ([`crate::route`]), the tile width is searched so that
+//! the chain holds about the asked number of tiles ([`crate::sizing`]), and the cheapest
+//! routes are checked by sequential folding and for empty parts like every plan.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use crate::caps::{cap_plans, CapPlan};
+use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
+use crate::check::CheckMemo;
+use crate::fit::plan_score;
+use crate::frame::Orientation;
+use crate::options::{PlanOptions, DEFAULT_TILES};
+use crate::plan::Plan;
+use crate::route::{route_sequence, Need, Routed};
+use crate::rows::Style;
+use crate::shape::Shape;
+use crate::sizing::{width_for, Attempt, SizeSearch};
+
+/// Cap decompositions routed per axis (the cheapest).
+const DECOMPOSITIONS: usize = 2;
+/// Sweep axes routed (the cheapest, see [`best_axes`]).
+const AXES_ROUTED: usize = 2;
+/// Routes kept per decomposition.
+const ROUTES_PER_DECOMPOSITION: usize = 2;
+/// Size steps of the tile width search.
+const SIZE_STEPS: usize = 10;
+/// Factors tried on the tile width when every route at the width the steps settle on
+/// collides or leaves a part empty: the joins then fall on the cells at other phases.
+const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
+
+/// The routes at tile width `w` of every axis with its cap decompositions (found at width
+/// `w0`), cheapest first, with their axis.
+fn routes_at(
+    shape: &Shape,
+    axes: &[(f64, Vec<CapPlan>, f64)],
+    style: Style,
+    w: f64,
+) -> Vec<(f64, Arc<Routed>)> {
+    let memo = CheckMemo::default();
+    let mut routes: Vec<(f64, Arc<Routed>)> = axes
+        .par_iter()
+        .flat_map_iter(|(a, plans, w0)| {
+            let a = *a;
+            let axis_shape = Orientation::along(a).work_shape(shape, w);
+            // the decompositions found at width w0, in tile units of this width
+            let k = w0 / w;
+            let plans = plans.clone().into_iter().map(move |mut p| {
+                for c in &mut p.cells {
+                    c.rect = kurbo::Rect::new(
+                        c.rect.x0 * k,
+                        c.rect.y0 * k,
+                        c.rect.x1 * k,
+                        c.rect.y1 * k,
+                    );
+                }
+                p
+            });
+            let memo = &memo;
+            plans
+                .into_iter()
+                .take(DECOMPOSITIONS)
+                .flat_map(move |p| {
+                    let cells: Vec<Shape> =
+                        p.cells.iter().map(|c| axis_shape.clipped(c.rect)).collect();
+                    let seq: Vec<(&Shape, Need)> = cells
+                        .iter()
+                        .zip(&p.cells)
+                        .map(|(s, c)| (s, Some((c.n.vec(), c.either_sign))))
+                        .collect();
+                    route_sequence(&seq, style, memo)
+                        .into_iter()
+                        .take(ROUTES_PER_DECOMPOSITION)
+                        .filter_map(|r| r.to_routed(style))
+                        .map(|r| (a, Arc::new(r)))
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    routes.sort_by(|x, y| x.1.cost.total_cmp(&y.1.cost));
+    routes
+}
+
+/// The sweep axes worth routing: the [`AXES_ROUTED`] whose cheapest cap decomposition at tile
+/// width `w` is cheapest (the decompositions' prices change little with the width, so the
+/// width search routes these only).
+fn best_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> Vec<(f64, Vec<CapPlan>, f64)> {
+    let mut priced: Vec<(f64, f64, Vec<CapPlan>)> = axes
+        .par_iter()
+        .map(|&a| {
+            let axis_shape = Orientation::along(a).work_shape(shape, w);
+            let plans: Vec<CapPlan> = cap_plans(&axis_shape, style.pitch)
+                .into_iter()
+                .take(DECOMPOSITIONS)
+                .collect();
+            let cost = plans.first().map_or(f64::INFINITY, |p| p.cost);
+            (cost, a, plans)
+        })
+        .collect();
+    priced.sort_by(|x, y| x.0.total_cmp(&y.0));
+    priced
+        .into_iter()
+        .filter(|p| p.0.is_finite())
+        .take(AXES_ROUTED)
+        .map(|p| (p.1, p.2, w))
+        .collect()
+}
+
+/// Plans `shape` by caps with one turn style (see the module documentation), or says why
+/// no route was found, with the best route rejected for an empty part.
+pub(crate) fn plan_by_caps(
+    shape: &Shape,
+    opts: &PlanOptions,
+    style: Style,
+    name: &str,
+) -> Result<Plan, CellFailure> {
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let w0 = opts
+        .tile_size
+        .unwrap_or_else(|| width_for(shape.area(), target, style.pitch));
+    let axes = best_axes(shape, &axes(shape), style, w0);
+    let tol = (opts.tiles_tolerance * target as f64) as usize;
+    let search = SizeSearch {
+        secant_steps: if opts.tile_size.is_some() {
+            1
+        } else {
+            SIZE_STEPS
+        },
+        nudges: &[],
+        tolerance: tol,
+        explore: false,
+        shrink_when_empty: None,
+        retries: if opts.tile_size.is_none() {
+            &RETRIES
+        } else {
+            &[]
+        },
+        // a plan that leaves a part empty (cost 1) keeps the search going
+        settle_cost: 0.0,
+    };
+    let miss = |p: &Plan| match opts.tile_size {
+        Some(_) => 0,
+        None => p.tiles.abs_diff(target).saturating_sub(tol),
+    };
+    let empty = |p: &Plan| p.metrics.largest_empty_tiles > 0.0;
+    let by_rank = |x: &Plan, y: &Plan| {
+        miss(x)
+            .cmp(&miss(y))
+            .then(empty(x).cmp(&empty(y)))
+            .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
+    };
+
+    let mut failed = Failed::default();
+    let found = search.run_checked(target, w0, |w| {
+        let mut routes = routes_at(shape, &axes, style, w);
+        if opts.tile_size.is_none() {
+            routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
+        }
+        let Some(first) = routes.first() else {
+            return Attempt::Nothing;
+        };
+        let n = first.1.word.tiles();
+        let plans = checked_plans(
+            shape,
+            style,
+            w,
+            name,
+            &routes,
+            crate::empty::near(opts.turns),
+            &mut failed,
+        );
+        // a count within the tolerance first, then no part left empty, then the fit
+        match plans.into_iter().min_by(by_rank) {
+            Some(p) => {
+                let lacks = if p.metrics.largest_empty_tiles > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                };
+                Attempt::Plan(p.tiles, lacks, p)
+            }
+            None => Attempt::Rejected(n),
+        }
+    });
+    match found.map(|f| f.plans) {
+        Some(p) => Ok(p),
+        None => match failed.rejected {
+            Some((text, r)) => Err((text, Some(r))),
+            None if !failed.collide.is_empty() => Err((
+                format!(
+                    "every cap route collides when folded (first: {})",
+                    failed.collide
+                ),
+                None,
+            )),
+            None => Err(("no cap decomposition".into(), None)),
+        },
+    }
+}

@@ -1,0 +1,103 @@
+//! The free-body reference (issue 27): momentum conserved without drag, both sides of a fold
+//! turning, the options it refuses.
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+use std::f64::consts::FRAC_PI_2;
+
+use foldchain::model::{Dynamics, ModelOptions};
+use foldchain::reference::free_body::FreeBodyError;
+use foldchain::reference::{run_free_body, FreeBodyOptions, ReferenceOptions};
+use foldchain::timeline::{Outcome, TileDesigns};
+use foldchain::{Chain, Design};
+
+fn run(word: &str, opts: &FreeBodyOptions) -> foldchain::reference::FreeBodyRun {
+    run_in(word, &TileDesigns::default(), opts)
+}
+
+fn run_in(
+    word: &str,
+    designs: &TileDesigns,
+    opts: &FreeBodyOptions,
+) -> foldchain::reference::FreeBodyRun {
+    run_free_body(&Chain::parse(word).unwrap(), designs, opts).unwrap()
+}
+
+#[test]
+fn momentum_is_conserved_without_drag() {
+    // no water: the pair forces are internal and central, a fold's bounce and arrival an
+    // impulse inside the chain; from rest the momentum stays zero, within 1e-9 of the
+    // momenta of the parts that move (measured: 1.4e-10 at most over these chains at
+    // tolerance 1e-10; about 1e-8 at the default 1e-8, the integrator's own error)
+    let still = TileDesigns::global(Design {
+        water_viscosity: 0.0,
+        ..Design::thesis()
+    });
+    let base = FreeBodyOptions::default().with_momentum_track();
+    let opts = base.with_reference(base.reference.with_tolerance(1e-10));
+    for word in ["SLS", "SLLS", "SLSRS", "SSLSSRRS"] {
+        let r = run_in(word, &still, &opts);
+        assert_eq!(r.run.outcome, Outcome::Completed, "{word}");
+        let (mut p, mut l, mut ps, mut ls): (f64, f64, f64, f64) = (0.0, 0.0, 0.0, 0.0);
+        for m in &r.momentum {
+            p = p.max(m.linear[0].hypot(m.linear[1]));
+            l = l.max(m.angular.abs());
+            ps = ps.max(m.linear_scale);
+            ls = ls.max(m.angular_scale);
+        }
+        // the parts moved (tip speeds of tenths of a metre per second), and the chain
+        // turned and moved as a whole
+        assert!(ps > 1e-4 && ls > 1e-7, "{word}: {ps} {ls}");
+        println!(
+            "{word}: linear {:.2e}, angular {:.2e} of the parts'",
+            p / ps,
+            l / ls
+        );
+        assert!(p <= 1e-9 * ps, "{word}: linear {p:.3e} against {ps:.3e}");
+        assert!(l <= 1e-9 * ls, "{word}: angular {l:.3e} against {ls:.3e}");
+        let last = r.base.last().unwrap().1;
+        assert!(last[2].abs() > 0.1, "{word}: tile 0 turned {}", last[2]);
+    }
+}
+
+#[test]
+fn a_short_head_turns_about_a_long_tail() {
+    // S*2 L S*20: three tiles against twenty-one; nothing anchored, the head swings round
+    // (tile 0 turns by most of the fold) and the tail's heading changes far less
+    let r = run("S*2LS*20", &FreeBodyOptions::default());
+    assert_eq!(r.run.folded_joints(), vec![2]);
+    let head = r.base.last().unwrap().1[2];
+    let tail = head + FRAC_PI_2;
+    assert!(head < -0.5 * FRAC_PI_2, "head turned {head}");
+    assert!(tail.abs() < 0.25 * head.abs(), "tail {tail} head {head}");
+    // the mirror image: a right fold turns the head the other way
+    let m = run("S*2RS*20", &FreeBodyOptions::default());
+    let mirror = m.base.last().unwrap().1[2];
+    assert!((mirror + head).abs() < 1e-6 * head.abs(), "{mirror} {head}");
+}
+
+#[test]
+fn what_it_does_not_take_is_refused() {
+    let chain = Chain::parse("SLS").unwrap();
+    let d = TileDesigns::default();
+    let overdamped = FreeBodyOptions::default().with_reference(
+        ReferenceOptions::default()
+            .with_model(ModelOptions::default().with_dynamics(Dynamics::Overdamped)),
+    );
+    assert!(matches!(
+        run_free_body(&chain, &d, &overdamped),
+        Err(FreeBodyError::Unsupported { .. })
+    ));
+    let light = TileDesigns::global(Design {
+        tile_mass: 0.0,
+        ..Design::thesis()
+    });
+    let e = run_free_body(&chain, &light, &FreeBodyOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("tile_mass"), "{e}");
+    let cutoff = FreeBodyOptions::default();
+    let cutoff = cutoff.with_reference(
+        cutoff
+            .reference
+            .with_model(cutoff.reference.model.with_distance_cutoff(Some(90.0))),
+    );
+    assert!(run_free_body(&chain, &d, &cutoff).is_err());
+}
