@@ -346,6 +346,7 @@ impl Driver {
         let mut events = self.log.events;
         events.extend(outcome.stop_event(time));
         ReferenceRun {
+            made_by: "joint-angle reference",
             end_time: self.t,
             final_state: self.y,
             states,

@@ -350,6 +350,7 @@ pub(crate) fn run_inertial(
     events.extend(outcome.stop_event(time));
     let states = rec.map(|r| r.finish(t, &y)).unwrap_or_default();
     ReferenceRun {
+        made_by: "joint-angle reference",
         end_time: t,
         final_state: y,
         states,

@@ -44,6 +44,9 @@ pub struct ReferenceRun {
     pub max_moving: (usize, f64),
     /// Work counters.
     pub stats: StepStats,
+    /// Which reference made the run, as `summary.json`'s parameters name it
+    /// ("joint-angle reference" or "free-body reference").
+    pub made_by: &'static str,
 }
 
 /// The law a reference timeline's times are in, as its JSON names it.
@@ -124,7 +127,7 @@ impl ReferenceRun {
                 },
             },
         });
-        let mut summary = summary.with_parameters(self.model.parameters("joint-angle reference"));
+        let mut summary = summary.with_parameters(self.model.parameters(self.made_by));
         // the joints' angles against time are known only from recorded states
         if !self.states.is_empty() {
             summary = summary.with_free_motion(self.model.free_motion(self));

@@ -697,6 +697,7 @@ impl Driver {
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
         FreeBodyRun {
             run: ReferenceRun {
+                made_by: "free-body reference",
                 end_time: self.t,
                 final_state: y,
                 states,
