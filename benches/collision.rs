@@ -3,24 +3,25 @@
 //! 1. The sequential check (`check_word`: every fold sweep and the final shape) of serpentine
 //!    chains from 1,000 to 1,000,000 tiles, rows of about sqrt(n) tiles.
 //! 2. The 10^6-tile serpentine of rows of 1,000 (`S*998 L L S*998 R R ...`): the whole check,
-//!    the sweeps alone and the final shape alone (`final_overlap`).
-//! 3. The timed schedule check (`check_schedule`) of the event engine's fold schedule at
-//!    `s = 0.1 mm` (the two folds of each U-turn overlap in time) for serpentines of 1,000 to
-//!    100,000 tiles; the engine's run is not timed.
+//!    the sweeps alone and the final shape alone (`check_word` with `final_only`, less the
+//!    final poses).
+//! 3. The timed schedule check of the event engine's fold schedule at `s = 0.1 mm` (the two
+//!    folds of each U-turn overlap in time) for serpentines of 1,000 to 100,000 tiles, through
+//!    `Timeline::checked_summary` (the schedule's sampling and the summary included, both
+//!    small beside the check); the engine's run is not timed.
 //!
-//! 4. `cargo bench --bench collision -- --local WORD_FILE [SCHEDULE.json]`: only the timed
-//!    check of the default engine's schedule (local solves, inertial, s = 0.1 mm) of the chain
-//!    in `WORD_FILE` (e.g. `benches/serpentine-100k.txt`), on one thread and on all; the
-//!    schedule is kept in `SCHEDULE.json` when given (read from it when it exists), so the
-//!    engine runs once.
+//! 4. `cargo bench --bench collision -- --local WORD_FILE`: only the timed check of the
+//!    default engine's schedule (local solves, inertial, s = 0.1 mm) of the chain in
+//!    `WORD_FILE` (e.g. `benches/serpentine-100k.txt`), on one thread and on all.
 //!
 //! (The counting benchmark is `benches/count.rs`.)
 
 use std::time::Instant;
 
-use foldchain::collision::{check_schedule, check_word, final_overlap, CheckOptions, FoldSchedule};
+use foldchain::collision::{check_word, CheckOptions};
 use foldchain::engine::{run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::model::{Dynamics, ModelOptions};
+use foldchain::timeline::Summary;
 use foldchain::{Fold, FoldWord};
 
 /// Rows of `row` tiles joined by tight U-turns that alternate in direction, `tiles` in all.
@@ -69,10 +70,21 @@ fn verdict<E>(r: &Result<(), E>) -> &'static str {
     }
 }
 
+/// A timed check's verdict: `clean`, the collision, or why it could not decide.
+fn timed_verdict<E: std::fmt::Display>(summary: &Result<Summary, E>) -> String {
+    match summary {
+        Ok(s) => match &s.reason {
+            Some(reason) if !s.completed => reason.clone(),
+            _ => "clean".to_string(),
+        },
+        Err(e) => e.to_string(),
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--local") {
-        local_check(&args[i + 1], args.get(i + 2).map(String::as_str));
+        local_check(&args[i + 1]);
         return;
     }
     let opts = CheckOptions::default();
@@ -99,10 +111,10 @@ fn main() {
         });
     }
     let w = FoldWord::from_folds(folds);
-    let poses = w.final_poses();
     let (all, r) = median(5, || check_word(&w, &opts));
-    let (finals, _) = median(5, || final_overlap(&poses));
+    let (final_check, _) = median(5, || check_word(&w, &opts.with_final_only(true)));
     let (kin, _) = median(5, || w.final_poses());
+    let finals = final_check - kin;
     println!();
     println!("The {}-tile serpentine of rows of 1,000:", w.tiles());
     println!("| part | seconds (median of 5) |");
@@ -112,7 +124,7 @@ fn main() {
         verdict(&r)
     );
     println!("| final poses (`kinematics::final_poses`) | {kin:.4} |");
-    println!("| final shape (`final_overlap`) | {finals:.4} |");
+    println!("| final shape (`final_only`, less the final poses) | {finals:.4} |");
     println!("| sweeps (the rest) | {:.4} |", all - kin - finals);
 
     println!();
@@ -130,48 +142,31 @@ fn main() {
             println!("| {tiles} | {row} | - | engine refused the chain | - |");
             continue;
         };
-        let (word, schedule) = (tl.folded_word(), tl.fold_schedule());
-        let (s, r) = median(3, || check_schedule(&word, &schedule, &opts));
-        let v = match &r {
-            Ok(()) => "clean".to_string(),
-            Err(e) => e.to_string(),
-        };
-        println!("| {tiles} | {row} | {} | {s:.3} | {v} |", tl.folds.len());
+        let (s, r) = median(3, || tl.checked_summary(&opts));
+        println!(
+            "| {tiles} | {row} | {} | {s:.3} | {} |",
+            tl.folds.len(),
+            timed_verdict(&r)
+        );
     }
 }
 
 /// Section 4: the timed check of the local engine's schedule of the chain in `file`.
-fn local_check(file: &str, cache: Option<&str>) {
+fn local_check(file: &str) {
     let text = std::fs::read_to_string(file).expect("word file");
     let chain = FoldWord::parse(text.trim()).expect("fold word").to_chain();
-    let cached = cache.and_then(|c| std::fs::read_to_string(c).ok());
-    let (word, schedule): (FoldWord, FoldSchedule) = match cached {
-        Some(json) => {
-            let (w, s): (String, FoldSchedule) = serde_json::from_str(&json).expect("cache");
-            (FoldWord::parse(&w).expect("cached word"), s)
-        }
-        None => {
-            let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
-            let t = Instant::now();
-            let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
-            let opts = EngineOptions::default().with_model(model);
-            let tl = run(&chain, &designs, &opts).expect("engine");
-            println!("engine: {:.2} s", t.elapsed().as_secs_f64());
-            let (w, s) = (tl.folded_word(), tl.fold_schedule());
-            if let Some(c) = cache {
-                let json = serde_json::to_string(&(w.to_string(), &s)).expect("json");
-                std::fs::write(c, json).expect("write cache");
-            }
-            (w, s)
-        }
-    };
+    let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
+    let t = Instant::now();
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
+    let tl = run(
+        &chain,
+        &designs,
+        &EngineOptions::default().with_model(model),
+    )
+    .expect("engine");
+    println!("engine: {:.2} s", t.elapsed().as_secs_f64());
     let opts = CheckOptions::default();
-    let segments: usize = schedule.tracks.iter().map(|t| t.times.len()).sum();
-    println!(
-        "{} tiles, {} folds, {segments} track points",
-        word.tiles(),
-        schedule.tracks.len()
-    );
+    println!("{} tiles, {} folds", tl.tiles(), tl.folds.len());
     // FOLDCHAIN_BENCH_THREADS=n: only that many threads, one run
     let only: Option<usize> = std::env::var("FOLDCHAIN_BENCH_THREADS")
         .ok()
@@ -185,16 +180,11 @@ fn local_check(file: &str, cache: Option<&str>) {
             .num_threads(threads)
             .build()
             .expect("pool");
-        let (s, r) = median(runs, || {
-            pool.install(|| check_schedule(&word, &schedule, &opts))
-        });
-        let v = match &r {
-            Ok(()) => "clean".to_string(),
-            Err(e) => e.to_string(),
-        };
+        let (s, r) = median(runs, || pool.install(|| tl.checked_summary(&opts)));
         println!(
-            "threads {}: {s:.3} s (median of {runs}): {v}",
-            pool.current_num_threads()
+            "threads {}: {s:.3} s (median of {runs}): {}",
+            pool.current_num_threads(),
+            timed_verdict(&r)
         );
     }
 }

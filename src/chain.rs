@@ -50,19 +50,6 @@ impl TryFrom<ChainJson> for Chain {
 }
 
 impl Chain {
-    /// Reads a chain from a command-line argument: if it names an existing file, the file's
-    /// contents (lines starting with `#` are comments); otherwise the argument itself (a fold
-    /// word, a tile list or JSON).
-    ///
-    /// ```
-    /// use foldchain::Chain;
-    ///
-    /// assert_eq!(Chain::read_arg("SLLS").unwrap(), Chain::parse("SLLS").unwrap());
-    /// ```
-    pub fn read_arg(arg: &str) -> Result<Chain, crate::input::InputError> {
-        crate::input::read_chain_arg(arg)
-    }
-
     /// The largest number of tiles the parsers accept: twenty million, far beyond any chain
     /// built and within what the checks and the engine handle in a minute or so and a few
     /// GiB; a guard against hostile run-length counts such as `SS*99999999999`.

@@ -1,5 +1,5 @@
 //! The choice between the event engine's local solves and its kinematic baseline for a chain
-//! (`fold-run --engine auto`): [`auto_engine`].
+//! (`fold-run --engine auto`): [`AutoEngine::of`].
 //!
 //! The local solves cache a unit's solution by its window and its inputs, so a chain costs
 //! about one solve per distinct neighbourhood of its joints (the transient after a turn dies
@@ -11,60 +11,55 @@
 
 use std::collections::HashSet;
 
+use crate::engine::EngineMethod;
 use crate::timeline::TileDesigns;
 use crate::Chain;
 
 /// Tiles either side of a joint in its neighbourhood: 12.
-pub const NEIGHBOURHOOD_RADIUS: usize = 12;
+pub(crate) const NEIGHBOURHOOD_RADIUS: usize = 12;
 
 /// `--engine auto` uses the local solves up to this many distinct neighbourhoods (a
 /// 2,000-tile random fold word: some 6 s of overdamped local solves, 25 s inertial).
-pub const LOCAL_ENGINE_MAX_NEIGHBOURHOODS: usize = 2_000;
+pub(crate) const LOCAL_ENGINE_MAX_NEIGHBOURHOODS: usize = 2_000;
 
-/// How the event engine times a chain's events.
+/// What [`AutoEngine::of`] chose, and on what grounds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
-pub enum EngineKind {
-    /// Local solves of the reference's physics, one joint at a time.
-    Local,
-    /// The kinematic baseline: a start rule and a closed-form speed law.
-    Kinematic,
-}
-
-/// What [`auto_engine`] chose, and on what grounds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AutoEngine {
-    /// The engine chosen.
-    pub kind: EngineKind,
-    /// The chain's distinct joint neighbourhoods ([`distinct_neighbourhoods`]).
+    /// The engine's method chosen.
+    pub method: EngineMethod,
+    /// The chain's distinct joint neighbourhoods (the tiles and their designs within 12 tiles
+    /// of a joint).
     pub neighbourhoods: usize,
 }
 
-/// The local solves when the chain has at most [`LOCAL_ENGINE_MAX_NEIGHBOURHOODS`] distinct
-/// joint neighbourhoods (their cost), the kinematic baseline beyond.
-///
-/// ```
-/// use foldchain::engine::TileDesigns;
-/// use foldchain::{auto_engine, Chain, EngineKind};
-/// let serpentine = Chain::parse(&"S*300 LL S*300 RR ".repeat(20)).unwrap();
-/// assert_eq!(auto_engine(&serpentine, &TileDesigns::default()).kind, EngineKind::Local);
-/// ```
-pub fn auto_engine(chain: &Chain, designs: &TileDesigns) -> AutoEngine {
-    let neighbourhoods = distinct_neighbourhoods(chain, designs);
-    AutoEngine {
-        kind: if neighbourhoods > LOCAL_ENGINE_MAX_NEIGHBOURHOODS {
-            EngineKind::Kinematic
-        } else {
-            EngineKind::Local
-        },
-        neighbourhoods,
+impl AutoEngine {
+    /// The local solves when `chain` has at most 2,000 distinct joint neighbourhoods (their
+    /// cost: about one solve each), the kinematic baseline beyond: `fold-run --engine auto`.
+    ///
+    /// ```
+    /// use foldchain::engine::{EngineMethod, TileDesigns};
+    /// use foldchain::{AutoEngine, Chain};
+    /// let serpentine = Chain::parse(&"S*300 LL S*300 RR ".repeat(20)).unwrap();
+    /// assert_eq!(AutoEngine::of(&serpentine, &TileDesigns::default()).method, EngineMethod::Local);
+    /// ```
+    pub fn of(chain: &Chain, designs: &TileDesigns) -> AutoEngine {
+        let neighbourhoods = distinct_neighbourhoods(chain, designs);
+        AutoEngine {
+            method: if neighbourhoods > LOCAL_ENGINE_MAX_NEIGHBOURHOODS {
+                EngineMethod::Kinematic
+            } else {
+                EngineMethod::Local
+            },
+            neighbourhoods,
+        }
     }
 }
 
 /// How many distinct neighbourhoods (the tiles and their designs within
 /// [`NEIGHBOURHOOD_RADIUS`] of a joint) `chain`'s joints have, the joints within the radius of
 /// either end each counted as distinct.
-pub fn distinct_neighbourhoods(chain: &Chain, designs: &TileDesigns) -> usize {
+pub(crate) fn distinct_neighbourhoods(chain: &Chain, designs: &TileDesigns) -> usize {
     let tiles = chain.tiles();
     let n = tiles.len();
     let width = 2 * NEIGHBOURHOOD_RADIUS + 1;

@@ -1,4 +1,4 @@
-//! Errors of the chain formats and conversions.
+//! Errors of the chain formats and conversions, a tile's name included.
 
 /// Why a chain could not be read or converted.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -65,4 +65,7 @@ pub enum ChainError {
     /// JSON that is not a chain.
     #[error("bad chain JSON: {0}")]
     Json(String),
+    /// A tile name that is not two of the letters S, L, R (`"SX".parse::<Tile>()`).
+    #[error("'{0}' is not a tile: expected two of the letters S, L, R (e.g. SL)")]
+    NotATile(String),
 }

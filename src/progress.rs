@@ -2,7 +2,8 @@
 //! (`foldchain` and `foldchain-planner`), so that a tool shows one progress display
 //! whatever it runs.
 //!
-//! A closure `Fn(&str, u64, u64) + Sync` is a [`Progress`]; so is [`NoProgress`].
+//! A closure `Fn(&str, u64, u64) + Sync` is a [`Progress`]; so is `()`, progress that goes
+//! nowhere.
 //!
 //! ```
 //! use foldchain::Progress;
@@ -29,9 +30,6 @@ impl<F: Fn(&str, u64, u64) + Sync> Progress for F {
 }
 
 /// Progress that goes nowhere.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoProgress;
-
-impl Progress for NoProgress {
+impl Progress for () {
     fn update(&self, _stage: &str, _done: u64, _total: u64) {}
 }

@@ -1,32 +1,62 @@
 //! A simulation as one call: the event engine's timeline of a chain, its fold schedule
 //! checked for self-intersection, and the summary of both ([`simulate`], or its two steps:
-//! [`crate::engine::run`] then [`check_engine_run`]); a reference run's recorded fold
-//! schedule checked the same way ([`check_reference`]).
+//! [`crate::engine::run`] then [`Timeline::checked_summary`]); a reference run's recorded
+//! fold schedule checked the same way ([`ReferenceRun::checked_summary`]).
 
 use crate::collision::{
     check_schedule, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError,
 };
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
-use crate::reference::{joint_angle_samples, ReferenceRun};
+use crate::reference::{joint_angle_samples, ReferenceError, ReferenceRun};
 use crate::timeline::{CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track};
 use crate::{Chain, Fold, FoldWord};
-
-/// Why a simulation could not be made.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum SimulateError {
-    /// The engine refused the input.
-    #[error(transparent)]
-    Engine(#[from] EngineError),
-    /// The fold schedule was malformed (an engine bug, reported rather than hidden).
-    #[error("fold schedule: {0}")]
-    Schedule(ScheduleError),
-}
 
 impl Timeline {
     /// The fold word of what actually folds: each joint's fold if it turned, else S.
     pub fn folded_word(&self) -> FoldWord {
         folded_word(self)
+    }
+
+    /// [`simulate`]'s second step: this timeline checked for collisions, and its summary
+    /// with the verdict (`result` is `undecided` when the check could not decide within its
+    /// work budget). For callers that do other work with the timeline while the check runs
+    /// (`fold-run` draws the run's files on a second thread).
+    ///
+    /// ```
+    /// use foldchain::collision::CheckOptions;
+    /// use foldchain::engine::{run, EngineOptions};
+    /// use foldchain::timeline::{RunResult, TileDesigns};
+    /// use foldchain::Chain;
+    ///
+    /// let tl = run(&Chain::parse("SLLS").unwrap(), &TileDesigns::default(), &EngineOptions::default()).unwrap();
+    /// let summary = tl.checked_summary(&CheckOptions::default()).unwrap();
+    /// assert_eq!(summary.result, RunResult::Completed);
+    /// ```
+    pub fn checked_summary(&self, check: &CheckOptions) -> Result<Summary, EngineError> {
+        check_engine_run(self, check)
+    }
+}
+
+impl ReferenceRun {
+    /// This run's fold schedule checked for collisions with the engine's checker: each
+    /// fold's track through the run's recorded states and wall contacts, linear between them
+    /// (only exactly collinear points dropped; a run that recorded none has its final angles
+    /// only), with its fold's end, the word of the joints that turned. Its summary, overruled
+    /// (`collided`, `first_collision`) or `undecided` as [`simulate`]'s.
+    ///
+    /// ```
+    /// use foldchain::collision::CheckOptions;
+    /// use foldchain::reference::{run_reference, ReferenceOptions};
+    /// use foldchain::timeline::{RunResult, TileDesigns};
+    /// use foldchain::Chain;
+    ///
+    /// let chain = Chain::parse("SLS").unwrap();
+    /// let run = run_reference(&chain, &TileDesigns::default(), &ReferenceOptions::default()).unwrap();
+    /// let summary = run.checked_summary(&CheckOptions::default()).unwrap();
+    /// assert_eq!(summary.result, RunResult::Completed);
+    /// ```
+    pub fn checked_summary(&self, check: &CheckOptions) -> Result<Summary, ReferenceError> {
+        check_reference(self, check)
     }
 }
 
@@ -43,13 +73,8 @@ fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
     FoldWord::from_folds(folds)
 }
 
-/// Checks a reference run's fold schedule for collisions with the engine's checker
-/// ([`check_schedule`]): each fold's track through the run's recorded states and wall
-/// contacts, linear between them (only exactly collinear points dropped; a run that recorded
-/// none has its final angles only), with its fold's end, the word of the joints that
-/// turned. Its summary, overruled (`collided`, `first_collision`) or `undecided` as
-/// [`simulate`]'s.
-pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, SimulateError> {
+/// [`ReferenceRun::checked_summary`].
+fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, ReferenceError> {
     let mut summary = run.to_summary();
     if run.tiles() < 2 || run.folds.is_empty() {
         return Ok(summary);
@@ -69,17 +94,27 @@ pub fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summa
             }
         })
         .collect();
-    let schedule = FoldSchedule { tracks };
-    let (collision, undecided) = match check_schedule(&word, &schedule, check) {
-        Ok(()) => (None, None),
-        Err(ScheduleError::Collision(c)) => (Some(c), None),
-        Err(e @ ScheduleError::Undecided { .. }) => {
-            (None, Some(format!("collision check undecided: {e}")))
-        }
-        Err(e) => return Err(SimulateError::Schedule(e)),
-    };
+    let (collision, undecided) = schedule_verdict(&word, &FoldSchedule { tracks }, check)
+        .map_err(ReferenceError::Schedule)?;
     summary = overrule(summary, collision, undecided);
     Ok(summary)
+}
+
+/// The timed check of `schedule`: the first collision, or why it could not decide; what is
+/// wrong with a malformed schedule (a bug of the run that made it) as the error.
+fn schedule_verdict(
+    word: &FoldWord,
+    schedule: &FoldSchedule,
+    check: &CheckOptions,
+) -> Result<(Option<Collision>, Option<String>), String> {
+    match check_schedule(word, schedule, check) {
+        Ok(()) => Ok((None, None)),
+        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
+        Err(e @ ScheduleError::Undecided { .. }) => {
+            Ok((None, Some(format!("collision check undecided: {e}"))))
+        }
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 /// A run's summary with the collision check's verdict.
@@ -106,21 +141,31 @@ fn overrule(
 
 /// Runs the engine and checks its fold schedule for collisions: the timeline and its summary
 /// (`result` is `undecided` when the check could not decide within its work budget).
+///
+/// ```
+/// use foldchain::collision::CheckOptions;
+/// use foldchain::engine::EngineOptions;
+/// use foldchain::timeline::{RunResult, TileDesigns};
+/// use foldchain::{simulate, Chain};
+///
+/// let chain = Chain::parse("SLLS").unwrap();
+/// let (timeline, summary) = simulate(&chain, &TileDesigns::default(), &EngineOptions::default(), &CheckOptions::default()).unwrap();
+/// assert_eq!(timeline.folds.len(), 2);
+/// assert_eq!(summary.result, RunResult::Completed);
+/// ```
 pub fn simulate(
     chain: &Chain,
     designs: &TileDesigns,
     engine: &EngineOptions,
     check: &CheckOptions,
-) -> Result<(Timeline, Summary), SimulateError> {
+) -> Result<(Timeline, Summary), EngineError> {
     let tl = run(chain, designs, engine)?;
     let summary = check_engine_run(&tl, check)?;
     Ok((tl, summary))
 }
 
-/// [`simulate`]'s second step: the engine's timeline `tl` checked for collisions, and its
-/// summary with the verdict. For callers that do other work with the timeline while the
-/// check runs (`fold-run` draws the run's files on a second thread).
-pub fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, SimulateError> {
+/// [`Timeline::checked_summary`].
+fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, EngineError> {
     let (collision, undecided) = check_timeline(tl, check)?;
     let mut summary = tl.summary();
     if let Some(why) = solve_stopped(tl) {
@@ -151,18 +196,9 @@ fn solve_stopped(tl: &Timeline) -> Option<String> {
 fn check_timeline(
     tl: &Timeline,
     check: &CheckOptions,
-) -> Result<(Option<Collision>, Option<String>), SimulateError> {
+) -> Result<(Option<Collision>, Option<String>), EngineError> {
     if tl.tiles() < 2 {
         return Ok((None, None));
     }
-    let word = folded_word(tl);
-    let schedule = fold_schedule(tl);
-    match check_schedule(&word, &schedule, check) {
-        Ok(()) => Ok((None, None)),
-        Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
-        Err(e @ ScheduleError::Undecided { .. }) => {
-            Ok((None, Some(format!("collision check undecided: {e}"))))
-        }
-        Err(e) => Err(SimulateError::Schedule(e)),
-    }
+    schedule_verdict(&folded_word(tl), &fold_schedule(tl), check).map_err(EngineError::Schedule)
 }

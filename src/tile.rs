@@ -7,7 +7,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::PathKind;
+use crate::{ChainError, PathKind};
 
 /// A tile: the path towards the reaction initiator, then the path away from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -98,22 +98,19 @@ impl Tile {
     }
 }
 
-/// A tile name that is not two of the letters S, L, R.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("'{0}' is not a tile: expected two of the letters S, L, R (e.g. SL)")]
-pub struct ParseTileError(pub String);
-
 impl FromStr for Tile {
-    type Err = ParseTileError;
+    type Err = ChainError;
 
-    fn from_str(s: &str) -> Result<Tile, ParseTileError> {
+    /// A tile from its name, two of the letters S, L, R (`SL`); anything else is
+    /// [`ChainError::NotATile`].
+    fn from_str(s: &str) -> Result<Tile, ChainError> {
         let mut chars = s.chars();
         match (chars.next(), chars.next(), chars.next()) {
             (Some(a), Some(b), None) => match (PathKind::from_char(a), PathKind::from_char(b)) {
                 (Some(first), Some(second)) => Ok(Tile::new(first, second)),
-                _ => Err(ParseTileError(s.to_string())),
+                _ => Err(ChainError::NotATile(s.to_string())),
             },
-            _ => Err(ParseTileError(s.to_string())),
+            _ => Err(ChainError::NotATile(s.to_string())),
         }
     }
 }

@@ -5,7 +5,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::reference::free_body::FreeBodyError;
+use foldchain::reference::ReferenceError;
 use foldchain::reference::{run_free_body, FreeBodyOptions, ReferenceOptions};
 use foldchain::timeline::{Outcome, TileDesigns};
 use foldchain::{Chain, Design};
@@ -85,7 +85,7 @@ fn what_it_does_not_take_is_refused() {
     );
     assert!(matches!(
         run_free_body(&chain, &d, &overdamped),
-        Err(FreeBodyError::Unsupported { .. })
+        Err(ReferenceError::FreeBodyUnsupported { .. })
     ));
     let light = TileDesigns::global(Design {
         tile_mass: 0.0,

@@ -3,7 +3,7 @@
 //! it stalls, and at the magnet the margins name.
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use foldchain::margins::{ChainModel, MarginOptions, Margins, Weakest};
+use foldchain::margins::{MarginOptions, Margins, Weakest};
 use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::{Outcome, TileDesigns};
 use foldchain::{Chain, Design};
@@ -34,10 +34,7 @@ fn margins_agree_with_the_reference_on_short_chains() {
     ] {
         for word in ["SS", "SL", "LS", "LL", "SSL", "SLS", "LLS", "RSL"] {
             let chain = Chain::parse(word).unwrap();
-            let m = Margins::of(
-                &ChainModel::new(&chain, &[design]).unwrap(),
-                &MarginOptions::default(),
-            );
+            let m = Margins::of(&chain, &[design], &MarginOptions::default()).unwrap();
             let weakest = m.weakest().unwrap();
             if weakest.margin().abs() < DECISIVE {
                 continue;
@@ -83,10 +80,7 @@ fn a_stalled_mover_stops_where_the_reference_stops() {
         c: Some(2.8),
         ..Design::thesis()
     };
-    let m = Margins::of(
-        &ChainModel::new(&chain, &[design]).unwrap(),
-        &MarginOptions::default(),
-    );
+    let m = Margins::of(&chain, &[design], &MarginOptions::default()).unwrap();
     let run = run_reference(
         &chain,
         &TileDesigns::global(design),
@@ -111,21 +105,15 @@ fn every_tile_may_differ() {
     let mut designs = vec![d; chain.len()];
     designs[3].remanence *= 1.02;
     designs[4].tile_width += 0.1;
-    let m = Margins::of(
-        &ChainModel::new(&chain, &designs).unwrap(),
-        &MarginOptions::default(),
-    );
-    let uniform = Margins::of(
-        &ChainModel::new(&chain, &[d]).unwrap(),
-        &MarginOptions::default(),
-    );
+    let m = Margins::of(&chain, &designs, &MarginOptions::default()).unwrap();
+    let uniform = Margins::of(&chain, &[d], &MarginOptions::default()).unwrap();
     // tiles far from the change keep their margins; tiles next to it do not
     assert_eq!(m.starts[0], uniform.starts[0]);
     assert_ne!(m.starts[7], uniform.starts[7]);
-    let e = ChainModel::new(&chain, &designs[..3]).unwrap_err();
+    let e = Margins::of(&chain, &designs[..3], &MarginOptions::default()).unwrap_err();
     assert!(e.to_string().contains("3 tile designs"), "{e}");
     designs[2].remanence = -1.0;
-    let e = ChainModel::new(&chain, &designs).unwrap_err();
+    let e = Margins::of(&chain, &designs, &MarginOptions::default()).unwrap_err();
     assert!(e.to_string().starts_with("tile 2:"), "{e}");
 }
 
@@ -153,13 +141,11 @@ fn the_margins_edge_is_the_references_edge() {
     // margins alone; the reference completes just inside it and stalls just outside
     let smallest = |word: &str, d: Design| {
         let chain = Chain::parse(word).unwrap();
-        Margins::of(
-            &ChainModel::new(&chain, &[d]).unwrap(),
-            &MarginOptions::default(),
-        )
-        .weakest()
-        .unwrap()
-        .margin()
+        Margins::of(&chain, &[d], &MarginOptions::default())
+            .unwrap()
+            .weakest()
+            .unwrap()
+            .margin()
     };
     let completes = |word: &str, d: Design| {
         let run = run_reference(

@@ -1,7 +1,7 @@
 //! Collision verdicts (issue 12): the event engine's (local solves, its fold schedule
 //! checked) against the reference's (its recorded fold schedule checked by the same
-//! checker, [`foldchain::check_reference`]), both with the same dynamics (overdamped, and
-//! inertial, the one fold-run uses by default): the same result, the same first collision
+//! checker, [`foldchain::reference::ReferenceRun::checked_summary`]), both with the same
+//! dynamics (overdamped, and inertial, the one fold-run uses by default): the same result, the same first collision
 //! (joint and tiles; its time within 0.5% of the run).
 //!
 //! The quick tests run a sample of words with each dynamics; the full scan, every fold word
@@ -18,7 +18,7 @@ use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{RunResult, Summary, TileDesigns};
-use foldchain::{check_reference, simulate, Chain, Design};
+use foldchain::{simulate, Chain, Design};
 
 /// The inertial dynamics with the default parameters (fold-run's default).
 fn inertial() -> Dynamics {
@@ -41,7 +41,7 @@ fn verdicts(word: &str, s: f64, dynamics: Dynamics) -> (Summary, Summary, bool) 
         .with_model(model)
         .with_record(Recording::within_budget(chain.len()));
     let run = run_reference(&chain, &designs, &ro).unwrap();
-    let r = check_reference(&run, &CheckOptions::default()).unwrap();
+    let r = run.checked_summary(&CheckOptions::default()).unwrap();
     let same_hit = match (&e.first_collision, &r.first_collision) {
         (None, None) => true,
         (Some(a), Some(b)) => {

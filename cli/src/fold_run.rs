@@ -8,14 +8,14 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
-use foldchain::engine::{EngineOptions, StartRule, Summary, TileDesigns};
+use foldchain::engine::{EngineMethod, EngineOptions, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
 use foldchain::physics::ForceLaw;
 use foldchain::reference::{
     run_free_body, run_reference, FreeBodyOptions, Recording, ReferenceOptions, ReferenceRun,
 };
 use foldchain::timeline::{FoldRecord, RunSource, SpeedLaw};
-use foldchain::{auto_engine, check_reference, simulate, Chain, EngineKind};
+use foldchain::{simulate, AutoEngine, Chain};
 
 use crate::margins_file::MarginsJob;
 use crate::numbers::thousands;
@@ -75,7 +75,7 @@ pub enum RunMode {
 /// How the event engine is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum EngineRequest {
-    /// [`foldchain::auto_engine`] decides: local solves up to a number of distinct joint
+    /// [`foldchain::AutoEngine::of`] decides: local solves up to a number of distinct joint
     /// neighbourhoods, the kinematic baseline beyond.
     Auto,
     /// The local solves.
@@ -207,7 +207,7 @@ pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
             ));
             let run = reference(req)?;
             progress.stage("collision check");
-            let summary = check_reference(&run, &check)?;
+            let summary = run.checked_summary(&check)?;
             let m = margins.finish();
             files.margins_json = m.as_ref().map(|(_, text)| text.clone());
             weakest_margin = m.and_then(|(m, _)| m.weakest().map(|w| w.to_string()));
@@ -219,7 +219,7 @@ pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
         RunMode::Compare => {
             progress.stage("reference");
             let run = reference(req)?;
-            let rs = check_reference(&run, &check)?;
+            let rs = run.checked_summary(&check)?;
             progress.stage("event engine");
             let (tl, es) = simulate(&req.chain, &req.designs, &engine, &check)?;
             let m = margins.finish();
@@ -272,25 +272,25 @@ fn result(label: &'static str, name: &str, summary: Summary, dir: &Path) -> RunR
 }
 
 /// The engine's options: the local solves or the kinematic baseline, `--engine auto` decided
-/// by [`auto_engine`] (said in `notes` when it chose the baseline).
+/// by [`AutoEngine::of`] (said in `notes` when it chose the baseline).
 fn engine_options(req: &RunRequest, notes: &mut Vec<String>) -> EngineOptions {
-    let kind = match req.engine {
-        EngineRequest::Kinematic { .. } => EngineKind::Kinematic,
-        EngineRequest::Local => EngineKind::Local,
+    let method = match req.engine {
+        EngineRequest::Kinematic { .. } => EngineMethod::Kinematic,
+        EngineRequest::Local => EngineMethod::Local,
         EngineRequest::Auto => {
-            let auto = auto_engine(&req.chain, &req.designs);
-            if auto.kind == EngineKind::Kinematic {
+            let auto = AutoEngine::of(&req.chain, &req.designs);
+            if auto.method == EngineMethod::Kinematic {
                 notes.push(format!(
                     "{} tiles with {} distinct joint neighbourhoods: the kinematic engine (the local solves take a few ms for each; --engine local to use them anyway)",
                     thousands(req.chain.len() as u64),
                     thousands(auto.neighbourhoods as u64)
                 ));
             }
-            auto.kind
+            auto.method
         }
     };
-    match (kind, req.engine) {
-        (EngineKind::Local, _) => EngineOptions::default()
+    match (method, req.engine) {
+        (EngineMethod::Local, _) => EngineOptions::default()
             .with_model(req.model)
             .with_threads(req.threads),
         (_, EngineRequest::Kinematic { speed, start }) => EngineOptions::default()

@@ -16,7 +16,7 @@ use crate::run_name::{inline_name, stem};
 /// looks like a file (it has an extension or a directory) but is not there gets "no such
 /// file, and not a fold word", with a pointer to `fold-plan`/`fold-run` for SVG shapes.
 pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
-    match Chain::read_arg(arg) {
+    match crate::chain_arg::read_chain_arg(arg) {
         Ok(chain) => Ok(chain),
         Err(e) => {
             let path = Path::new(arg.trim());

@@ -2,7 +2,7 @@
 //! every fold ([`foldchain::margins`]), the smallest of them and where, for chains up to
 //! [`MAX_MARGIN_TILES`] tiles.
 
-use foldchain::margins::{ChainModel, MarginOptions, Margins, Weakest};
+use foldchain::margins::{MarginOptions, Margins, Weakest};
 use foldchain::physics::ForceLaw;
 use foldchain::timeline::TileDesigns;
 use foldchain::{Chain, Design};
@@ -40,8 +40,12 @@ pub fn run_margins(
     } else {
         index.iter().map(|&i| list[i as usize]).collect()
     };
-    let model = ChainModel::new(chain, &per_tile).ok()?;
-    let m = Margins::of(&model, &MarginOptions::default().with_force_law(law));
+    let m = Margins::of(
+        chain,
+        &per_tile,
+        &MarginOptions::default().with_force_law(law),
+    )
+    .ok()?;
     let file = MarginsFile {
         criterion: CRITERION,
         force_law: law,

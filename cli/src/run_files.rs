@@ -17,7 +17,6 @@
 
 use std::path::Path;
 
-use foldchain::check_engine_run;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{Summary, Timeline};
 use foldchain::timeline::{ChainState, RunSource};
@@ -237,10 +236,10 @@ pub fn prepare_run_files(
     }
 }
 
-/// Checks the engine's timeline `tl` for collisions ([`check_engine_run`]) on a second
-/// thread while this one makes the parts of its files that do not depend on the verdict
-/// ([`prepare_run_files`]), then writes the files into `dir`
-/// ([`write_prepared_run_files`]): the summary and files of [`foldchain::simulate`] then
+/// Checks the engine's timeline `tl` for collisions
+/// ([`foldchain::engine::Timeline::checked_summary`]) on a second thread while this one makes
+/// the parts of its files that do not depend on the verdict ([`prepare_run_files`]), then
+/// writes the files into `dir` ([`write_prepared_run_files`]): the summary and files of [`foldchain::simulate`] then
 /// [`write_run_files`], with the drawing done in the check's time on a second core.
 pub fn check_and_write_run_files(
     tl: &Timeline,
@@ -250,7 +249,7 @@ pub fn check_and_write_run_files(
     progress: &mut dyn FnMut(&str, usize, usize),
 ) -> anyhow::Result<Summary> {
     let (summary, prepared) = std::thread::scope(|scope| {
-        let checking = scope.spawn(|| check_engine_run(tl, check));
+        let checking = scope.spawn(|| tl.checked_summary(check));
         let prepared = prepare_run_files(tl, opts, progress);
         progress("collision check", 0, 1);
         let summary = checking

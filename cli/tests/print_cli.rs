@@ -149,7 +149,7 @@ fn the_key_prints_its_plans_bill_of_materials() {
     ok(&o);
     let report: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("parts.json")).unwrap()).unwrap();
-    let chain = foldchain::Chain::read_arg(report["tile_list"].as_str().unwrap()).unwrap();
+    let chain = foldchain::Chain::parse(report["tile_list"].as_str().unwrap()).unwrap();
     let n = report["tiles"].as_u64().unwrap() as usize;
     assert_eq!(chain.len(), n);
     // the plan of fold-plan itself: the same chain

@@ -6,7 +6,7 @@ use kurbo::{Affine, Point, Vec2};
 
 use crate::fit::measure;
 use crate::frame::stacking_axis_deg;
-use crate::plan::{Plan, PlanPose};
+use crate::plan::{Metrics, Plan, PlanPose};
 use crate::rows::Style;
 use crate::shape::Shape;
 
@@ -50,6 +50,31 @@ impl Assembly<'_> {
     /// The plan: poses from the exact kinematics, mapped into the drawing, and the fit
     /// measured on them.
     pub(crate) fn to_plan(&self, word: &FoldWord, name: &str) -> Plan {
+        let mut plan = self.to_plan_unmeasured(word, name);
+        self.measure(&mut plan, word);
+        plan
+    }
+
+    /// Measures the fit of `plan`, made by [`Assembly::to_plan_unmeasured`] from `word`
+    /// (the part left empty, noted by [`crate::empty::note_empty`], is kept).
+    pub(crate) fn measure(&self, plan: &mut Plan, word: &FoldWord) {
+        let work_centres: Vec<Point> = word
+            .final_poses()
+            .iter()
+            .map(|p| {
+                let (x, y) = p.centre.to_f64(1.0);
+                self.chain_to_work * Point::new(x, y)
+            })
+            .collect();
+        let empty = plan.metrics.largest_empty_tiles;
+        plan.metrics = measure(self.work, &work_centres, self.w);
+        plan.metrics.largest_empty_tiles = empty;
+    }
+
+    /// [`Assembly::to_plan`] without the fit (its metrics are zero but for the areas): the
+    /// fit is measured on many sample points, and the cell router checks more plans than it
+    /// keeps.
+    pub(crate) fn to_plan_unmeasured(&self, word: &FoldWord, name: &str) -> Plan {
         let c2w = self.chain_to_work;
         let c2s = self.work_to_svg * c2w;
         // directions move by the linear part only
@@ -62,7 +87,6 @@ impl Assembly<'_> {
                 Point::new(x, y)
             })
             .collect();
-        let work_centres: Vec<Point> = chain_centres.iter().map(|&c| c2w * c).collect();
         let poses: Vec<PlanPose> = exact
             .iter()
             .zip(&chain_centres)
@@ -81,7 +105,14 @@ impl Assembly<'_> {
                 }
             })
             .collect();
-        let metrics = measure(self.work, &work_centres, self.w);
+        let oct_area = 2.0 * (std::f64::consts::SQRT_2 - 1.0);
+        let metrics = Metrics {
+            covered_share: 0.0,
+            outside_share: 0.0,
+            shape_area: self.work.area() * self.w * self.w,
+            chain_area: exact.len() as f64 * oct_area * self.w * self.w,
+            largest_empty_tiles: 0.0,
+        };
         let chain = word.to_chain();
         let bom = BillOfMaterials::from_chain(&chain)
             .parts

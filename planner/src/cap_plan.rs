@@ -22,7 +22,8 @@ use crate::sizing::{width_for, Attempt, SizeSearch};
 
 /// Cap decompositions routed per axis (the cheapest).
 const DECOMPOSITIONS: usize = 2;
-/// Sweep axes routed (the cheapest, see [`best_axes`]).
+/// Sweep axes routed (the cheapest, see [`cap_axes`]; the decompositions' prices change
+/// little with the width, so the width search routes these only).
 const AXES_ROUTED: usize = 2;
 /// Routes kept per decomposition.
 const ROUTES_PER_DECOMPOSITION: usize = 2;
@@ -85,11 +86,12 @@ fn routes_at(
     routes
 }
 
-/// The sweep axes worth routing: the [`AXES_ROUTED`] whose cheapest cap decomposition at tile
-/// width `w` is cheapest (the decompositions' prices change little with the width, so the
-/// width search routes these only).
-fn best_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> Vec<(f64, Vec<CapPlan>, f64)> {
-    let mut priced: Vec<(f64, f64, Vec<CapPlan>)> = axes
+/// The cap decompositions of every sweep axis of `shape` at tile width `w` (the cheapest
+/// [`DECOMPOSITIONS`] of each), axes with a decomposition only, cheapest first: `(axis,
+/// decompositions, w)`. Computed once per turn style: the top level asks whether the shape
+/// splits into cells at all, and [`plan_by_caps`] routes the cheapest [`AXES_ROUTED`].
+pub(crate) fn cap_axes(shape: &Shape, style: Style, w: f64) -> Vec<(f64, Vec<CapPlan>, f64)> {
+    let mut priced: Vec<(f64, f64, Vec<CapPlan>)> = axes(shape)
         .par_iter()
         .map(|&a| {
             let axis_shape = Orientation::along(a).work_shape(shape, w);
@@ -105,24 +107,31 @@ fn best_axes(shape: &Shape, axes: &[f64], style: Style, w: f64) -> Vec<(f64, Vec
     priced
         .into_iter()
         .filter(|p| p.0.is_finite())
-        .take(AXES_ROUTED)
         .map(|p| (p.1, p.2, w))
         .collect()
 }
 
+/// The tile width a turn style's cap search starts from: the asked width, or the width at
+/// which the asked count of tiles fills the shape.
+pub(crate) fn start_width(shape: &Shape, opts: &PlanOptions, style: Style) -> f64 {
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    opts.tile_size
+        .unwrap_or_else(|| width_for(shape.area(), target, style.pitch))
+}
+
 /// Plans `shape` by caps with one turn style (see the module documentation), or says why
-/// no route was found, with the best route rejected for an empty part.
+/// no route was found, with the best route rejected for an empty part. `all_axes` is
+/// [`cap_axes`] at [`start_width`].
 pub(crate) fn plan_by_caps(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
+    all_axes: &[(f64, Vec<CapPlan>, f64)],
 ) -> Result<Plan, CellFailure> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
-    let w0 = opts
-        .tile_size
-        .unwrap_or_else(|| width_for(shape.area(), target, style.pitch));
-    let axes = best_axes(shape, &axes(shape), style, w0);
+    let w0 = start_width(shape, opts, style);
+    let axes: Vec<(f64, Vec<CapPlan>, f64)> = all_axes.iter().take(AXES_ROUTED).cloned().collect();
     let tol = (opts.tiles_tolerance * target as f64) as usize;
     let search = SizeSearch {
         secant_steps: if opts.tile_size.is_some() {
@@ -139,7 +148,7 @@ pub(crate) fn plan_by_caps(
         } else {
             &[]
         },
-        // a plan that leaves a part empty (cost 1) keeps the search going
+        // a plan that leaves a part empty (cost 1) keeps the retries going
         settle_cost: 0.0,
     };
     let miss = |p: &Plan| match opts.tile_size {
@@ -171,6 +180,10 @@ pub(crate) fn plan_by_caps(
             name,
             &routes,
             crate::empty::near(opts.turns),
+            &|n| match opts.tile_size {
+                Some(_) => 0,
+                None => n.abs_diff(target).saturating_sub(tol),
+            },
             &mut failed,
         );
         // a count within the tolerance first, then no part left empty, then the fit

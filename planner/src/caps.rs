@@ -22,6 +22,7 @@
 //! The topology is read from a raster of the shape (pixels of a quarter tile, fewer for large
 //! shapes), so the work grows with the shape's area in tiles, not with its outline.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -125,6 +126,8 @@ struct Raster {
     y0: f64,
     px: f64,
     inside: Vec<bool>,
+    /// The summed-area table of `inside` (see [`Raster::count`]).
+    sat: Vec<u32>,
 }
 
 impl Raster {
@@ -146,6 +149,15 @@ impl Raster {
                 }
             }
         }
+        // sat[(j * (nx + 1)) + i]: inside pixels with column < i and row < j
+        let mut sat = vec![0u32; (nx + 1) * (ny + 1)];
+        for j in 0..ny {
+            let mut row = 0u32;
+            for i in 0..nx {
+                row += u32::from(inside[j * nx + i]);
+                sat[(j + 1) * (nx + 1) + i + 1] = sat[j * (nx + 1) + i + 1] + row;
+            }
+        }
         Raster {
             nx,
             ny,
@@ -153,7 +165,16 @@ impl Raster {
             y0: b.y0,
             px,
             inside,
+            sat,
         }
+    }
+
+    /// The number of inside pixels in columns `x0..x1` and rows `y0..y1`.
+    fn count(&self, x0: usize, x1: usize, y0: usize, y1: usize) -> u32 {
+        let w = self.nx + 1;
+        self.sat[y1 * w + x1] + self.sat[y0 * w + x0]
+            - self.sat[y0 * w + x1]
+            - self.sat[y1 * w + x0]
     }
 
     fn at(&self, i: usize, j: usize) -> bool {
@@ -190,6 +211,8 @@ struct Search<'a> {
     min: usize,
     memo: Memo,
     visited: usize,
+    /// [`Search::components`] of the boxes asked about so far.
+    components_memo: RefCell<HashMap<PBox, usize>>,
 }
 
 impl Search<'_> {
@@ -251,24 +274,48 @@ impl Search<'_> {
         runs
     }
 
-    /// The box shrunk to the inside pixels it holds, or None if it holds none.
+    /// The box shrunk to the inside pixels it holds, or None if it holds none (each side
+    /// moved in while the line along it is empty, each line counted in the summed-area
+    /// table).
     fn tight(&self, b: PBox) -> Option<PBox> {
-        let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
-        for j in b.y0..b.y1 {
-            for i in b.x0..b.x1 {
-                if self.r.at(i, j) {
-                    x0 = x0.min(i);
-                    x1 = x1.max(i + 1);
-                    y0 = y0.min(j);
-                    y1 = y1.max(j + 1);
-                }
-            }
+        let r = self.r;
+        if b.x0 >= b.x1 || b.y0 >= b.y1 || r.count(b.x0, b.x1, b.y0, b.y1) == 0 {
+            return None;
         }
-        (x0 < x1).then_some(PBox { x0, x1, y0, y1 })
+        let PBox {
+            mut x0,
+            mut x1,
+            mut y0,
+            mut y1,
+        } = b;
+        while r.count(x0, x0 + 1, y0, y1) == 0 {
+            x0 += 1;
+        }
+        while r.count(x1 - 1, x1, y0, y1) == 0 {
+            x1 -= 1;
+        }
+        while r.count(x0, x1, y0, y0 + 1) == 0 {
+            y0 += 1;
+        }
+        while r.count(x0, x1, y1 - 1, y1) == 0 {
+            y1 -= 1;
+        }
+        Some(PBox { x0, x1, y0, y1 })
+    }
+
+    /// [`Search::count_components`], remembered per box (the cuts of a box and of the boxes
+    /// around it ask about the same rests again and again).
+    fn components(&self, b: PBox) -> usize {
+        if let Some(&n) = self.components_memo.borrow().get(&b) {
+            return n;
+        }
+        let n = self.count_components(b);
+        self.components_memo.borrow_mut().insert(b, n);
+        n
     }
 
     /// The number of groups of touching inside pixels in the box larger than half a tile.
-    fn components(&self, b: PBox) -> usize {
+    fn count_components(&self, b: PBox) -> usize {
         let w = b.x1 - b.x0;
         let h = b.y1 - b.y0;
         let mut seen = vec![false; w * h];
@@ -773,6 +820,7 @@ pub(crate) fn cap_plans(axis_shape: &Shape, pitch: f64) -> Vec<CapPlan> {
         min,
         memo: HashMap::new(),
         visited: 0,
+        components_memo: RefCell::new(HashMap::new()),
     };
     let all = PBox {
         x0: 0,

@@ -26,8 +26,10 @@ pub(crate) struct Failed {
     pub rejected: Option<(String, Box<Rejected>)>,
 }
 
-/// Routes (cheapest first, over all axes) checked and measured.
+/// Routes (cheapest first, over all axes) checked.
 const CHECKED_ROUTES: usize = 10;
+/// Plans measured per width (see [`checked_plans`]).
+const MEASURED: usize = 3;
 
 /// Why no cell route was returned, with the best one rejected for an empty part.
 pub(crate) type CellFailure = (String, Option<Box<Rejected>>);
@@ -53,9 +55,14 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
     out
 }
 
-/// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`) that fold
-/// without collision and leave no part of the shape empty (measured at `near` tile widths).
-/// What the others said is kept in `failed`.
+/// The plans of the first [`CHECKED_ROUTES`] of `routes` (at tile width `w`, ranked by
+/// `miss`, the tiles by which a count misses the asked one, then by route cost) that fold
+/// without collision and leave no part of the shape empty (measured at `near` tile
+/// widths), measured: the first [`MEASURED`] of those that rank best by (`miss`, a part
+/// left empty) in route order (the route cost estimates the fit, the measure on sample
+/// points has the last word). The routes are checked in order until [`MEASURED`] plans
+/// miss by nothing and leave nothing empty. What the others said is kept in `failed`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn checked_plans(
     shape: &Shape,
     style: Style,
@@ -63,41 +70,37 @@ pub(crate) fn checked_plans(
     name: &str,
     routes: &[(f64, Arc<Routed>)],
     near: f64,
+    miss: &dyn Fn(usize) -> usize,
     failed: &mut Failed,
 ) -> Vec<Plan> {
     let Failed { collide, rejected } = failed;
-    let mut plans: Vec<Plan> = Vec::new();
+    let mut plans: Vec<(Plan, &Routed, f64)> = Vec::new();
     for (a, r) in routes.iter().take(CHECKED_ROUTES) {
+        let good = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
+        if plans.iter().filter(|(p, ..)| good(p)).count() >= MEASURED {
+            break;
+        }
         if let Err(e) = check_folds(&r.word) {
             *collide = e;
             continue;
         }
         let orient = Orientation::along(*a);
         let work = orient.work_shape(shape, w);
-        let asm = Assembly {
-            work: &work,
-            chain_to_work: r.chain_to_axis,
-            work_to_svg: orient.work_to_svg(w),
-            row_angle: *a,
-            style,
-            w,
-            u_turns: r.u_turns,
-            quarter_turns: r.quarter_turns,
-            cells: r.cells,
-        };
+        let asm = assembly(&work, orient, r, style, w);
         if !asm.agrees(&r.word, &r.centres) {
             *collide =
                 String::from("internal: the route's tile centres disagree with the kinematics");
             continue;
         }
-        let plan = match note_empty(shape, asm.to_plan(&r.word, name), near) {
+        let plan = match note_empty(shape, asm.to_plan_unmeasured(&r.word, name), near) {
             Ok(plan) => plan,
             Err(e) => {
-                let (part, plan) = *e;
+                let (part, mut plan) = *e;
                 if rejected
                     .as_ref()
                     .is_none_or(|(_, b)| part.tiles < b.empty.tiles)
                 {
+                    asm.measure(&mut plan, &r.word);
                     let text = format!(
                         "the best route ({} cells, {} tiles) {part}",
                         plan.cells, plan.tiles
@@ -107,7 +110,43 @@ pub(crate) fn checked_plans(
                 continue;
             }
         };
-        plans.push(plan);
+        plans.push((plan, r, *a));
     }
+    let key = |p: &Plan| (miss(p.tiles), p.metrics.largest_empty_tiles > 0.0);
+    let Some(top) = plans.iter().map(|(p, ..)| key(p)).min() else {
+        return Vec::new();
+    };
     plans
+        .into_iter()
+        .filter(|(p, ..)| key(p) == top)
+        .take(MEASURED)
+        .map(|(mut plan, r, a)| {
+            let orient = Orientation::along(a);
+            let work = orient.work_shape(shape, w);
+            assembly(&work, orient, r, style, w).measure(&mut plan, &r.word);
+            plan
+        })
+        .collect()
+}
+
+/// The assembly of route `r` swept along `orient` at tile width `w` (`work`: the shape in
+/// its work frame).
+fn assembly<'a>(
+    work: &'a Shape,
+    orient: Orientation,
+    r: &Routed,
+    style: Style,
+    w: f64,
+) -> Assembly<'a> {
+    Assembly {
+        work,
+        chain_to_work: r.chain_to_axis,
+        work_to_svg: orient.work_to_svg(w),
+        row_angle: orient.angle,
+        style,
+        w,
+        u_turns: r.u_turns,
+        quarter_turns: r.quarter_turns,
+        cells: r.cells,
+    }
 }

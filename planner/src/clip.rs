@@ -3,6 +3,11 @@
 //! Regions are polygon sets, and the boolean operations are `i_overlay`'s (not written
 //! here): each element is first made simple by its own fill rule, then intersected.
 //!
+//! - A drawing of several filled elements is read as the union of their fills
+//!   ([`union_paths`]), as a browser paints it: a drawing made of many pieces (pixel art, a
+//!   logo's letters drawn over a plate) becomes the outline one sees, without the seams
+//!   between touching pieces, and the planner's row queries meet one outline's edges, not
+//!   every piece's.
 //! - A clip path's region is the union of its children's fills (each by its own rule,
 //!   which usvg takes from `clip-rule`), under the clip path's transform and the clipped
 //!   group's, and intersected with the clip path's own `clip-path`.
@@ -247,4 +252,38 @@ pub(crate) fn clip_element(
         rings,
         even_odd: true,
     })
+}
+
+/// The union of filled paths, each filled by its own rule: one path (its contours as
+/// `i_overlay` returns them, read under the even-odd rule) when there are several, the path
+/// itself when there is one. Contours of touching pieces merge, so that seams between them
+/// (edges inside the filled area) are gone. `eps`: the sliver width [`clean`] removes.
+pub(crate) fn union_paths(paths: Vec<FilledPath>, eps: f64) -> Vec<FilledPath> {
+    if paths.len() < 2 {
+        return paths;
+    }
+    // each path made simple by its own rule: contours wound one way round the filled area,
+    // the other way round its holes, so that together they wind 1 inside each path and 0
+    // outside; the non-zero rule over all of them is then the union
+    let all: Region = paths
+        .iter()
+        .flat_map(|p| simple(&p.rings, p.even_odd))
+        .collect();
+    let rings: Vec<Ring> = all
+        .simplify_shape(FillRule::NonZero)
+        .into_iter()
+        .flatten()
+        .map(|c| Ring {
+            points: c.into_iter().map(|[x, y]| Point::new(x, y)).collect(),
+        })
+        .map(|r| clean(&r, eps))
+        .filter(|r| r.points.len() >= 3)
+        .collect();
+    if rings.is_empty() {
+        return Vec::new();
+    }
+    vec![FilledPath {
+        rings,
+        even_odd: true,
+    }]
 }

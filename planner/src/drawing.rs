@@ -8,7 +8,7 @@
 use kurbo::{CubicBez, Line, ParamCurve, PathSeg, Point, QuadBez, Vec2};
 use usvg::tiny_skia_path::PathSegment;
 
-use crate::clip::{clip_element, ClipRef};
+use crate::clip::{clip_element, union_paths, ClipRef};
 use crate::error::PlanError;
 use crate::options::MAX_OUTLINE_POINTS;
 use crate::shape::{FilledPath, Ring, Shape};
@@ -131,7 +131,8 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 paths.extend(clip_element(path, &element.clips, tol, SLIVER * size));
             }
         }
-        let shape = Shape::from_paths(paths);
+        // the area as painted: the union of every filled element's area
+        let shape = Shape::from_paths(union_paths(paths, SLIVER * size));
         if shape.is_empty() || shape.area() <= 1e-9 * size * size {
             return Err(no_area(
                 "the filled elements enclose no area (after their clip paths and masks)",
@@ -426,6 +427,38 @@ mod tests {
         let iv = s.intervals_at(-30.0);
         assert_eq!(iv.len(), 1);
         assert!((iv[0].0 - 10.0).abs() < 1e-9 && (iv[0].1 - 40.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn touching_pieces_are_read_as_one_outline() {
+        // pixel art: a 30 x 30 square drawn as 900 unit squares; the planner sees the
+        // square (no seams between the pieces), and the row queries one outline
+        let mut body = String::new();
+        for i in 0..900 {
+            body += &format!(
+                r#"<rect x="{}" y="{}" width="1" height="1"/>"#,
+                i % 30,
+                i / 30
+            );
+        }
+        let s = Shape::from_svg_data(svg(&body).as_bytes(), "t").unwrap();
+        assert!((s.area() - 900.0).abs() < 1e-6, "{}", s.area());
+        assert_eq!(s.rings().count(), 1);
+        assert!(s.edge_count() < 40, "{} edges", s.edge_count());
+        let iv = s.intervals_at(-15.5);
+        assert_eq!(iv.len(), 1);
+        assert!((iv[0].0 - 0.0).abs() < 1e-9 && (iv[0].1 - 30.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn overlapping_pieces_and_a_piece_in_a_hole_are_their_union() {
+        // two overlapping squares (area 100 + 100 - 25), and a ring (even-odd, 20 x 20 with
+        // a 10 x 10 hole) whose hole another element fills
+        let body = r#"<rect x="0" y="0" width="10" height="10"/><rect x="5" y="5" width="10" height="10"/><path fill-rule="evenodd" d="M 40 0 h 20 v 20 h -20 Z M 45 5 h 10 v 10 h -10 Z"/><rect x="45" y="5" width="10" height="10"/>"#;
+        let s = Shape::from_svg_data(svg(body).as_bytes(), "t").unwrap();
+        assert!((s.area() - (175.0 + 400.0)).abs() < 1e-6, "{}", s.area());
+        assert!(s.contains(Point::new(50.0, -10.0)), "the filled hole");
+        assert!(!s.contains(Point::new(12.0, -2.0)), "outside both squares");
     }
 
     #[test]

@@ -7,9 +7,9 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::cap_plan::plan_by_caps;
-use crate::caps;
-use crate::cell_plan::{axes, CellFailure};
+use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
+use crate::caps::{self, CapPlan};
+use crate::cell_plan::CellFailure;
 use crate::empty::note_empty;
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
@@ -73,33 +73,118 @@ pub(crate) fn plan_shape(
     }
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
-    let mut failures: Vec<String> = Vec::new();
-    let mut best = best_serpentine(
-        shape,
-        opts,
-        &styles,
-        &directions,
-        name,
-        &mut failures,
-        progress,
-    );
-    // the best plan rejected for an empty part, for a preview of where
-    let mut rejected: Option<Box<Rejected>> = None;
-    let mut reject = |r: Box<Rejected>| {
-        if rejected
+    // tiles by which a plan misses the asked count beyond the tolerance
+    let tol = (opts.tiles_tolerance * target as f64) as usize;
+    // (no count asked and no width: the default count, as the planners aim at it)
+    let miss = |q: &Plan| match opts.tile_size {
+        None => q.tiles.abs_diff(target).saturating_sub(tol),
+        Some(_) => 0,
+    };
+    let mut found = Found::default();
+    // under `auto`, loose turns are planned only when tight ones give no plan with a count
+    // within the tolerance: loose rows lie a tile width farther apart than the empty-part
+    // measure reaches under `auto` ([`crate::empty::near`]), so a loose plan with rows
+    // longer than about three tiles leaves a strip between every two rows empty (at least
+    // 0.5 w wide: 0.6 tile areas per tile of row), more than a tight plan leaves
+    let groups: Vec<&[Style]> = if opts.turns == Turns::Auto {
+        styles.chunks(1).collect()
+    } else {
+        vec![&styles[..]]
+    };
+    for group in groups {
+        plan_styles(
+            shape,
+            opts,
+            group,
+            (&monotone, &directions),
+            tiles_est,
+            name,
+            progress,
+            &mut found,
+            &miss,
+        );
+        if found.best.as_ref().is_some_and(|b| miss(b) == 0) {
+            break;
+        }
+    }
+    let Found {
+        best,
+        failures,
+        rejected,
+    } = found;
+    best.ok_or_else(|| PlanError::Unplannable {
+        name: name.into(),
+        reason: unplannable_reason(shape, monotone.is_empty(), failures),
+        rejected,
+    })
+}
+
+/// What the planners found so far: the best plan, what each planner said when it failed, and
+/// the best plan rejected for an empty part (for a preview of where).
+#[derive(Default)]
+struct Found {
+    best: Option<Plan>,
+    failures: Vec<String>,
+    rejected: Option<Box<Rejected>>,
+}
+
+impl Found {
+    /// Keeps `r` if it leaves a smaller part empty than the one kept.
+    fn reject(&mut self, r: Box<Rejected>) {
+        if self
+            .rejected
             .as_ref()
             .is_none_or(|b| r.empty.tiles < b.empty.tiles)
         {
-            rejected = Some(r);
+            self.rejected = Some(r);
+        }
+    }
+}
+
+/// Plans the shape with the turn styles `styles`: one serpentine and, where the shape
+/// splits into cells, caps joined by quarter turns; a plan replaces `found.best` when it
+/// ranks before it (a count within the tolerance, `miss`, then no part left empty, then
+/// the fit). `angles` are the shape's monotone row angles and the serpentine's directions.
+#[allow(clippy::too_many_arguments)]
+fn plan_styles(
+    shape: &Shape,
+    opts: &PlanOptions,
+    styles: &[Style],
+    (monotone, directions): (&[f64], &[f64]),
+    tiles_est: usize,
+    name: &str,
+    progress: Progress<'_>,
+    found: &mut Found,
+    miss: &dyn Fn(&Plan) -> usize,
+) {
+    let rank = |q: &Plan| {
+        (
+            miss(q),
+            q.metrics.largest_empty_tiles > 0.0,
+            OrdF64(plan_score(q, opts.turn_cost)),
+        )
+    };
+    let offer = |found: &mut Found, p: Plan| {
+        if found.best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
+            found.best = Some(p);
         }
     };
-    if let Some(p) = best.take() {
+    let mut serp = best_serpentine(
+        shape,
+        opts,
+        styles,
+        directions,
+        name,
+        &mut found.failures,
+        progress,
+    );
+    if let Some(p) = serp.take() {
         match note_empty(shape, p, crate::empty::near(opts.turns)) {
-            Ok(p) => best = Some(p),
+            Ok(p) => serp = Some(p),
             Err(e) => {
                 let (part, p) = *e;
-                failures.push(format!("one serpentine {part}"));
-                reject(Box::new(Rejected {
+                found.failures.push(format!("one serpentine {part}"));
+                found.reject(Box::new(Rejected {
                     plan: p,
                     empty: part,
                 }));
@@ -109,11 +194,11 @@ pub(crate) fn plan_shape(
     if monotone.is_empty() {
         // one serpentine over a shape that is monotone in no direction (or in separate
         // parts) bridges its gaps: kept only while little of the chain lies outside
-        if let Some(p) = best.take() {
+        if let Some(p) = serp.take() {
             if p.metrics.outside_share <= MAX_OUTSIDE_NON_MONOTONE {
-                best = Some(p);
+                serp = Some(p);
             } else {
-                failures.push(format!(
+                found.failures.push(format!(
                     "one serpentine covers {:.0}% of the shape with {:.0}% of the chain outside",
                     100.0 * p.metrics.covered_share,
                     100.0 * p.metrics.outside_share
@@ -121,52 +206,45 @@ pub(crate) fn plan_shape(
             }
         }
     }
-    // tiles by which a plan misses the asked count beyond the tolerance
-    let tol = (opts.tiles_tolerance * target as f64) as usize;
-    // (no count asked and no width: the default count, as the planners aim at it)
-    let miss = |q: &Plan| match opts.tile_size {
-        None => q.tiles.abs_diff(target).saturating_sub(tol),
-        Some(_) => 0,
-    };
-    // plans are ranked: a count within the tolerance, then no part left empty, then fit
-    let rank = |q: &Plan| {
-        (
-            miss(q),
-            q.metrics.largest_empty_tiles > 0.0,
-            OrdF64(plan_score(q, opts.turn_cost)),
-        )
-    };
+    if let Some(p) = serp {
+        offer(found, p);
+    }
     // caps joined by quarter turns, for shapes that are not one serpentine (and, up to
-    // MAX_CELL_TILES tiles, for every shape: a monotone shape keeps the better of the two)
-    if (monotone.is_empty() || tiles_est <= MAX_CELL_TILES) && splits_into_cells(shape, tiles_est) {
-        progress("planning by caps", 0, 1);
-        let by_caps: Vec<Result<Plan, CellFailure>> = styles
-            .par_iter()
-            .map(|&style| plan_by_caps(shape, opts, style, name))
-            .collect();
-        progress("planning by caps", 1, 1);
-        for r in by_caps {
-            match r {
-                Ok(p) => {
-                    // a count within the tolerance first, then the better fit
-                    if best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
-                        best = Some(p);
-                    }
-                }
-                Err((e, r)) => {
-                    failures.push(format!("by caps: {e}"));
-                    if let Some(r) = r {
-                        reject(r);
-                    }
+    // MAX_CELL_TILES tiles, for every shape: a monotone shape keeps the better of the two),
+    // where along some axis the cheapest cap decomposition has more than one cell (a shape
+    // that one serpentine fills as well needs no caps)
+    if !monotone.is_empty() && tiles_est > MAX_CELL_TILES {
+        return;
+    }
+    let by_axis: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = styles
+        .iter()
+        .map(|&style| cap_axes(shape, style, start_width(shape, opts, style)))
+        .collect();
+    let splits = by_axis
+        .iter()
+        .flatten()
+        .any(|(_, plans, _)| plans.first().is_some_and(|p| p.cells.len() > 1));
+    if !splits {
+        return;
+    }
+    progress("planning by caps", 0, 1);
+    let by_caps: Vec<Result<Plan, CellFailure>> = styles
+        .par_iter()
+        .zip(&by_axis)
+        .map(|(&style, axes)| plan_by_caps(shape, opts, style, name, axes))
+        .collect();
+    progress("planning by caps", 1, 1);
+    for r in by_caps {
+        match r {
+            Ok(p) => offer(found, p),
+            Err((e, r)) => {
+                found.failures.push(format!("by caps: {e}"));
+                if let Some(r) = r {
+                    found.reject(r);
                 }
             }
         }
     }
-    best.ok_or_else(|| PlanError::Unplannable {
-        name: name.into(),
-        reason: unplannable_reason(shape, monotone.is_empty(), failures),
-        rejected,
-    })
 }
 
 /// The best serpentine over the turn styles that folds without collision: every style is
@@ -233,17 +311,6 @@ fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
         .into_iter()
         .map(|b| kurbo::Rect::new(b.x0 * w, b.y0 * w, b.x1 * w, b.y1 * w))
         .collect()
-}
-
-/// True if along some sweep axis the cheapest cap decomposition at about `tiles` tiles has
-/// more than one cell (a shape that one serpentine fills as well needs no caps).
-fn splits_into_cells(shape: &Shape, tiles: usize) -> bool {
-    let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
-    axes(shape).iter().any(|&a| {
-        caps::cap_plans(&shape.rotated(-a).scaled(1.0 / w), TIGHT.pitch)
-            .first()
-            .is_some_and(|p| p.cells.len() > 1)
-    })
 }
 
 /// An f64 ordered by `total_cmp`, for ranking keys.

@@ -93,6 +93,51 @@ fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
     for line in fold_order(plan) {
         doc = doc.add(line);
     }
+    doc = mark_start_and_indices(doc, plan, view, legend_size);
+    let x0 = view.x0 + 0.5 * m;
+    let lines = caption_lines(plan, rejected);
+    if let Some(e) = rejected {
+        doc = doc.add(
+            Rectangle::new()
+                .set("x", r4(e.bbox.x0))
+                .set("y", r4(e.bbox.y0))
+                .set("width", r4(e.bbox.width()))
+                .set("height", r4(e.bbox.height()))
+                .set("fill", "#d00000")
+                .set("fill-opacity", 0.15)
+                .set("stroke", "#d00000")
+                .set("stroke-width", r4(2.0 * lw)),
+        );
+    }
+    for (i, t) in lines.iter().enumerate() {
+        let colour = if rejected.is_some() && i < 2 {
+            "#d00000"
+        } else {
+            "#333"
+        };
+        doc = doc.add(
+            label(
+                t,
+                x0,
+                view.y0 + (1.2 + 1.5 * i as f64) * title_size,
+                title_size,
+            )
+            .set("fill", colour),
+        );
+    }
+    doc = legend(doc, x0, view.y1 - footer + 0.5 * m, legend_size);
+    format!("{doc}\n")
+}
+
+/// The start of the chain (the RI end) marked and labelled, and every tenth tile or so
+/// numbered.
+fn mark_start_and_indices(
+    mut doc: Document,
+    plan: &Plan,
+    view: Rect,
+    legend_size: f64,
+) -> Document {
+    let w = plan.tile_size;
     if let Some(p) = plan.poses.first() {
         // the label: at most the text size of the legend, at least readable next to small
         // tiles, on the side of the start that faces the middle of the picture
@@ -125,7 +170,12 @@ fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
                 .set("fill", "#000"),
         );
     }
-    let x0 = view.x0 + 0.5 * m;
+    doc
+}
+
+/// The lines above the picture: the plan's summary and fit, after the rejection's two lines
+/// when it was rejected.
+fn caption_lines(plan: &Plan, rejected: Option<&EmptyPart>) -> Vec<String> {
     // short lines: a tall drawing makes a narrow picture
     let lines = [
         format!(
@@ -162,36 +212,8 @@ fn preview(shape: &Shape, plan: &Plan, rejected: Option<&EmptyPart>) -> String {
                 e.tiles
             ),
         );
-        doc = doc.add(
-            Rectangle::new()
-                .set("x", r4(e.bbox.x0))
-                .set("y", r4(e.bbox.y0))
-                .set("width", r4(e.bbox.width()))
-                .set("height", r4(e.bbox.height()))
-                .set("fill", "#d00000")
-                .set("fill-opacity", 0.15)
-                .set("stroke", "#d00000")
-                .set("stroke-width", r4(2.0 * lw)),
-        );
     }
-    for (i, t) in lines.iter().enumerate() {
-        let colour = if rejected.is_some() && i < 2 {
-            "#d00000"
-        } else {
-            "#333"
-        };
-        doc = doc.add(
-            label(
-                t,
-                x0,
-                view.y0 + (1.2 + 1.5 * i as f64) * title_size,
-                title_size,
-            )
-            .set("fill", colour),
-        );
-    }
-    doc = legend(doc, x0, view.y1 - footer + 0.5 * m, legend_size);
-    format!("{doc}\n")
+    lines
 }
 
 /// The share of a band of rows that octagons can cover: a tile's area `2 (sqrt2 - 1) w^2`

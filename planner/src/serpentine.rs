@@ -40,6 +40,9 @@ const SECANT_STEPS: usize = 12;
 /// Up to this many tiles, every nudge is tried even once the count is within the
 /// tolerance, for a better fit (a programme at this size takes milliseconds).
 const EXPLORE_TILES: usize = 20_000;
+/// Orientations (direction and start corner) solved at every width after the first: the
+/// best at the first width (the search then moves the width by a few percent).
+const KEPT_ORIENTATIONS: usize = 6;
 const NUDGES: [f64; 8] = [0.98, 1.02, 0.96, 1.04, 0.99, 1.01, 0.97, 1.03];
 
 /// A solved serpentine over the whole shape, in the work frame of its orientation.
@@ -190,7 +193,7 @@ pub(crate) fn size_style(
         return Ok(Sized { style, w, all });
     }
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
-    let dirs = coarse_over(target);
+    let mut dirs = coarse_over(target);
     // small plans may float within the asked tolerance for fit; large ones gain nothing
     // measurable by it and aim at the count
     let explore = target <= EXPLORE_TILES;
@@ -217,6 +220,17 @@ pub(crate) fn size_style(
         progress(&stage, step, total);
         step += 1;
         let mut all = solve_all(shape, style, &dirs, w);
+        // the orientations rank alike at nearby widths: after the first width, only the
+        // best few are solved again
+        if dirs.len() > KEPT_ORIENTATIONS {
+            let mut kept: Vec<Orientation> = Vec::new();
+            for c in &all {
+                if kept.len() < KEPT_ORIENTATIONS && !kept.contains(&c.orient) {
+                    kept.push(c.orient);
+                }
+            }
+            dirs = kept;
+        }
         // candidates whose count is within the tolerance come first, each group best first
         let tol = search.tolerance;
         all.sort_by_key(|c| c.tiles(style).abs_diff(target).saturating_sub(tol));

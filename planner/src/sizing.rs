@@ -36,9 +36,11 @@ pub(crate) struct SizeSearch {
     /// Factors tried in turn on the width whose rejected plans (see [`Attempt::Rejected`])
     /// missed the target least, after the steps, while no plan within the tolerance is found.
     pub retries: &'static [f64],
-    /// A plan within the tolerance ends the steps and the retries only if its cost is at most
-    /// this (`f64::INFINITY`: any plan; 0 for a planner whose cost says what a plan lacks,
-    /// so that a plan that lacks something keeps the search going).
+    /// A plan within the tolerance ends the steps; it ends the retries only if its cost is
+    /// at most this (`f64::INFINITY`: any plan; 0 for a planner whose cost says what a plan
+    /// lacks, so that the retries look for a width whose plan lacks nothing). The steps do
+    /// not go on for a plan that lacks something: once within the tolerance they only
+    /// bisect towards the same count, where the retries try other phases.
     pub settle_cost: f64,
 }
 
@@ -154,9 +156,7 @@ impl SizeSearch {
                 }
             }
             if step < self.secant_steps {
-                let good = best
-                    .as_ref()
-                    .is_some_and(|b| b.0 == 0 && b.1 <= self.settle_cost);
+                let good = best.as_ref().is_some_and(|b| b.0 == 0);
                 if good && !self.explore {
                     break;
                 }

@@ -61,6 +61,16 @@ fn path_d(c: &Contour, f: &dyn Fn(Pt) -> Pt) -> String {
     d
 }
 
+/// Where the sheet puts its tiles: px per mm of tile and the cells of its grid.
+struct Layout {
+    /// px per mm (64 px per tile width, whatever the tile's size in mm).
+    k: f64,
+    cell_w: f64,
+    cell_h: f64,
+    left: f64,
+    top: f64,
+}
+
 /// The sheet as an SVG document. `joints[i]` is the fold letter of joint `i` (between tiles
 /// `i` and `i + 1`), when the chain has a fold word.
 pub fn assembly_svg(title: &str, tiles: &[SheetTile<'_>], joints: Option<&[PathKind]>) -> String {
@@ -69,17 +79,18 @@ pub fn assembly_svg(title: &str, tiles: &[SheetTile<'_>], joints: Option<&[PathK
         .map(|t| t.part.design.tile_width)
         .fold(0.0, f64::max)
         .max(1.0);
-    // 64 px per tile width, whatever the tile's size in mm
-    let k = 64.0 / w;
-    let cell_w = 80.0;
-    let cell_h = 126.0;
-    let left = 90.0;
-    let top = 118.0;
+    let layout = Layout {
+        k: 64.0 / w,
+        cell_w: 80.0,
+        cell_h: 126.0,
+        left: 90.0,
+        top: 118.0,
+    };
     let cols = SHEET_COLUMNS.min(tiles.len().max(1));
     let rows = tiles.len().div_ceil(SHEET_COLUMNS).max(1);
     // wide enough for the instructions above the tiles
-    let width = (left + cols as f64 * cell_w + 30.0).max(880.0);
-    let height = top + rows as f64 * cell_h + 20.0;
+    let width = (layout.left + cols as f64 * layout.cell_w + 30.0).max(880.0);
+    let height = layout.top + rows as f64 * layout.cell_h + 20.0;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -108,124 +119,171 @@ pub fn assembly_svg(title: &str, tiles: &[SheetTile<'_>], joints: Option<&[PathK
         );
     }
     for (i, t) in tiles.iter().enumerate() {
-        let (col, row) = (i % SHEET_COLUMNS, i / SHEET_COLUMNS);
-        let cx = left + (col as f64 + 0.5) * cell_w;
-        let cy = top + row as f64 * cell_h + 56.0;
-        if col == 0 {
-            let _ = writeln!(
-                s,
-                "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#666\">{}-{}</text>",
-                left - 70.0,
-                cy + 4.0,
-                i,
-                (i + SHEET_COLUMNS - 1).min(tiles.len() - 1)
-            );
-        }
-        let turned = t.tile != t.part.tile;
-        let (sn, cs) = if turned { (0.0, -1.0) } else { (0.0, 1.0) };
-        // tile frame (mm, y up) to the page (px, y down), turned by 180 degrees if need be
-        let to_page = move |p: Pt| -> Pt {
-            let (x, y) = (cs * p[0] - sn * p[1], sn * p[0] + cs * p[1]);
-            [cx + k * x, cy - k * y]
-        };
-        let fill = match t.part.tile.part() {
-            foldchain::Part::SS => "#eef2f7",
-            foldchain::Part::RS => "#e8f4e8",
-            foldchain::Part::SR => "#f6efe2",
-            foldchain::Part::RR => "#f4e6f2",
-            _ => "#f2f2e4",
-        };
-        let _ = writeln!(
-            s,
-            "<path d=\"{}\" fill=\"{fill}\" stroke=\"#445\" stroke-width=\"1\"/>",
-            path_d(&t.part.outline, &to_page)
-        );
-        for ch in &t.part.channels {
-            for c in crate::region::contours(&ch.region) {
-                let _ = writeln!(
-                    s,
-                    "<path d=\"{}\" fill=\"#ffffff\" stroke=\"#889\" stroke-width=\"0.7\"/>",
-                    path_d(c, &to_page)
-                );
-            }
-        }
-        // magnets at rest: the first path's at -x of the tile as it lies
-        for (m, end) in [
-            foldchain::magnet_path::PathEnd::First,
-            foldchain::magnet_path::PathEnd::Second,
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            // the tile's first path is the part's second when turned
-            let ch = match (end, turned) {
-                (foldchain::magnet_path::PathEnd::First, false)
-                | (foldchain::magnet_path::PathEnd::Second, true) => &t.part.channels[0],
-                _ => &t.part.channels[1],
-            };
-            let (rx, ry) = ch.path.rest();
-            let q = to_page([rx, ry]);
-            let (colour, letter) = pole(2 * i + m);
-            let r = k * 0.5 * t.part.design.magnet_diameter;
-            let _ = writeln!(
-                s,
-                "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{:.2}\" fill=\"{colour}\"/><text x=\"{:.2}\" y=\"{:.2}\" font-size=\"7\" text-anchor=\"middle\" fill=\"#fff\" font-weight=\"bold\">{letter}</text>",
-                q[0],
-                q[1],
-                r.max(4.0),
-                q[0],
-                q[1] + 2.5
-            );
-        }
-        let _ = writeln!(
-            s,
-            "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">#{i}</text>",
-            cy - 38.0
-        );
-        let _ = writeln!(
-            s,
-            "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",
-            cy + 50.0,
-            t.tile
-        );
-        let note = if turned {
-            format!("part {}, turned", t.part_label)
-        } else {
-            format!("part {}", t.part_label)
-        };
-        let _ = writeln!(
-            s,
-            "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"9\" text-anchor=\"middle\" fill=\"#666\">{}</text>",
-            cy + 62.0,
-            esc(&note)
-        );
-        if let Some(letter) = joints.and_then(|j| j.get(i)) {
-            if *letter != PathKind::S && col + 1 < SHEET_COLUMNS && i + 1 < tiles.len() {
-                let _ = writeln!(
-                    s,
-                    "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#e07800\">{letter}</text>",
-                    cx + 0.5 * cell_w,
-                    cy - 36.0
-                );
-            } else if *letter != PathKind::S {
-                let _ = writeln!(
-                    s,
-                    "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"start\" fill=\"#e07800\">{letter}</text>",
-                    cx + 0.5 * cell_w - 6.0,
-                    cy + 4.0
-                );
-            }
-        }
-        if i == 0 {
-            let _ = writeln!(
-                s,
-                "<circle cx=\"{:.1}\" cy=\"{cy:.1}\" r=\"10\" fill=\"#d23c3c\" stroke=\"#600\" stroke-width=\"1\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"8\" text-anchor=\"middle\" fill=\"#fff\" font-weight=\"bold\">RI S</text>",
-                left - 14.0,
-                left - 14.0,
-                cy + 3.0
-            );
-        }
+        draw_tile(&mut s, &layout, i, t, tiles.len(), joints);
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// Tile `i` of `n` in its cell: outline, channels, magnets, labels, the fold letter of its
+/// joint, and the RI before tile 0.
+fn draw_tile(
+    s: &mut String,
+    layout: &Layout,
+    i: usize,
+    t: &SheetTile<'_>,
+    n: usize,
+    joints: Option<&[PathKind]>,
+) {
+    let Layout {
+        k,
+        cell_w,
+        cell_h,
+        left,
+        top,
+    } = *layout;
+    let (col, row) = (i % SHEET_COLUMNS, i / SHEET_COLUMNS);
+    let cx = left + (col as f64 + 0.5) * cell_w;
+    let cy = top + row as f64 * cell_h + 56.0;
+    if col == 0 {
+        let _ = writeln!(
+            s,
+            "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#666\">{}-{}</text>",
+            left - 70.0,
+            cy + 4.0,
+            i,
+            (i + SHEET_COLUMNS - 1).min(n - 1)
+        );
+    }
+    let turned = t.tile != t.part.tile;
+    let (sn, cs) = if turned { (0.0, -1.0) } else { (0.0, 1.0) };
+    // tile frame (mm, y up) to the page (px, y down), turned by 180 degrees if need be
+    let to_page = move |p: Pt| -> Pt {
+        let (x, y) = (cs * p[0] - sn * p[1], sn * p[0] + cs * p[1]);
+        [cx + k * x, cy - k * y]
+    };
+    let fill = match t.part.tile.part() {
+        foldchain::Part::SS => "#eef2f7",
+        foldchain::Part::RS => "#e8f4e8",
+        foldchain::Part::SR => "#f6efe2",
+        foldchain::Part::RR => "#f4e6f2",
+        _ => "#f2f2e4",
+    };
+    let _ = writeln!(
+        s,
+        "<path d=\"{}\" fill=\"{fill}\" stroke=\"#445\" stroke-width=\"1\"/>",
+        path_d(&t.part.outline, &to_page)
+    );
+    for ch in &t.part.channels {
+        for c in crate::region::contours(&ch.region) {
+            let _ = writeln!(
+                s,
+                "<path d=\"{}\" fill=\"#ffffff\" stroke=\"#889\" stroke-width=\"0.7\"/>",
+                path_d(c, &to_page)
+            );
+        }
+    }
+    draw_magnets(s, i, t, turned, k, &to_page);
+    let _ = writeln!(
+        s,
+        "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">#{i}</text>",
+        cy - 38.0
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",
+        cy + 50.0,
+        t.tile
+    );
+    let note = if turned {
+        format!("part {}, turned", t.part_label)
+    } else {
+        format!("part {}", t.part_label)
+    };
+    let _ = writeln!(
+        s,
+        "<text x=\"{cx:.1}\" y=\"{:.1}\" font-size=\"9\" text-anchor=\"middle\" fill=\"#666\">{}</text>",
+        cy + 62.0,
+        esc(&note)
+    );
+    mark_joint(s, layout, i, n, col, (cx, cy), joints);
+}
+
+/// Tile `i`'s two magnets at rest, with the pole that faces up.
+fn draw_magnets(
+    s: &mut String,
+    i: usize,
+    t: &SheetTile<'_>,
+    turned: bool,
+    k: f64,
+    to_page: &dyn Fn(Pt) -> Pt,
+) {
+    // magnets at rest: the first path's at -x of the tile as it lies
+    for (m, end) in [
+        foldchain::magnet_path::PathEnd::First,
+        foldchain::magnet_path::PathEnd::Second,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        // the tile's first path is the part's second when turned
+        let ch = match (end, turned) {
+            (foldchain::magnet_path::PathEnd::First, false)
+            | (foldchain::magnet_path::PathEnd::Second, true) => &t.part.channels[0],
+            _ => &t.part.channels[1],
+        };
+        let (rx, ry) = ch.path.rest();
+        let q = to_page([rx, ry]);
+        let (colour, letter) = pole(2 * i + m);
+        let r = k * 0.5 * t.part.design.magnet_diameter;
+        let _ = writeln!(
+            s,
+            "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{:.2}\" fill=\"{colour}\"/><text x=\"{:.2}\" y=\"{:.2}\" font-size=\"7\" text-anchor=\"middle\" fill=\"#fff\" font-weight=\"bold\">{letter}</text>",
+            q[0],
+            q[1],
+            r.max(4.0),
+            q[0],
+            q[1] + 2.5
+        );
+    }
+}
+
+/// The fold letter of joint `i` beside tile `i` (centred at `(cx, cy)`, in column `col`) when
+/// it folds, and the RI before tile 0.
+fn mark_joint(
+    s: &mut String,
+    layout: &Layout,
+    i: usize,
+    n: usize,
+    col: usize,
+    (cx, cy): (f64, f64),
+    joints: Option<&[PathKind]>,
+) {
+    let (cell_w, left) = (layout.cell_w, layout.left);
+    if let Some(letter) = joints.and_then(|j| j.get(i)) {
+        if *letter != PathKind::S && col + 1 < SHEET_COLUMNS && i + 1 < n {
+            let _ = writeln!(
+                s,
+                "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"middle\" fill=\"#e07800\">{letter}</text>",
+                cx + 0.5 * cell_w,
+                cy - 36.0
+            );
+        } else if *letter != PathKind::S {
+            let _ = writeln!(
+                s,
+                "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"start\" fill=\"#e07800\">{letter}</text>",
+                cx + 0.5 * cell_w - 6.0,
+                cy + 4.0
+            );
+        }
+    }
+    if i == 0 {
+        let _ = writeln!(
+            s,
+            "<circle cx=\"{:.1}\" cy=\"{cy:.1}\" r=\"10\" fill=\"#d23c3c\" stroke=\"#600\" stroke-width=\"1\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"8\" text-anchor=\"middle\" fill=\"#fff\" font-weight=\"bold\">RI S</text>",
+            left - 14.0,
+            left - 14.0,
+            cy + 3.0
+        );
+    }
 }

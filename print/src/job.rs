@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use foldchain::timeline::TileDesigns;
 use foldchain::tolerance::Printer;
-use foldchain::{Chain, Design, Part, PathKind, Tile};
+use foldchain::{Chain, Design, FoldWord, Part, PathKind, Tile};
 use foldchain_planner::{plan_svg_file, Plan, PlanOptions};
 
 use crate::assembly::{assembly_svg, SheetTile};
@@ -231,7 +231,80 @@ pub fn print_job(
 ) -> Result<PrintJob, PrintError> {
     opts.part.validate()?;
     opts.bed.validate()?;
-    let (chain, name, origin, word) = match source {
+    let (chain, name, origin, word) = read_source(source)?;
+    let n = chain.len();
+    let (list, index) = designs.resolve(n);
+    let design_of = |i: usize| index.get(i).map_or(0, |&k| k as usize);
+    // the parts: (part, design) in the bill of materials' order
+    let mut keys: BTreeMap<(Part, usize), usize> = BTreeMap::new();
+    for (i, t) in chain.tiles().iter().enumerate() {
+        *keys.entry((t.part(), design_of(i))).or_insert(0) += 1;
+    }
+    let parts = part_entries(&keys, &list, opts)?;
+    let mut files = part_files(&parts, opts)?;
+    let plates = plate_files(&parts, &name, opts, &mut files)?;
+    // the assembly sheet
+    let sheet_tiles: Vec<SheetTile<'_>> = chain
+        .tiles()
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let key = (t.part(), design_of(i));
+            let pos = keys.keys().position(|k| *k == key).unwrap_or(0);
+            SheetTile {
+                tile: t,
+                part_label: &parts[pos].0.label,
+                part: &parts[pos].1,
+            }
+        })
+        .collect();
+    files.push(assembly_file(&name, &sheet_tiles, word.as_ref()));
+    let design_warnings = design_warnings(&list);
+    let global = designs.global_design();
+    let total_volume: f64 = plates.iter().map(|p| p.volume_mm3).sum();
+    let report = PartsReport {
+        name,
+        source: origin,
+        tiles: n,
+        tile_list: chain.to_tile_list(),
+        printer: opts.part.printer,
+        clearance_mm: opts.part.clearance,
+        height_mm: opts.part.height,
+        floor_mm: opts.part.floor,
+        format: opts.format,
+        total_print_minutes: plates.iter().map(|p| p.print_minutes).sum(),
+        parts: parts.into_iter().map(|(e, _)| e).collect(),
+        plates,
+        magnets: Magnets {
+            count: 2 * n,
+            diameter_mm: global.magnet_diameter,
+            height_mm: global.magnet_height,
+        },
+        total_volume_mm3: total_volume,
+        estimate_basis: estimate_basis(opts.part.printer),
+        design_warnings,
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(|e| PrintError::Format {
+        name: "parts.json".into(),
+        reason: e.to_string(),
+    })?;
+    files.push(OutputFile {
+        path: "parts.json".into(),
+        bytes: (json + "\n").into_bytes(),
+    });
+    Ok(PrintJob {
+        chain,
+        files,
+        report,
+    })
+}
+
+/// The chain of `source` (planned, for a plan's or a shape's), its name, where it came from
+/// and its fold word when it has one.
+fn read_source(
+    source: &Source,
+) -> Result<(Chain, String, Option<String>, Option<FoldWord>), PrintError> {
+    Ok(match source {
         Source::Chain { chain, name } => (chain.clone(), name.clone(), None, chain.to_word().ok()),
         Source::Plan { plan, name } => {
             let word = plan.fold_word()?;
@@ -255,19 +328,20 @@ pub fn print_job(
                 Some(word),
             )
         }
-    };
-    let n = chain.len();
-    let (list, index) = designs.resolve(n);
-    let design_of = |i: usize| index.get(i).map_or(0, |&k| k as usize);
-    // the parts: (part, design) in the bill of materials' order
-    let mut keys: BTreeMap<(Part, usize), usize> = BTreeMap::new();
-    for (i, t) in chain.tiles().iter().enumerate() {
-        *keys.entry((t.part(), design_of(i))).or_insert(0) += 1;
-    }
+    })
+}
+
+/// One entry and its part for each `(part, design)` of `keys` (with its count of tiles),
+/// in the bill of materials' order.
+fn part_entries(
+    keys: &BTreeMap<(Part, usize), usize>,
+    list: &[Design],
+    opts: &PrintOptions,
+) -> Result<Vec<(PartEntry, TilePart)>, PrintError> {
     let several_designs = keys.keys().any(|&(_, d)| d > 0);
     let ext = opts.format.extension();
     let mut parts: Vec<(PartEntry, TilePart)> = Vec::new();
-    for (&(part, d), &count) in &keys {
+    for (&(part, d), &count) in keys {
         let design = list.get(d).copied().unwrap_or_default();
         let tp = TilePart::new(part_tile(part), &design, &opts.part)?;
         let label = if several_designs {
@@ -296,8 +370,16 @@ pub fn print_job(
             tp,
         ));
     }
+    Ok(parts)
+}
+
+/// Each part's mesh file and picture.
+fn part_files(
+    parts: &[(PartEntry, TilePart)],
+    opts: &PrintOptions,
+) -> Result<Vec<OutputFile>, PrintError> {
     let mut files = Vec::new();
-    for (e, tp) in &parts {
+    for (e, tp) in parts {
         let title = format!("{} (reads {} or {})", e.label, e.reads[0], e.reads[1]);
         files.push(OutputFile {
             path: e.file.clone(),
@@ -323,7 +405,18 @@ pub fn print_job(
             bytes: png,
         });
     }
-    // plates: the footprint is the widest tile's
+    Ok(files)
+}
+
+/// The build plates of `parts` (each part's count of tiles laid out on the bed), their files
+/// added to `files`.
+fn plate_files(
+    parts: &[(PartEntry, TilePart)],
+    name: &str,
+    opts: &PrintOptions,
+    files: &mut Vec<OutputFile>,
+) -> Result<Vec<PlateEntry>, PrintError> {
+    let ext = opts.format.extension();
     let size = parts
         .iter()
         .map(|(_, tp)| tp.design.tile_width)
@@ -367,36 +460,30 @@ pub fn print_job(
             print_minutes: plate_minutes(volume, opts.part.height, opts.part.printer),
         });
     }
-    // the assembly sheet
-    let sheet_tiles: Vec<SheetTile<'_>> = chain
-        .tiles()
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let key = (t.part(), design_of(i));
-            let pos = keys.keys().position(|k| *k == key).unwrap_or(0);
-            SheetTile {
-                tile: t,
-                part_label: &parts[pos].0.label,
-                part: &parts[pos].1,
-            }
-        })
-        .collect();
-    let letters: Option<Vec<PathKind>> = word.as_ref().map(|w| {
+    Ok(plates)
+}
+
+/// The assembly sheet of `tiles`, with the fold letters of `word` when the chain has one.
+fn assembly_file(name: &str, tiles: &[SheetTile<'_>], word: Option<&FoldWord>) -> OutputFile {
+    let letters: Option<Vec<PathKind>> = word.map(|w| {
         w.to_string()
             .chars()
             .filter_map(PathKind::from_char)
             .collect()
     });
     let sheet = assembly_svg(
-        &format!("{name}: assembly, {n} tiles"),
-        &sheet_tiles,
+        &format!("{name}: assembly, {} tiles", tiles.len()),
+        tiles,
         letters.as_deref(),
     );
-    files.push(OutputFile {
+    OutputFile {
         path: "assembly.svg".into(),
         bytes: sheet.into_bytes(),
-    });
+    }
+}
+
+/// A line for each inequality a design of `list` does not hold with room.
+fn design_warnings(list: &[Design]) -> Vec<String> {
     let mut design_warnings = Vec::new();
     for (i, d) in list.iter().enumerate() {
         for c in d.report() {
@@ -415,43 +502,7 @@ pub fn print_job(
             }
         }
     }
-    let global = designs.global_design();
-    let total_volume: f64 = plates.iter().map(|p| p.volume_mm3).sum();
-    let report = PartsReport {
-        name,
-        source: origin,
-        tiles: n,
-        tile_list: chain.to_tile_list(),
-        printer: opts.part.printer,
-        clearance_mm: opts.part.clearance,
-        height_mm: opts.part.height,
-        floor_mm: opts.part.floor,
-        format: opts.format,
-        total_print_minutes: plates.iter().map(|p| p.print_minutes).sum(),
-        parts: parts.into_iter().map(|(e, _)| e).collect(),
-        plates,
-        magnets: Magnets {
-            count: 2 * n,
-            diameter_mm: global.magnet_diameter,
-            height_mm: global.magnet_height,
-        },
-        total_volume_mm3: total_volume,
-        estimate_basis: estimate_basis(opts.part.printer),
-        design_warnings,
-    };
-    let json = serde_json::to_string_pretty(&report).map_err(|e| PrintError::Format {
-        name: "parts.json".into(),
-        reason: e.to_string(),
-    })?;
-    files.push(OutputFile {
-        path: "parts.json".into(),
-        bytes: (json + "\n").into_bytes(),
-    });
-    Ok(PrintJob {
-        chain,
-        files,
-        report,
-    })
+    design_warnings
 }
 
 /// The minutes an FDM printer takes for `volume` mm^3 (0 for resin: see the plates).

@@ -32,7 +32,7 @@ use super::{check_word, CheckOptions, FoldSchedule, JointTrack, ScheduleError};
 /// Checks a chain folding along `schedule`: every pair of tiles with a moving joint between
 /// them, at every moment (or the exact sweep check for a sequential schedule). Returns the
 /// first contact with its time.
-pub fn check_schedule(
+pub(crate) fn check_schedule(
     word: &FoldWord,
     schedule: &FoldSchedule,
     opts: &CheckOptions,

@@ -99,7 +99,7 @@ impl Cells {
 /// in the final shape `poses`, exactly. Tiles are found through cells of one width (overlapping
 /// centres are less than one width apart on both axes, so they sit in the same or neighbouring
 /// cells); the test itself is exact, on the lattice coordinates.
-pub fn final_overlap(poses: &[ExactPose]) -> Option<Collision> {
+pub(crate) fn final_overlap(poses: &[ExactPose]) -> Option<Collision> {
     let centres: Vec<(f64, f64)> = poses.iter().map(|p| p.centre.to_f64(1.0)).collect();
     let cell: Vec<(i64, i64)> = centres
         .iter()

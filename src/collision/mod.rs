@@ -9,11 +9,11 @@
 //!   meets a placed tile depends only on that tile's exact lattice offset from the folding
 //!   tile, so a memo of first hits by offset decides each fold with a few lookups; only a fold
 //!   that collides is swept pair by pair for the contact angle.
-//! - [`check_schedule`] takes joint angles as functions of time (several joints moving at
-//!   once, as the event engine produces for small `s`) and checks every moving part against
-//!   every other by conservative advancement on parry2d distances, reporting the first
-//!   contact.
-//! - The final shape is checked exactly: final tile centres are integer combinations of `w`
+//! - The timed check (crate-private; [`crate::simulate`] and the runs' `check` methods call
+//!   it) takes joint angles as functions of time (several joints moving at once, as the event
+//!   engine produces for small `s`) and checks every moving part against every other by
+//!   conservative advancement on parry2d distances, reporting the first contact.
+//! - The final shape is checked exactly ([`check_word`] with [`CheckOptions::final_only`]): final tile centres are integer combinations of `w`
 //!   and `w/sqrt2` ([`crate::exact`]), so overlap against touching needs no tolerance there.
 //!
 //! **Tolerance.** Touching (a shared face or vertex) is allowed, overlap is not. During a
@@ -39,9 +39,9 @@ mod sequential;
 mod sweep;
 mod windows;
 
-pub use advancement::check_schedule;
-pub use lattice::final_overlap;
-pub use schedule::{FoldSchedule, JointTrack, ScheduleError};
+pub(crate) use advancement::check_schedule;
+pub(crate) use lattice::final_overlap;
+pub(crate) use schedule::{FoldSchedule, JointTrack, ScheduleError};
 pub use sequential::{check_chain, check_word, Verdict};
 
 // for the counting search (`crate::count`), which grows words with the same exact tests
@@ -100,7 +100,7 @@ pub struct Collision {
     /// the same joint unless one of them starts or ends a fold between their two contact
     /// times, whereas the fastest joint at the contact (the rule before) flipped between
     /// joints turning at nearly the same rate. A joint whose fold has ended
-    /// ([`JointTrack::ended`]) but that moves again (an inertial fold released from its wall)
+    /// (it closed at its wall) but that moves again (an inertial fold released from its wall)
     /// is named only when no joint between the tiles whose fold goes on turns: the
     /// reference's recorded states keep such tiny motions, the engine's closed folds do not.
     pub joint: Option<usize>,

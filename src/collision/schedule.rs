@@ -15,7 +15,7 @@ use super::Collision;
 /// One joint's signed angle against time: piecewise linear through `(times[i], angles[i])`;
 /// before the first time the angle is `angles[0]`, after the last it stays at the last.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct JointTrack {
+pub(crate) struct JointTrack {
     /// The joint (0 = nearest the reaction initiator).
     pub joint: usize,
     /// Times, non-decreasing, seconds.
@@ -107,7 +107,7 @@ impl JointTrack {
 
 /// The angle tracks of the joints that move; joints without a track stay straight.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct FoldSchedule {
+pub(crate) struct FoldSchedule {
     /// One track per moving joint.
     pub tracks: Vec<JointTrack>,
 }
@@ -115,7 +115,7 @@ pub struct FoldSchedule {
 /// Why a schedule could not be checked.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum ScheduleError {
+pub(crate) enum ScheduleError {
     /// Two tiles meet.
     #[error("{0}")]
     Collision(Collision),
@@ -175,7 +175,8 @@ impl FoldSchedule {
 
     /// The sequential schedule of the thesis: each fold joint in turn, from straight to its
     /// full fold over `fold_time` seconds, one after another.
-    pub fn sequential(word: &FoldWord, fold_time: f64) -> FoldSchedule {
+    #[cfg(test)]
+    pub(crate) fn sequential(word: &FoldWord, fold_time: f64) -> FoldSchedule {
         let mut t = 0.0;
         let mut tracks = Vec::new();
         for (joint, f) in word.folds().iter().enumerate() {

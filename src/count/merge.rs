@@ -85,7 +85,7 @@ impl CountReport {
     /// JSON text)`: the valid counts are summed, the time too. Refuses a report that is not a
     /// shard, a part given twice or missing, parts of different searches, and random-chain
     /// probabilities (they are not counts: run `--random` unsharded).
-    pub fn merge(files: &[(String, String)]) -> Result<CountReport, MergeError> {
+    pub fn merge(files: &[(String, String)]) -> Result<CountReport, CountError> {
         merge_reports(files)
     }
 
@@ -95,72 +95,7 @@ impl CountReport {
     }
 }
 
-/// Why shard reports could not be added up.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum MergeError {
-    /// Nothing to merge.
-    #[error("no shard reports given")]
-    Empty,
-    /// A file is not a count report.
-    #[error("{file}: not a fold-enum --json report: {message}")]
-    Json {
-        /// The file.
-        file: String,
-        /// What the JSON reader said.
-        message: String,
-    },
-    /// A report is a whole search, not a part.
-    #[error(
-        "{file}: not a shard (its \"shard\" is null); only the parts of one --shard run add up"
-    )]
-    NotAShard {
-        /// The file.
-        file: String,
-    },
-    /// A report splits the search into another number of parts.
-    #[error("{file}: shard {shard} is one of {} parts, but {first} is one of {expected}", shard.m)]
-    PartsDisagree {
-        /// The file.
-        file: String,
-        /// Its part.
-        shard: Shard,
-        /// The first file.
-        first: String,
-        /// The first file's number of parts.
-        expected: usize,
-    },
-    /// The same part twice.
-    #[error("shard {shard} given twice: {first} and {second}")]
-    Doubled {
-        /// The part.
-        shard: Shard,
-        /// Where it was seen first.
-        first: String,
-        /// Where it was seen again.
-        second: String,
-    },
-    /// Parts missing.
-    #[error("shards missing: {} (of {m} parts)", list(missing))]
-    Missing {
-        /// The parts not given.
-        missing: Vec<usize>,
-        /// The number of parts.
-        m: usize,
-    },
-    /// A report of another search (options, lengths, or probabilities that do not add).
-    #[error("{file}: {what} differ from those of {first}")]
-    Mismatch {
-        /// The file.
-        file: String,
-        /// The first file.
-        first: String,
-        /// What differs.
-        what: String,
-    },
-}
-
-fn list(parts: &[usize]) -> String {
+pub(super) fn list(parts: &[usize]) -> String {
     let v: Vec<String> = parts.iter().map(|k| k.to_string()).collect();
     v.join(", ")
 }
@@ -187,18 +122,18 @@ fn same_search(a: &CountReport, b: &CountReport) -> Result<(), String> {
 /// text)`: the valid counts are summed, the time too. Refuses a report that is not a shard, a
 /// part given twice or missing, parts of different searches, and random-chain probabilities
 /// (they are not counts: run `--random` unsharded).
-pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, MergeError> {
+pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, CountError> {
     let mut parts: Vec<(&str, Shard, CountReport)> = Vec::with_capacity(files.len());
     for (file, text) in files {
-        let report = CountReport::from_json(text).map_err(|e| MergeError::Json {
+        let report = CountReport::from_json(text).map_err(|e| CountError::Json {
             file: file.clone(),
             message: e.to_string(),
         })?;
         let Some(shard) = report.shard else {
-            return Err(MergeError::NotAShard { file: file.clone() });
+            return Err(CountError::NotAShard { file: file.clone() });
         };
         if report.rows.iter().any(|r| r.p_random.is_some()) {
-            return Err(MergeError::Mismatch {
+            return Err(CountError::Mismatch {
                 file: file.clone(),
                 first: file.clone(),
                 what: "random-chain probabilities (not counts: they do not add up)".into(),
@@ -207,7 +142,7 @@ pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, M
         parts.push((file, shard, report));
     }
     let Some((first, first_shard, base)) = parts.first() else {
-        return Err(MergeError::Empty);
+        return Err(CountError::NoReports);
     };
     let m = first_shard.m;
     let mut seen: Vec<Option<&str>> = vec![None; m + 1];
@@ -222,7 +157,7 @@ pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, M
     }
     for (file, shard, report) in &parts {
         if shard.m != m {
-            return Err(MergeError::PartsDisagree {
+            return Err(CountError::PartsDisagree {
                 file: file.to_string(),
                 shard: *shard,
                 first: first.to_string(),
@@ -230,14 +165,14 @@ pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, M
             });
         }
         if let Some(before) = seen[shard.k] {
-            return Err(MergeError::Doubled {
+            return Err(CountError::Doubled {
                 shard: *shard,
                 first: before.to_string(),
                 second: file.to_string(),
             });
         }
         seen[shard.k] = Some(file);
-        same_search(base, report).map_err(|what| MergeError::Mismatch {
+        same_search(base, report).map_err(|what| CountError::Mismatch {
             file: file.to_string(),
             first: first.to_string(),
             what,
@@ -249,7 +184,7 @@ pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, M
     }
     let missing: Vec<usize> = (1..=m).filter(|&k| seen[k].is_none()).collect();
     if !missing.is_empty() {
-        return Err(MergeError::Missing { missing, m });
+        return Err(CountError::Missing { missing, m });
     }
     Ok(merged)
 }
@@ -295,7 +230,7 @@ mod tests {
         let e = merge_reports(&parts(opts, &[1, 3], 4)).unwrap_err();
         assert_eq!(
             e,
-            MergeError::Missing {
+            CountError::Missing {
                 missing: vec![2, 4],
                 m: 4
             }
@@ -303,7 +238,7 @@ mod tests {
         assert_eq!(e.to_string(), "shards missing: 2, 4 (of 4 parts)");
         let e = merge_reports(&parts(opts, &[1, 2, 2, 3], 3)).unwrap_err();
         assert!(
-            matches!(&e, MergeError::Doubled { shard, first, second }
+            matches!(&e, CountError::Doubled { shard, first, second }
                 if shard.k == 2 && first == "part-2.json" && second == "part-2.json"),
             "{e}"
         );
@@ -311,9 +246,9 @@ mod tests {
         mixed.extend(parts(opts, &[2], 3));
         assert!(matches!(
             merge_reports(&mixed).unwrap_err(),
-            MergeError::PartsDisagree { expected: 2, .. }
+            CountError::PartsDisagree { expected: 2, .. }
         ));
-        assert_eq!(merge_reports(&[]).unwrap_err(), MergeError::Empty);
+        assert_eq!(merge_reports(&[]).unwrap_err(), CountError::NoReports);
     }
 
     #[test]
@@ -323,25 +258,25 @@ mod tests {
         mixed.extend(parts(opts.with_allow_opposite(true), &[2], 2));
         let e = merge_reports(&mixed).unwrap_err();
         assert!(
-            matches!(&e, MergeError::Mismatch { what, .. } if what == "options"),
+            matches!(&e, CountError::Mismatch { what, .. } if what == "options"),
             "{e}"
         );
         let mut longer = parts(opts, &[1], 2);
         longer.extend(parts(opts.with_tiles(2, 12), &[2], 2));
         assert!(matches!(
             merge_reports(&longer).unwrap_err(),
-            MergeError::Mismatch { .. }
+            CountError::Mismatch { .. }
         ));
         let whole = vec![("whole.json".to_string(), report(&opts))];
         assert_eq!(
             merge_reports(&whole).unwrap_err(),
-            MergeError::NotAShard {
+            CountError::NotAShard {
                 file: "whole.json".into()
             }
         );
         let bad = vec![("bad.json".to_string(), "{\"rows\": 3}".to_string())];
         assert!(
-            matches!(merge_reports(&bad).unwrap_err(), MergeError::Json { file, .. } if file == "bad.json")
+            matches!(merge_reports(&bad).unwrap_err(), CountError::Json { file, .. } if file == "bad.json")
         );
     }
 

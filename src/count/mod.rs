@@ -24,7 +24,8 @@ mod merge;
 mod random;
 mod search;
 
-pub use merge::{CountReport, MergeError, Shard};
+use merge::list;
+pub use merge::{CountReport, Shard};
 pub use random::RandomEstimate;
 
 use crate::collision::CheckOptions;
@@ -104,7 +105,8 @@ impl CountOptions {
     }
 }
 
-/// Why a count could not be made.
+/// Why a count could not be made, or the reports of its shards not added up
+/// ([`CountReport::merge`]).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum CountError {
@@ -131,6 +133,65 @@ pub enum CountError {
     ShardText {
         /// What was given.
         text: String,
+    },
+    /// No shard reports to add up ([`CountReport::merge`]).
+    #[error("no shard reports given")]
+    NoReports,
+    /// A file is not a count report.
+    #[error("{file}: not a fold-enum --json report: {message}")]
+    Json {
+        /// The file.
+        file: String,
+        /// What the JSON reader said.
+        message: String,
+    },
+    /// A report is a whole search, not a part.
+    #[error(
+        "{file}: not a shard (its \"shard\" is null); only the parts of one --shard run add up"
+    )]
+    NotAShard {
+        /// The file.
+        file: String,
+    },
+    /// A report splits the search into another number of parts.
+    #[error("{file}: shard {shard} is one of {} parts, but {first} is one of {expected}", shard.m)]
+    PartsDisagree {
+        /// The file.
+        file: String,
+        /// Its part.
+        shard: Shard,
+        /// The first file.
+        first: String,
+        /// The first file's number of parts.
+        expected: usize,
+    },
+    /// The same part twice.
+    #[error("shard {shard} given twice: {first} and {second}")]
+    Doubled {
+        /// The part.
+        shard: Shard,
+        /// Where it was seen first.
+        first: String,
+        /// Where it was seen again.
+        second: String,
+    },
+    /// Parts missing.
+    #[error("shards missing: {} (of {m} parts)", list(missing))]
+    Missing {
+        /// The parts not given.
+        missing: Vec<usize>,
+        /// The number of parts.
+        m: usize,
+    },
+    /// A report of another search (options, lengths, or probabilities that do not add).
+    #[error("{file}: {what} differ from those of {first}")]
+    Mismatch {
+        /// The file.
+        file: String,
+        /// The first file.
+        first: String,
+        /// What differs.
+        what: String,
     },
 }
 

@@ -4,8 +4,8 @@
 //!
 //! - [`run`]: the event queue and its rules ([`EngineOptions`], [`StartRule`], the speed law
 //!   [`SpeedLaw`]); its result is a [`Timeline`], in the vocabulary of [`crate::timeline`].
-//! - [`Timeline::joint_angles_at`]: the fold law; [`Timeline::fold_schedule`]: the folds as
-//!   tracks for the collision check; [`RunSource::energy`](crate::timeline::RunSource::energy):
+//! - [`Timeline::joint_angles_at`]: the fold law; [`Timeline::checked_summary`]: the folds
+//!   as tracks checked for collisions; [`RunSource::energy`](crate::timeline::RunSource::energy):
 //!   the total dipole energy.
 //!
 //! ```

@@ -160,6 +160,10 @@ pub enum EngineError {
     /// More magnets than the compact event index holds.
     #[error("chain of {0} tiles: the engine handles at most 2^31 - 1 magnets")]
     TooLong(usize),
+    /// The fold schedule handed to the collision check was malformed (an engine bug,
+    /// reported rather than hidden): what was wrong with it.
+    #[error("fold schedule: {0}")]
+    Schedule(String),
 }
 
 /// Runs the event engine on `chain` with `designs`.

@@ -5,7 +5,7 @@ use crate::engine::{energy_curve, fold_angle, joint_angles_at, Timeline};
 use crate::kinematics::poses_at_angles;
 use crate::timeline::{
     ChainState, EnergySample, EventKind, FoldRecord, Geometry, MagnetTrack, RunSource,
-    TimelineJson, Track, TrackKey, TransitionData, ANGLE_TOLERANCE, DETAIL_TILES, EVENT_INDEX,
+    TimelineJson, Track, TransitionData, ANGLE_TOLERANCE, DETAIL_TILES, EVENT_INDEX,
     TRAVEL_TOLERANCE,
 };
 
@@ -49,7 +49,7 @@ impl RunSource for Timeline {
     /// The motion law (its address in the run's table: one per distinct path, partner and
     /// fold), the local solves' shape of the magnet and its start against that shape's origin
     /// (the local solves repeat a few shapes shifted in time), and the track's duration.
-    fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
+    fn magnet_travel_key(&self, k: usize) -> Option<([u64; 4], f64)> {
         let s = self.start_of(k)?;
         let a = self.arrival_of(k).unwrap_or(s).max(s);
         let motion = self.motion(k) as *const _ as usize as u64;

@@ -18,15 +18,8 @@ pub(crate) const ANGLE_TOLERANCE: f64 = 1e-4;
 /// Deepest halving of a schedule interval.
 const MAX_DEPTH: u32 = 14;
 
-impl Timeline {
-    /// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
-    /// one adaptively sampled angle track per fold.
-    pub fn fold_schedule(&self) -> FoldSchedule {
-        fold_schedule(self)
-    }
-}
-
-/// The fold schedule: one adaptively sampled track per fold.
+/// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
+/// one adaptively sampled angle track per fold.
 pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
     let tracks = timeline
         .folds

@@ -10,12 +10,11 @@
 //! 1% of the force that holds a tile's two magnets together.
 //!
 //! ```
-//! use foldchain::margins::{ChainModel, MarginOptions, Margins};
+//! use foldchain::margins::{MarginOptions, Margins};
 //! use foldchain::{Chain, Design};
 //!
 //! let chain = Chain::parse("SLLS").unwrap();
-//! let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
-//! let m = Margins::of(&model, &MarginOptions::default());
+//! let m = Margins::of(&chain, &[Design::thesis()], &MarginOptions::default()).unwrap();
 //! assert_eq!(m.starts.len(), 2 * chain.len() - 1);
 //! assert_eq!(m.folds.len(), 2);
 //! assert!(m.folds_as_designed(), "{:?}", m.weakest());
@@ -27,9 +26,11 @@ mod model;
 mod placed_tiles;
 mod start;
 
-pub use model::{ChainModel, MarginError};
+pub(crate) use model::ChainModel;
+pub use model::MarginError;
 
 use crate::physics::{ForceLaw, DEFAULT_CUTOFF};
+use crate::{Chain, Design};
 
 /// How the margins are computed. Default: the point-dipole law, the physics' default
 /// chain-index cutoff (3), 32 samples along a mover's path and 16 over a fold's turn.
@@ -202,20 +203,25 @@ pub struct Margins {
 }
 
 impl Margins {
-    /// Every margin of `model` under `opts`: each start's, hold's and fold's room, and the
-    /// weakest of them (see the module documentation for the poses they are taken in).
+    /// Every margin of `chain` with `designs` (one design for every tile, or one per tile)
+    /// under `opts`: each start's, hold's and fold's room, and the weakest of them (see the
+    /// module documentation for the poses they are taken in). The designs' parameters are
+    /// validated, not their inequalities: a design that breaks them has margins that say so.
     ///
     /// ```
-    /// use foldchain::margins::{ChainModel, MarginOptions, Margins};
+    /// use foldchain::margins::{MarginOptions, Margins};
     /// use foldchain::{Chain, Design};
     ///
     /// let chain = Chain::parse("SLLS").unwrap();
-    /// let model = ChainModel::new(&chain, &[Design::thesis()]).unwrap();
-    /// let m = Margins::of(&model, &MarginOptions::default());
+    /// let m = Margins::of(&chain, &[Design::thesis()], &MarginOptions::default()).unwrap();
     /// assert!(m.folds_as_designed());
     /// ```
-    pub fn of(model: &ChainModel, opts: &MarginOptions) -> Margins {
-        margins(model, opts)
+    pub fn of(
+        chain: &Chain,
+        designs: &[Design],
+        opts: &MarginOptions,
+    ) -> Result<Margins, MarginError> {
+        Ok(margins(&ChainModel::new(chain, designs)?, opts))
     }
 
     /// The smallest margin of all, and where.

@@ -51,7 +51,7 @@ pub enum MarginError {
 
 /// A chain with one design per tile, ready for the margins.
 #[derive(Clone, Debug)]
-pub struct ChainModel {
+pub(crate) struct ChainModel {
     tiles: Vec<Tile>,
     designs: Vec<Design>,
     paths: Vec<MagnetPath>,
@@ -118,19 +118,9 @@ impl ChainModel {
         })
     }
 
-    /// Number of tiles.
-    pub fn tiles(&self) -> usize {
-        self.tiles.len()
-    }
-
     /// Number of magnets.
     pub fn magnets(&self) -> usize {
         2 * self.tiles.len()
-    }
-
-    /// The design of tile `t`.
-    pub fn design(&self, t: usize) -> &Design {
-        &self.designs[t]
     }
 
     /// Magnet `k`'s path, in its tile's frame.

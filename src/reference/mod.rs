@@ -41,7 +41,7 @@ mod run_source;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;
-pub use free_body::{run_free_body, FreeBodyError, FreeBodyOptions, FreeBodyRun};
+pub use free_body::{run_free_body, FreeBodyOptions, FreeBodyRun};
 pub use options::{Recording, ReferenceError, ReferenceOptions};
 pub(crate) use pictures::{pair_energies, state_budget};
 pub use run_result::ReferenceRun;

@@ -108,4 +108,26 @@ pub enum ReferenceError {
     /// A tolerance that is not in (0, 0.1].
     #[error("tolerance {0}: expected a number in (0, 0.1]")]
     BadTolerance(f64),
+    /// A free-body option out of range ([`crate::reference::FreeBodyOptions`]).
+    #[error("free-body option `{name}` = {value}: expected {expected}")]
+    FreeBodyOption {
+        /// The option.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// The recorded fold schedule handed to the collision check was malformed (a bug of the
+    /// run, reported rather than hidden): what was wrong with it.
+    #[error("fold schedule: {0}")]
+    Schedule(String),
+    /// Something the free-body reference does not do.
+    #[error("the free-body reference does not take {what}: {why}")]
+    FreeBodyUnsupported {
+        /// What was asked for.
+        what: &'static str,
+        /// Why not.
+        why: &'static str,
+    },
 }

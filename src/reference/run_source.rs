@@ -59,7 +59,7 @@ impl RunSource for ReferenceRun {
 
 /// Joint `j`'s signed angle (radians, positive = left) at every recorded state and wall
 /// contact, unthinned ([`recorded_samples`]); empty for a joint that never turns. What the
-/// collision check of a reference run reads ([`crate::check_reference`]).
+/// collision check of a reference run reads ([`ReferenceRun::checked_summary`](crate::reference::ReferenceRun::checked_summary)).
 pub(crate) fn joint_angle_samples(run: &ReferenceRun, j: usize) -> Vec<(f64, f64)> {
     match run.model.joint_var(j) {
         None => Vec::new(),

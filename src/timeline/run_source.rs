@@ -32,18 +32,15 @@ pub trait RunSource {
     /// Joint `j`'s signed angle (radians, positive = left) against time, within
     /// [`Track::ANGLE_TOLERANCE`]: what the viewer turns the tiles by.
     fn joint_angle(&self, j: usize) -> Track;
-    /// Which magnets travel alike, so that a caller samples each such track once: a key and
-    /// magnet `k`'s [`RunSource::magnet_travel`] start, where magnets of equal keys have the
-    /// same travel law from their starts on, over the same duration (their tracks differ by
-    /// the rounding of their absolute times only: some 1e-13 s, far below
-    /// [`Track::TRAVEL_TOLERANCE`] at any speed a magnet has).
+    /// Which magnets travel alike, so that a caller samples each such track once: a key (its
+    /// meaning is the source's own, and only equality counts) and magnet `k`'s
+    /// [`RunSource::magnet_travel`] start, where magnets of equal keys have the same travel law
+    /// from their starts on, over the same duration (their tracks differ by the rounding of
+    /// their absolute times only: some 1e-13 s, far below [`Track::TRAVEL_TOLERANCE`] at any
+    /// speed a magnet has).
     /// `None` (the default) when the source cannot tell.
-    fn magnet_travel_key(&self, k: usize) -> Option<(TrackKey, f64)> {
+    fn magnet_travel_key(&self, k: usize) -> Option<([u64; 4], f64)> {
         let _ = k;
         None
     }
 }
-
-/// Names a magnet's travel law ([`RunSource::magnet_travel_key`]); its meaning is the
-/// source's own, and only equality counts.
-pub type TrackKey = [u64; 4];

@@ -84,7 +84,7 @@ impl SValue {
 /// `s` and/or `e` set for a range of tiles.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct TileOverride {
+pub(crate) struct TileOverride {
     /// First tile (0 = at the reaction initiator).
     pub from: usize,
     /// Last tile, inclusive.
@@ -213,7 +213,7 @@ impl TileDesigns {
 
     /// One global design with per-tile overrides (later entries win), as the file form
     /// gives them.
-    pub fn with_overrides(global: Design, overrides: Vec<TileOverride>) -> TileDesigns {
+    pub(crate) fn with_overrides(global: Design, overrides: Vec<TileOverride>) -> TileDesigns {
         TileDesigns {
             global,
             overrides,

@@ -31,7 +31,6 @@ pub use optimize::{Candidate, Search, SearchOptions};
 pub(crate) use sample::{draw_designs, nudged};
 pub use sensitivity::Sensitivity;
 pub(crate) use study::study;
-pub use study::study_reporting;
 pub use study::{FailureCount, MarginSpread, Study, StudyOptions};
 pub use tolerances::{Parameter, Printer, ToleranceError, Tolerances};
 pub(crate) use wilson::{wilson_interval, Z95};

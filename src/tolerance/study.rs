@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use crate::count::Shard;
 use crate::margins::{margins, ChainModel, MarginError, MarginOptions, Margins};
 use crate::tolerance::{draw_designs, wilson_interval, Tolerances, Z95};
-use crate::{Chain, Design, NoProgress, Progress};
+use crate::{Chain, Design, Progress};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// What a study draws and how. Default: 10,000 samples, seed 1, all of them (no shard),
@@ -108,6 +108,31 @@ impl Study {
     ) -> Result<Study, MarginError> {
         study(chain, nominal, opts)
     }
+
+    /// [`Study::run`], saying how many samples are judged (stage `samples`) as it goes.
+    ///
+    /// ```
+    /// use foldchain::tolerance::{Study, StudyOptions};
+    /// use foldchain::{Chain, Design};
+    /// use std::sync::atomic::{AtomicU64, Ordering};
+    ///
+    /// let judged = AtomicU64::new(0);
+    /// let progress = |_stage: &str, done: u64, _total: u64| {
+    ///     judged.fetch_max(done, Ordering::Relaxed);
+    /// };
+    /// let opts = StudyOptions::default().with_samples(50);
+    /// let s = Study::run_reporting(&Chain::parse("SSS").unwrap(), &[Design::thesis()], &opts, &progress).unwrap();
+    /// assert_eq!(s.samples, 50);
+    /// assert!(judged.load(Ordering::Relaxed) >= 49);
+    /// ```
+    pub fn run_reporting(
+        chain: &Chain,
+        nominal: &[Design],
+        opts: &StudyOptions,
+        progress: &dyn Progress,
+    ) -> Result<Study, MarginError> {
+        study_reporting(chain, nominal, opts, progress)
+    }
 }
 
 /// A spread of smallest margins over the samples.
@@ -134,11 +159,11 @@ pub(crate) fn study(
     nominal: &[Design],
     opts: &StudyOptions,
 ) -> Result<Study, MarginError> {
-    study_reporting(chain, nominal, opts, &NoProgress)
+    study_reporting(chain, nominal, opts, &())
 }
 
-/// [`Study::run`], saying how many samples are judged (stage `samples`) as it goes.
-pub fn study_reporting(
+/// [`Study::run_reporting`].
+fn study_reporting(
     chain: &Chain,
     nominal: &[Design],
     opts: &StudyOptions,

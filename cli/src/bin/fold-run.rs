@@ -5,6 +5,9 @@
 //! Thin: the arguments become a checked [`RunRequest`], [`foldchain_cli::fold_run::run`]
 //! does the work, and the report is printed here.
 
+// the options' doc comments are clap's help text, where `<name>` is a placeholder, not HTML
+#![allow(rustdoc::invalid_html_tags)]
+
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

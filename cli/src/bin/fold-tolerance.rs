@@ -3,6 +3,9 @@
 //! begin, each parameter's sensitivity, and (`--optimize`) a search of the design. Exit 0
 //! with a report, 1 when `--optimize` finds no design reaching the target, 2 for bad input.
 
+// the options' doc comments are clap's help text, where `<name>` is a placeholder, not HTML
+#![allow(rustdoc::invalid_html_tags)]
+
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,13 +14,12 @@ use anyhow::{anyhow, bail};
 use clap::Parser;
 use foldchain::count::Shard;
 use foldchain::engine::EngineOptions;
-use foldchain::margins::{ChainModel, MarginOptions, Margins};
+use foldchain::margins::{MarginOptions, Margins};
 use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
-    study_reporting, Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions,
-    Tolerances,
+    Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
@@ -250,9 +252,9 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
         return search(args, &chain, &name, &nominal[0], &opts, progress);
     }
     // the margins' own errors (a design whose curved path cannot be built) are bad input
-    ChainModel::new(&chain, &nominal)?;
+    Margins::of(&chain, &nominal, &opts.margins)?;
     let started = Instant::now();
-    let result = study_reporting(&chain, &nominal, &opts, progress)?;
+    let result = Study::run_reporting(&chain, &nominal, &opts, progress)?;
     progress.stage("sensitivities");
     let sens = Sensitivity::all(&chain, &nominal, &tolerances, &opts.margins)?;
     let secs = started.elapsed().as_secs_f64();
@@ -414,7 +416,7 @@ fn search(
     // the base, the chosen and the most probable design again, with the study's full sample
     // count, and the last two as design files
     let confirm = |c: &Candidate| -> anyhow::Result<Study> {
-        Ok(study_reporting(
+        Ok(Study::run_reporting(
             chain,
             &c.designs(chain, base),
             opts,

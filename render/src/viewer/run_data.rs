@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use foldchain::timeline::{RunSource, Track, TrackKey};
+use foldchain::timeline::{RunSource, Track};
 use foldchain::Pose;
 use rustc_hash::FxHashMap;
 
@@ -115,7 +115,7 @@ impl RunData {
         shapes.add(&Track::constant(0.0));
         let (mut m_shape, mut m_start) = (Vec::new(), Vec::new());
         // each travel law sampled once: the shape of the first magnet of a key serves all
-        let mut by_key: FxHashMap<TrackKey, u32> = FxHashMap::default();
+        let mut by_key: FxHashMap<[u64; 4], u32> = FxHashMap::default();
         for k in 0..g.magnets() {
             let key = src.magnet_travel_key(k);
             if let Some(&id) = key.as_ref().and_then(|(key, _)| by_key.get(key)) {

@@ -23,7 +23,7 @@ use crate::model::{
 use crate::ode::{integral, Method, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
 use crate::reference::free_body::groups::Groups;
-use crate::reference::free_body::options::{FreeBodyError, FreeBodyOptions};
+use crate::reference::free_body::options::FreeBodyOptions;
 use crate::reference::free_body::run::FreeBodyRun;
 use crate::reference::free_body::spatial::solve;
 use crate::reference::free_body::system::{FreeBody, Momentum, Setup, Work, BASE};
@@ -42,10 +42,10 @@ pub fn run_free_body(
     chain: &Chain,
     designs: &TileDesigns,
     opts: &FreeBodyOptions,
-) -> Result<FreeBodyRun, FreeBodyError> {
+) -> Result<FreeBodyRun, ReferenceError> {
     let ro = &opts.reference;
     if !(ro.tolerance > 0.0 && ro.tolerance <= 0.1) {
-        return Err(ReferenceError::BadTolerance(ro.tolerance).into());
+        return Err(ReferenceError::BadTolerance(ro.tolerance));
     }
     opts.validate()?;
     // the free-body reference integrates the water's form drag too
@@ -53,7 +53,7 @@ pub fn run_free_body(
         .map_err(ReferenceError::from)?;
     let (Dynamics::Inertial, Some(im)) = (model.options().dynamics, InertialModel::new(&model))
     else {
-        return Err(FreeBodyError::Unsupported {
+        return Err(ReferenceError::FreeBodyUnsupported {
             what: "overdamped dynamics",
             why: "the free-body reference integrates tiles with mass (use the inertial dynamics)",
         });

@@ -7,7 +7,7 @@
 //! revolute hinge: the groups' accelerations come from the articulated-body recursion
 //! (floating base), exact and O(groups) per evaluation, and the pair forces cost O(cutoff^2)
 //! per turning joint and O(cutoff) per moving magnet, so a step costs what moves, not the
-//! chain's length. It is stepped with the crate's Dormand-Prince ([`crate::ode`]) by a
+//! chain's length. It is stepped with the crate's Dormand-Prince (the `ode` module) by a
 //! stepping loop like the joint-angle reference's inertial one, with the same events.
 //!
 //! With no water drag the chain's linear and angular momentum stay what they were (zero from
@@ -38,6 +38,6 @@ mod system;
 mod tile_body;
 
 pub use driver::run_free_body;
-pub use options::{FreeBodyError, FreeBodyOptions};
+pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;
 pub use system::Momentum;

@@ -1,5 +1,5 @@
-//! The options of a free-body run ([`FreeBodyOptions`]) and why one cannot be made
-//! ([`FreeBodyError`]).
+//! The options of a free-body run ([`FreeBodyOptions`]); why one cannot be made is a
+//! [`ReferenceError`] (the free body's own options out of range, or what it does not take).
 
 use crate::reference::{ReferenceError, ReferenceOptions};
 
@@ -40,36 +40,19 @@ impl FreeBodyOptions {
         self
     }
 
-    pub(crate) fn validate(&self) -> Result<(), FreeBodyError> {
+    pub(crate) fn validate(&self) -> Result<(), ReferenceError> {
         if self.reference.method != crate::ode::Method::Dopri5 {
-            return Err(FreeBodyError::Unsupported {
+            return Err(ReferenceError::FreeBodyUnsupported {
                 what: "the ROS2 method",
                 why: "the free-body reference steps with Dormand-Prince 5(4)",
             });
         }
         if self.reference.model.distance_cutoff.is_some() {
-            return Err(FreeBodyError::Unsupported {
+            return Err(ReferenceError::FreeBodyUnsupported {
                 what: "a distance cutoff",
                 why: "the free-body reference weighs pairs by chain index only (the pairs between its rigid groups)",
             });
         }
         Ok(())
     }
-}
-
-/// Why a free-body run could not be made.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum FreeBodyError {
-    /// The reference's options or the model refused the input.
-    #[error(transparent)]
-    Reference(#[from] ReferenceError),
-    /// Something the free-body reference does not do.
-    #[error("the free-body reference does not take {what}: {why}")]
-    Unsupported {
-        /// What was asked for.
-        what: &'static str,
-        /// Why not.
-        why: &'static str,
-    },
 }

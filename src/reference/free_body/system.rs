@@ -231,12 +231,31 @@ impl FreeBody<'_> {
 
     /// Evaluates the state in `w.full`.
     fn evaluate_full(&self, w: &mut Work) {
+        self.clear_work(w);
+        let (sp, cp) = self.frames_and_velocities(w);
+        self.inertias_and_drags(w);
+        self.pair_wrenches(w);
         let model = self.model();
-        let groups = self.groups;
-        let ng = groups.len();
-        let n = model.geometry.magnets();
-        let c = self.setup.cutoff;
-        let half = 0.5 * model.geometry.w;
+        // the free magnets' drives
+        for (p, &i) in self.packed.iter().enumerate() {
+            if let Unknown::Magnet(k) = model.unknowns[i] {
+                w.drive[p] = self.magnet_drive(k, w);
+            }
+        }
+        self.articulated(w, |_| 0.0, true);
+        let a0 = w.a[0];
+        let v0 = w.v[0];
+        // the classical acceleration of tile 0's centre: the spatial one plus w x v
+        let ax = a0[1] - v0[0] * v0[2];
+        let ay = a0[2] + v0[0] * v0[1];
+        w.base_acc = [a0[0], cp * ax - sp * ay, sp * ax + cp * ay];
+    }
+
+    /// Sizes `w`'s buffers for the groups and magnets and clears them, and starts a new epoch
+    /// of the magnets' cached positions.
+    fn clear_work(&self, w: &mut Work) {
+        let ng = self.groups.len();
+        let n = self.model().geometry.magnets();
         if w.stamp.len() != n {
             w.stamp = vec![0; n];
             w.pos = vec![Point::ORIGIN; n];
@@ -273,6 +292,15 @@ impl FreeBody<'_> {
         w.origin.clear();
         w.drive.clear();
         w.drive.resize(self.packed.len(), 0.0);
+    }
+
+    /// Each group's frame, joint axis and velocity, outwards from the base; the base's
+    /// heading's sine and cosine.
+    fn frames_and_velocities(&self, w: &mut Work) -> (f64, f64) {
+        let model = self.model();
+        let groups = self.groups;
+        let ng = groups.len();
+        let half = 0.5 * model.geometry.w;
         // the base's velocity in tile 0's axes
         let (sp, cp) = w.full[2].sin_cos();
         let (vx, vy) = (w.full[3], w.full[4]);
@@ -301,6 +329,14 @@ impl FreeBody<'_> {
             w.v[g] = axpy(shifted, 1.0, vj);
             w.c[g] = cross_motion(w.v[g], vj);
         }
+        (sp, cp)
+    }
+
+    /// Each group's spatial inertia, and the water's drags as its external force.
+    fn inertias_and_drags(&self, w: &mut Work) {
+        let model = self.model();
+        let groups = self.groups;
+        let ng = groups.len();
         // inertias and drags
         for g in 0..ng {
             let (s, co) = (w.frames[g].sin, w.frames[g].cos);
@@ -325,6 +361,14 @@ impl FreeBody<'_> {
                 w.fext[g] = axpy(w.fext[g], 1.0, shift_force_back(drag, r));
             }
         }
+    }
+
+    /// The pair forces between groups (and with the RI) as wrenches on the groups.
+    fn pair_wrenches(&self, w: &mut Work) {
+        let groups = self.groups;
+        let ng = groups.len();
+        let n = self.model().geometry.magnets();
+        let c = self.setup.cutoff;
         // the pairs between groups: each counted at the boundary after the group of its
         // upstream magnet
         for g in 1..ng {
@@ -348,19 +392,6 @@ impl FreeBody<'_> {
                 w.fext[0] = axpy(w.fext[0], -1.0, wrench(pa, f, w.origin[0]));
             }
         }
-        // the free magnets' drives
-        for (p, &i) in self.packed.iter().enumerate() {
-            if let Unknown::Magnet(k) = model.unknowns[i] {
-                w.drive[p] = self.magnet_drive(k, w);
-            }
-        }
-        self.articulated(w, |_| 0.0, true);
-        let a0 = w.a[0];
-        let v0 = w.v[0];
-        // the classical acceleration of tile 0's centre: the spatial one plus w x v
-        let ax = a0[1] - v0[0] * v0[2];
-        let ay = a0[2] + v0[0] * v0[1];
-        w.base_acc = [a0[0], cp * ax - sp * ay, sp * ax + cp * ay];
     }
 
     /// The articulated-body recursion on the evaluated frames and inertias: accelerations

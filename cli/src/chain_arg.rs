@@ -1,12 +1,13 @@
 //! Reading a chain named on a command line: inline text (a fold word, a tile list, JSON) or
-//! the path of a file holding one.
+//! the path of a file holding one (moved here from the library: what an argument names is
+//! the command line's business; the library parses text, [`Chain::parse`]).
 
 use std::path::{Path as FsPath, PathBuf};
 
-use crate::{Chain, ChainError};
+use foldchain::{Chain, ChainError};
 
 /// The largest chain file read, in bytes (256 MiB): a guard against reading a huge file whole.
-pub(crate) const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
+pub const MAX_CHAIN_FILE_BYTES: u64 = 256 << 20;
 
 /// Why a chain argument could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -44,7 +45,7 @@ pub enum InputError {
 
 /// Reads a chain from a command-line argument: if it names an existing file, the file's
 /// contents (lines starting with `#` are comments); otherwise the argument itself.
-pub(crate) fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
+pub fn read_chain_arg(arg: &str) -> Result<Chain, InputError> {
     let path = FsPath::new(arg);
     if path.is_file() {
         let size = std::fs::metadata(path)
@@ -105,6 +106,7 @@ fn abbreviate(s: &str) -> String {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
 
