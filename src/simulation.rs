@@ -4,11 +4,14 @@
 //! fold schedule checked the same way ([`ReferenceRun::checked_summary`]).
 
 use crate::collision::{
-    check_schedule, CheckOptions, Collision, FoldSchedule, JointTrack, ScheduleError,
+    check_schedule, closest_approach, CheckOptions, Collision, FoldSchedule, JointTrack,
+    ScheduleError,
 };
 use crate::engine::{fold_schedule, run, EngineError, EngineOptions, Timeline};
 use crate::reference::{joint_angle_samples, ReferenceError, ReferenceRun};
-use crate::timeline::{CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track};
+use crate::timeline::{
+    Clearance, CollisionReport, FoldRecord, RunResult, Summary, TileDesigns, Track,
+};
 use crate::{Chain, Fold, FoldWord};
 
 impl Timeline {
@@ -76,10 +79,15 @@ fn word_of_folds(tiles: usize, records: &[FoldRecord]) -> FoldWord {
 /// [`ReferenceRun::checked_summary`].
 fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, ReferenceError> {
     let mut summary = run.to_summary();
-    if run.tiles() < 2 || run.folds.is_empty() {
+    if run.tiles() < 2 {
         return Ok(summary);
     }
     let word = word_of_folds(run.tiles(), &run.folds);
+    let w = run.model.geometry.w;
+    if run.folds.is_empty() {
+        summary.clearance = clearance(&word, &FoldSchedule::default(), check, w);
+        return Ok(summary);
+    }
     let tracks = run
         .folds
         .iter()
@@ -94,20 +102,53 @@ fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, 
             }
         })
         .collect();
-    let (collision, undecided) = schedule_verdict(&word, &FoldSchedule { tracks }, check)
-        .map_err(ReferenceError::Schedule)?;
+    let schedule = FoldSchedule { tracks };
+    let (collision, undecided) =
+        schedule_verdict(&word, &schedule, check, w).map_err(ReferenceError::Schedule)?;
     summary = overrule(summary, collision, undecided);
+    summary.clearance = clearance(&word, &schedule, check, w);
     Ok(summary)
 }
 
-/// The timed check of `schedule`: the first collision, or why it could not decide; what is
+/// The precision of a run's clearance, mm: a twentieth of the 10 um overlap tolerance, and a
+/// tenth of the 5 um within which the two simulations' clearances are held to agree.
+pub(crate) const CLEARANCE_PRECISION_MM: f64 = 5e-4;
+
+/// How close two tiles that are not neighbours come along `schedule` (tiles `w` mm wide),
+/// when it can be measured ([`crate::collision`]'s clearance).
+fn clearance(
+    word: &FoldWord,
+    schedule: &FoldSchedule,
+    check: &CheckOptions,
+    w: f64,
+) -> Option<Clearance> {
+    if check.final_only {
+        return None;
+    }
+    let c = closest_approach(word.tiles(), schedule, CLEARANCE_PRECISION_MM / w)?;
+    let mm = c.distance * w;
+    Some(Clearance {
+        mm,
+        tiles: c.tiles,
+        time: c.time,
+        joint: c.joint,
+        graze: mm < 0.0 && -mm <= check.overlap_mm,
+        overlap_tolerance_mm: check.overlap_mm,
+        precision_mm: CLEARANCE_PRECISION_MM,
+    })
+}
+
+/// The timed check of `schedule` with the run's touching tolerance (tiles `w` mm wide,
+/// [`CheckOptions::overlap_mm`]): the first collision, or why it could not decide; what is
 /// wrong with a malformed schedule (a bug of the run that made it) as the error.
 fn schedule_verdict(
     word: &FoldWord,
     schedule: &FoldSchedule,
     check: &CheckOptions,
+    w: f64,
 ) -> Result<(Option<Collision>, Option<String>), String> {
-    match check_schedule(word, schedule, check) {
+    let opts = check.with_tolerance(check.run_tolerance(w));
+    match check_schedule(word, schedule, &opts) {
         Ok(()) => Ok((None, None)),
         Err(ScheduleError::Collision(c)) => Ok((Some(c), None)),
         Err(e @ ScheduleError::Undecided { .. }) => {
@@ -166,22 +207,18 @@ pub fn simulate(
 
 /// [`Timeline::checked_summary`].
 fn check_engine_run(tl: &Timeline, check: &CheckOptions) -> Result<Summary, EngineError> {
-    let (collision, undecided) = check_timeline(tl, check)?;
+    let (collision, undecided, clearance) = check_timeline(tl, check)?;
     let mut summary = tl.summary();
+    summary.clearance = clearance;
     if let Some(why) = solve_stopped(tl) {
-        // a stall's reason already ends with it
-        if summary.reason.as_deref().is_some_and(|r| r.contains(&why)) {
-            summary.result = RunResult::Stopped;
-            summary.completed = false;
-        } else {
-            summary = summary.overruled(RunResult::Stopped, why);
-        }
+        summary = summary.undecided(why);
     }
     Ok(overrule(summary, collision, undecided))
 }
 
-/// Why a local solve of the engine gave up (its step limit), if one did: the run is
-/// `stopped`, as a reference run whose integration stopped early
+/// Why a local solve of the engine ran out of its work budget (its step limit, or no event
+/// for 1e4 of its time scales), if one did, with the balance it could not decide and its
+/// margin: the run is `undecided`, as a reference run that runs out of its budget
 /// ([`ReferenceRun::to_summary`]), not `stalled`, which says the physics came to rest with a
 /// magnet short of its trigger (the reference's [`crate::timeline::Outcome::Stalled`]).
 fn solve_stopped(tl: &Timeline) -> Option<String> {
@@ -193,12 +230,15 @@ fn solve_stopped(tl: &Timeline) -> Option<String> {
         .find_map(|u| u.0.solution.stopped.clone())
 }
 
-fn check_timeline(
-    tl: &Timeline,
-    check: &CheckOptions,
-) -> Result<(Option<Collision>, Option<String>), EngineError> {
+/// The collision check of the engine's run: its verdict and its clearance.
+type Checked = (Option<Collision>, Option<String>, Option<Clearance>);
+
+fn check_timeline(tl: &Timeline, check: &CheckOptions) -> Result<Checked, EngineError> {
     if tl.tiles() < 2 {
-        return Ok((None, None));
+        return Ok((None, None, None));
     }
-    schedule_verdict(&folded_word(tl), &fold_schedule(tl), check).map_err(EngineError::Schedule)
+    let (word, schedule, w) = (folded_word(tl), fold_schedule(tl), tl.geometry.w);
+    let (collision, undecided) =
+        schedule_verdict(&word, &schedule, check, w).map_err(EngineError::Schedule)?;
+    Ok((collision, undecided, clearance(&word, &schedule, check, w)))
 }

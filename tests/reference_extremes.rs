@@ -271,7 +271,9 @@ fn summary_and_timeline_say_what_the_run_did() {
         "stalled_at": null,
         "reason": null,
         "first_collision": null,
-        "speed_law": {"overdamped": {"drag": 5.0}},
+        // measured by the collision check (check_reference), not by the run
+        "clearance": null,
+        "speed_law": {"overdamped": {"drag": ModelOptions::DEFAULT_DRAG}},
     });
     assert!(same_json(&json, &want), "{json}");
     // every magnet but the last started and arrived, both folds started and ended

@@ -209,11 +209,11 @@ fn fixed_inertial_disagreements_stay_fixed() {
 const S0_SOLVE_CASES: [&str; 4] = ["LRSSS", "LRSLR", "RLSRL", "LRSLLL"];
 
 #[test]
-fn a_local_solve_that_gives_up_is_stopped_not_stalled() {
+fn a_local_solve_that_gives_up_is_undecided_not_stalled() {
     // a stall is the physics at rest short of a trigger (the reference's); a solve that runs
-    // out of steps is `stopped`, as a reference run whose integration stopped early. LRSSS
-    // at s = 0 ran out of its million steps before the step floor; a limit of 20 steps makes
-    // every solve give up
+    // out of its work budget decided nothing: `undecided`, with the balance nearest and its
+    // margin, never a rest it did not come to. LRSSS at s = 0 ran out of a million steps
+    // before the step floor; a budget of 20 steps makes every solve give up
     let chain = Chain::parse(S0_SOLVE_CASES[0]).unwrap();
     let designs = TileDesigns::global(Design::thesis().with_s(0.0));
     let model = ModelOptions::default().with_dynamics(inertial());
@@ -225,16 +225,21 @@ fn a_local_solve_that_gives_up_is_stopped_not_stalled() {
             .unwrap()
             .1
     };
-    let stopped = run(20);
-    let reason = stopped.reason.clone().unwrap_or_default();
-    assert_eq!(stopped.result, "stopped", "{reason}");
-    assert!(!stopped.completed);
-    assert!(reason.contains("gave up after 20 steps"), "{reason}");
-    // with the default limit the step floor lets every solve finish: neither stopped nor a
-    // stall
+    let undecided = run(20);
+    let reason = undecided.reason.clone().unwrap_or_default();
+    assert_eq!(undecided.result, "undecided", "{reason}");
+    assert!(!undecided.completed);
+    assert_eq!(undecided.stalled_at, None);
+    assert!(
+        reason.contains("within its work budget (20 steps)") && reason.contains("a margin of"),
+        "{reason}"
+    );
+    assert!(!reason.contains("came to rest"), "{reason}");
+    // with the default budget the step floor lets every solve finish: neither undecided nor
+    // a stall
     let e = run(EngineOptions::default().max_steps);
     assert!(
-        ![RunResult::Stopped, RunResult::Stalled].contains(&e.result),
+        ![RunResult::Undecided, RunResult::Stalled].contains(&e.result),
         "{}: {:?}",
         e.result,
         e.reason

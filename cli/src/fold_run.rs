@@ -110,6 +110,8 @@ pub struct RunRequest {
     pub force_law: ForceLaw,
     /// The local solves' threads (0: the machine's cores).
     pub threads: usize,
+    /// The deepest overlap that counts as touching, mm ([`CheckOptions::overlap_mm`]).
+    pub overlap_mm: f64,
     /// How the files are drawn (its `margins_json` is filled in by [`run`]).
     pub files: RunFilesOptions,
     /// The output directory.
@@ -176,7 +178,7 @@ pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
     let mut notes = Vec::new();
     let engine = engine_options(req, &mut notes);
     let margins = MarginsJob::start(&req.chain, &req.designs, req.force_law);
-    let check = CheckOptions::default();
+    let check = CheckOptions::default().with_overlap_mm(req.overlap_mm);
     let mut files = req.files.clone();
     let mut on_files = |stage: &str, done: usize, total: usize| {
         let unit = if stage == "frames" { "frames" } else { "" };

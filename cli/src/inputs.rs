@@ -100,10 +100,20 @@ pub fn refuse_overwrite_in(
     Ok(())
 }
 
+/// The largest plan file read: 512 MiB, room for a plan of the most tiles the planner makes
+/// (2,000,000, about 100 bytes each with their poses) with a margin.
+pub const MAX_PLAN_FILE_BYTES: u64 = 512 << 20;
+
 /// Reads the chain designed by a plan file (`fold-plan --out` or `--json`), and the plan.
 pub fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
-    let text = std::fs::read_to_string(path)
+    let bytes = foldchain_planner::read_file_at_most(path, MAX_PLAN_FILE_BYTES)
         .with_context(|| format!("cannot read plan file {}", path.display()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        anyhow!(
+            "{}: not a fold-plan JSON file: not UTF-8 text ({e})",
+            path.display()
+        )
+    })?;
     let plan = Plan::from_json(&text).map_err(|e| {
         anyhow!(
             "{}: not a fold-plan JSON file: {e} (expected the object `fold-plan --json` writes)",
@@ -129,7 +139,9 @@ pub fn read_plan_file(path: &Path) -> anyhow::Result<(Chain, Plan)> {
 /// 0 at the origin heading +x, y up): the plan's `chain_to_svg` map inverted. `None` when
 /// the file cannot be read again or the map is singular.
 pub fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f64)>>> {
-    let data = std::fs::read(shape_path).ok()?;
+    let data =
+        foldchain_planner::read_file_at_most(shape_path, foldchain_planner::MAX_DRAWING_BYTES)
+            .ok()?;
     let shape = Shape::from_svg_data(&data, &shape_path.display().to_string()).ok()?;
     let [a, b, c, d, e, f] = plan.chain_to_svg;
     let det = a * d - b * c;

@@ -196,3 +196,55 @@ fn fold_print_refuses_a_file_as_out_before_any_work() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a directory");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// An input that never ends (`/dev/zero` for a drawing, a plan, a design or a shard report)
+/// is refused once the tool has read its limit for that kind of file, instead of filling
+/// the memory (found by hand: each of these ran until killed).
+#[test]
+fn an_endless_input_file_is_refused_at_its_size_limit() {
+    let zero = std::path::Path::new("/dev/zero");
+    if !zero.exists() {
+        eprintln!("no /dev/zero here: skipped");
+        return;
+    }
+    let d = scratch("zero");
+    let cases: [(&str, Vec<&str>, &str); 5] = [
+        ("fold-plan", vec!["/dev/zero", "--quiet"], "256 MiB"),
+        (
+            "fold-run",
+            vec!["--plan", "/dev/zero", "--quiet"],
+            "512 MiB",
+        ),
+        (
+            "fold-run",
+            vec!["SL", "--design", "/dev/zero", "--quiet"],
+            "256 MiB",
+        ),
+        (
+            "fold-tolerance",
+            vec!["SL", "--design", "/dev/zero", "--quiet"],
+            "256 MiB",
+        ),
+        ("fold-enum", vec!["--merge", "/dev/zero"], "64 MiB"),
+    ];
+    for (name, args, limit) in cases {
+        let o = tool(name).current_dir(&d).args(&args).output().unwrap();
+        refused(&o, &["/dev/zero", limit]);
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// A short word for a huge chain: fold-print refuses over 100,000 tiles at once (found by
+/// hand: `S*5000000` ran on, towards a 16 GB assembly sheet).
+#[test]
+fn fold_print_refuses_a_chain_too_long_to_print() {
+    let d = scratch("print-long");
+    let o = tool("fold-print")
+        .args(["S*5000000", "--quiet", "--out"])
+        .arg(d.join("out"))
+        .output()
+        .unwrap();
+    refused(&o, &["5000001 tiles", "at most 100,000 tiles"]);
+    assert!(!d.join("out").exists(), "nothing written");
+    std::fs::remove_dir_all(&d).unwrap();
+}

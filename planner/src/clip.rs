@@ -25,7 +25,7 @@ use i_overlay::float::simplify::SimplifyShape;
 use i_overlay::float::single::SingleFloatOverlay;
 use kurbo::Point;
 
-use crate::drawing::{flatten, path_segments};
+use crate::flatten::{flatten, path_segments};
 use crate::shape::{FilledPath, Ring};
 use crate::simplify::clean;
 

@@ -34,9 +34,10 @@ pub(crate) const EDGE: f64 = 0.5;
 /// A connected empty group larger than this many tile areas is an empty part (issue 26:
 /// two tile areas; smaller groups are the corners between a round outline and its rows).
 pub(crate) const MIN_EMPTY_TILES: f64 = 2.0;
-/// A plan that leaves a part larger than this many tile areas empty is not returned at all;
-/// one that leaves a smaller part (but more than [`MIN_EMPTY_TILES`]) is returned only when
-/// no plan leaves none, with a warning saying where.
+/// A plan that leaves a part larger than this many tile areas empty is set aside, and
+/// returned (with a warning saying where) only when no planner finds any other plan; one
+/// that leaves a smaller part (but more than [`MIN_EMPTY_TILES`]) is returned only when no
+/// plan leaves none, with a warning saying where.
 pub(crate) const REFUSE_EMPTY_TILES: f64 = 20.0;
 /// The sample spacing, tile widths: an eighth, as the corpus report measures (a coarser
 /// grid splits a thin empty strip into pieces that each look small).

@@ -17,7 +17,7 @@ pub enum PlanError {
         source: std::io::Error,
     },
     /// The text is not a readable SVG document.
-    #[error("{name}: not a readable SVG file: {reason}")]
+    #[error("{name}: not a readable SVG file: {reason}; save the drawing as SVG (e.g. Inkscape: Save As > Plain SVG) and plan that file")]
     BadSvg {
         /// The file name (or `<string>`).
         name: String,
@@ -25,7 +25,7 @@ pub enum PlanError {
         reason: String,
     },
     /// The drawing holds no filled area to plan.
-    #[error("{name}: no filled area: {reason}")]
+    #[error("{name}: no filled area: {reason}; draw the shape as a filled area (an outline drawn as a stroke: Inkscape's Path > Stroke to Path)")]
     NoFilledArea {
         /// The file name (or `<string>`).
         name: String,
@@ -73,8 +73,12 @@ pub enum PlanError {
     Unplannable {
         /// The file name (or `<string>`).
         name: String,
-        /// Which part failed and what would be needed.
+        /// What is wrong, where (in drawing units and mm) and what to change: a sentence
+        /// or two, what the error shows.
         reason: String,
+        /// What each planner tried and why it failed, one line each (for a verbose
+        /// report; empty when the reason says all).
+        detail: Vec<String>,
         /// The best plan found that folds but was rejected because it leaves a part of the
         /// shape empty: for a preview that shows where ([`crate::preview_svg_rejected`]).
         rejected: Option<Box<Rejected>>,

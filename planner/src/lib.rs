@@ -29,7 +29,8 @@
 //! cells (`cells`, `route`, `cell_plan`). Both solve rows with one dynamic programme
 //! (`rows`), search the tile width the same way (`sizing`), map between frames with kurbo
 //! affines (`frame`) and turn a checked fold word into a [`Plan`] (`assembly`) whose fit is
-//! measured on sample points (`fit`, `centre_grid`). [`preview_svg`] draws a plan over its
+//! measured as exact areas of the tiles' union inside and outside the shape (`fit`,
+//! `coverage`). [`preview_svg`] draws a plan over its
 //! shape.
 
 mod assembly;
@@ -39,15 +40,18 @@ mod cell_plan;
 mod centre_grid;
 mod check;
 mod clip;
+mod coverage;
 mod drawing;
 mod empty;
 mod error;
 mod fit;
+mod flatten;
 mod frame;
 mod options;
 mod plan;
 mod plan_shape;
 mod preview;
+mod refusal;
 mod route;
 mod row_chain;
 mod rows;
@@ -66,7 +70,7 @@ pub use empty::EmptyPart;
 pub use error::{PlanError, PlanOption, Rejected};
 pub use options::{
     ParseTurnsError, PlanOptions, Turns, DEFAULT_TILES, DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
-    MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
+    MAX_DRAWING_BYTES, MAX_OUTLINE_POINTS, MAX_PLAN_TILES,
 };
 pub use plan::{Metrics, Plan, PlanPose};
 pub use preview::{preview_svg, preview_svg_file, preview_svg_rejected};
@@ -89,7 +93,7 @@ pub fn plan_svg_file_reporting(
     opts: &PlanOptions,
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
-    let text = std::fs::read(path).map_err(|source| PlanError::Read {
+    let text = read_file_at_most(path, MAX_DRAWING_BYTES).map_err(|source| PlanError::Read {
         path: path.to_path_buf(),
         source,
     })?;
@@ -109,16 +113,45 @@ fn plan_svg_data(
 ) -> Result<Plan, PlanError> {
     progress("reading the drawing", 0, 1);
     let (shape, mm_per_unit) = drawing::read_drawing(data, name)?;
-    let mut plan = plan_shape::plan_shape(&shape, &opts.resolved(mm_per_unit), name, progress)
-        .map_err(|mut e| {
-            if let PlanError::Unplannable {
-                rejected: Some(r), ..
-            } = &mut e
-            {
-                r.plan.set_scale(mm_per_unit);
-            }
-            e
-        })?;
+    let mut plan = plan_shape::plan_shape(
+        &shape,
+        &opts.resolved(mm_per_unit),
+        name,
+        mm_per_unit,
+        true,
+        progress,
+    )
+    .map_err(|mut e| {
+        if let PlanError::Unplannable {
+            rejected: Some(r), ..
+        } = &mut e
+        {
+            r.plan.set_scale(mm_per_unit);
+        }
+        e
+    })?;
     plan.set_scale(mm_per_unit);
     Ok(plan)
+}
+
+/// Reads a whole file of at most `limit` bytes: a larger file, or a device or pipe that
+/// does not end (`/dev/zero`), is refused with an `InvalidData` error once `limit` bytes
+/// are read, so that reading an input never takes unbounded memory or time. The tools read
+/// every input file (drawings, plans, designs, reports) through it.
+pub fn read_file_at_most(path: &std::path::Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "larger than {} MiB, the most read from one input file",
+                limit >> 20
+            ),
+        ));
+    }
+    Ok(bytes)
 }

@@ -57,6 +57,11 @@ pub const MAX_PLAN_TILES: usize = 2_000_000;
 /// about a second); larger drawings are refused up front.
 pub const MAX_OUTLINE_POINTS: usize = 10_000_000;
 
+/// The largest drawing file read: 256 MiB, room for [`MAX_OUTLINE_POINTS`] written out as
+/// path data (about 20 bytes a point); a larger file, or a device that never ends, is refused
+/// after reading that much instead of filling the memory.
+pub const MAX_DRAWING_BYTES: u64 = 256 << 20;
+
 /// Default of [`PlanOptions::tiles_tolerance`]: the count may float by 3% when that
 /// buys fit (a whole row of a 200-tile square is about 7%, so the nearest counts either side
 /// of a row step are both within reach).

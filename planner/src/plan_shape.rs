@@ -3,8 +3,6 @@
 //! ([`crate::cell_plan`]), each with the asked turn styles, and keeps the best fit that folds
 //! without collision; or says why the shape cannot be planned.
 
-use std::f64::consts::PI;
-
 use rayon::prelude::*;
 
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
@@ -15,6 +13,7 @@ use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
+use crate::refusal;
 use crate::rows::{Style, LOOSE, TIGHT};
 use crate::serpentine::{pick_directions, size_style, Sized};
 use crate::shape::Shape;
@@ -28,10 +27,14 @@ const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
 const MAX_CELL_TILES: usize = 20_000;
 
 /// Plans a shape (physical frame); `name` names it in errors and in the plan.
+/// `mm_per_unit` (the drawing's millimetres per user unit) only words a refusal; `retry`
+/// lets a refusal try fewer tiles (when a count was asked) to name one that plans.
 pub(crate) fn plan_shape(
     shape: &Shape,
     opts: &PlanOptions,
     name: &str,
+    mm_per_unit: f64,
+    retry: bool,
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
     opts.check(shape)?;
@@ -50,26 +53,7 @@ pub(crate) fn plan_shape(
     // one chain cannot cross a gap: a drawing in separate parts is refused at once
     let parts = separate_parts(shape, tiles_est);
     if parts.len() > 1 {
-        let list: Vec<String> = parts
-            .iter()
-            .take(4)
-            .map(|b| {
-                format!(
-                    "x {:.0} to {:.0}, y {:.0} to {:.0}",
-                    b.x0, b.x1, -b.y1, -b.y0
-                )
-            })
-            .collect();
-        return Err(PlanError::Unplannable {
-            name: name.into(),
-            reason: format!(
-                "the drawing is in {} separate parts ({}{}); one chain cannot cross the gaps between them: join the parts in the drawing, or plan each on its own",
-                parts.len(),
-                list.join("; "),
-                if parts.len() > 4 { "; ..." } else { "" }
-            ),
-            rejected: None,
-        });
+        return Err(refusal::separate_parts(name, &parts, mm_per_unit));
     }
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
@@ -112,11 +96,59 @@ pub(crate) fn plan_shape(
         failures,
         rejected,
     } = found;
-    best.ok_or_else(|| PlanError::Unplannable {
-        name: name.into(),
-        reason: unplannable_reason(shape, monotone.is_empty(), failures),
-        rejected,
-    })
+    // one chain can fill the shape, only not without leaving a part of it empty: the plan
+    // that leaves the least empty, with a warning saying where, rather than no plan (issue
+    // 26: a drawing is refused only when one chain cannot do it), unless it bridges the gaps
+    // of a shape monotone in no direction with much of the chain outside
+    let (best, rejected) = match (best, rejected) {
+        (None, Some(r))
+            if !(monotone.is_empty()
+                && r.plan.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE) =>
+        {
+            let Rejected { mut plan, empty } = *r;
+            plan.metrics.largest_empty_tiles = empty.tiles;
+            plan.warnings.push(format!("the plan {empty}"));
+            (Some(plan), None)
+        }
+        other => other,
+    };
+    let Some(mut plan) = best else {
+        progress("looking for a tile count that plans", 0, 1);
+        let plans_at = |n: usize| {
+            let fewer = opts.clone().with_tiles(n);
+            plan_shape(shape, &fewer, name, mm_per_unit, false, &|_, _, _| {})
+                .ok()
+                .map(|p| p.tiles)
+        };
+        let retry = retry && opts.tile_size.is_none();
+        return Err(refusal::no_plan(
+            name,
+            tiles_est,
+            monotone.is_empty(),
+            failures,
+            rejected,
+            mm_per_unit,
+            retry.then_some(&plans_at as &dyn Fn(usize) -> Option<usize>),
+        ));
+    };
+    plan.warnings.extend(count_warning(opts, plan.tiles));
+    Ok(plan)
+}
+
+/// The warning for a plan of `tiles` tiles whose count misses the asked count by more than
+/// the tolerance (none when no count was asked: a tile width, or the default count).
+fn count_warning(opts: &PlanOptions, tiles: usize) -> Option<String> {
+    let asked = opts.tiles.filter(|_| opts.tile_size.is_none())?;
+    let tol = (opts.tiles_tolerance * asked as f64) as usize;
+    if tiles.abs_diff(asked) <= tol {
+        return None;
+    }
+    let share = 100.0 * tiles.abs_diff(asked) as f64 / asked as f64;
+    Some(format!(
+        "the plan has {tiles} tiles, {share:.1}% {} than the {asked} asked (tolerance {:.1}%): no plan nearer that count was found that folds and fills the shape",
+        if tiles < asked { "fewer" } else { "more" },
+        100.0 * opts.tiles_tolerance
+    ))
 }
 
 /// What the planners found so far: the best plan, what each planner said when it failed, and
@@ -286,23 +318,6 @@ fn best_serpentine(
     None
 }
 
-/// Why no plan was found: what is wrong with the shape, then what each planner said.
-fn unplannable_reason(shape: &Shape, nowhere_monotone: bool, mut failures: Vec<String>) -> String {
-    let mut reason = String::new();
-    if nowhere_monotone {
-        let pieces = (0..12)
-            .map(|i| shape.rotated(-(i as f64) * PI / 12.0).max_pieces())
-            .min()
-            .unwrap_or(2);
-        reason = format!(
-            "the shape is monotone in no direction (lines along every row direction meet it in {pieces} or more pieces); "
-        );
-    }
-    failures.dedup();
-    reason.push_str(&failures.join("; "));
-    reason
-}
-
 /// The separate parts of the shape at about `tiles` tiles, by their bounding boxes in the
 /// physical frame (parts smaller than half a tile are not counted).
 fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
@@ -328,5 +343,37 @@ impl PartialOrd for OrdF64 {
 impl Ord for OrdF64 {
     fn cmp(&self, other: &OrdF64) -> std::cmp::Ordering {
         self.0.total_cmp(&other.0)
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    /// A count within the tolerance is quiet; one outside it is said with both numbers; no
+    /// count asked (a tile width) is never warned about.
+    #[test]
+    fn a_count_outside_the_tolerance_is_warned_about() {
+        let opts = PlanOptions::default().with_tiles(300);
+        assert_eq!(count_warning(&opts, 300), None);
+        assert_eq!(count_warning(&opts, 291), None);
+        assert_eq!(count_warning(&opts, 309), None);
+        let w = count_warning(&opts, 254).unwrap();
+        assert!(
+            w.contains("254 tiles") && w.contains("300 asked") && w.contains("15.3% fewer"),
+            "{w}"
+        );
+        assert!(w.contains("tolerance 3.0%"), "{w}");
+        let w = count_warning(&opts, 310).unwrap();
+        assert!(w.contains("3.3% more"), "{w}");
+        let exact = opts.clone().with_tiles_tolerance(0.0);
+        assert!(count_warning(&exact, 301).is_some());
+        let by_width = PlanOptions {
+            tile_size: Some(3.0),
+            ..opts
+        };
+        assert_eq!(count_warning(&by_width, 10), None);
+        assert_eq!(count_warning(&PlanOptions::default(), 10), None);
     }
 }

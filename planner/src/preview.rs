@@ -22,10 +22,13 @@ use crate::shape::Shape;
 
 /// The preview of `plan` over the shape in the SVG file `shape_path`.
 pub fn preview_svg_file(shape_path: &Path, plan: &Plan) -> Result<String, PlanError> {
-    let data = std::fs::read(shape_path).map_err(|source| PlanError::Read {
-        path: shape_path.to_path_buf(),
-        source,
-    })?;
+    let data =
+        crate::read_file_at_most(shape_path, crate::MAX_DRAWING_BYTES).map_err(|source| {
+            PlanError::Read {
+                path: shape_path.to_path_buf(),
+                source,
+            }
+        })?;
     let shape = Shape::from_svg_data(&data, &shape_path.display().to_string())?;
     Ok(preview_svg(&shape, plan))
 }
@@ -44,10 +47,13 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
 /// in the SVG file `shape_path`: marked in red as no plan, with the empty part it leaves
 /// framed.
 pub fn preview_svg_rejected(shape_path: &Path, rejected: &Rejected) -> Result<String, PlanError> {
-    let data = std::fs::read(shape_path).map_err(|source| PlanError::Read {
-        path: shape_path.to_path_buf(),
-        source,
-    })?;
+    let data =
+        crate::read_file_at_most(shape_path, crate::MAX_DRAWING_BYTES).map_err(|source| {
+            PlanError::Read {
+                path: shape_path.to_path_buf(),
+                source,
+            }
+        })?;
     let shape = Shape::from_svg_data(&data, &shape_path.display().to_string())?;
     Ok(preview(&shape, &rejected.plan, Some(&rejected.empty)))
 }

@@ -41,8 +41,10 @@ const SECANT_STEPS: usize = 12;
 /// tolerance, for a better fit (a programme at this size takes milliseconds).
 const EXPLORE_TILES: usize = 20_000;
 /// Orientations (direction and start corner) solved at every width after the first: the
-/// best at the first width (the search then moves the width by a few percent).
-const KEPT_ORIENTATIONS: usize = 6;
+/// best at the first width (the search then moves the width by a few percent; keeping six
+/// changed the dog's plan at 150 tiles to one with 8.4% of the chain outside, sixteen keep
+/// it at 7.4%).
+const KEPT_ORIENTATIONS: usize = 16;
 const NUDGES: [f64; 8] = [0.98, 1.02, 0.96, 1.04, 0.99, 1.01, 0.97, 1.03];
 
 /// A solved serpentine over the whole shape, in the work frame of its orientation.
@@ -229,7 +231,8 @@ pub(crate) fn size_style(
                     kept.push(c.orient);
                 }
             }
-            dirs = kept;
+            // in their first order, so that orientations of equal cost rank as before
+            dirs.retain(|o| kept.contains(o));
         }
         // candidates whose count is within the tolerance come first, each group best first
         let tol = search.tolerance;

@@ -150,6 +150,11 @@ impl Shape {
         }
     }
 
+    /// The filled paths, each with its rings and fill rule.
+    pub(crate) fn paths(&self) -> &[FilledPath] {
+        &self.paths
+    }
+
     /// Whether the shape has no filled path.
     pub(crate) fn is_empty(&self) -> bool {
         self.paths.is_empty()

@@ -45,18 +45,33 @@ fn plan_sizes(name: &str, sizes: &[usize]) -> Vec<Plan> {
         };
         assert_sound(&p);
         assert_cells_joined(&p);
+        // a plan that leaves a part larger than REFUSE_EMPTY_TILES (20 tile areas) empty is
+        // returned only when no other plan is found, and says so as the refusal did; the
+        // fit bounds below are for plans that leave nothing that large empty
+        if p.metrics.largest_empty_tiles > 20.0 {
+            assert!(
+                p.warnings
+                    .iter()
+                    .any(|w| w.contains("empty") && w.contains("around (")),
+                "{name} {n}: {:?}",
+                p.warnings
+            );
+            out.push(p);
+            continue;
+        }
         assert!(
             p.tiles.abs_diff(n) * 10 <= n,
             "{name}: {} tiles for {n}",
             p.tiles
         );
-        // at least 80% of what rows can cover with at most 8% of the chain outside (the
+        // at least 80% of what rows can cover with at most 9% of the chain outside (the
         // area-true fit of issue 13 lays a tile only when most of it is inside: the dog at
-        // 150 tiles went from 85% / 12.3% outside to 81% / 5.8%)
+        // 150 tiles went from 85% / 12.3% outside to 81% / 5.8%; measured exactly since
+        // issue 26, not on 25 points a tile, its plan at 150 has 8.8% outside)
         let reach = p.metrics.covered_share / row_density(false);
         assert!(reach > 0.80, "{name} {n}: {reach:.3}: {}", p.summary());
         assert!(
-            p.metrics.outside_share < 0.08,
+            p.metrics.outside_share < 0.09,
             "{name} {n}: {}",
             p.summary()
         );
@@ -121,4 +136,39 @@ fn separate_parts_are_unplannable_with_a_reason() {
     assert_eq!(e.exit_code(), 1);
     let m = e.to_string();
     assert!(m.contains("two.svg") && m.contains("separate parts"), "{m}");
+}
+
+/// A drawing of one piece that one chain can fill is planned, not refused, even where every
+/// plan found leaves a part of it empty (issue 26: refused only when one chain cannot do it):
+/// the letter Q and the gear at 300 tiles were refused before. The plan is sound, folds in
+/// sequence, holds the asked count within 3%, and says in a warning and its metrics which
+/// part it leaves empty.
+#[test]
+fn a_plan_that_leaves_a_part_empty_beats_a_refusal() {
+    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus");
+    for name in ["letters/Q.svg", "icons/fa-gear.svg"] {
+        let p = plan_svg_file(&corpus.join(name), &PlanOptions::default().with_tiles(300))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_sound(&p);
+        foldchain::collision::check_word(
+            &p.fold_word().unwrap(),
+            &foldchain::collision::CheckOptions::default(),
+        )
+        .unwrap_or_else(|c| panic!("{name}: {c}"));
+        assert!(
+            p.tiles.abs_diff(300) * 100 <= 3 * 300,
+            "{name}: {}",
+            p.tiles
+        );
+        let warned = p.warnings.iter().any(|w| w.contains("empty"));
+        assert_eq!(
+            warned,
+            p.metrics.largest_empty_tiles > 0.0,
+            "{name}: {:?} {:?}",
+            p.warnings,
+            p.metrics
+        );
+        // what the planner may not do: bridge a gap with much of the chain outside
+        assert!(p.metrics.outside_share <= 0.10, "{name}: {}", p.summary());
+    }
 }

@@ -223,6 +223,11 @@ fn part_tile(part: Part) -> Tile {
     }
 }
 
+/// The longest chain `print_job` builds: 100,000 tiles, far beyond what one prints by hand
+/// (about 36,000 hours of printing for straight tiles), and what bounds the work and the
+/// output of a small input (`S*5000000` would write about 16 GB).
+pub const MAX_PRINT_TILES: usize = 100_000;
+
 /// Makes every file for `source` built to `designs` with `opts`.
 pub fn print_job(
     source: &Source,
@@ -233,6 +238,15 @@ pub fn print_job(
     opts.bed.validate()?;
     let (chain, name, origin, word) = read_source(source)?;
     let n = chain.len();
+    if n > MAX_PRINT_TILES {
+        return Err(PrintError::BadOption {
+            name: "the chain",
+            value: format!("{n} tiles"),
+            expected: "at most 100,000 tiles (the assembly sheet draws every tile, about 3 KB \
+                       each: 100,000 tiles write 380 MB in over a minute)"
+                .into(),
+        });
+    }
     let (list, index) = designs.resolve(n);
     let design_of = |i: usize| index.get(i).map_or(0, |&k| k as usize);
     // the parts: (part, design) in the bill of materials' order

@@ -38,7 +38,8 @@ pub use channel::Channel;
 pub use error::PrintError;
 pub use job::{
     estimate_basis, is_job_file, print_job, Magnets, OutputFile, PartEntry, PartsReport,
-    PlateEntry, PrintJob, Source, FDM_RATE_MM3_PER_S, RESIN_LAYER_MM, RESIN_SECONDS_PER_LAYER,
+    PlateEntry, PrintJob, Source, FDM_RATE_MM3_PER_S, MAX_PRINT_TILES, RESIN_LAYER_MM,
+    RESIN_SECONDS_PER_LAYER,
 };
 pub use mesh::{Mesh, MeshBuilder, Pt3, Topology};
 pub use options::{

@@ -58,6 +58,19 @@ pub(super) struct TailWindow {
     pub min_y: f64,
 }
 
+/// The measures of a fold's tail on tiles of width 1 that bound which placed tiles it can
+/// meet: the octagon's circumradius, half its side, and the hinge of a left fold (the
+/// folding tile's frame).
+pub(crate) fn unit_tail_frame() -> (f64, f64, Point) {
+    let o = Octagon::new(1.0);
+    let hinge = Point::from(
+        Octagon::exact_hinge(Fold::L)
+            .unwrap_or(ExactPoint::ORIGIN)
+            .to_f64(1.0),
+    );
+    (o.circumradius(), 0.5 * o.side(), hinge)
+}
+
 /// First hits by canonical offset, for one touching tolerance (also the counting search's
 /// exact test, through [`TailHits::first_hit`]).
 #[derive(Clone, Debug)]
@@ -71,16 +84,9 @@ pub(crate) struct TailHits {
 impl TailHits {
     /// An empty memo for outlines inset by `tolerance` (see [`super::CheckOptions::tolerance`]).
     pub(crate) fn new(tolerance: f64) -> TailHits {
-        let o = Octagon::new(1.0);
-        let radius = o.circumradius();
-        let half_side = 0.5 * o.side();
-        let hinge = Point::from(
-            Octagon::exact_hinge(Fold::L)
-                .unwrap_or(ExactPoint::ORIGIN)
-                .to_f64(1.0),
-        );
+        let (radius, half_side, hinge) = unit_tail_frame();
         TailHits {
-            outline: o.inset_vertices(tolerance).map(Point::from),
+            outline: Octagon::new(1.0).inset_vertices(tolerance).map(Point::from),
             radius,
             window: TailWindow {
                 hinge,

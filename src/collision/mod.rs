@@ -29,8 +29,10 @@ mod block_cover;
 mod block_pairs;
 mod blocks;
 mod chain_tree;
+mod clearance;
+pub(crate) use clearance::closest_approach;
 mod first_hit;
-pub(crate) use first_hit::{TailHits, NEVER as NO_TAIL_HIT};
+pub(crate) use first_hit::{unit_tail_frame, TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
 mod pieces;
@@ -59,6 +61,24 @@ pub struct CheckOptions {
     pub tolerance: f64,
     /// Check only the final shape, not the fold sweeps. Default `false`.
     pub final_only: bool,
+    /// The deepest overlap, mm, that a simulated run's check
+    /// ([`crate::simulate`], [`crate::check_reference`]) counts as touching: a graze,
+    /// reported with its clearance ([`crate::timeline::Clearance`]) rather than as a
+    /// collision. Default `0.01` (10 um). Not used by the sequential checks of words
+    /// ([`check_word`], [`check_chain`]), which follow exact poses.
+    ///
+    /// Why 10 um: it is a run's numerical resolution of a contact, not a physical allowance.
+    /// The two simulations follow one physics, and their fold tracks agree within a few
+    /// 1e-6 rad where compared (the engine's schedule follows its law within 1e-6 rad on
+    /// chains up to 100 tiles, the reference's tracks run through its recorded states and
+    /// wall contacts): on a 9-tile chain's 240 mm lever about 1 um. Their clearances are held
+    /// to agree within 5 um (`tests/clearances.rs`; SRLSLLSR at s = 0.05: 0.06 um apart), so
+    /// with a tolerance of twice that an overlap counted by one is, in the other, at least
+    /// an overlap half as deep. The grazes the verdict scans met overlap by 3 to 5 um and last
+    /// 2e-5 s (SLRRRL at s = 0, BENCHMARKS.md), and 10 um is a fifteenth of the 0.15 mm the
+    /// finest printed tiles are made to (`foldchain-print`'s resin clearance): a contact that
+    /// shallow is not one a printed chain could tell from touching.
+    pub overlap_mm: f64,
 }
 
 impl Default for CheckOptions {
@@ -66,6 +86,7 @@ impl Default for CheckOptions {
         CheckOptions {
             tolerance: 1e-7,
             final_only: false,
+            overlap_mm: 0.01,
         }
     }
 }
@@ -75,6 +96,18 @@ impl CheckOptions {
     pub fn with_final_only(mut self, final_only: bool) -> CheckOptions {
         self.final_only = final_only;
         self
+    }
+
+    /// Another overlap tolerance of simulated runs, mm (see [`CheckOptions::overlap_mm`]).
+    pub fn with_overlap_mm(mut self, overlap_mm: f64) -> CheckOptions {
+        self.overlap_mm = overlap_mm;
+        self
+    }
+
+    /// The touching tolerance of a simulated run's check of tiles `width_mm` wide, tile
+    /// widths: each outline inset by half the overlap tolerance, at least by `tolerance`.
+    pub(crate) fn run_tolerance(&self, width_mm: f64) -> f64 {
+        self.tolerance.max(0.5 * self.overlap_mm / width_mm)
     }
 
     /// Another touching tolerance, in tile widths.

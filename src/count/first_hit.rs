@@ -16,12 +16,10 @@
 //! [`TailWindow`] is the cheap test the search runs before looking an offset up: a placed tile
 //! whose centre lies outside it cannot be met by the first `k` tail tiles.
 
-use kurbo::Point;
 use rustc_hash::FxHashMap;
 
-use crate::collision::{TailHits, NO_TAIL_HIT};
+use crate::collision::{unit_tail_frame, TailHits, NO_TAIL_HIT};
 use crate::exact::ExactPoint;
-use crate::{Fold, Octagon};
 
 use super::lattice::pack;
 use super::MAX_COUNT_TILES;
@@ -74,14 +72,7 @@ impl FirstHits {
     /// An empty memo for outlines inset by `tolerance` (see
     /// [`crate::collision::CheckOptions::tolerance`]).
     pub fn new(tolerance: f64) -> FirstHits {
-        let o = Octagon::new(1.0);
-        let radius = o.circumradius();
-        let half_side = 0.5 * o.side();
-        let hinge = Point::from(
-            Octagon::exact_hinge(Fold::L)
-                .unwrap_or(ExactPoint::ORIGIN)
-                .to_f64(1.0),
-        );
+        let (radius, half_side, hinge) = unit_tail_frame();
         let mut reach2 = [0.0; MAX_COUNT_TILES + 1];
         for (k, r) in reach2.iter_mut().enumerate() {
             let tail_distance = (k as f64 - hinge.x).hypot(hinge.y);
@@ -134,6 +125,7 @@ mod tests {
     use super::*;
     use crate::collision::CheckOptions;
     use crate::exact::Surd;
+    use crate::Fold;
 
     fn hits() -> FirstHits {
         FirstHits::new(CheckOptions::default().tolerance)

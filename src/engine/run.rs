@@ -62,10 +62,14 @@ pub struct EngineOptions {
     /// than 500 tiles or when the engine runs on a rayon
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
-    /// Most steps of one local solve (one joint's unit over one window) before it gives up:
-    /// the run is then `stopped`, as a reference run that reaches its step limit
-    /// ([`crate::reference::ReferenceOptions::max_steps`]). Default 1,000,000: far above
-    /// the steps a unit takes on any chain the tests and benchmarks run.
+    /// Most steps of one local solve (one joint's unit over one window): the work budget,
+    /// one per joint, so the run's is proportional to the chain. A solve that reaches it, or
+    /// goes 1e4 of its time scales without an event once its inputs are still, has not
+    /// decided (a magnet creeping towards a balance on a knife edge): the run is then
+    /// `undecided`, its reason the balance and its margin, as a reference run that runs out
+    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 100,000:
+    /// a unit of the tests and benchmarks takes a few thousand (a serpentine's inertial
+    /// U-turn, the costliest, about 0.05 s).
     pub max_steps: usize,
 }
 
@@ -78,7 +82,7 @@ impl Default for EngineOptions {
             speed: SpeedLaw::default(),
             start: StartRule::default(),
             threads: 0,
-            max_steps: 1_000_000,
+            max_steps: 100_000,
         }
     }
 }

@@ -15,12 +15,32 @@ use crate::timeline::FoldRecord;
 /// 2.7e-3 w in the law while joints 3 and 4 bounce).
 pub(crate) const ANGLE_TOLERANCE: f64 = 1e-4;
 
+/// The schedule's tolerance on chains of at most [`FINE_TILES`] tiles: 1e-6 rad. A run's
+/// clearance ([`crate::timeline::Clearance`]) is measured on the schedule, and the event
+/// engine's and the reference's are held to agree within 5 um: at 1e-4 rad a 9-tile chain's
+/// far tile, 240 mm from a hinge, moved 24 um off the law (SRLSLLSR at s = 0.05: the law
+/// and the reference within 5e-6 rad of each other, the chords 7e-5 rad off both). The
+/// chords grow as the square root: ten times as many as at 1e-4, which on short chains
+/// costs the check milliseconds.
+pub(crate) const FINE_ANGLE_TOLERANCE: f64 = 1e-6;
+
+/// The longest chain whose schedule follows the law within [`FINE_ANGLE_TOLERANCE`]: 100
+/// tiles (longer ones keep [`ANGLE_TOLERANCE`], whose check the long serpentines' figures
+/// in BENCHMARKS.md were measured with).
+pub(crate) const FINE_TILES: usize = 100;
+
 /// Deepest halving of a schedule interval.
 const MAX_DEPTH: u32 = 14;
 
 /// The fold schedule the timed collision check takes ([`crate::collision::check_schedule`]):
-/// one adaptively sampled angle track per fold.
+/// one adaptively sampled angle track per fold, within [`FINE_ANGLE_TOLERANCE`] of the law
+/// up to [`FINE_TILES`] tiles, [`ANGLE_TOLERANCE`] beyond.
 pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
+    let tol = if timeline.tiles() <= FINE_TILES {
+        FINE_ANGLE_TOLERANCE
+    } else {
+        ANGLE_TOLERANCE
+    };
     let tracks = timeline
         .folds
         .iter()
@@ -38,15 +58,21 @@ pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
                     }
                 }
             }
+            // and where it turns back (bounces at its wall, peaks short of it): a chord
+            // across a turn can cut its peak while its midpoint lies on the law
+            if let Some(solved) = timeline.solved.as_deref() {
+                knots.extend(solved.turning_times(f.joint, f.start, f.end));
+            }
             knots.push(f.end);
             knots.sort_by(f64::total_cmp);
+            knots.dedup();
             let n0 = 8;
             for w in knots.windows(2) {
                 let (a, b) = (w[0], w[1]);
                 for i in 0..n0 {
                     let t0 = a + (b - a) * i as f64 / n0 as f64;
                     let t1 = a + (b - a) * (i + 1) as f64 / n0 as f64;
-                    refine(timeline, f, t0, t1, 0, &mut times, &mut angles);
+                    refine(timeline, f, (t0, t1), tol, 0, (&mut times, &mut angles));
                 }
             }
             JointTrack {
@@ -63,21 +89,20 @@ pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
 fn refine(
     tl: &Timeline,
     f: &FoldRecord,
-    t0: f64,
-    t1: f64,
+    (t0, t1): (f64, f64),
+    tol: f64,
     depth: u32,
-    times: &mut Vec<f64>,
-    angles: &mut Vec<f64>,
+    out: (&mut Vec<f64>, &mut Vec<f64>),
 ) {
     let (a0, a1) = (fold_angle(tl, f, t0), fold_angle(tl, f, t1));
     let tm = 0.5 * (t0 + t1);
     let am = fold_angle(tl, f, tm);
-    if depth < MAX_DEPTH && (am - 0.5 * (a0 + a1)).abs() > ANGLE_TOLERANCE {
-        refine(tl, f, t0, tm, depth + 1, times, angles);
-        refine(tl, f, tm, t1, depth + 1, times, angles);
+    if depth < MAX_DEPTH && (am - 0.5 * (a0 + a1)).abs() > tol {
+        refine(tl, f, (t0, tm), tol, depth + 1, (&mut *out.0, &mut *out.1));
+        refine(tl, f, (tm, t1), tol, depth + 1, out);
     } else {
-        times.push(t1);
-        angles.push(a1);
+        out.0.push(t1);
+        out.1.push(a1);
     }
 }
 
@@ -100,7 +125,7 @@ mod tests {
             for i in 0..=1000 {
                 let t = f.start + (f.end - f.start) * i as f64 / 1000.0;
                 let err = (tr.angle_at(t) - fold_angle(&tl, f, t)).abs();
-                assert!(err < 2.0 * ANGLE_TOLERANCE, "{t}: {err}");
+                assert!(err < 2.0 * FINE_ANGLE_TOLERANCE, "{t}: {err}");
             }
         }
     }

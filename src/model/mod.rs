@@ -42,4 +42,4 @@ pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;
 pub(crate) use mode::{condition, Mode};
 pub use options::ModelOptions;
-pub(crate) use verdict::RestState;
+pub(crate) use verdict::{undecided_margin, RestState};

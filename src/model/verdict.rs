@@ -102,3 +102,35 @@ impl RestState<'_> {
         format!("propagation stopped at joint {j} (reference dynamics)")
     }
 }
+
+/// The balance a run could not decide within its work budget, in words: of the unknowns
+/// `free` (state index, fraction of its range, drive along it), the one whose net drive is
+/// the smallest fraction of its scale (the bonded rest force or torque), where it is and that
+/// margin. Said when a run ends `undecided` ([`crate::timeline::RunResult::Undecided`]): a
+/// magnet or fold creeping towards a balance that it neither passes nor settles on within the
+/// budget, so the run can say neither `completed` nor `stalled`.
+pub(crate) fn undecided_margin(
+    model: &Model,
+    free: impl IntoIterator<Item = (usize, f64, f64)>,
+) -> String {
+    let nearest = free
+        .into_iter()
+        .map(|(i, y, drive)| (i, y, drive, drive / model.drive_scale(i)))
+        .min_by(|a, b| a.3.abs().total_cmp(&b.3.abs()));
+    let Some((i, y, drive, margin)) = nearest else {
+        return "nothing was moving".to_string();
+    };
+    match model.unknowns[i] {
+        crate::model::Unknown::Magnet(k) => {
+            let len = model.path_length(k);
+            format!(
+                "magnet {k} is {:.4} mm along its {len:.4} mm path, the net force along it {drive:.3e} N, a margin of {margin:.2e} of the bonded rest force",
+                y.clamp(0.0, 1.0) * len
+            )
+        }
+        crate::model::Unknown::Joint(j) => format!(
+            "joint {j} is at {:.3} degrees, its net torque {drive:.3e} N m, a margin of {margin:.2e} of the bonded rest torque",
+            y.clamp(0.0, 1.0) * 90.0
+        ),
+    }
+}

@@ -14,9 +14,9 @@
 //! after `1e4` times its slowest time scale without an event, or when the step size falls
 //! below 1e-14 of the time: never a hang.
 
-use crate::model::condition;
 use crate::model::Forces;
 use crate::model::RestState;
+use crate::model::{condition, undecided_margin};
 use crate::model::{InertialModel, Mode, Model};
 use crate::ode::System;
 use crate::ode::{Dense, Method, StepControl, StepStats, Stepper};
@@ -135,27 +135,51 @@ impl Driver {
         stepper.rhs(&moving, &self.y, f, &mut self.stats);
     }
 
-    /// Why the run must stop before a step of `h` with the unknowns `free` moving, if it
-    /// must; `slowest` is the model's slowest time scale.
-    fn stop_reason(&self, free: usize, h: f64, slowest: f64) -> Option<String> {
+    /// Why the run must stop before a step of `h` with the unknowns `free` moving (their
+    /// drives `drive`), if it must, and whether that is its work budget (the run undecided:
+    /// the reason says the balance nearest and its margin); `slowest` is the model's slowest
+    /// time scale.
+    fn stop_reason(
+        &self,
+        free: &[usize],
+        drive: &[f64],
+        h: f64,
+        slowest: f64,
+    ) -> Option<(String, bool)> {
         let last = self.log.last_event;
+        let margin =
+            || undecided_margin(&self.model, free.iter().map(|&i| (i, self.y[i], drive[i])));
         if self.t - last > 1e4 * last.max(slowest) {
-            return Some(format!(
-                "no event for {:.3e} s after the last at {:.6e} s with {free} unknowns still creeping",
-                self.t - last,
-                last,
+            return Some((
+                format!(
+                    "undecided at t = {:.6e} s within the work budget (no event for {:.3e} s after the last at {:.6e} s): {}",
+                    self.t,
+                    self.t - last,
+                    last,
+                    margin()
+                ),
+                true,
             ));
         }
-        if self.stats.accepted + self.stats.rejected >= self.opts.max_steps {
-            return Some(format!(
-                "step limit of {} reached at t = {:.6e} s with {free} unknowns moving ({} steps rejected)",
-                self.opts.max_steps, self.t, self.stats.rejected
+        let budget = self.opts.step_budget(self.model.geometry.tiles());
+        if self.stats.accepted + self.stats.rejected >= budget {
+            return Some((
+                format!(
+                    "undecided at t = {:.6e} s within the work budget ({budget} steps, {} rejected): {}",
+                    self.t,
+                    self.stats.rejected,
+                    margin()
+                ),
+                true,
             ));
         }
         if h < 1e-14 * self.t.max(self.model.time_scale) {
-            return Some(format!(
-                "step size underflow at t = {:.6e} s (h = {h:.3e} s): the dynamics is singular here",
-                self.t
+            return Some((
+                format!(
+                    "step size underflow at t = {:.6e} s (h = {h:.3e} s): the dynamics is singular here",
+                    self.t
+                ),
+                false,
             ));
         }
         None
@@ -195,7 +219,7 @@ impl Driver {
             if self.at_rest(&free, &f, scale) {
                 break;
             }
-            if let Some(why) = self.stop_reason(free.len(), h, slowest) {
+            if let Some(why) = self.stop_reason(&free, &drive, h, slowest) {
                 stopped = Some(why);
                 break;
             }
@@ -333,7 +357,11 @@ impl Driver {
         }
     }
 
-    fn finish(mut self, stopped: Option<String>, states: Vec<(f64, Vec<f64>)>) -> ReferenceRun {
+    fn finish(
+        mut self,
+        stopped: Option<(String, bool)>,
+        states: Vec<(f64, Vec<f64>)>,
+    ) -> ReferenceRun {
         let time = self.log.last_event;
         self.model.forces(&self.y, &mut self.work);
         let outcome = RestState {
@@ -356,7 +384,8 @@ impl Driver {
             events,
             folds: self.log.folds,
             outcome,
-            stopped,
+            undecided: stopped.as_ref().is_some_and(|s| s.1),
+            stopped: stopped.map(|s| s.0),
             max_moving: self.log.max_moving,
             stats: self.stats,
         }

@@ -42,7 +42,19 @@ impl Recording {
 }
 
 /// Options of a reference run. Defaults: Dormand-Prince, tolerance 1e-8, the model's
-/// defaults, at most 2,000,000 steps, no states recorded ([`Recording::Off`]).
+/// defaults, a work budget of 200,000 steps per tile up to 2,000,000 steps, no states
+/// recorded ([`Recording::Off`]).
+///
+/// **Work budget.** A run takes at most [`ReferenceOptions::step_budget`] steps (accepted
+/// and rejected), proportional to its chain, and goes at most 1e4 times its slowest time
+/// scale (or its time so far) without an event, and (inertial) cuts its steps at most 2,000
+/// times for a start that does not come. A run that reaches any of these has not decided:
+/// a magnet or fold creeping towards a balance it neither passes nor settles on (a design
+/// on a knife edge). Its result is `undecided`, with that balance and its margin
+/// ([`crate::timeline::RunResult::Undecided`]). 200,000 steps a tile: runs of the tests and
+/// benchmarks take under 1,000 steps a tile (SLRRRL at s = 0, 7 tiles: 1,188 steps), but an
+/// explicit integration of magnets a tenth of the thesis' mass (the stiff limit of
+/// `tests/reference_inertial.rs`) needs more than 20,000.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct ReferenceOptions {
@@ -52,8 +64,11 @@ pub struct ReferenceOptions {
     pub tolerance: f64,
     /// The model's options.
     pub model: ModelOptions,
-    /// Most steps (accepted and rejected) before the run stops with a diagnosis.
+    /// Most steps (accepted and rejected) whatever the chain's length (default 2,000,000).
     pub max_steps: u64,
+    /// Steps a tile of the work budget (default
+    /// [`ReferenceOptions::DEFAULT_STEPS_PER_TILE`]).
+    pub steps_per_tile: u64,
     /// States to keep for pictures (default [`Recording::Off`]).
     pub record: Recording,
 }
@@ -65,12 +80,30 @@ impl Default for ReferenceOptions {
             tolerance: 1e-8,
             model: ModelOptions::default(),
             max_steps: 2_000_000,
+            steps_per_tile: ReferenceOptions::DEFAULT_STEPS_PER_TILE,
             record: Recording::Off,
         }
     }
 }
 
 impl ReferenceOptions {
+    /// The work budget's steps a tile: 200,000 (see the type's documentation).
+    pub const DEFAULT_STEPS_PER_TILE: u64 = 200_000;
+
+    /// The most steps a run of `tiles` tiles takes: `steps_per_tile` times the tiles, at
+    /// most `max_steps`.
+    pub fn step_budget(&self, tiles: usize) -> u64 {
+        self.steps_per_tile
+            .saturating_mul(tiles.max(1) as u64)
+            .min(self.max_steps)
+    }
+
+    /// Another work budget a tile.
+    pub fn with_steps_per_tile(mut self, steps: u64) -> ReferenceOptions {
+        self.steps_per_tile = steps;
+        self
+    }
+
     /// Another integrator.
     pub fn with_method(mut self, method: Method) -> ReferenceOptions {
         self.method = method;

@@ -25,8 +25,12 @@ pub struct ReferenceRun {
     pub folds: Vec<FoldRecord>,
     /// How propagation ended.
     pub outcome: Outcome,
-    /// Why integration stopped early (step limit, step-size underflow), if it did.
+    /// Why integration stopped early (its work budget, step-size underflow), if it did.
     pub stopped: Option<String>,
+    /// Whether it stopped on its work budget ([`ReferenceOptions::step_budget`], or no event
+    /// for 1e4 of its time scales) before the physics decided: the result is then
+    /// `undecided`, `stopped` saying the balance and its margin.
+    pub undecided: bool,
     /// The state at the end.
     pub final_state: Vec<f64>,
     /// Recorded `(time s, state)` pairs in time order, the last one the final state
@@ -98,9 +102,12 @@ impl ReferenceRun {
         self.model.positions(&self.final_state)
     }
 
-    /// The outcome's result, or [`RunResult::Stopped`] when integration stopped early.
+    /// The outcome's result, or [`RunResult::Undecided`] when integration ran out of its
+    /// work budget, [`RunResult::Stopped`] when it stopped early otherwise.
     pub fn result(&self) -> RunResult {
-        if self.stopped.is_some() {
+        if self.stopped.is_some() && self.undecided {
+            RunResult::Undecided
+        } else if self.stopped.is_some() {
             RunResult::Stopped
         } else {
             RunResult::from(&self.outcome)
@@ -133,6 +140,7 @@ impl ReferenceRun {
             summary = summary.with_free_motion(self.model.free_motion(self));
         }
         match &self.stopped {
+            Some(why) if self.undecided => summary.undecided(why.clone()),
             Some(why) => summary.overruled(RunResult::Stopped, why.clone()),
             None => summary,
         }

@@ -58,7 +58,7 @@ pub use run_result::RunResult;
 pub use run_source::RunSource;
 pub use speed_law::SpeedLaw;
 pub(crate) use summary::RunFacts;
-pub use summary::{CollisionReport, Summary};
+pub use summary::{Clearance, CollisionReport, Summary};
 pub(crate) use tile_designs::TileOverride;
 pub use tile_designs::{DesignsError, SValue, TileDesigns};
 pub use track::Track;

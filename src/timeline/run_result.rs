@@ -27,9 +27,11 @@ pub enum RunResult {
     Stalled,
     /// Two tiles collided on the way or in the final shape.
     Collided,
-    /// The run stopped before its end (a step limit, a budget).
+    /// The run stopped before its end (a step size underflow: dynamics singular there).
     Stopped,
-    /// The collision check could not decide (a malformed fold schedule).
+    /// The run could not decide within its work budget: a balance that a simulation's
+    /// bounded work neither passes nor settles on (the reason says which and its margin), or
+    /// a collision check that ran out of its budget.
     Undecided,
 }
 

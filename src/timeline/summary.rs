@@ -15,6 +15,30 @@ pub struct CollisionReport {
     pub tiles: (usize, usize),
 }
 
+/// How close two tiles that are not neighbours came over a run (the closest approach of
+/// [`crate::collision`]'s clearance measurement).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Clearance {
+    /// The smallest distance between the outlines of two tiles that are not neighbours, mm:
+    /// negative for an overlap (its depth, the least translation that parts them). Within
+    /// `precision_mm` above the true minimum, never below it.
+    pub mm: f64,
+    /// The two tiles, lower index first.
+    pub tiles: (usize, usize),
+    /// When, s.
+    pub time: f64,
+    /// The fold front then: the highest joint between the tiles turning and whose fold goes
+    /// on, else the highest turning; null when none turns (the chain at rest).
+    pub joint: Option<usize>,
+    /// An overlap no deeper than the overlap tolerance: the run counts it as touching.
+    pub graze: bool,
+    /// The overlap tolerance of the run's collision check, mm
+    /// ([`crate::collision::CheckOptions::overlap_mm`]).
+    pub overlap_tolerance_mm: f64,
+    /// The precision of `mm`, mm.
+    pub precision_mm: f64,
+}
+
 /// The facts of a run a summary reports (see `Summary::new`).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct RunFacts<'a> {
@@ -62,6 +86,10 @@ pub struct Summary {
     pub reason: Option<String>,
     /// The first collision, or null.
     pub first_collision: Option<CollisionReport>,
+    /// How close two tiles that are not neighbours came, or null when not measured (no
+    /// collision check, fewer than three tiles, a chain over 1,000 tiles or a measurement
+    /// over its work budget).
+    pub clearance: Option<Clearance>,
     /// The speed law (`overdamped` with its drag, or `unit`).
     pub speed_law: SpeedLaw,
     /// The physical parameters the run used (null when not known: a summary made from a
@@ -95,6 +123,7 @@ impl Summary {
             },
             reason: outcome.reason(facts.decided_by),
             first_collision: None,
+            clearance: None,
             speed_law: facts.speed_law,
             parameters: None,
             free_motion: None,
@@ -110,6 +139,17 @@ impl Summary {
     /// The same summary stating how the chain moved on the water.
     pub fn with_free_motion(mut self, free_motion: FreeMotion) -> Summary {
         self.free_motion = Some(free_motion);
+        self
+    }
+
+    /// The same summary, `undecided` because the run ran out of its work budget before the
+    /// physics decided (`why`: the budget, the balance and its margin): `why` replaces the
+    /// outcome's reason, and no stall is claimed.
+    pub(crate) fn undecided(mut self, why: String) -> Summary {
+        self.result = RunResult::Undecided;
+        self.completed = false;
+        self.stalled_at = None;
+        self.reason = Some(why);
         self
     }
 

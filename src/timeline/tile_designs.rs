@@ -106,6 +106,10 @@ struct DesignFileJson {
     tiles: Vec<TileOverride>,
 }
 
+/// The largest design file read: 256 MiB, room for a per-tile override of every tile of the
+/// longest chain fold-run takes (2,000,000 tiles, about 100 bytes each).
+const MAX_DESIGN_FILE_BYTES: u64 = 256 << 20;
+
 /// Why a design could not be read or used.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -204,9 +208,32 @@ impl TileDesigns {
 
     /// Reads a design file.
     pub fn from_file(path: &Path) -> Result<TileDesigns, DesignsError> {
-        let text = std::fs::read_to_string(path).map_err(|source| DesignsError::Read {
+        let read = |source| DesignsError::Read {
             path: path.to_path_buf(),
             source,
+        };
+        // at most MAX_DESIGN_FILE_BYTES: a device that never ends (`/dev/zero`) or a huge
+        // file is refused once that much is read, not read into memory whole
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(
+                std::fs::File::open(path).map_err(read)?,
+                MAX_DESIGN_FILE_BYTES + 1,
+            ),
+            &mut bytes,
+        )
+        .map_err(read)?;
+        if bytes.len() as u64 > MAX_DESIGN_FILE_BYTES {
+            return Err(read(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "larger than 256 MiB: a design file holds a design and per-tile overrides",
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            read(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("not UTF-8 text ({e})"),
+            ))
         })?;
         TileDesigns::from_json(&text, &path.display().to_string())
     }

@@ -134,8 +134,15 @@ fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f
 fn merge(args: &Args) -> anyhow::Result<()> {
     let mut files = Vec::with_capacity(args.merge.len());
     for path in &args.merge {
-        let text = std::fs::read_to_string(path)
+        // a shard report is one JSON object of counts: 64 MiB is far above any
+        let bytes = foldchain_planner::read_file_at_most(path, 64 << 20)
             .with_context(|| format!("{}: cannot read the shard report", path.display()))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            anyhow::anyhow!(
+                "{}: not a shard report: not UTF-8 text ({e})",
+                path.display()
+            )
+        })?;
         files.push((path.display().to_string(), text));
     }
     let merged = CountReport::merge(&files)?;

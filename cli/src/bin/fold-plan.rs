@@ -10,9 +10,9 @@ use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::inputs::refuse_overwrite;
 use foldchain_cli::numbers::{count_in, number_in};
-use foldchain_cli::outln;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
+use foldchain_cli::{errln, outln};
 use foldchain_planner::{
     plan_svg_file_reporting, preview_svg_file, preview_svg_rejected, PlanError, PlanOptions, Turns,
     DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
@@ -70,6 +70,10 @@ struct Args {
     /// No progress lines on stderr.
     #[arg(long)]
     quiet: bool,
+    /// When the shape cannot be planned, also print what each planner tried and why it
+    /// failed (one line each, before the short reason).
+    #[arg(long, short = 'v')]
+    verbose: bool,
 }
 
 fn tiles_arg(s: &str) -> Result<usize, String> {
@@ -154,22 +158,28 @@ fn run(args: &Args) -> anyhow::Result<()> {
         Err(PlanError::Unplannable {
             name,
             reason,
+            detail,
             rejected,
         }) => {
+            if args.verbose {
+                for d in &detail {
+                    errln!("fold-plan: tried: {d}");
+                }
+            }
             // the best rejected plan still shows where it falls short
             let mut reason = reason;
             if let (Some(p), Some(r)) = (&args.preview, &rejected) {
                 let svg = preview_svg_rejected(&args.shape, r).context("drawing the preview")?;
                 foldchain_cli::output::write_atomic(p, svg.as_bytes())
                     .context("writing the preview")?;
-                reason.push_str(&format!(
-                    " (the best rejected plan is drawn in {}, marked as no plan)",
-                    p.display()
-                ));
+                reason.push_str(&format!(" (drawn in {}, marked as no plan)", p.display()));
+            } else if !args.verbose && !detail.is_empty() {
+                reason.push_str(" (more with --verbose)");
             }
             return Err(PlanError::Unplannable {
                 name,
                 reason,
+                detail,
                 rejected,
             }
             .into());

@@ -13,6 +13,7 @@ use std::process::ExitCode;
 
 use anyhow::{bail, Context};
 use clap::Parser;
+use foldchain::collision::CheckOptions;
 use foldchain::engine::{SValue, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
 use foldchain::physics::{magnet_drag, ForceLaw};
@@ -160,6 +161,11 @@ struct Args {
     /// clock (default out/<name>-compare/). For chains up to 2,000 tiles.
     #[arg(long)]
     compare: bool,
+    /// The deepest overlap of two tiles, mm (0 to 1), that counts as touching: a graze,
+    /// reported with its clearance ("closest approach") instead of a collision. Default 0.01
+    /// (the runs' numerical resolution of a contact: docs/clearances.md).
+    #[arg(long, value_name = "MM", value_parser = overlap_arg, allow_hyphen_values = true)]
+    overlap_tolerance: Option<f64>,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
     tiles: Option<usize>,
@@ -199,6 +205,10 @@ fn threads_arg(s: &str) -> Result<usize, String> {
 
 fn cutoff_arg(s: &str) -> Result<f64, String> {
     number_in(s, 1e-3, 1e4, "mm", "")
+}
+
+fn overlap_arg(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 1.0, "mm", "")
 }
 
 fn tile_size_arg(s: &str) -> Result<f64, String> {
@@ -343,6 +353,9 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         model,
         force_law,
         threads: args.threads.unwrap_or(0),
+        overlap_mm: args
+            .overlap_tolerance
+            .unwrap_or(CheckOptions::default().overlap_mm),
         files,
         out_dir,
     })
@@ -531,4 +544,31 @@ fn summary_line(name: &str, s: &Summary, dir: &Path) {
             );
         }
     }
+    // a near miss, a touch, a graze or an overlap (summary.json always has it)
+    if let Some(c) = s.clearance.filter(|c| c.mm < NEAR_MISS_MM) {
+        outln!("  {}", clearance_words(&c));
+    }
+}
+
+/// The closest approach the text summary tells: under 1 mm (summary.json has every run's).
+const NEAR_MISS_MM: f64 = 1.0;
+
+/// How close two tiles that are not neighbours came, in words.
+fn clearance_words(c: &foldchain::timeline::Clearance) -> String {
+    let (a, b) = c.tiles;
+    let how = if c.mm >= 0.0 {
+        format!("{:.4} mm apart", c.mm)
+    } else if c.graze {
+        format!(
+            "overlapping by {:.4} mm, a graze (within the {} mm overlap tolerance: touching)",
+            -c.mm, c.overlap_tolerance_mm
+        )
+    } else {
+        format!("overlapping by {:.4} mm", -c.mm)
+    };
+    let when = match c.joint {
+        Some(j) => format!("at t = {:.4} s while joint {j} folds", c.time),
+        None => format!("at t = {:.4} s", c.time),
+    };
+    format!("closest approach: tiles {a} and {b}, {how}, {when}")
 }

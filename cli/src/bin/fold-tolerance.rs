@@ -159,6 +159,13 @@ fn run(args: &Args) -> anyhow::Result<u8> {
 
 /// The study or the search; `progress` is finished before anything is printed.
 fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
+    // options checked before any work (a drawing is planned first)
+    let shard = match &args.shard {
+        Some(s) => Some(s.parse::<Shard>().map_err(|_| {
+            anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8")
+        })?),
+        None => None,
+    };
     let input = resolve_chain(
         &ChainArgs {
             chain: Some(&args.chain),
@@ -183,12 +190,6 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
     for t in &args.tol {
         tolerances.set(t)?;
     }
-    let shard = match &args.shard {
-        Some(s) => Some(s.parse::<Shard>().map_err(|_| {
-            anyhow!("--shard {s:?}: expected K/M with whole numbers 1 <= K <= M, e.g. 2/8")
-        })?),
-        None => None,
-    };
     let parts = shard.map_or(1, |s| s.m as u64);
     if args.samples.div_ceil(parts) > MAX_SAMPLES_PER_PART {
         bail!(

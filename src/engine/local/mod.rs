@@ -64,6 +64,30 @@ impl Solved {
             .clamp(0.0, 1.0)
     }
 
+    /// The times within `(from, to)` around which joint `j`'s fold turns back: both nodes of
+    /// every piece of its solved track whose rate changes sign (a bounce at a wall, or a
+    /// peak short of it), in order. The fold schedule's knots: a chord across such a turn
+    /// can cut its peak whatever its midpoint says.
+    pub(crate) fn turning_times(&self, j: usize, from: f64, to: f64) -> Vec<f64> {
+        let track = self.chain.joints[j];
+        if self.chain.shapes.first_move(track).is_none() {
+            return Vec::new();
+        }
+        let shape = self.chain.shapes.get(track.shape);
+        let mut out = Vec::new();
+        for i in 1..shape.t.len() {
+            if shape.dy[i - 1] * shape.dy[i] < 0.0 {
+                for t in [shape.t[i - 1], shape.t[i]] {
+                    let t = t + track.offset;
+                    if t > from && t < to && out.last().is_none_or(|&l| l < t) {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// Joint `j`'s fraction of fold made at `t`.
     pub(crate) fn fold_fraction(&self, j: usize, t: f64) -> f64 {
         self.chain
@@ -261,14 +285,13 @@ fn outcome(model: &Model, chain: &ChainSolution, time: f64) -> Outcome {
             None => format!("propagation stopped at joint {j} (local solve)"),
         },
     };
-    let reason = match chain
+    // a solve that ran out of its work budget decided nothing: its reason alone (the run is
+    // `undecided`, `crate::simulation::check_engine_run`), not a rest it never came to
+    let reason = chain
         .units
         .iter()
         .find_map(|u| u.0.solution.stopped.clone())
-    {
-        Some(why) => format!("{reason}; {why}"),
-        None => reason,
-    };
+        .unwrap_or(reason);
     Outcome::Stalled {
         joint: j,
         time,

@@ -18,7 +18,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::model::REST_HEIGHT;
 use crate::model::{
-    at_wall, Allow, Dynamics, Forces, InertialModel, Mode, Model, RestState, Unknown,
+    at_wall, undecided_margin, Allow, Dynamics, Forces, InertialModel, Mode, Model, RestState,
+    Unknown,
 };
 use crate::ode::{integral, Method, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
@@ -28,6 +29,7 @@ use crate::reference::free_body::run::FreeBodyRun;
 use crate::reference::free_body::spatial::solve;
 use crate::reference::free_body::system::{FreeBody, Momentum, Setup, Work, BASE};
 use crate::reference::free_body::tile_body::TileBodies;
+use crate::reference::inertial::ReleaseCuts;
 use crate::reference::options::{Recording, ReferenceError};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
@@ -533,6 +535,7 @@ impl Driver {
         let expo = 1.0 / (Method::Dopri5.error_order() as f64 + 1.0);
         let mut h = self.setup.im.first_step * 1e-3;
         let mut stopped = None;
+        let mut cuts = ReleaseCuts::default();
         let mut rec = match opts.record {
             Recording::Off => None,
             Recording::Grid { max_states } => Some(Recorder::new(
@@ -576,16 +579,24 @@ impl Driver {
             if quiet && t > self.log.last_event + scale {
                 break;
             }
-            if self.stats.accepted + self.stats.rejected >= opts.max_steps {
+            // the work budget (ReferenceOptions): undecided, its margin said at the end
+            let budget = opts.step_budget(self.setup.model.geometry.tiles());
+            if self.stats.accepted + self.stats.rejected >= budget {
                 stopped = Some(format!(
-                    "step limit of {} reached at t = {t:.6e} s with {free} unknowns moving",
-                    opts.max_steps,
+                    "undecided at t = {t:.6e} s within the work budget ({budget} steps)"
+                ));
+                break;
+            }
+            if cuts.futile() {
+                stopped = Some(format!(
+                    "undecided at t = {t:.6e} s within the work budget ({})",
+                    cuts.reason()
                 ));
                 break;
             }
             if t - self.log.last_event > 1e4 * scale.max(self.log.last_event) {
                 stopped = Some(format!(
-                    "no event for {:.3e} s after the last at {:.6e} s with {free} unknowns still moving",
+                    "undecided at t = {t:.6e} s within the work budget (no event for {:.3e} s after the last at {:.6e} s)",
                     t - self.log.last_event,
                     self.log.last_event,
                 ));
@@ -650,6 +661,7 @@ impl Driver {
                 let cut = h * theta.max(1e-6);
                 if cut > 1e-14 * t.max(scale) {
                     h = cut;
+                    cuts.note(self.log.last_event);
                     continue;
                 }
             }
@@ -693,6 +705,19 @@ impl Driver {
         .outcome(time);
         let mut events = self.log.events;
         events.extend(outcome.stop_event(time));
+        // a stop on the work budget: with the balance nearest
+        let undecided = stopped
+            .as_deref()
+            .is_some_and(|w: &str| w.starts_with("undecided"));
+        let stopped = stopped.map(|why| {
+            if !undecided {
+                return why;
+            }
+            let free = (0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free);
+            let margin =
+                undecided_margin(&self.setup.model, free.map(|i| (i, y[i], forces.drive[i])));
+            format!("{why}: {margin}")
+        });
         let states = rec.map(|r| r.finish(self.t, &y)).unwrap_or_default();
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
         FreeBodyRun {
@@ -708,6 +733,7 @@ impl Driver {
                 folds: self.log.folds,
                 outcome,
                 stopped,
+                undecided,
                 max_moving: self.log.max_moving,
                 stats: self.stats,
             },

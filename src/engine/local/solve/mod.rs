@@ -26,7 +26,7 @@ pub(crate) use crate::model::InertialModel;
 
 use crate::engine::local::trajectory::Shape;
 use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces};
-use crate::model::Mode;
+use crate::model::{undecided_margin, Mode};
 use crate::ode::locate::bisect;
 use crate::ode::{hermite, integral};
 use crate::timeline::EventKind;
@@ -38,6 +38,12 @@ const MAX_SKIP: usize = 8;
 /// ... while its release margin, rising this many times faster than over its last rest
 /// step, would stay short of a release: 4.
 const SKIP_SAFETY: f64 = 4.0;
+/// A unit whose inputs are still and whose free unknowns go this many of its time scales
+/// (or of its time since its origin, if longer) without an event is creeping towards a
+/// balance it neither passes nor settles on: the solve stops, undecided. The reference's
+/// limit ([`crate::reference::ReferenceOptions`]); 1e4: a magnet or fold that moves at all
+/// does so within a few hundred time scales.
+const CREEP_SCALES: f64 = 1e4;
 
 /// Most unknowns of a unit.
 const M: usize = 3;
@@ -325,11 +331,26 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         }
         let free: Vec<usize> = (0..m).filter(|&i| s.modes[i] == Mode::Free).collect();
         steps += 1;
-        if steps > opts.max_steps {
+        // the work budget: a step limit, and a creep limit once the inputs are still (no
+        // event for CREEP_SCALES times the unit's time scale or its time, as the
+        // reference's): a balance the solve cannot decide within it is said, with its margin
+        let creeping = !free.is_empty()
+            && tau >= t_last
+            && tau - s.last_event > CREEP_SCALES * scale.max(s.last_event);
+        if steps > opts.max_steps || creeping {
+            let budget = if creeping {
+                format!(
+                    "no event for {:.3e} s after the last at {:.6e} s",
+                    tau - s.last_event,
+                    t_ref + s.last_event
+                )
+            } else {
+                format!("{} steps", opts.max_steps)
+            };
+            let margin = undecided_margin(model, free.iter().map(|&i| (s.globals[i], z[i], d[i])));
             s.sol.stopped = Some(format!(
-                "local solve of joint {} gave up after {} steps at t = {:.6e} s",
+                "local solve of joint {} undecided at t = {:.6e} s within its work budget ({budget}): {margin}",
                 w.j,
-                opts.max_steps,
                 t_ref + tau
             ));
             break;
