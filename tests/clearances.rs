@@ -28,7 +28,7 @@ const AGREE_MM: f64 = 0.005;
 fn both(word: &str, s: f64) -> (Summary, Summary) {
     let chain = Chain::parse(word).unwrap();
     let designs = TileDesigns::global(Design::thesis().with_s(s));
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let check = CheckOptions::default();
     let (_, e) = simulate(
         &chain,

@@ -273,7 +273,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         "first_collision": null,
         // measured by the collision check (check_reference), not by the run
         "clearance": null,
-        "speed_law": {"overdamped": {"drag": ModelOptions::DEFAULT_DRAG}},
+        "speed_law": {"overdamped": {"drag": 5.0}},
     });
     assert!(same_json(&json, &want), "{json}");
     // every magnet but the last started and arrived, both folds started and ended

@@ -334,9 +334,18 @@ impl Model {
     /// s: the slowest of the model's time scales (0 without folds).
     pub fn slowest_fold_time(&self) -> f64 {
         (0..self.joint_var.len())
-            .filter(|&j| self.sides[j].is_some())
-            .map(|j| self.joint_drag(j, 0.0) * FRAC_PI_2 / self.torque_scale)
+            .map(|j| self.fold_time(j))
             .fold(0.0, f64::max)
+    }
+
+    /// The time joint `j`'s fold takes under the bonded rest torque against its drag alone
+    /// (both sides' drag about the hinge), s; 0 for a joint that does not fold.
+    pub(crate) fn fold_time(&self, j: usize) -> f64 {
+        if self.sides[j].is_some() {
+            self.joint_drag(j, 0.0) * FRAC_PI_2 / self.torque_scale
+        } else {
+            0.0
+        }
     }
 
     /// What joint `j`'s motion depends on besides the forces (its sides' inertia and drag),

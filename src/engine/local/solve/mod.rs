@@ -25,7 +25,7 @@ mod step;
 pub(crate) use crate::model::InertialModel;
 
 use crate::engine::local::trajectory::Shape;
-use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces};
+use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
 use crate::ode::locate::bisect;
 use crate::ode::{hermite, integral};
@@ -38,11 +38,15 @@ const MAX_SKIP: usize = 8;
 /// ... while its release margin, rising this many times faster than over its last rest
 /// step, would stay short of a release: 4.
 const SKIP_SAFETY: f64 = 4.0;
-/// A unit whose inputs are still and whose free unknowns go this many of its time scales
-/// (or of its time since its origin, if longer) without an event is creeping towards a
-/// balance it neither passes nor settles on: the solve stops, undecided. The reference's
+/// A unit whose inputs are still and whose free unknowns go this many of its slowest time
+/// scales (or of its time since its origin, if longer) without an event is creeping towards
+/// a balance it neither passes nor settles on: the solve stops, undecided. The reference's
 /// limit ([`crate::reference::ReferenceOptions`]); 1e4: a magnet or fold that moves at all
-/// does so within a few hundred time scales.
+/// does so within a few hundred time scales. A unit's slowest time scale is its magnets'
+/// or, if longer, its joint's fold time against both sides' drag
+/// ([`Model::fold_time`](crate::model::Model)), as the reference's is its chain's slowest:
+/// the fold of a U-turn in the middle of a long serpentine turns a raft metres across and
+/// takes days, its pair's magnets creeping to their ends with it.
 const CREEP_SCALES: f64 = 1e4;
 
 /// Most unknowns of a unit.
@@ -275,6 +279,16 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
             model.time_scale * 1e-3 * opts.tol.powf(0.2),
         ),
     };
+    // the unit's slowest time scale: its magnets', or its joint's fold against both sides'
+    // drag (the creep limit's unit)
+    let slowest = w
+        .vars
+        .iter()
+        .filter_map(|v| match *v {
+            Var::Joint(jj) => Some(model.fold_time(jj)),
+            Var::Magnet(_) => None,
+        })
+        .fold(scale, f64::max);
     let mut steps = 0usize;
     // the last time and release margin met while nothing of the unit moved
     let mut rest_prev: Option<(f64, f64)> = None;
@@ -332,11 +346,11 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         let free: Vec<usize> = (0..m).filter(|&i| s.modes[i] == Mode::Free).collect();
         steps += 1;
         // the work budget: a step limit, and a creep limit once the inputs are still (no
-        // event for CREEP_SCALES times the unit's time scale or its time, as the
+        // event for CREEP_SCALES times the unit's slowest time scale or its time, as the
         // reference's): a balance the solve cannot decide within it is said, with its margin
         let creeping = !free.is_empty()
             && tau >= t_last
-            && tau - s.last_event > CREEP_SCALES * scale.max(s.last_event);
+            && tau - s.last_event > CREEP_SCALES * slowest.max(s.last_event);
         if steps > opts.max_steps || creeping {
             let budget = if creeping {
                 format!(
