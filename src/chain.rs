@@ -149,8 +149,9 @@ impl Chain {
         self.tiles.is_empty()
     }
 
-    /// The outcome of every joint (thesis Table 7.1), from the reaction-initiator end.
-    pub fn joint_outcomes(&self) -> impl Iterator<Item = JointOutcome> + '_ {
+    /// The outcome of every joint (thesis Table 7.1), from the reaction-initiator end (a
+    /// user reads the same from [`Chain::first_inhibited`] and [`Chain::reached_word`]).
+    pub(crate) fn joint_outcomes(&self) -> impl Iterator<Item = JointOutcome> + '_ {
         self.tiles
             .windows(2)
             .map(|w| JointOutcome::from_paths(w[0].second, w[1].first))

@@ -12,7 +12,7 @@ use crate::PathKind;
 /// The outcome of a joint when propagation reaches it (thesis Table 7.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub enum JointOutcome {
+pub(crate) enum JointOutcome {
     /// Propagation continues with no fold (SS, SL, SR, LS, RS).
     Linear,
     /// A 90 degree fold to the left (LL).

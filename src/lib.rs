@@ -6,8 +6,8 @@
 //!
 //! This crate is the core model and computes only; the command-line tools live in the
 //! `foldchain-cli` crate.
-//! - Paths, tiles and joints ([`PathKind`], [`Tile`], [`JointOutcome`]); chains in their three
-//!   forms ([`Chain`], [`FoldWord`], JSON); the tile design with the path-length inequalities
+//! - Paths, tiles and joints ([`PathKind`], [`Tile`], [`Fold`]); chains in their three forms
+//!   ([`Chain`], [`FoldWord`], JSON); the tile design with the path-length inequalities
 //!   ([`Design`]) and its bill of materials ([`BillOfMaterials`]).
 //! - Exact and floating-point kinematics of the octagon chain ([`FoldWord::final_poses`],
 //!   [`Pose::chain_at_angles`], with exact coordinates in [`exact`]).
@@ -76,7 +76,8 @@ pub use design::{Design, DesignError, InequalityCheck, Standing};
 pub use engine_choice::AutoEngine;
 pub use error::ChainError;
 pub use exact::{ExactPoint, ExactPose, QuarterTurns, Surd};
-pub use joint::{Fold, JointOutcome};
+pub use joint::Fold;
+pub(crate) use joint::JointOutcome;
 pub use number_text::short_number;
 pub use octagon::Octagon;
 pub use path_kind::PathKind;

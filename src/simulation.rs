@@ -122,7 +122,7 @@ fn clearance(
     check: &CheckOptions,
     w: f64,
 ) -> Option<Clearance> {
-    if check.final_only {
+    if check.final_only || !check.clearance {
         return None;
     }
     let c = closest_approach(word.tiles(), schedule, CLEARANCE_PRECISION_MM / w)?;

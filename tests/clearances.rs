@@ -141,3 +141,36 @@ fn full_scan_of_8_letter_words_at_s_005() {
     );
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// A 147-tile serpentine (10 rows of 12 joined by loose U-turns, as fold-run folds it) reports
+/// its clearance: the pair walk once spent its whole work budget passing the stretches where
+/// none of a pair's joints turns, one time bucket at a time, and gave `None` from about 150
+/// tiles on.
+#[test]
+fn a_147_tile_serpentine_reports_its_clearance() {
+    let mut word = String::new();
+    for row in 0..10 {
+        if row > 0 {
+            word.push_str(if row % 2 == 1 {
+                " SL LL LS "
+            } else {
+                " SR RR RS "
+            });
+        }
+        word.push_str("SS*12");
+    }
+    let chain = Chain::parse(&word).unwrap();
+    assert!((140..160).contains(&chain.len()), "{}", chain.len());
+    // fold-run's defaults: the thesis' design, inertial
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let (_, summary) = simulate(
+        &chain,
+        &TileDesigns::global(Design::thesis()),
+        &EngineOptions::default().with_model(model),
+        &CheckOptions::default(),
+    )
+    .unwrap();
+    let c = summary.clearance.expect("the clearance is measured");
+    // loose rows never come nearer than two tiles one apart along the chain
+    assert!(c.mm > 0.0 && c.tiles.1 >= c.tiles.0 + 2, "{c:?}");
+}

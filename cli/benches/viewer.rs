@@ -18,31 +18,11 @@ mod browser;
 
 use std::time::Instant;
 
-use browser::{attr, attributes, chromium, tmp, url};
+use browser::{attr, attributes, chromium, serpentine, tmp, url};
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns};
 use foldchain::{simulate, Chain};
 use foldchain_render::viewer::{viewer_html, RunView};
-
-/// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
-/// fold word (`S*k L L S*k R R ...`).
-fn serpentine(tiles: usize, row: usize) -> String {
-    let mut parts = Vec::new();
-    let (mut letters, mut left) = (0, true);
-    while letters + 1 < tiles {
-        let straight = (row - 1).min(tiles - 1 - letters);
-        parts.push(format!("S*{straight}"));
-        letters += straight;
-        for _ in 0..2 {
-            if letters + 1 < tiles {
-                parts.push(if left { "L" } else { "R" }.to_string());
-                letters += 1;
-            }
-        }
-        left = !left;
-    }
-    parts.join(" ")
-}
 
 fn main() {
     let max: usize = std::env::args()

@@ -23,7 +23,8 @@ use crate::errln;
 use crate::numbers::thousands;
 
 /// The least time between two plain progress lines (the environment variable
-/// `FOLDCHAIN_PROGRESS_SECONDS` sets another, and the first line's time too, e.g. for tests).
+/// `FOLDCHAIN_PROGRESS_SECONDS` sets another, and the first line's time too, e.g. for tests;
+/// `0` prints every update as it comes).
 pub const PLAIN_INTERVAL: Duration = Duration::from_secs(5);
 
 /// When the first plain line is printed: a run shorter than this says nothing.
@@ -164,6 +165,13 @@ impl Progress {
         s.unit = unit.unwrap_or(&self.shared.unit).to_string();
         s.done = done;
         s.total = total;
+        // `FOLDCHAIN_PROGRESS_SECONDS=0`: every update is a line, printed here (the display's
+        // thread looks only every tenth of a second and would miss a run shorter than that)
+        if self.shared.mode == ProgressMode::Lines && self.shared.interval.is_zero() {
+            let now = Instant::now();
+            s.last_line = Some(now);
+            errln!("{}", line(&self.shared.tool, &s, now));
+        }
     }
 
     /// Stops the display and clears the bar: call it before printing the result.

@@ -38,6 +38,14 @@ pub fn message(e: &anyhow::Error) -> String {
     one_line(&out)
 }
 
+/// Prints a plan's warnings on stderr, one line each (`TOOL: warning: ...`): the one place
+/// that fold-plan and fold-print (which plans a drawing itself) say them.
+pub fn print_plan_warnings(tool: &str, warnings: &[String]) {
+    for w in warnings {
+        errln!("{tool}: warning: {w}");
+    }
+}
+
 /// `text` with its line breaks and runs of blanks made single spaces.
 fn one_line(text: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")

@@ -5,32 +5,14 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 use std::io::Read;
-use std::path::PathBuf;
-use std::process::{Command, Output, Stdio};
+use std::process::{Output, Stdio};
 
-fn tool(name: &str) -> Command {
-    let path = match name {
-        "fold-run" => env!("CARGO_BIN_EXE_fold-run"),
-        "fold-tolerance" => env!("CARGO_BIN_EXE_fold-tolerance"),
-        "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
-        "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
-        "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
-        "fold-print" => env!("CARGO_BIN_EXE_fold-print"),
-        _ => env!("CARGO_BIN_EXE_fold-validate"),
-    };
-    Command::new(path)
-}
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("foldchain-bad-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{run, scratch, stderr, tool};
 
 /// Exit 2, nothing on stdout, one line on stderr holding every one of `words`, no panic.
 fn refused(o: &Output, words: &[&str]) {
-    let e = String::from_utf8_lossy(&o.stderr);
+    let e = stderr(o);
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert!(!e.contains("panicked"), "{e}");
     assert_eq!(e.trim_end().lines().count(), 1, "one line: {e}");
@@ -44,15 +26,15 @@ fn refused(o: &Output, words: &[&str]) {
 fn huge_s_and_tile_width_are_refused_with_their_range() {
     let d = scratch("huge");
     let out = d.join("out");
-    let o = tool("fold-run")
-        .args(["SLLS", "--s", "1e308", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let o = run(
+        "fold-run",
+        &["SLLS", "--s", "1e308", "--out", out.to_str().unwrap()],
+    );
     refused(&o, &["--s", "`s` = 1e308 mm", "0 to 4.7 mm"]);
-    let o = tool("fold-run")
-        .args(["SLLS", "--s", "100", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let o = run(
+        "fold-run",
+        &["SLLS", "--s", "100", "--out", out.to_str().unwrap()],
+    );
     refused(&o, &["`s` = 100 mm", "0 to 4.7 mm"]);
     for (json, words) in [
         (r#"{"s": 1e308}"#, ["`s` = 1e308 mm", "0 to 4.7 mm"]),
@@ -81,48 +63,27 @@ fn huge_s_and_tile_width_are_refused_with_their_range() {
 
 #[test]
 fn unbounded_counts_and_drags_are_refused() {
-    let o = tool("fold-tolerance")
-        .args(["SL", "--samples", "1000000000000"])
-        .output()
-        .unwrap();
+    let o = run("fold-tolerance", &["SL", "--samples", "1000000000000"]);
     refused(&o, &["--samples 1,000,000,000,000", "--shard"]);
     // the same count in scientific notation is read the same way
-    let o = tool("fold-tolerance")
-        .args(["SL", "--samples", "1e12"])
-        .output()
-        .unwrap();
+    let o = run("fold-tolerance", &["SL", "--samples", "1e12"]);
     refused(&o, &["--samples 1,000,000,000,000"]);
-    let o = tool("fold-run")
-        .args(["SLLS", "--dynamics", "overdamped", "--drag", "1e-300"])
-        .output()
-        .unwrap();
+    let o = run(
+        "fold-run",
+        &["SLLS", "--dynamics", "overdamped", "--drag", "1e-300"],
+    );
     refused(&o, &["--drag 1e-300", "0.001 to 10000 N s/m"]);
-    let o = tool("fold-run")
-        .args(["SLLS", "--distance-cutoff=-1"])
-        .output()
-        .unwrap();
+    let o = run("fold-run", &["SLLS", "--distance-cutoff=-1"]);
     refused(&o, &["--distance-cutoff -1", "mm"]);
-    let o = tool("fold-run").args(["S*2000001"]).output().unwrap();
+    let o = run("fold-run", &["S*2000001"]);
     refused(&o, &["2,000,002 tiles", "at most 2,000,000"]);
-    let o = tool("fold-tolerance")
-        .args(["SL", "--search-samples", "0"])
-        .output()
-        .unwrap();
+    let o = run("fold-tolerance", &["SL", "--search-samples", "0"]);
     refused(&o, &["--search-samples 0", "from 1 to 100,000"]);
-    let o = tool("fold-tolerance")
-        .args(["SL", "--plot", "x.svg"])
-        .output()
-        .unwrap();
+    let o = run("fold-tolerance", &["SL", "--plot", "x.svg"]);
     refused(&o, &["--plot", "--optimize"]);
-    let o = tool("fold-check")
-        .args(["SLLS", "--tolerance", "1e308"])
-        .output()
-        .unwrap();
+    let o = run("fold-check", &["SLLS", "--tolerance", "1e308"]);
     refused(&o, &["--tolerance 1e308", "tile widths"]);
-    let o = tool("fold-plan")
-        .args(["shape.svgz", "--tiles", "10"])
-        .output()
-        .unwrap();
+    let o = run("fold-plan", &["shape.svgz", "--tiles", "10"]);
     refused(&o, &["shape.svgz", "decompress"]);
 }
 
@@ -190,7 +151,7 @@ fn fold_print_refuses_a_file_as_out_before_any_work() {
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("not a directory"), "{err}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a directory");

@@ -1,34 +1,25 @@
 //! `fold-check` and `fold-enum` run as a user would: real binaries, real files.
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 use foldchain::collision::{check_word, CheckOptions};
 use foldchain::{Fold, FoldWord};
 
-fn run(bin: &str, args: &[&str]) -> Output {
-    Command::new(bin).args(args).output().expect("binary runs")
-}
+mod common;
+use common::{absent, assert_exit, run, stderr, stdout};
 
 fn check(args: &[&str]) -> Output {
-    run(env!("CARGO_BIN_EXE_fold-check"), args)
+    run("fold-check", args)
 }
 
 fn fold_enum(args: &[&str]) -> Output {
-    run(env!("CARGO_BIN_EXE_fold-enum"), args)
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    run("fold-enum", args)
 }
 
 #[test]
 fn valid_ring_and_colliding_five() {
     let o = check(&["LLL"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     assert_eq!(stdout(&o).trim(), "valid");
     let o = check(&["LLLL"]);
     assert_eq!(o.status.code(), Some(1));
@@ -57,12 +48,12 @@ fn inhibited_tile_list_exits_1() {
 
 #[test]
 fn chain_from_a_file_and_json() {
-    let dir = std::env::temp_dir().join(format!("foldchain-check-cli-{}", std::process::id()));
+    let dir = absent("cli");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("u-turn.txt");
     std::fs::write(&f, "# a tight U-turn\nSS*4 SL LL LS SS*4\n").unwrap();
     let o = check(&["--json", f.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["tiles"], 11);
     assert_eq!(v["result"]["verdict"], "valid");
@@ -82,7 +73,7 @@ fn bad_input_exits_2_with_a_clear_message() {
         assert!(stderr(&o).contains(needle), "{arg:?}: {}", stderr(&o));
         assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
     }
-    let dir = std::env::temp_dir().join(format!("foldchain-check-bad-{}", std::process::id()));
+    let dir = absent("bad");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("binary.txt");
     std::fs::write(&f, [0u8, 159, 146, 150]).unwrap();
@@ -98,7 +89,7 @@ fn bad_input_exits_2_with_a_clear_message() {
 #[test]
 fn table_5_1_from_fold_enum() {
     let o = fold_enum(&["--max-tiles", "6", "--json"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     let rows: Vec<(u64, u64, u64)> = v["rows"]
         .as_array()
@@ -211,12 +202,12 @@ fn random_chain_numerator(tiles: u32) -> u64 {
 
 #[test]
 fn merge_adds_up_shard_files_and_refuses_a_missing_or_doubled_one() {
-    let dir = std::env::temp_dir().join(format!("foldchain-merge-cli-{}", std::process::id()));
+    let dir = absent("merge");
     std::fs::create_dir_all(&dir).unwrap();
     let mut files = Vec::new();
     for k in 1..=3 {
         let o = fold_enum(&["--max-tiles", "14", "--json", "--shard", &format!("{k}/3")]);
-        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        assert_exit(&o, 0);
         let f = dir.join(format!("part-{k}.json"));
         std::fs::write(&f, &o.stdout).unwrap();
         files.push(f.display().to_string());
@@ -227,7 +218,7 @@ fn merge_adds_up_shard_files_and_refuses_a_missing_or_doubled_one() {
     args.extend(files.iter().map(String::as_str));
     args.push("--json");
     let o = fold_enum(&args);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let merged: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(merged["rows"], whole["rows"]);
     // part 2 missing
@@ -261,7 +252,7 @@ fn random_chains_column() {
         "--samples",
         "20000",
     ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     let rows = v["rows"].as_array().unwrap();
     for (row, tiles) in rows.iter().zip(2u32..=4) {
@@ -280,7 +271,7 @@ fn random_chains_column() {
     );
     // and computed exactly, five tiles give exactly that fraction
     let o = fold_enum(&["--min-tiles", "5", "--max-tiles", "5", "--random", "--json"]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     let row = &v["rows"][0];
     let exact = format!("{}/6561", random_chain_numerator(5));

@@ -3,23 +3,18 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("frames-view-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{names, scratch, stderr, tool};
 
 fn run(chain: &str, out: &Path, extra: &[&str]) {
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-run"))
+    let o = tool("fold-run")
         .args([chain, "--out", out.to_str().unwrap()])
         .args(extra)
         .output()
         .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
 }
 
 /// The numbers of attribute `name` on every element that has it.
@@ -45,21 +40,16 @@ fn size(svg: &str) -> (f64, f64) {
 }
 
 fn frames(dir: &Path) -> Vec<String> {
-    let mut names: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("step-"))
-        .collect();
-    names.sort();
-    names
+    names(dir)
         .iter()
+        .filter(|n| n.starts_with("step-"))
         .map(|n| std::fs::read_to_string(dir.join(n)).unwrap())
         .collect()
 }
 
 #[test]
 fn fixed_frames_share_one_view_that_holds_every_tile() {
-    let d = tmp("fixed");
+    let d = scratch("fixed");
     run("SSLLSS", &d, &["--frames", "6", "--frames-view", "fixed"]);
     let all = frames(&d);
     assert_eq!(all.len(), 6);
@@ -75,7 +65,7 @@ fn fixed_frames_share_one_view_that_holds_every_tile() {
         }
     }
     // automatic frames of the same run follow the chain: their sizes differ
-    let a = tmp("auto-short");
+    let a = scratch("auto-short");
     run("SSLLSS", &a, &["--frames", "6"]);
     let sizes: Vec<_> = frames(&a).iter().map(|s| size(s)).collect();
     assert!(sizes.iter().any(|s| *s != sizes[0]), "{sizes:?}");
@@ -85,7 +75,7 @@ fn fixed_frames_share_one_view_that_holds_every_tile() {
 
 #[test]
 fn automatic_frames_of_a_long_chain_show_the_part_that_moves() {
-    let d = tmp("auto-long");
+    let d = scratch("auto-long");
     // 1,000 tiles: seen whole, a tile would be under 1 px wide in a 900 px frame
     run("S*400 L L S*400 R R S*195", &d, &["--frames", "4"]);
     let all = frames(&d);

@@ -3,34 +3,26 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::process::Command;
-
-fn fold_run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::{assert_exit, run, stderr};
 
 #[test]
 fn a_free_body_run_writes_the_run_files() {
     let dir = std::env::temp_dir().join(format!("fb-cli-{}", std::process::id()));
     let out = dir.to_str().unwrap();
-    let o = fold_run(&[
-        "SLLS",
-        "--reference",
-        "--model",
-        "free-body",
-        "--json",
-        "--out",
-        out,
-    ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+    let o = run(
+        "fold-run",
+        &[
+            "SLLS",
+            "--reference",
+            "--model",
+            "free-body",
+            "--json",
+            "--out",
+            out,
+        ],
     );
+    assert_exit(&o, 0);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["result"], "completed");
     assert_eq!(v["folds"], serde_json::json!([1, 2]));
@@ -39,13 +31,16 @@ fn a_free_body_run_writes_the_run_files() {
     }
     // the joint-angle reference on the same chain: the same folds, another duration
     let ja = dir.join("ja");
-    let o = fold_run(&[
-        "SLLS",
-        "--reference",
-        "--json",
-        "--out",
-        ja.to_str().unwrap(),
-    ]);
+    let o = run(
+        "fold-run",
+        &[
+            "SLLS",
+            "--reference",
+            "--json",
+            "--out",
+            ja.to_str().unwrap(),
+        ],
+    );
     let w: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(w["folds"], v["folds"]);
     assert_ne!(w["duration_s"], v["duration_s"]);
@@ -55,18 +50,21 @@ fn a_free_body_run_writes_the_run_files() {
 #[test]
 fn overdamped_free_body_is_refused() {
     let dir = std::env::temp_dir().join(format!("fb-cli-od-{}", std::process::id()));
-    let o = fold_run(&[
-        "SL",
-        "--reference",
-        "--model",
-        "free-body",
-        "--dynamics",
-        "overdamped",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
+    let o = run(
+        "fold-run",
+        &[
+            "SL",
+            "--reference",
+            "--model",
+            "free-body",
+            "--dynamics",
+            "overdamped",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
     assert_eq!(o.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert!(
         err.contains("free-body") && err.contains("overdamped"),
         "{err}"

@@ -7,10 +7,12 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use serde_json::Value;
+
+mod common;
+use common::{absent, root};
 
 /// Relative tolerance on numbers: far above the rounding a reordered sum may change, far
 /// below any change of model or algorithm.
@@ -18,10 +20,6 @@ const RELATIVE: f64 = 1e-12;
 
 /// Fields that measure the machine or name its paths, not the model.
 const WALL_CLOCK: [&str; 4] = ["wall_s", "reference_wall_s", "seconds", "out_dir"];
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 fn golden(name: &str) -> String {
     std::fs::read_to_string(root().join("tests/golden").join(name))
@@ -230,8 +228,7 @@ fn runs_are_unchanged() {
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn validation_is_unchanged() {
-    let dir =
-        std::env::temp_dir().join(format!("foldchain-golden-validate-{}", std::process::id()));
+    let dir = absent("validate");
     let (code, out) = run(
         env!("CARGO_BIN_EXE_fold-validate"),
         &["--quick", "--json", "--out", dir.to_str().unwrap()],

@@ -5,39 +5,10 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn tool(name: &str) -> Command {
-    let path = match name {
-        "fold-plan" => env!("CARGO_BIN_EXE_fold-plan"),
-        "fold-run" => env!("CARGO_BIN_EXE_fold-run"),
-        "fold-check" => env!("CARGO_BIN_EXE_fold-check"),
-        "fold-enum" => env!("CARGO_BIN_EXE_fold-enum"),
-        "fold-tolerance" => env!("CARGO_BIN_EXE_fold-tolerance"),
-        _ => env!("CARGO_BIN_EXE_fold-validate"),
-    };
-    Command::new(path)
-}
-
-fn run(name: &str, args: &[&str]) -> Output {
-    tool(name).args(args).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn tmp(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("foldchain-msg-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn square() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/square.svg")
-}
+mod common;
+use common::{assert_exit, run, scratch, shape, stderr, tool};
 
 /// Asserts exit code 2 and a message holding every one of `words`.
 fn bad(o: &Output, words: &[&str]) {
@@ -84,7 +55,7 @@ fn every_tool_has_its_own_help_with_exit_codes() {
 
 #[test]
 fn an_error_is_said_once() {
-    let d = tmp("once");
+    let d = scratch("once");
     let missing = d.join("nope.svg");
     let o = run("fold-plan", &[missing.to_str().unwrap()]);
     bad(&o, &["nope.svg"]);
@@ -101,7 +72,7 @@ fn an_error_is_said_once() {
 fn a_missing_file_is_not_read_as_a_fold_word() {
     let o = run("fold-check", &["nope.txt"]);
     bad(&o, &["nope.txt", "no such file, and not a fold word"]);
-    let o = run("fold-check", &[square().to_str().unwrap()]);
+    let o = run("fold-check", &[shape("square.svg").to_str().unwrap()]);
     bad(&o, &["square.svg", "fold-plan", "fold-run"]);
     let o = run("fold-run", &["missing/chain.json"]);
     bad(&o, &["missing/chain.json", "no such file"]);
@@ -109,9 +80,9 @@ fn a_missing_file_is_not_read_as_a_fold_word() {
 
 #[test]
 fn an_output_over_an_input_is_refused_before_any_work() {
-    let d = tmp("over");
+    let d = scratch("over");
     let sq = d.join("sq.svg");
-    std::fs::copy(square(), &sq).unwrap();
+    std::fs::copy(shape("square.svg"), &sq).unwrap();
     let before = std::fs::read(&sq).unwrap();
     for flag in ["--preview", "--out"] {
         let o = run(
@@ -175,7 +146,10 @@ fn bad_numbers_get_our_messages() {
         &["-5", "whole number"],
     );
     bad(
-        &run("fold-plan", &[square().to_str().unwrap(), "--tiles", "-5"]),
+        &run(
+            "fold-plan",
+            &[shape("square.svg").to_str().unwrap(), "--tiles", "-5"],
+        ),
         &["-5", "whole number"],
     );
     let o = run("fold-enum", &["--max-tiles", "1"]);
@@ -186,7 +160,7 @@ fn bad_numbers_get_our_messages() {
         &["--frames 100001", "from 1 to 100,000"],
     );
     // 1e-3 is a number of millimetres, not the design parameter e
-    let d = tmp("s");
+    let d = scratch("s");
     let o = run(
         "fold-run",
         &["SS", "--s", "1e-3", "--out", d.to_str().unwrap(), "--json"],
@@ -209,7 +183,7 @@ fn bad_numbers_get_our_messages() {
 
 #[test]
 fn the_validation_output_is_checked_before_the_work() {
-    let d = tmp("vout");
+    let d = scratch("vout");
     let f = d.join("afile.txt");
     std::fs::write(&f, "x").unwrap();
     let t0 = std::time::Instant::now();
@@ -222,19 +196,19 @@ fn the_validation_output_is_checked_before_the_work() {
 
 #[test]
 fn a_plan_whose_word_and_tile_list_disagree_is_refused() {
-    let d = tmp("plan");
+    let d = scratch("plan");
     let p = d.join("p.json");
     let o = run(
         "fold-plan",
         &[
-            square().to_str().unwrap(),
+            shape("square.svg").to_str().unwrap(),
             "--tiles",
             "30",
             "--out",
             p.to_str().unwrap(),
         ],
     );
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let mut plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
     plan["tile_list"] = "SS SS SS".into();
@@ -256,14 +230,14 @@ fn a_plan_whose_word_and_tile_list_disagree_is_refused() {
 
 #[test]
 fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
-    let d = tmp("report");
+    let d = scratch("report");
     // an inline JSON chain gets a plain folder name
     let o = tool("fold-run")
         .current_dir(&d)
         .args([r#"{"tiles":["SS","SL","LS"]}"#])
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_exit(&o, 0);
     let names: Vec<String> = std::fs::read_dir(d.join("out"))
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -282,16 +256,18 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
     // an absurd remanence is refused with its range
     let design = d.join("absurd.json");
     std::fs::write(&design, r#"{"s": 0.3, "remanence": 1e300}"#).unwrap();
-    let o = run(
-        "fold-run",
-        &[
+    let a = d.join("a");
+    let run_design = || {
+        let args = [
             "SLLS",
             "--design",
             design.to_str().unwrap(),
             "--out",
-            d.join("a").to_str().unwrap(),
-        ],
-    );
+            a.to_str().unwrap(),
+        ];
+        run("fold-run", &args)
+    };
+    let o = run_design();
     bad(&o, &["absurd.json", "`remanence` = 1e300 T", "up to 2 T"]);
     // 10 um tiles with weak magnets in grease take years of simulated time: say so (their
     // water drag scales with them, so the channel's drag and the magnets make it slow)
@@ -300,16 +276,7 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
         r#"{"tile_width": 0.01, "d": 0.005, "e": 0.0015, "s": 0.0001, "magnet_diameter": 0.001, "magnet_height": 0.0015, "wall": 0.0002, "remanence": 0.01, "magnet_drag": 10000}"#,
     )
     .unwrap();
-    let o = run(
-        "fold-run",
-        &[
-            "SLLS",
-            "--design",
-            design.to_str().unwrap(),
-            "--out",
-            d.join("a").to_str().unwrap(),
-        ],
-    );
+    let o = run_design();
     assert!(
         stderr(&o).contains("warning") && stderr(&o).contains("simulated time"),
         "{}",
@@ -369,7 +336,7 @@ fn long_runs_and_studies_are_never_silent_off_a_terminal() {
     // when stderr is not a terminal (the first line after 2 s, a thread of its own, so one
     // long library call is heard from too); here the interval is shortened to keep the
     // cases small. --quiet silences both.
-    let d = tmp("progress");
+    let d = scratch("progress");
     for quiet in [false, true] {
         let mut run = tool("fold-run");
         run.env("FOLDCHAIN_PROGRESS_SECONDS", "0.02")
@@ -384,8 +351,8 @@ fn long_runs_and_studies_are_never_silent_off_a_terminal() {
             study.arg("--quiet");
         }
         let (r, t) = (run.output().unwrap(), study.output().unwrap());
-        assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
-        assert_eq!(t.status.code(), Some(0), "{}", stderr(&t));
+        assert_exit(&r, 0);
+        assert_exit(&t, 0);
         let (re, te) = (stderr(&r), stderr(&t));
         assert_eq!(re.contains("fold-run: event engine"), !quiet, "{re}");
         assert_eq!(te.contains("fold-tolerance: samples:"), !quiet, "{te}");

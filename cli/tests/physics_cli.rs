@@ -3,25 +3,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fold-physics-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
-
-fn fold_run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn summary(out: &[u8]) -> serde_json::Value {
-    serde_json::from_slice(out).unwrap()
-}
+mod common;
+use common::{absent, assert_exit, run, stderr, stdout_json, tool};
 
 #[test]
 fn both_force_laws_fold_the_three_tile_experiments() {
@@ -30,41 +13,40 @@ fn both_force_laws_fold_the_three_tile_experiments() {
     for word in ["SS", "SL", "LS", "LL"] {
         let mut durations = Vec::new();
         for law in ["dipole", "cylinder"] {
-            let out = tmp(&format!("{word}-{law}"));
-            let o = fold_run(&[
-                &format!("word:{word}"),
-                "--reference",
-                "--force-law",
-                law,
-                "--frames",
-                "2",
-                "--json",
-                "--out",
-                out.to_str().unwrap(),
-            ]);
-            assert_eq!(
-                o.status.code(),
-                Some(0),
-                "{word} {law}: {}",
-                String::from_utf8_lossy(&o.stderr)
+            let out = absent(&format!("{word}-{law}"));
+            let o = run(
+                "fold-run",
+                &[
+                    &format!("word:{word}"),
+                    "--reference",
+                    "--force-law",
+                    law,
+                    "--frames",
+                    "2",
+                    "--json",
+                    "--out",
+                    out.to_str().unwrap(),
+                ],
             );
-            let s = summary(&o.stdout);
+            assert_eq!(o.status.code(), Some(0), "{word} {law}: {}", stderr(&o));
+            let s = stdout_json(&o);
             assert_eq!(s["result"], "completed", "{word} {law}");
             durations.push(s["duration_s"].as_f64().unwrap());
             std::fs::remove_dir_all(&out).unwrap();
         }
         assert!(durations[1] > durations[0], "{word}: {durations:?}");
     }
-    let o = fold_run(&["SL", "--force-law", "coulomb"]);
+    let o = run("fold-run", &["SL", "--force-law", "coulomb"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("coulomb"));
+    assert!(stderr(&o).contains("coulomb"));
 }
 
 #[test]
 fn fold_validate_takes_the_force_law() {
-    let out = tmp("validate-cylinder");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-validate"))
-        .args([
+    let out = absent("validate-cylinder");
+    let o = run(
+        "fold-validate",
+        &[
             "--scene",
             "3-tile SL",
             "--quick",
@@ -73,48 +55,34 @@ fn fold_validate_takes_the_force_law() {
             "cylinder",
             "--out",
             out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+        ],
     );
-    let v = summary(&o.stdout);
+    assert_exit(&o, 0);
+    let v = stdout_json(&o);
     assert_eq!(v["scenes"][0]["reference_outcome"], "completed");
     // the same scene with the dipole takes less time: the law reached the reference
-    let dipole = Command::new(env!("CARGO_BIN_EXE_fold-validate"))
+    let dipole = tool("fold-validate")
         .args(["--scene", "3-tile SL", "--quick", "--json", "--out"])
         .arg(out.join("dipole"))
         .output()
         .unwrap();
-    let d = summary(&dipole.stdout);
+    let d = stdout_json(&dipole);
     let dur = |v: &serde_json::Value| v["scenes"][0]["reference_duration_s"].as_f64().unwrap();
     assert!(dur(&v) > dur(&d), "{} {}", dur(&v), dur(&d));
-    let bad = Command::new(env!("CARGO_BIN_EXE_fold-validate"))
-        .args(["--force-law", "coulomb"])
-        .output()
-        .unwrap();
+    let bad = run("fold-validate", &["--force-law", "coulomb"]);
     assert_eq!(bad.status.code(), Some(2));
     std::fs::remove_dir_all(&out).unwrap();
 }
 
 #[test]
 fn experiments_agree_with_the_thesis() {
-    let out = tmp("experiments");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-validate"))
-        .args(["--experiments", "--json", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+    let out = absent("experiments");
+    let o = run(
+        "fold-validate",
+        &["--experiments", "--json", "--out", out.to_str().unwrap()],
     );
-    let v = summary(&o.stdout);
+    assert_exit(&o, 0);
+    let v = stdout_json(&o);
     let rows = v.as_array().unwrap();
     // five experiments, each with two laws and two dynamics
     assert_eq!(rows.len(), 20);

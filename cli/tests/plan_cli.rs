@@ -3,17 +3,11 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
 use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
-fn shape(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shapes")
-        .join(name)
-}
+mod common;
+use common::{absent, run, shape, stderr};
 
 /// Word and tile list agree and the chain folds without collision (sequential sweeps).
 fn assert_sound(p: &Plan) {
@@ -26,29 +20,25 @@ fn assert_sound(p: &Plan) {
 
 const TWO_DISCS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100"><circle cx="30" cy="50" r="25"/><circle cx="270" cy="50" r="25"/></svg>"#;
 
-fn fold_plan(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-plan"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn cli_prints_tile_list_and_summary_and_writes_files() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-cli-{}", std::process::id()));
+    let dir = absent("cli");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("plan.json");
     let pv = dir.join("preview.svg");
-    let o = fold_plan(&[
-        shape("key.svg").to_str().unwrap(),
-        "--tiles",
-        "171",
-        "--out",
-        out.to_str().unwrap(),
-        "--preview",
-        pv.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        "fold-plan",
+        &[
+            shape("key.svg").to_str().unwrap(),
+            "--tiles",
+            "171",
+            "--out",
+            out.to_str().unwrap(),
+            "--preview",
+            pv.to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 2);
@@ -61,12 +51,15 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
     let p = Plan::from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_sound(&p);
     assert!(std::fs::read_to_string(&pv).unwrap().contains("<polygon"));
-    let o = fold_plan(&[
-        shape("disc.svg").to_str().unwrap(),
-        "--tiles",
-        "50",
-        "--json",
-    ]);
+    let o = run(
+        "fold-plan",
+        &[
+            shape("disc.svg").to_str().unwrap(),
+            "--tiles",
+            "50",
+            "--json",
+        ],
+    );
     assert!(o.status.success());
     let p = Plan::from_json(std::str::from_utf8(&o.stdout).unwrap()).unwrap();
     assert_sound(&p);
@@ -75,7 +68,7 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
 
 #[test]
 fn bad_files_exit_2_naming_the_file() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-bad-{}", std::process::id()));
+    let dir = absent("bad");
     std::fs::create_dir_all(&dir).unwrap();
     let cases = [
         ("broken.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect", "not a readable SVG"),
@@ -86,36 +79,39 @@ fn bad_files_exit_2_naming_the_file() {
         let f = dir.join(name);
         std::fs::write(&f, body).unwrap();
         let out = dir.join(format!("{name}.json"));
-        let o = fold_plan(&[f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        let o = run(
+            "fold-plan",
+            &[f.to_str().unwrap(), "--out", out.to_str().unwrap()],
+        );
         assert_eq!(o.status.code(), Some(2), "{name}");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert!(err.contains(name) && err.contains(what), "{name}: {err}");
         assert!(!out.exists(), "no output for bad input");
     }
-    let o = fold_plan(&[dir.join("missing.svg").to_str().unwrap()]);
+    let o = run("fold-plan", &[dir.join("missing.svg").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("missing.svg"));
+    assert!(stderr(&o).contains("missing.svg"));
     // two discs far apart: one chain cannot fill both (tests/plan_cells.rs says why)
     let two = dir.join("two.svg");
     std::fs::write(&two, r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100"><circle cx="30" cy="50" r="25"/><circle cx="270" cy="50" r="25"/></svg>"#).unwrap();
-    let o = fold_plan(&[two.to_str().unwrap()]);
+    let o = run("fold-plan", &[two.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "unplannable shape exits 1");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn cli_exits_1_naming_why() {
-    let dir = std::env::temp_dir().join(format!("fold-plan-cells-{}", std::process::id()));
+    let dir = absent("cells");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("two.svg");
     std::fs::write(&f, TWO_DISCS).unwrap();
     let out = dir.join("plan.json");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
-        .args([f.to_str().unwrap(), "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
+    let o = run(
+        "fold-plan",
+        &[f.to_str().unwrap(), "--out", out.to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert!(
         err.contains("separate parts") && err.contains("cannot plan"),
         "{err}"

@@ -6,17 +6,11 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
 use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
-fn shape(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shapes")
-        .join(name)
-}
+mod common;
+use common::{run, shape, stderr};
 
 /// Plans `name` at `tiles` with the binary and reads the plan JSON it writes.
 fn plan(name: &str, tiles: usize) -> Plan {
@@ -26,22 +20,22 @@ fn plan(name: &str, tiles: usize) -> Plan {
     ));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("plan.json");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
-        .args([
+    let o = run(
+        "fold-plan",
+        &[
             shape(name).to_str().unwrap(),
             "--tiles",
             &tiles.to_string(),
             "--quiet",
             "--out",
             out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
+        ],
+    );
     assert!(
         o.status.success(),
         "{name} at {tiles} tiles: exit {:?}: {}",
         o.status.code(),
-        String::from_utf8_lossy(&o.stderr)
+        stderr(&o)
     );
     let p: Plan = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let _ = std::fs::remove_dir_all(&dir);

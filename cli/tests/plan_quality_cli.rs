@@ -5,19 +5,15 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use foldchain_planner::Plan;
 
-fn shape(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shapes")
-        .join(name)
-}
+mod common;
+use common::{shape, stderr, stdout, tool};
 
 fn fold_plan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+    tool("fold-plan")
         .args(args)
         .arg("--quiet")
         .output()
@@ -29,7 +25,7 @@ fn plan(args: &[&str]) -> Plan {
     let mut a = args.to_vec();
     a.push("--json");
     let o = fold_plan(&a);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     Plan::from_json(&String::from_utf8(o.stdout).unwrap()).unwrap()
 }
 
@@ -82,15 +78,12 @@ fn expand(word: &str) -> Vec<char> {
 
 /// `fold-check` accepts the plan's word (exit 0).
 fn assert_folds(p: &Plan) {
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-check"))
-        .arg(&p.word)
-        .output()
-        .unwrap();
+    let o = tool("fold-check").arg(&p.word).output().unwrap();
     assert!(
         o.status.success(),
         "fold-check: {}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
+        stdout(&o),
+        stderr(&o)
     );
 }
 
@@ -223,7 +216,7 @@ fn bad_physical_options_exit_2() {
     ] {
         let o = fold_plan(&[sq.to_str().unwrap(), flag, v]);
         assert_eq!(o.status.code(), Some(2), "{flag} {v}");
-        assert!(!String::from_utf8_lossy(&o.stderr).is_empty());
+        assert!(!stderr(&o).is_empty());
     }
 }
 
@@ -233,7 +226,7 @@ fn bad_physical_options_exit_2() {
 fn progress_lines_off_a_terminal_and_quiet() {
     let disc = shape("disc.svg");
     let run = |quiet: bool| {
-        let mut c = Command::new(env!("CARGO_BIN_EXE_fold-plan"));
+        let mut c = tool("fold-plan");
         c.arg(&disc)
             .args(["--tiles", "100"])
             .env("FOLDCHAIN_PROGRESS_SECONDS", "0");

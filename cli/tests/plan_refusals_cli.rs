@@ -6,8 +6,10 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
+use common::{root, scratch, stderr, tool};
 
 /// Characters a refusal may take, its file's name left out: three lines of 100 columns.
 const MAX_CHARS: usize = 300;
@@ -25,12 +27,8 @@ const ACTIONS: [&str; 9] = [
     "plan each",
 ];
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
 fn fold_plan(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+    tool("fold-plan")
         .current_dir(root())
         .args(args)
         .arg("--quiet")
@@ -38,18 +36,11 @@ fn fold_plan(args: &[&str]) -> Output {
         .unwrap()
 }
 
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("foldchain-refusal-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// The refusal of `file` (a path as given on the command line): exit `code`, nothing on
 /// stdout, at most three lines and [`MAX_CHARS`] characters once the file's name is taken
 /// out, no panic, and something to change. Returns stderr.
 fn short_refusal(o: &Output, file: &str, code: i32) -> String {
-    let e = String::from_utf8_lossy(&o.stderr).into_owned();
+    let e = stderr(o);
     assert_eq!(o.status.code(), Some(code), "{file}: {e}");
     assert!(o.stdout.is_empty(), "{file}: stdout not empty");
     assert!(!e.contains("panicked"), "{e}");
@@ -174,7 +165,7 @@ fn drawings_in_separate_parts_are_refused_briefly() {
                 assert!(e.contains("separate parts") && e.contains(" mm"), "{e}");
                 refused += 1;
                 let v = fold_plan(&[file, "--tiles", "300", "--verbose"]);
-                let ve = String::from_utf8_lossy(&v.stderr);
+                let ve = stderr(&v);
                 assert_eq!(v.status.code(), Some(1));
                 assert!(ve.contains("fold-plan: tried: part 1: x "), "{ve}");
                 assert!(ve.trim_end().lines().count() > e.trim_end().lines().count());
@@ -214,7 +205,7 @@ fn a_part_left_empty_is_refused_briefly_naming_where_and_what_to_try() {
             assert_eq!(again.status.code(), Some(0), "{file} at {n}: {e}");
         }
         let v = fold_plan(&[file, "--tiles", "300", "--verbose"]);
-        let ve = String::from_utf8_lossy(&v.stderr);
+        let ve = stderr(&v);
         assert_eq!(v.status.code(), Some(1), "{ve}");
         assert!(ve.contains("fold-plan: tried: "), "{ve}");
     }
@@ -233,7 +224,7 @@ fn a_missed_tile_count_is_warned_about() {
             tolerance,
             "--json",
         ]);
-        let e = String::from_utf8_lossy(&o.stderr);
+        let e = stderr(&o);
         assert_eq!(o.status.code(), Some(0), "{e}");
         let plan: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let tiles = plan["tiles"].as_u64().unwrap() as usize;

@@ -5,24 +5,21 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
 use foldchain::{BillOfMaterials, Chain};
 use foldchain_print::read_3mf;
 
+mod common;
+use common::{absent, root, stderr, stdout, tool};
+
 fn print(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-print"))
+    tool("fold-print")
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR").to_string() + "/..")
+        .current_dir(root())
         .output()
         .unwrap()
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fold-print-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
 }
 
 fn ok(o: &Output) {
@@ -30,8 +27,8 @@ fn ok(o: &Output) {
         o.status.code(),
         Some(0),
         "stdout {}\nstderr {}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
+        stdout(o),
+        stderr(o)
     );
 }
 
@@ -71,7 +68,7 @@ fn bom_by_name(chain: &Chain) -> BTreeMap<String, usize> {
 
 #[test]
 fn a_u_turn_prints_its_parts_plates_sheet_and_report() {
-    let dir = tmp("u");
+    let dir = absent("u");
     std::fs::create_dir_all(dir.join("plates")).unwrap();
     // a user's files, one in plates/ under a name the tool does not own
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
@@ -119,7 +116,7 @@ fn a_u_turn_prints_its_parts_plates_sheet_and_report() {
     assert!(!dir.join("plates/plate-2.3mf").exists());
     assert!(dir.join("plates/my-plate.3mf").is_file());
     // STL: one mesh per part and plate, still closed after 32-bit rounding
-    let stl_dir = tmp("u-stl");
+    let stl_dir = absent("u-stl");
     ok(&print(&[
         "SLLS",
         "--format",
@@ -138,7 +135,7 @@ fn a_u_turn_prints_its_parts_plates_sheet_and_report() {
 
 #[test]
 fn the_key_prints_its_plans_bill_of_materials() {
-    let dir = tmp("key");
+    let dir = absent("key");
     let o = print(&[
         "shapes/key.svg",
         "--tiles",
@@ -153,9 +150,9 @@ fn the_key_prints_its_plans_bill_of_materials() {
     let n = report["tiles"].as_u64().unwrap() as usize;
     assert_eq!(chain.len(), n);
     // the plan of fold-plan itself: the same chain
-    let plan = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+    let plan = tool("fold-plan")
         .args(["shapes/key.svg", "--tiles", "171", "--json", "--quiet"])
-        .current_dir(env!("CARGO_MANIFEST_DIR").to_string() + "/..")
+        .current_dir(root())
         .output()
         .unwrap();
     ok(&plan);
@@ -170,7 +167,7 @@ fn the_key_prints_its_plans_bill_of_materials() {
 
 #[test]
 fn bad_input_is_named_with_exit_2_and_writes_nothing() {
-    let dir = tmp("bad");
+    let dir = absent("bad");
     let out = dir.to_str().unwrap();
     for (args, says) in [
         (vec!["SL", "--bed", "250", "--out", out], "--bed"),
@@ -190,7 +187,7 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
         (vec!["--out", out], "no chain"),
     ] {
         let o = print(&args);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(err.starts_with("fold-print: "), "{err}");
@@ -201,9 +198,74 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
     let design = dir.join("thin.json");
     std::fs::write(&design, r#"{"wall": 0.2}"#).unwrap();
     let o = print(&["SLLS", "--design", design.to_str().unwrap(), "--out", out]);
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("mm thick"), "{err}");
     assert!(!dir.join("parts.json").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A plan's warnings (a part left empty, a count off the request) are said by fold-print as
+/// fold-plan says them, on stderr (also with `--json`) and in parts.json: for a drawing it
+/// plans itself, the same warnings as fold-plan's plan of it; for a plan file, its own.
+#[test]
+fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
+    let plan = tool("fold-plan")
+        .args(["shapes/key.svg", "--tiles", "300", "--json", "--quiet"])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    ok(&plan);
+    let plan_err = String::from_utf8_lossy(&plan.stderr).into_owned();
+    let mut json: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
+    let warnings: Vec<String> = json["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap().to_string())
+        .collect();
+    let dir = absent("warnings");
+    let out = dir.to_str().unwrap();
+    for extra in [&[][..], &["--json"][..]] {
+        let mut args = vec!["shapes/key.svg", "--tiles", "300", "--out", out, "--quiet"];
+        args.extend_from_slice(extra);
+        let o = print(&args);
+        ok(&o);
+        let err = String::from_utf8_lossy(&o.stderr);
+        for w in &warnings {
+            assert!(
+                plan_err.contains(&format!("fold-plan: warning: {w}")),
+                "{plan_err}"
+            );
+            assert!(err.contains(&format!("fold-print: warning: {w}")), "{err}");
+        }
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("parts.json")).unwrap()).unwrap();
+        let listed = report
+            .get("plan_warnings")
+            .and_then(|w| w.as_array())
+            .map_or(0, Vec::len);
+        assert_eq!(listed, warnings.len(), "{report}");
+    }
+    // a plan file with a warning of its own
+    let said = "the plan has 9 tiles, 10.0% fewer than the 10 asked (tolerance 3.0%)";
+    json["warnings"] = serde_json::json!([said]);
+    std::fs::create_dir_all(&dir).unwrap();
+    let plan_file = dir.join("warned-plan.json");
+    std::fs::write(&plan_file, json.to_string()).unwrap();
+    let out2 = dir.join("out");
+    let o = print(&[
+        "--plan",
+        plan_file.to_str().unwrap(),
+        "--out",
+        out2.to_str().unwrap(),
+        "--quiet",
+    ]);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!("fold-print: warning: {said}")),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

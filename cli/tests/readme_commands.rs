@@ -15,6 +15,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+use common::{root, stderr, stdout};
+
 const TOOLS: [(&str, &str); 7] = [
     ("fold-plan", env!("CARGO_BIN_EXE_fold-plan")),
     ("fold-run", env!("CARGO_BIN_EXE_fold-run")),
@@ -24,10 +27,6 @@ const TOOLS: [(&str, &str); 7] = [
     ("fold-tolerance", env!("CARGO_BIN_EXE_fold-tolerance")),
     ("fold-print", env!("CARGO_BIN_EXE_fold-print")),
 ];
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 /// One quoted command and what it prints.
 #[derive(Debug)]
@@ -148,9 +147,9 @@ fn check_page(page: &Path) -> (usize, Vec<String>) {
             .env_remove("FOLDCHAIN_PROGRESS_SECONDS")
             .output()
             .unwrap();
-        let actual: Vec<String> = String::from_utf8_lossy(&o.stderr)
+        let actual: Vec<String> = stderr(&o)
             .lines()
-            .chain(String::from_utf8_lossy(&o.stdout).lines())
+            .chain(stdout(&o).lines())
             .map(|l| l.trim_end().to_string())
             .collect();
         if o.status.code().is_none_or(|c| c > 2) || !matches(&q.output, &actual) {

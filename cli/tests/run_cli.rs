@@ -2,29 +2,16 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fold-run-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
-}
+mod common;
+use common::{assert_exit, scratch, stderr, summary, tool};
 
 #[test]
 fn folds_a_u_turn_and_writes_everything() {
-    let d = tmp("uturn");
+    let d = scratch("uturn");
     let out = d.join("u");
-    let o = bin()
+    let o = tool("fold-run")
         .args([
             "SSLLSS",
             "--out",
@@ -35,12 +22,7 @@ fn folds_a_u_turn_and_writes_everything() {
         ])
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     let mut printed: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     // --json is summary.json and the output directory
     assert_eq!(printed["out_dir"], out.to_str().unwrap());
@@ -77,8 +59,8 @@ fn folds_a_u_turn_and_writes_everything() {
 
 #[test]
 fn stops_exit_1_and_say_where() {
-    let d = tmp("stops");
-    let o = bin()
+    let d = scratch("stops");
+    let o = tool("fold-run")
         .args([
             "SS SL RS SS",
             "--out",
@@ -89,19 +71,19 @@ fn stops_exit_1_and_say_where() {
         .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(summary(&d.join("a"))["inhibited_at"], 1);
-    let o = bin()
+    let o = tool("fold-run")
         .args(["S*9", "--s", "0.4e", "--out", d.join("b").to_str().unwrap()])
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert_eq!(summary(&d.join("b"))["stalled_at"], 0);
-    let o = bin()
+    let o = tool("fold-run")
         .args(["SLLLLS", "--out", d.join("c").to_str().unwrap()])
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(1));
     assert!(summary(&d.join("c"))["first_collision"]["time"].is_number());
-    let o = bin()
+    let o = tool("fold-run")
         .args([
             "S*19",
             "--s",
@@ -119,17 +101,13 @@ fn stops_exit_1_and_say_where() {
 
 #[test]
 fn reads_a_plan_and_a_design() {
-    let d = tmp("plan");
-    let plan = Command::new(env!("CARGO_BIN_EXE_fold-plan"))
+    let d = scratch("plan");
+    let plan = tool("fold-plan")
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/square.svg"))
         .args(["--tiles", "30", "--out", d.join("p.json").to_str().unwrap()])
         .output()
         .unwrap();
-    assert!(
-        plan.status.success(),
-        "{}",
-        String::from_utf8_lossy(&plan.stderr)
-    );
+    assert!(plan.status.success(), "{}", stderr(&plan));
     let planned: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("p.json")).unwrap()).unwrap();
     std::fs::write(
@@ -137,7 +115,7 @@ fn reads_a_plan_and_a_design() {
         r#"{"global": {"s": 0.2}, "tiles": [{"from": 0, "to": 2, "s": 0}]}"#,
     )
     .unwrap();
-    let o = bin()
+    let o = tool("fold-run")
         .args([
             "--plan",
             d.join("p.json").to_str().unwrap(),
@@ -147,12 +125,7 @@ fn reads_a_plan_and_a_design() {
         .args(["--out", d.join("o").to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_exit(&o, 0);
     assert_eq!(summary(&d.join("o"))["tiles"], planned["tiles"]);
     // final.svg draws the chain over the outline it was planned to fill (issue 14); step
     // frames do not
@@ -164,7 +137,7 @@ fn reads_a_plan_and_a_design() {
 
 #[test]
 fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
-    let d = tmp("bad");
+    let d = scratch("bad");
     std::fs::write(d.join("bad-plan.json"), "{\"word\": 3}").unwrap();
     std::fs::write(d.join("nan.json"), "{\"e\": NaN}").unwrap();
     std::fs::write(d.join("neg.json"), "{\"s\": -0.5}").unwrap();
@@ -197,32 +170,36 @@ fn bad_input_exits_2_with_a_clear_message_and_writes_nothing() {
         (vec![], "no chain"),
     ];
     for (args, needle) in cases {
-        let out_o = bin().args(&args).args(["--out", o]).output().unwrap();
-        let err = String::from_utf8_lossy(&out_o.stderr);
+        let out_o = tool("fold-run")
+            .args(&args)
+            .args(["--out", o])
+            .output()
+            .unwrap();
+        let err = stderr(&out_o);
         assert_eq!(out_o.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote output");
     }
     // an output directory that cannot be written: its parent is a file
-    let o2 = bin()
+    let o2 = tool("fold-run")
         .args(["SLLS", "--out", d.join("a-file/sub").to_str().unwrap()])
         .output()
         .unwrap();
     assert_eq!(o2.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o2.stderr).contains("a-file"));
+    assert!(stderr(&o2).contains("a-file"));
 }
 
 #[test]
 fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds() {
     // with the thesis' layout c = 2.8 mm at the curved final point (a 1.3 mm wall); at the
     // default 0.8 mm wall both rules fold it
-    let d = tmp("start-rule");
+    let d = scratch("start-rule");
     std::fs::create_dir_all(&d).unwrap();
     let design = d.join("c28.json");
     std::fs::write(&design, r#"{"c": 2.8}"#).unwrap();
     for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
         let out = d.join(rule);
-        let o = bin()
+        let o = tool("fold-run")
             .args([
                 "SL",
                 "--engine",
@@ -250,7 +227,7 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
         }
     }
     let out = d.join("wall");
-    let o = bin()
+    let o = tool("fold-run")
         .args([
             "SL",
             "--engine",
@@ -266,7 +243,7 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
         .unwrap();
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(summary(&out)["result"], "completed");
-    let o = bin()
+    let o = tool("fold-run")
         .args(["SL", "--start-rule", "nearest"])
         .output()
         .unwrap();
@@ -313,11 +290,11 @@ fn without_run_files(files: Vec<(String, Vec<u8>)>) -> Vec<(String, Vec<u8>)> {
 
 #[test]
 fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
-    let d = tmp("foreign");
+    let d = scratch("foreign");
     let out = d.join("o");
     let before = foreign_files(&out);
     for (chain, frames) in [("SLLS", "12"), ("SSLLSS", "3"), ("LSLLSR", "5")] {
-        let o = bin()
+        let o = tool("fold-run")
             .args([chain, "--out", out.to_str().unwrap(), "--frames", frames])
             .output()
             .unwrap();
@@ -335,7 +312,7 @@ fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
         assert_eq!(summary(&out)["tiles"], chain.len() + 1);
     }
     // the reference run too
-    let o = bin()
+    let o = tool("fold-run")
         .args([
             "SS",
             "--reference",
@@ -352,12 +329,12 @@ fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
 
 #[test]
 fn a_run_killed_while_writing_leaves_no_torn_file_and_every_foreign_file() {
-    let d = tmp("killed");
+    let d = scratch("killed");
     let out = d.join("o");
     let before = foreign_files(&out);
     // a long chain with many frames: writing takes long enough to be interrupted
     for delay_ms in [150u64, 400, 900] {
-        let mut child = bin()
+        let mut child = tool("fold-run")
             .args([
                 "S*600 L L S*600",
                 "--frames",
@@ -387,7 +364,7 @@ fn a_run_killed_while_writing_leaves_no_torn_file_and_every_foreign_file() {
         }
     }
     // the next run completes and clears the temporary files a killed run left
-    let o = bin()
+    let o = tool("fold-run")
         .args(["SLLS", "--frames", "3", "--out", out.to_str().unwrap()])
         .output()
         .unwrap();
@@ -400,14 +377,14 @@ fn irregular_long_chains_use_the_kinematic_engine_and_say_so() {
     // --engine auto (the default): the local solves up to 2,000 distinct joint neighbourhoods
     // (a long straight chain has a few dozen: local), the kinematic baseline beyond, named on
     // stderr; --engine local is never overridden
-    let d = tmp("auto-engine");
-    let straight = bin()
+    let d = scratch("auto-engine");
+    let straight = tool("fold-run")
         .args(["S*2500", "--frames", "2", "--out"])
         .arg(d.join("straight"))
         .output()
         .unwrap();
     assert_eq!(straight.status.code(), Some(0));
-    assert!(!String::from_utf8_lossy(&straight.stderr).contains("kinematic"));
+    assert!(!stderr(&straight).contains("kinematic"));
     let mut x = 7u64;
     let word: String = (0..2500)
         .map(|_| {
@@ -417,13 +394,13 @@ fn irregular_long_chains_use_the_kinematic_engine_and_say_so() {
             ['S', 'S', 'L', 'R'][(x >> 62) as usize]
         })
         .collect();
-    let irregular = bin()
+    let irregular = tool("fold-run")
         .args([word.as_str(), "--frames", "2", "--out"])
         .arg(d.join("irregular"))
         .output()
         .unwrap();
     assert!(matches!(irregular.status.code(), Some(0 | 1)));
-    let err = String::from_utf8_lossy(&irregular.stderr);
+    let err = stderr(&irregular);
     assert!(
         err.contains("2,501 tiles with")
             && err.contains("distinct joint neighbourhoods: the kinematic engine"),
@@ -436,15 +413,15 @@ fn a_start_rule_with_the_local_engine_is_refused() {
     // --start-rule is the kinematic engine's; with --engine local it would be ignored
     // (and so is --speed: `--speed unit --engine local` once ran the kinematic engine
     // silently)
-    let d = tmp("start-rule-local");
+    let d = scratch("start-rule-local");
     for (flag, value) in [("--start-rule", "force"), ("--speed", "unit")] {
-        let o = bin()
+        let o = tool("fold-run")
             .args(["SS", "--engine", "local", flag, value, "--out"])
             .arg(d.join("out"))
             .output()
             .unwrap();
         assert_eq!(o.status.code(), Some(2));
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert!(
             err.contains("--speed and --start-rule are the kinematic engine's options")
                 && err.lines().count() == 1,
@@ -458,10 +435,10 @@ fn a_start_rule_with_the_local_engine_is_refused() {
 fn one_thread_or_two_write_the_same_timeline() {
     // the local solves' sweeps one after the other or two at once: the same events, bit for
     // bit, so the same timeline.json byte for byte
-    let d = tmp("threads");
+    let d = scratch("threads");
     let timeline = |threads: &str| {
         let out = d.join(threads);
-        let o = bin()
+        let o = tool("fold-run")
             .args(["S*300 LL S*300", "--threads", threads, "--frames", "1"])
             .args(["--json", "--out", out.to_str().unwrap()])
             .output()

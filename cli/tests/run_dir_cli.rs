@@ -4,31 +4,14 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use foldchain_cli::run_dir::StagedDir;
 use foldchain_cli::run_files::owns_run_entry;
 
-fn fold_run() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-}
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("foldchain-rundir-cli-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+mod common;
+use common::{assert_exit, names, scratch, stderr, tool};
 
 fn frames(dir: &Path) -> usize {
     names(dir).iter().filter(|n| n.starts_with("step-")).count()
@@ -39,16 +22,11 @@ fn a_run_replaces_the_earlier_one_whole_and_keeps_a_users_files() {
     let base = scratch("replace");
     let dir = base.join("out");
     let run = |frames: &str| {
-        let o = fold_run()
+        let o = tool("fold-run")
             .args(["SLLS", "--frames", frames, "--out", dir.to_str().unwrap()])
             .output()
             .unwrap();
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        assert_exit(&o, 0);
     };
     run("9");
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
@@ -75,11 +53,11 @@ fn a_second_writer_is_refused_at_once() {
     let dir = base.join("out");
     // this test holds DIR as a running fold-run would
     let held = StagedDir::open(&dir, owns_run_entry).unwrap();
-    let o = fold_run()
+    let o = tool("fold-run")
         .args(["S*20", "--out", dir.to_str().unwrap()])
         .output()
         .unwrap();
-    let e = String::from_utf8_lossy(&o.stderr);
+    let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert!(e.contains("another run is writing into it"), "{e}");
     assert_eq!(e.trim_end().lines().count(), 1, "{e}");
@@ -92,13 +70,13 @@ fn a_second_writer_is_refused_at_once() {
 fn an_interrupt_leaves_one_whole_run() {
     let base = scratch("int");
     let dir = base.join("out");
-    let o = fold_run()
+    let o = tool("fold-run")
         .args(["S*60", "--frames", "5", "--out", dir.to_str().unwrap()])
         .output()
         .unwrap();
     assert!(o.status.success());
     let earlier = names(&dir);
-    let mut child = fold_run()
+    let mut child = tool("fold-run")
         .args(["S*60", "--frames", "400", "--out", dir.to_str().unwrap()])
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
@@ -138,7 +116,7 @@ fn a_full_disk_exits_3_and_leaves_the_earlier_run() {
         "mount -t tmpfs -o size=1m tmpfs {m} || exit 77
          {bin} SLLS --frames 4 --out {m}/run > /dev/null || exit 78
          echo mine > {m}/run/notes.txt
-         {bin} 'S*400' --frames 300 --out {m}/run > /dev/null 2> {b}/err.txt
+         {bin} 'S*400' --frames 300 --quiet --out {m}/run > /dev/null 2> {b}/err.txt
          echo $? > {b}/code.txt
          ls -a {m} > {b}/beside.txt
          ls {m}/run > {b}/left.txt",
@@ -201,22 +179,22 @@ fn interrupts_at_twenty_moments_leave_one_whole_run() {
         word.push_str(&format!("S*{straight}"));
     }
     let earlier_run = || {
-        let o = fold_run()
+        let o = tool("fold-run")
             .args([word.as_str(), "--frames", "7", "--quiet", "--out"])
             .arg(&dir)
             .output()
             .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{}", stderr(&o));
     };
     // the whole new run, into a directory of its own: its names and how long it takes
     let whole = base.join("whole");
     let started = std::time::Instant::now();
-    let o = fold_run()
+    let o = tool("fold-run")
         .args([word.as_str(), "--frames", "3000", "--quiet", "--out"])
         .arg(&whole)
         .output()
         .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let span = started.elapsed().as_secs_f64();
     let new_names = names(&whole);
     assert_eq!(frames(&whole), 3000);
@@ -239,7 +217,7 @@ fn interrupts_at_twenty_moments_leave_one_whole_run() {
         let k = (i * 7) % 20;
         let at = span * (0.02 + 1.15 * f64::from(k) / 20.0);
         let signal = if i % 2 == 0 { "-INT" } else { "-KILL" };
-        let mut child = fold_run()
+        let mut child = tool("fold-run")
             .args([word.as_str(), "--frames", "3000", "--quiet", "--out"])
             .arg(&dir)
             .stdout(std::process::Stdio::null())

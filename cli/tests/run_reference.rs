@@ -3,31 +3,19 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("foldchain-run-ref-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{absent, assert_exit, names, read_json, stderr, tool};
 
 fn fold_run(args: &[&str], out: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
+    tool("fold-run")
         .args(args)
         .arg("--out")
         .arg(out)
         .output()
         .unwrap()
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
 
 /// Parses every SVG of `dir` as XML with an `<svg>` root; returns the `<polygon>` count of
@@ -54,20 +42,11 @@ fn check_svgs(dir: &Path) -> usize {
     final_polygons.unwrap()
 }
 
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
 #[test]
 fn reference_run_writes_the_engine_summary() {
-    let dir = tmp("summary");
+    let dir = absent("summary");
     let out = fold_run(&["SLLS", "--reference", "--json"], &dir);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_exit(&out, 0);
     let mut v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["out_dir"], dir.to_str().unwrap());
     v.as_object_mut().unwrap().remove("out_dir");
@@ -76,10 +55,10 @@ fn reference_run_writes_the_engine_summary() {
     assert_eq!(v["result"], "completed");
     assert_eq!(v["folds"], serde_json::json!([1, 2]));
     assert_eq!(v["reason"], serde_json::Value::Null);
-    assert_eq!(json(&dir.join("summary.json")), v);
+    assert_eq!(read_json(&dir.join("summary.json")), v);
     // the timeline holds the events the summary counts, the last at its duration, in the
     // reference's law
-    let tl = json(&dir.join("timeline.json"));
+    let tl = read_json(&dir.join("timeline.json"));
     let events = tl["events"].as_array().unwrap();
     assert_eq!(Some(events.len() as u64), v["events"].as_u64());
     assert_eq!(events.last().unwrap()[0], v["duration_s"]);
@@ -93,17 +72,12 @@ fn reference_run_writes_the_engine_summary() {
 
 #[test]
 fn reference_writes_the_engine_files_and_pictures() {
-    let (eng, refr) = (tmp("files-engine"), tmp("files-reference"));
+    let (eng, refr) = (absent("files-engine"), absent("files-reference"));
     for (dir, extra) in [(&eng, None), (&refr, Some("--reference"))] {
         let mut args = vec!["SLLS", "--frames", "7", "--transition", "1..3"];
         args.extend(extra);
         let out = fold_run(&args, dir);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_exit(&out, 0);
     }
     let files = names(&eng);
     assert_eq!(names(&refr), files);
@@ -136,7 +110,7 @@ fn reference_writes_the_engine_files_and_pictures() {
 fn reference_pictures_show_where_a_stalled_chain_stopped() {
     // the fold word LL (3 tiles, one tight U-turn) with the thesis' layout c = 2.8 mm at the
     // curved final point (a 1.3 mm wall): the engine folds it, the reference stalls
-    let (eng, refr) = (tmp("stall-engine"), tmp("stall-reference"));
+    let (eng, refr) = (absent("stall-engine"), absent("stall-reference"));
     let design =
         std::env::temp_dir().join(format!("foldchain-run-ref-{}-c28.json", std::process::id()));
     std::fs::write(&design, r#"{"c": 2.8}"#).unwrap();
@@ -145,13 +119,8 @@ fn reference_pictures_show_where_a_stalled_chain_stopped() {
     let out = fold_run(&["LL", "--engine", "kinematic", "--design", design], &eng);
     assert_eq!(out.status.code(), Some(0));
     let out = fold_run(&["LL", "--reference", "--design", design], &refr);
-    assert_eq!(
-        out.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let summary = json(&refr.join("summary.json"));
+    assert_exit(&out, 1);
+    let summary = read_json(&refr.join("summary.json"));
     assert_eq!(summary["result"], "stalled");
     assert_eq!(summary["stalled_at"], 1);
     assert_eq!(summary["folds"], serde_json::json!([0]));
@@ -179,12 +148,12 @@ fn reference_pictures_show_where_a_stalled_chain_stopped() {
 fn reference_refuses_long_chains() {
     // refused before any work: the output directory is not even created
     let dir = std::env::temp_dir().join(format!("foldchain-ref-long-{}", std::process::id()));
-    let out = Command::new(env!("CARGO_BIN_EXE_fold-run"))
+    let out = tool("fold-run")
         .args(["S*3000", "--reference", "--out"])
         .arg(&dir)
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("at most 2,000"));
+    assert!(stderr(&out).contains("at most 2,000"));
     assert!(!dir.exists());
 }

@@ -13,6 +13,9 @@ use std::process::Command;
 use foldchain::{Design, Tile};
 use foldchain_print::{to_3mf, Item, Object, PartOptions, TilePart};
 
+mod common;
+use common::{absent, run, stderr, stdout};
+
 /// The slicer, or `None` (with a note) when there is none outside CI.
 fn slicer() -> Option<PathBuf> {
     let found = std::env::var_os("PATH").and_then(|paths| {
@@ -43,11 +46,7 @@ fn slice(exe: &Path, model: &Path, extra: &[&str]) -> String {
         .env_remove("DISPLAY")
         .output()
         .unwrap();
-    let log = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let log = format!("{}{}", stdout(&o), stderr(&o));
     assert!(
         o.status.success(),
         "{}: prusa-slicer exit {:?}\n{log}",
@@ -75,7 +74,7 @@ fn comment<'a>(gcode: &'a str, key: &str) -> &'a str {
 #[test]
 fn prusaslicer_slices_every_tile_type_and_a_plate() {
     let Some(exe) = slicer() else { return };
-    let dir = std::env::temp_dir().join(format!("fold-print-slicer-{}", std::process::id()));
+    let dir = absent("slicer");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let opts = PartOptions::default();
@@ -108,11 +107,8 @@ fn prusaslicer_slices_every_tile_type_and_a_plate() {
     }
     // a plate the binary writes (a tight U-turn: five tiles of four parts)
     let out = dir.join("u");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-print"))
-        .args(["SLLS", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run("fold-print", &["SLLS", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
     let g = slice(
         &exe,
         &out.join("plates/plate-1.3mf"),

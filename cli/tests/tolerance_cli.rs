@@ -3,32 +3,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn tolerance(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-tolerance"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fold-tol-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn json(o: &Output) -> serde_json::Value {
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    serde_json::from_slice(&o.stdout).unwrap()
-}
+mod common;
+use common::{run, scratch, stderr, stdout, stdout_json};
 
 #[test]
 fn bad_tolerances_are_named_with_exit_2() {
@@ -44,8 +20,8 @@ fn bad_tolerances_are_named_with_exit_2() {
         (vec!["SL", "--tiles", "9"], "only to a SHAPE.svg"),
         (vec!["SXL"], "SXL"),
     ] {
-        let o = tolerance(&args);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = run("fold-tolerance", &args);
+        let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         assert!(
             err.starts_with("fold-tolerance: ") && err.contains(says),
@@ -58,22 +34,22 @@ fn bad_tolerances_are_named_with_exit_2() {
 #[test]
 fn a_seed_reproduces_a_study_and_shards_add_up() {
     let base = ["LL", "--samples", "600", "--json", "--tol", "s=0.15"];
-    let run = |extra: &[&str]| {
+    let study = |extra: &[&str]| {
         let mut a = base.to_vec();
         a.extend(extra);
-        json(&tolerance(&a))
+        stdout_json(&run("fold-tolerance", &a))
     };
-    let a = run(&["--seed", "5"]);
-    let b = run(&["--seed", "5"]);
+    let a = study(&["--seed", "5"]);
+    let b = study(&["--seed", "5"]);
     assert_eq!(a["study"], b["study"]);
-    let c = run(&["--seed", "6"]);
+    let c = study(&["--seed", "6"]);
     assert_ne!(a["study"]["smallest_margin"], c["study"]["smallest_margin"]);
     // some samples fail and some fold at these tolerances, so the count says something
     let folded = a["study"]["folded"].as_u64().unwrap();
     assert!(folded > 0 && folded < 600, "{folded}");
     let parts: Vec<serde_json::Value> = ["1/3", "2/3", "3/3"]
         .iter()
-        .map(|s| run(&["--seed", "5", "--shard", s]))
+        .map(|s| study(&["--seed", "5", "--shard", s]))
         .collect();
     let sum = |key: &str| -> u64 {
         parts
@@ -84,8 +60,11 @@ fn a_seed_reproduces_a_study_and_shards_add_up() {
     assert_eq!(sum("samples"), 600);
     assert_eq!(sum("folded"), folded);
     // the text report says the same
-    let o = tolerance(&["LL", "--samples", "600", "--tol", "s=0.15", "--seed", "5"]);
-    let text = String::from_utf8_lossy(&o.stdout);
+    let o = run(
+        "fold-tolerance",
+        &["LL", "--samples", "600", "--tol", "s=0.15", "--seed", "5"],
+    );
+    let text = stdout(&o);
     assert!(
         text.contains(&format!("folds in {folded} of 600 samples")),
         "{text}"
@@ -101,7 +80,7 @@ fn no_tolerance_means_the_nominal_verdict() {
         args.push("--tol");
         args.push(Box::leak(format!("{k}=0").into_boxed_str()));
     }
-    let v = json(&tolerance(&args));
+    let v = stdout_json(&run("fold-tolerance", &args));
     let nominal_ok = v["nominal_margins"]["starts"]
         .as_array()
         .unwrap()
@@ -115,23 +94,26 @@ fn no_tolerance_means_the_nominal_verdict() {
 
 #[test]
 fn the_search_writes_its_plot() {
-    let d = tmp("search");
+    let d = scratch("search");
     let plot = d.join("t.svg");
-    let o = tolerance(&[
-        "SLS",
-        "--optimize",
-        "--search-samples",
-        "20",
-        "--samples",
-        "40",
-        "--plot",
-        plot.to_str().unwrap(),
-    ]);
-    let text = String::from_utf8_lossy(&o.stdout);
+    let o = run(
+        "fold-tolerance",
+        &[
+            "SLS",
+            "--optimize",
+            "--search-samples",
+            "20",
+            "--samples",
+            "40",
+            "--plot",
+            plot.to_str().unwrap(),
+        ],
+    );
+    let text = stdout(&o);
     assert!(
         matches!(o.status.code(), Some(0) | Some(1)),
         "{}",
-        String::from_utf8_lossy(&o.stderr)
+        stderr(&o)
     );
     assert!(text.contains("trade-off over s"), "{text}");
     assert_eq!(
@@ -142,14 +124,17 @@ fn the_search_writes_its_plot() {
     if o.status.code() == Some(0) {
         // the chosen design's file is a design the tools read
         let design = d.join("t-chosen.json");
-        let v = json(&tolerance(&[
-            "SLS",
-            "--samples",
-            "10",
-            "--json",
-            "--design",
-            design.to_str().unwrap(),
-        ]));
+        let v = stdout_json(&run(
+            "fold-tolerance",
+            &[
+                "SLS",
+                "--samples",
+                "10",
+                "--json",
+                "--design",
+                design.to_str().unwrap(),
+            ],
+        ));
         assert_eq!(v["study"]["samples"], 10);
     }
     let svg = std::fs::read_to_string(&plot).unwrap();
@@ -159,13 +144,13 @@ fn the_search_writes_its_plot() {
 
 #[test]
 fn fold_run_writes_margins() {
-    let d = tmp("run");
+    let d = scratch("run");
     let out = d.join("r");
-    let o = Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(["SLLS", "--frames", "2", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&o.stdout);
+    let o = run(
+        "fold-run",
+        &["SLLS", "--frames", "2", "--out", out.to_str().unwrap()],
+    );
+    let text = stdout(&o);
     assert!(text.contains("smallest margin"), "{text}");
     let m: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("margins.json")).unwrap()).unwrap();

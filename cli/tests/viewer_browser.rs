@@ -10,9 +10,8 @@
 mod browser;
 
 use std::path::Path;
-use std::process::Command;
 
-use browser::{attr, attributes, browser, chromium, tmp, url, WINDOW};
+use browser::{attr, attributes, browser, chromium, serpentine, tmp, url, WINDOW};
 
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{EngineOptions, TileDesigns, Timeline};
@@ -21,6 +20,9 @@ use foldchain::reference::Recording;
 use foldchain::reference::{run_reference, ReferenceOptions};
 use foldchain::timeline::RunSource;
 use foldchain::{simulate, Chain, Pose};
+
+mod common;
+use common::{run, shape, stderr, summary};
 
 /// The page's background colour.
 const BACKGROUND: [u8; 3] = [0xfb, 0xfb, 0xf8];
@@ -34,20 +36,26 @@ fn engine_run(word: &str) -> Timeline {
         .0
 }
 
-fn fold_run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_fold-run"))
-        .args(args)
-        .output()
-        .unwrap()
+/// `fold-run` on `chain` with `extra` options, writing its files and page into `d` (two
+/// frames).
+fn fold_run_page(chain: &str, d: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![chain, "--out", d.to_str().unwrap(), "--frames", "2"];
+    args.extend(extra);
+    run("fold-run", &args)
+}
+
+/// The page at `hash` as Chromium shows it after 3 s (virtual time): its DOM.
+fn dump_dom(exe: &Path, page: &Path, hash: &str) -> String {
+    chromium(
+        exe,
+        &url(page, hash),
+        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
+    )
 }
 
 /// The page's `<body>` attributes at `hash`.
 fn body(exe: &Path, page: &Path, hash: &str) -> Vec<(String, String)> {
-    let dom = chromium(
-        exe,
-        &url(page, hash),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(exe, page, hash);
     attributes(&dom, "body", "data-time")
 }
 
@@ -84,10 +92,6 @@ fn to_pixel(view: &str, (x, y): (f64, f64)) -> (usize, usize) {
 fn pixel(shot: &(usize, usize, Vec<u8>), (x, y): (usize, usize)) -> [u8; 3] {
     let i = 4 * (y * shot.0 + x);
     [shot.2[i], shot.2[i + 1], shot.2[i + 2]]
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
 
 fn poses_of(attrs: &[(String, String)], name: &str) -> Vec<Pose> {
@@ -127,8 +131,8 @@ fn assert_poses_match(page: &[Pose], lib: &[Pose], w: f64, what: &str) {
 fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     let Some(exe) = browser() else { return };
     let d = tmp("start-end");
-    let o = fold_run(&["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = fold_run_page("SSLLSS", &d, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let html = std::fs::read_to_string(&page).unwrap();
     // self-contained: nothing to fetch
@@ -162,7 +166,7 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
 fn screenshots_at_the_start_and_the_end_differ_and_show_the_chain() {
     let Some(exe) = browser() else { return };
     let d = tmp("shots");
-    let o = fold_run(&["SSLLSS", "--out", d.to_str().unwrap(), "--frames", "2"]);
+    let o = fold_run_page("SSLLSS", &d, &[]);
     assert!(o.status.success());
     let page = d.join("index.html");
     let tl = engine_run("SSLLSS");
@@ -202,21 +206,8 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
     // curved paths (L and R folds), a collision and a fold angle law to follow
     let word = "LSLLSR";
     // the library's default dynamics (overdamped) on both sides
-    let o = fold_run(&[
-        word,
-        "--compare",
-        "--dynamics",
-        "overdamped",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
-    assert!(
-        o.status.code().is_some(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let o = fold_run_page(word, &d, &["--compare", "--dynamics", "overdamped"]);
+    assert!(o.status.code().is_some(), "{}", stderr(&o));
     let page = d.join("index.html");
     let chain = Chain::parse(word).unwrap();
     let tl = engine_run(word);
@@ -236,11 +227,7 @@ fn page_poses_match_the_librarys_for_engine_and_reference() {
         .collect();
     for (run, times) in [("engine", &engine_times), ("reference", &ref_times)] {
         let probe: Vec<String> = times.iter().map(|t| t.to_string()).collect();
-        let dom = chromium(
-            &exe,
-            &url(&page, &format!("t=0&probe={}", probe.join(","))),
-            &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-        );
+        let dom = dump_dom(&exe, &page, &format!("t=0&probe={}", probe.join(",")));
         let panel = attributes(&dom, "section", &format!("data-run=\"{run}\""));
         for (i, &t) in times.iter().enumerate() {
             let lib = if run == "engine" {
@@ -261,15 +248,7 @@ fn the_collision_is_marked_at_its_time_and_place() {
     let d = tmp("collision");
     // overdamped, as the library's engine_run below: LSLLSR collides (the inertial folds of
     // fold-run's default pass)
-    let o = fold_run(&[
-        "LSLLSR",
-        "--dynamics",
-        "overdamped",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
+    let o = fold_run_page("LSLLSR", &d, &["--dynamics", "overdamped"]);
     assert_eq!(
         o.status.code(),
         Some(1),
@@ -311,24 +290,13 @@ fn the_collision_is_marked_at_its_time_and_place() {
 fn compare_shows_engine_and_reference_side_by_side() {
     let Some(exe) = browser() else { return };
     let d = tmp("compare");
-    let o = fold_run(&[
-        "SSLLSS",
-        "--compare",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = fold_run_page("SSLLSS", &d, &["--compare"]);
+    assert!(o.status.success(), "{}", stderr(&o));
     for run in ["engine", "reference"] {
         assert!(d.join(run).join("summary.json").is_file(), "{run}");
         assert!(d.join(run).join("index.html").is_file(), "{run}");
     }
-    let dom = chromium(
-        &exe,
-        &url(&d.join("index.html"), "t=end"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &d.join("index.html"), "t=end");
     for run in ["engine", "reference"] {
         let panel = attributes(&dom, "section", &format!("data-run=\"{run}\""));
         let folds = summary(&d.join(run))["folds"].as_array().unwrap().len();
@@ -372,16 +340,7 @@ fn screen_box(view: &str, poses: &[Pose], w: f64) -> [f64; 4] {
 /// The key planned from the thesis' shape (`fold-run shapes/key.svg --tiles 171`, the
 /// README's first command) into `d`.
 fn key_run(d: &Path) -> std::process::Output {
-    let key = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shapes/key.svg");
-    fold_run(&[
-        key.to_str().unwrap(),
-        "--tiles",
-        "171",
-        "--out",
-        d.to_str().unwrap(),
-        "--frames",
-        "2",
-    ])
+    fold_run_page(shape("key.svg").to_str().unwrap(), d, &["--tiles", "171"])
 }
 
 /// A fixed key chain (the 167-tile plan of the cell planner, rows along the shaft, one
@@ -394,15 +353,11 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
     let Some(exe) = browser() else { return };
     let d = tmp("key");
     let o = key_run(&d);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let s = summary(&d);
     let folds = s["folds"].as_array().unwrap().len();
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&poses=1"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, "t=end&poses=1");
     let at_end = attributes(&dom, "body", "data-time");
     let panel = attributes(&dom, "section", "data-run=");
     let poses = poses_of(&panel, "data-poses");
@@ -423,11 +378,7 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
     assert!(fill >= 0.5, "the key fills {fill:.2} of the view");
     assert_eq!(attr(&at_end, "data-follow"), "1");
     // fitting the whole run instead (follow=0), the speck the issue saw: the test can fail
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&follow=0"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, "t=end&follow=0");
     let whole = attributes(&dom, "body", "data-time");
     let b0 = screen_box(attr(&whole, "data-view"), &poses, w);
     let fill0 = ((b0[2] - b0[0]) / width).max((b0[3] - b0[1]) / height);
@@ -468,8 +419,8 @@ fn the_folded_key_fills_the_view_at_the_end_and_the_caption_tells_the_time() {
 fn the_camera_follows_the_fold_without_jumps() {
     let Some(exe) = browser() else { return };
     let d = tmp("follow");
-    let o = fold_run(&[KEY_CHAIN, "--out", d.to_str().unwrap(), "--frames", "2"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = fold_run_page(KEY_CHAIN, &d, &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
     let page = d.join("index.html");
     let duration = summary(&d)["duration_s"].as_f64().unwrap();
     // the view at 301 times over the run, as a paused page shows it at each
@@ -477,11 +428,7 @@ fn the_camera_follows_the_fold_without_jumps() {
     let times: Vec<String> = (0..=steps)
         .map(|i| (duration * i as f64 / steps as f64).to_string())
         .collect();
-    let dom = chromium(
-        &exe,
-        &url(&page, &format!("t=0&views={}", times.join(","))),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
-    );
+    let dom = dump_dom(&exe, &page, &format!("t=0&views={}", times.join(",")));
     let b = attributes(&dom, "body", "data-time");
     let [_, _, width, _] = panel_rect(&b);
     let views: Vec<Vec<f64>> = (1..=steps + 1)
@@ -515,40 +462,19 @@ fn the_camera_follows_the_fold_without_jumps() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
-/// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
-/// fold word (`S*k L L S*k R R ...`), as `cli/benches/viewer.rs` makes them.
-fn serpentine(tiles: usize, row: usize) -> String {
-    let mut parts = Vec::new();
-    let (mut letters, mut left) = (0, true);
-    while letters + 1 < tiles {
-        let straight = (row - 1).min(tiles - 1 - letters);
-        parts.push(format!("S*{straight}"));
-        letters += straight;
-        for _ in 0..2 {
-            if letters + 1 < tiles {
-                parts.push(if left { "L" } else { "R" }.to_string());
-                letters += 1;
-            }
-        }
-        left = !left;
-    }
-    parts.join(" ")
-}
-
 #[test]
 fn a_long_serpentine_is_rasterised_framed_and_timed() {
     let Some(exe) = browser() else { return };
     let d = tmp("serpentine");
     // 3,000 tiles: past the 1,500 in view above which the page rasterises, quick to run
     let word = serpentine(3_000, 50);
-    let o = fold_run(&[&word, "--out", d.to_str().unwrap(), "--frames", "1"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let page = d.join("index.html");
-    let dom = chromium(
-        &exe,
-        &url(&page, "t=end&poses=1"),
-        &["--virtual-time-budget=3000".into(), "--dump-dom".into()],
+    let o = run(
+        "fold-run",
+        &[&word, "--out", d.to_str().unwrap(), "--frames", "1"],
     );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let page = d.join("index.html");
+    let dom = dump_dom(&exe, &page, "t=end&poses=1");
     let b = attributes(&dom, "body", "data-time");
     assert_eq!(attr(&b, "data-renderer"), "raster");
     // the drawing times are reported (their size is a benchmark's business: BENCHMARKS.md)

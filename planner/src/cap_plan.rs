@@ -19,12 +19,20 @@ use crate::route::{route_sequence, Need, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
 use crate::sizing::{width_for, Attempt, SizeSearch};
+use crate::slabs::slab_plans;
 
 /// Cap decompositions routed per axis (the cheapest).
 const DECOMPOSITIONS: usize = 2;
 /// Sweep axes routed (the cheapest, see [`cap_axes`]; the decompositions' prices change
 /// little with the width, so the width search routes these only).
 const AXES_ROUTED: usize = 2;
+/// Slab decompositions ([`crate::slabs`]) sized, the cheapest over all axes.
+const SLAB_GROUPS: usize = 2;
+/// A slab plan is kept only while at least this share of its tile centres lies inside the
+/// shape: a slab's rows may bridge a gap (a key's teeth), and the U-turns of rows across a
+/// round slab may fall outside it; issue 26 asks that a plan keep 97% of its tile centres on
+/// the drawn area, and a slab plan that does not is not offered against the others.
+const MIN_SLAB_INSIDE: f64 = 0.97;
 /// Routes kept per decomposition.
 const ROUTES_PER_DECOMPOSITION: usize = 2;
 /// Size steps of the tile width search.
@@ -63,7 +71,6 @@ fn routes_at(
             let memo = &memo;
             plans
                 .into_iter()
-                .take(DECOMPOSITIONS)
                 .flat_map(move |p| {
                     let cells: Vec<Shape> =
                         p.cells.iter().map(|c| axis_shape.clipped(c.rect)).collect();
@@ -95,18 +102,26 @@ pub(crate) fn cap_axes(shape: &Shape, style: Style, w: f64) -> Vec<(f64, Vec<Cap
         .par_iter()
         .map(|&a| {
             let axis_shape = Orientation::along(a).work_shape(shape, w);
-            let plans: Vec<CapPlan> = cap_plans(&axis_shape, style.pitch)
+            let mut plans: Vec<CapPlan> = cap_plans(&axis_shape, style.pitch)
                 .into_iter()
                 .take(DECOMPOSITIONS)
                 .collect();
-            let cost = plans.first().map_or(f64::INFINITY, |p| p.cost);
+            // and slabs, each swept along its own length (not necessarily caps: the
+            // route's fold check decides), in both orders along the axis
+            plans.extend(slab_plans(&axis_shape, style));
+            // axes rank by their caps (the slabs are sized on their own)
+            let cost = plans
+                .iter()
+                .filter(|p| !p.slabs)
+                .map(|p| p.cost)
+                .fold(f64::INFINITY, f64::min);
             (cost, a, plans)
         })
         .collect();
     priced.sort_by(|x, y| x.0.total_cmp(&y.0));
     priced
         .into_iter()
-        .filter(|p| p.0.is_finite())
+        .filter(|p| !p.2.is_empty())
         .map(|p| (p.1, p.2, w))
         .collect()
 }
@@ -129,9 +144,100 @@ pub(crate) fn plan_by_caps(
     name: &str,
     all_axes: &[(f64, Vec<CapPlan>, f64)],
 ) -> Result<Plan, CellFailure> {
+    // the caps of the cheapest axes, sized together as before; then every one of the
+    // cheapest slab decompositions (both its orders) sized on its own, so that one that
+    // holds the asked count at another width than the caps is not passed over
+    let caps: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .filter(|(_, plans, _)| plans.iter().any(|p| !p.slabs))
+        .take(AXES_ROUTED)
+        .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
+        .collect();
+    let mut slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .flat_map(|(a, plans, w)| {
+            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
+            // slab_plans returns each decomposition in both orders, one after the other
+            slab.chunks(2)
+                .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
+    slabs.truncate(SLAB_GROUPS);
+    let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
+    if !caps.is_empty() {
+        groups.push(caps);
+    }
+    groups.extend(slabs.into_iter().map(|g| vec![g]));
+    let mut failed = Failed::default();
+    let mut best: Option<Plan> = None;
+    for axes in &groups {
+        if let Some(p) = size_group(shape, opts, style, name, axes, &mut failed) {
+            let slabs = axes
+                .iter()
+                .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
+            if slabs && centres_inside(shape, &p) < MIN_SLAB_INSIDE {
+                continue;
+            }
+            if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
+                best = Some(p);
+            }
+        }
+    }
+    match best {
+        Some(p) => Ok(p),
+        None => match failed.rejected {
+            Some((text, r)) => Err((text, Some(r))),
+            None if !failed.collide.is_empty() => Err((
+                format!(
+                    "every cap route collides when folded (first: {})",
+                    failed.collide
+                ),
+                None,
+            )),
+            None => Err(("no cap decomposition".into(), None)),
+        },
+    }
+}
+
+/// The share of the plan's tile centres that lie inside the shape.
+fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
+    let inside = p
+        .poses
+        .iter()
+        .filter(|q| shape.contains(kurbo::Point::new(q.x, -q.y)))
+        .count();
+    inside as f64 / p.poses.len().max(1) as f64
+}
+
+/// Plans ranked: a count within the tolerance first, then no part left empty, then the fit.
+fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+    let tol = (opts.tiles_tolerance * target as f64) as usize;
+    let miss = |p: &Plan| match opts.tile_size {
+        Some(_) => 0,
+        None => p.tiles.abs_diff(target).saturating_sub(tol),
+    };
+    let empty = |p: &Plan| p.metrics.largest_empty_tiles > 0.0;
+    miss(x)
+        .cmp(&miss(y))
+        .then(empty(x).cmp(&empty(y)))
+        .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
+}
+
+/// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
+/// found, what the others said in `failed`.
+fn size_group(
+    shape: &Shape,
+    opts: &PlanOptions,
+    style: Style,
+    name: &str,
+    axes: &[(f64, Vec<CapPlan>, f64)],
+    failed: &mut Failed,
+) -> Option<Plan> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let w0 = start_width(shape, opts, style);
-    let axes: Vec<(f64, Vec<CapPlan>, f64)> = all_axes.iter().take(AXES_ROUTED).cloned().collect();
     let tol = (opts.tiles_tolerance * target as f64) as usize;
     let search = SizeSearch {
         secant_steps: if opts.tile_size.is_some() {
@@ -151,21 +257,9 @@ pub(crate) fn plan_by_caps(
         // a plan that leaves a part empty (cost 1) keeps the retries going
         settle_cost: 0.0,
     };
-    let miss = |p: &Plan| match opts.tile_size {
-        Some(_) => 0,
-        None => p.tiles.abs_diff(target).saturating_sub(tol),
-    };
-    let empty = |p: &Plan| p.metrics.largest_empty_tiles > 0.0;
-    let by_rank = |x: &Plan, y: &Plan| {
-        miss(x)
-            .cmp(&miss(y))
-            .then(empty(x).cmp(&empty(y)))
-            .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
-    };
-
-    let mut failed = Failed::default();
+    let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
     let found = search.run_checked(target, w0, |w| {
-        let mut routes = routes_at(shape, &axes, style, w);
+        let mut routes = routes_at(shape, axes, style, w);
         if opts.tile_size.is_none() {
             routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
         }
@@ -184,7 +278,7 @@ pub(crate) fn plan_by_caps(
                 Some(_) => 0,
                 None => n.abs_diff(target).saturating_sub(tol),
             },
-            &mut failed,
+            failed,
         );
         // a count within the tolerance first, then no part left empty, then the fit
         match plans.into_iter().min_by(by_rank) {
@@ -199,18 +293,5 @@ pub(crate) fn plan_by_caps(
             None => Attempt::Rejected(n),
         }
     });
-    match found.map(|f| f.plans) {
-        Some(p) => Ok(p),
-        None => match failed.rejected {
-            Some((text, r)) => Err((text, Some(r))),
-            None if !failed.collide.is_empty() => Err((
-                format!(
-                    "every cap route collides when folded (first: {})",
-                    failed.collide
-                ),
-                None,
-            )),
-            None => Err(("no cap decomposition".into(), None)),
-        },
-    }
+    found.map(|f| f.plans)
 }

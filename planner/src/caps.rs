@@ -28,6 +28,7 @@ use std::rc::Rc;
 
 use kurbo::{Rect, Vec2};
 
+use crate::empty::DeepLine;
 use crate::shape::Shape;
 
 /// One of the four axis directions of the axis frame.
@@ -85,6 +86,9 @@ pub(crate) struct CapPlan {
     pub cells: Vec<CapCell>,
     /// Turns (U-turns and quarter turns) plus the join misses, in tile widths.
     pub cost: f64,
+    /// True for a slab decomposition ([`crate::slabs`]): its cells need not be caps, and it
+    /// is sized on its own.
+    pub slabs: bool,
 }
 
 /// Cap decompositions kept per box and join requirement.
@@ -109,6 +113,10 @@ const STEP_PRICE: f64 = 1.2;
 /// either side of it (see [`Search::best`]): the row programme then leaves a row out or
 /// lays one more than fits, about half a row's strip of misfit.
 const PARITY_PRICE: f64 = 0.5;
+/// Price of one unit of area (a tile width squared) of a cell that its rows leave to the
+/// next cell's first row but that row does not reach ([`Search::dropped`]): an area left
+/// empty, as the row programme prices a tile area left uncovered.
+const DROP_PRICE: f64 = 1.0;
 /// Price of a join that cannot be made.
 const NO_JOIN: f64 = 1e3;
 /// Price of one tile laid outside the shape to make a join (a round cell's last row ends
@@ -119,7 +127,7 @@ const BRIDGE_PRICE: f64 = 1.4;
 
 /// The shape as pixels: `inside[j * nx + i]` for the pixel whose centre is at
 /// `(x0 + (i + 1/2) px, y0 + (j + 1/2) px)`.
-struct Raster {
+pub(crate) struct Raster {
     nx: usize,
     ny: usize,
     x0: f64,
@@ -128,10 +136,84 @@ struct Raster {
     inside: Vec<bool>,
     /// The summed-area table of `inside` (see [`Raster::count`]).
     sat: Vec<u32>,
+    /// The runs (half-open column ranges) of inside pixels of every pixel row.
+    row_runs: Vec<Runs>,
+    /// The runs (half-open row ranges) of inside pixels of every pixel column.
+    col_runs: Vec<Runs>,
+}
+
+/// Drops the slivers from a raster (`inside`, `nx` by `ny` pixels of size `px` from `(x0,
+/// y0)`, of `shape` in unit tiles): a group of touching inside pixels at least half a tile
+/// in area (one that would count as a part of the shape) in which no pixel centre lies half
+/// a tile inside the outline ([`DeepLine`], the empty-part measure's own test) is a sliver
+/// narrower than a tile (a thin spit of a country's coast, the tip of a crescent) that the
+/// raster sees cut off from the rest. No tile fits in it, so no chain needs to reach it: it
+/// is neither a separate part nor a cell. Smaller groups are left as they are (the search
+/// ignores them).
+fn drop_slivers(shape: &Shape, inside: &mut [bool], nx: usize, ny: usize, o: (f64, f64, f64)) {
+    let (x0, y0, px) = o;
+    let min_px = (0.5 / (px * px)).max(1.0) as usize;
+    // label the groups (four-neighbour), with their sizes
+    let mut label = vec![u32::MAX; nx * ny];
+    let mut sizes: Vec<usize> = Vec::new();
+    let mut stack = Vec::new();
+    for s in 0..nx * ny {
+        if label[s] != u32::MAX || !inside[s] {
+            continue;
+        }
+        let l = sizes.len() as u32;
+        label[s] = l;
+        stack.push(s);
+        let mut size = 0;
+        while let Some(c) = stack.pop() {
+            size += 1;
+            let (i, j) = (c % nx, c / nx);
+            let mut visit = |k: usize| {
+                if label[k] == u32::MAX && inside[k] {
+                    label[k] = l;
+                    stack.push(k);
+                }
+            };
+            if i > 0 {
+                visit(c - 1);
+            }
+            if i + 1 < nx {
+                visit(c + 1);
+            }
+            if j > 0 {
+                visit(c - nx);
+            }
+            if j + 1 < ny {
+                visit(c + nx);
+            }
+        }
+        sizes.push(size);
+    }
+    // the groups that count as parts and hold a pixel a tile fits around
+    let mut holds_tile: Vec<bool> = sizes.iter().map(|&n| n < min_px).collect();
+    for j in 0..ny {
+        let y = y0 + (j as f64 + 0.5) * px;
+        let mut line: Option<DeepLine> = None;
+        for i in 0..nx {
+            let l = label[j * nx + i];
+            if l == u32::MAX || holds_tile[l as usize] {
+                continue;
+            }
+            let x = x0 + (i as f64 + 0.5) * px;
+            if line.get_or_insert_with(|| DeepLine::new(shape, y)).deep(x) {
+                holds_tile[l as usize] = true;
+            }
+        }
+    }
+    for (v, &l) in inside.iter_mut().zip(&label) {
+        if l != u32::MAX && !holds_tile[l as usize] {
+            *v = false;
+        }
+    }
 }
 
 impl Raster {
-    fn new(shape: &Shape) -> Raster {
+    pub(crate) fn new(shape: &Shape) -> Raster {
         let b = shape.bbox();
         let area = (b.width() * b.height()).max(1e-9);
         // a quarter tile, or coarser so that the raster stays bounded
@@ -149,6 +231,7 @@ impl Raster {
                 }
             }
         }
+        drop_slivers(shape, &mut inside, nx, ny, (b.x0, b.y0, px));
         // sat[(j * (nx + 1)) + i]: inside pixels with column < i and row < j
         let mut sat = vec![0u32; (nx + 1) * (ny + 1)];
         for j in 0..ny {
@@ -158,6 +241,30 @@ impl Raster {
                 sat[(j + 1) * (nx + 1) + i + 1] = sat[j * (nx + 1) + i + 1] + row;
             }
         }
+        let line_runs = |n: usize, len: usize, at: &dyn Fn(usize, usize) -> bool| -> Vec<Runs> {
+            (0..n)
+                .map(|k| {
+                    let mut runs: Runs = Vec::new();
+                    let mut start: Option<usize> = None;
+                    for t in 0..len {
+                        match (at(k, t), start) {
+                            (true, None) => start = Some(t),
+                            (false, Some(a)) => {
+                                runs.push((a, t));
+                                start = None;
+                            }
+                            _ => {}
+                        }
+                    }
+                    if let Some(a) = start {
+                        runs.push((a, len));
+                    }
+                    runs
+                })
+                .collect()
+        };
+        let row_runs = line_runs(ny, nx, &|j, i| inside[j * nx + i]);
+        let col_runs = line_runs(nx, ny, &|i, j| inside[j * nx + i]);
         Raster {
             nx,
             ny,
@@ -166,7 +273,24 @@ impl Raster {
             px,
             inside,
             sat,
+            row_runs,
+            col_runs,
         }
+    }
+
+    /// The runs of inside pixels of pixel row `j` (if `rows`) or column `j` within `lo..hi`.
+    fn runs_within(&self, rows: bool, j: usize, lo: usize, hi: usize) -> Runs {
+        let all = if rows {
+            &self.row_runs[j]
+        } else {
+            &self.col_runs[j]
+        };
+        all.iter()
+            .filter_map(|&(a, e)| {
+                let (a, e) = (a.max(lo), e.min(hi));
+                (a < e).then_some((a, e))
+            })
+            .collect()
     }
 
     /// The number of inside pixels in columns `x0..x1` and rows `y0..y1`.
@@ -177,23 +301,19 @@ impl Raster {
             - self.sat[y1 * w + x0]
     }
 
-    fn at(&self, i: usize, j: usize) -> bool {
-        self.inside[j * self.nx + i]
-    }
-
     /// Pixels per tile width.
-    fn per_tile(&self) -> f64 {
+    pub(crate) fn per_tile(&self) -> f64 {
         1.0 / self.px
     }
 }
 
 /// A box of pixels, half-open: `x0..x1`, `y0..y1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-struct PBox {
-    x0: usize,
-    x1: usize,
-    y0: usize,
-    y1: usize,
+pub(crate) struct PBox {
+    pub x0: usize,
+    pub x1: usize,
+    pub y0: usize,
+    pub y1: usize,
 }
 
 /// The runs (half-open pixel ranges) of one line of the raster inside a box, gaps and
@@ -204,7 +324,7 @@ type Runs = Vec<(usize, usize)>;
 type Memo = HashMap<(PBox, Option<bool>, Option<Dir>), Rc<Vec<CapPlan>>>;
 
 /// The search over boxes.
-struct Search<'a> {
+pub(crate) struct Search<'a> {
     r: &'a Raster,
     pitch: f64,
     /// Runs and gaps shorter than this many pixels do not count (half a tile).
@@ -215,29 +335,38 @@ struct Search<'a> {
     components_memo: RefCell<HashMap<PBox, usize>>,
 }
 
-impl Search<'_> {
+impl<'a> Search<'a> {
+    /// A search over the raster `r` for rows of pitch `pitch` (tile widths).
+    pub(crate) fn new(r: &'a Raster, pitch: f64) -> Search<'a> {
+        Search {
+            r,
+            pitch,
+            min: ((0.5 / r.px).round() as usize).max(1),
+            memo: HashMap::new(),
+            visited: 0,
+            components_memo: RefCell::new(HashMap::new()),
+        }
+    }
+
+    /// The raster searched.
+    pub(crate) fn raster(&self) -> &Raster {
+        self.r
+    }
+
+    /// The box of every inside pixel, if it is one piece.
+    pub(crate) fn whole(&self) -> Option<PBox> {
+        let all = PBox {
+            x0: 0,
+            x1: self.r.nx,
+            y0: 0,
+            y1: self.r.ny,
+        };
+        self.tight(all).filter(|&b| self.components(b) == 1)
+    }
+
     /// The runs of line `k` (a pixel row if `rows`, else a pixel column) within `lo..hi`.
-    fn runs(&self, rows: bool, k: usize, lo: usize, hi: usize) -> Runs {
-        let mut raw: Runs = Vec::new();
-        let mut start: Option<usize> = None;
-        for t in lo..hi {
-            let v = if rows {
-                self.r.at(t, k)
-            } else {
-                self.r.at(k, t)
-            };
-            match (v, start) {
-                (true, None) => start = Some(t),
-                (false, Some(s)) => {
-                    raw.push((s, t));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(s) = start {
-            raw.push((s, hi));
-        }
+    pub(crate) fn runs(&self, rows: bool, k: usize, lo: usize, hi: usize) -> Runs {
+        let raw = self.r.runs_within(rows, k, lo, hi);
         let mut out: Runs = Vec::new();
         for (a, b) in raw {
             match out.last_mut() {
@@ -277,7 +406,7 @@ impl Search<'_> {
     /// The box shrunk to the inside pixels it holds, or None if it holds none (each side
     /// moved in while the line along it is empty, each line counted in the summed-area
     /// table).
-    fn tight(&self, b: PBox) -> Option<PBox> {
+    pub(crate) fn tight(&self, b: PBox) -> Option<PBox> {
         let r = self.r;
         if b.x0 >= b.x1 || b.y0 >= b.y1 || r.count(b.x0, b.x1, b.y0, b.y1) == 0 {
             return None;
@@ -305,7 +434,7 @@ impl Search<'_> {
 
     /// [`Search::count_components`], remembered per box (the cuts of a box and of the boxes
     /// around it ask about the same rests again and again).
-    fn components(&self, b: PBox) -> usize {
+    pub(crate) fn components(&self, b: PBox) -> usize {
         if let Some(&n) = self.components_memo.borrow().get(&b) {
             return n;
         }
@@ -314,49 +443,79 @@ impl Search<'_> {
         n
     }
 
-    /// The number of groups of touching inside pixels in the box larger than half a tile.
+    /// The number of groups of touching inside pixels in the box larger than half a tile:
+    /// the runs of the box's pixel rows, joined where runs of neighbouring rows share a
+    /// column (the work grows with the rows and their runs, not with the pixels).
     fn count_components(&self, b: PBox) -> usize {
-        let w = b.x1 - b.x0;
-        let h = b.y1 - b.y0;
-        let mut seen = vec![false; w * h];
         let min_px = (0.5 * self.r.per_tile() * self.r.per_tile()).max(1.0) as usize;
-        let mut count = 0;
-        let mut stack = Vec::new();
-        for s in 0..w * h {
-            if seen[s] || !self.r.at(b.x0 + s % w, b.y0 + s / w) {
-                continue;
+        let mut runs: Runs = Vec::new();
+        let mut row_start: Vec<usize> = Vec::with_capacity(b.y1 - b.y0 + 1);
+        for j in b.y0..b.y1 {
+            row_start.push(runs.len());
+            runs.extend(self.r.runs_within(true, j, b.x0, b.x1));
+        }
+        row_start.push(runs.len());
+        let mut parent: Vec<usize> = (0..runs.len()).collect();
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
             }
-            seen[s] = true;
-            stack.push(s);
-            let mut size = 0;
-            while let Some(c) = stack.pop() {
-                size += 1;
-                let (i, j) = (c % w, c / w);
-                let mut visit = |ii: usize, jj: usize| {
-                    let k = jj * w + ii;
-                    if !seen[k] && self.r.at(b.x0 + ii, b.y0 + jj) {
-                        seen[k] = true;
-                        stack.push(k);
-                    }
-                };
-                if i > 0 {
-                    visit(i - 1, j);
+            x
+        }
+        for r in 1..row_start.len() - 1 {
+            let (mut i, mut k) = (row_start[r - 1], row_start[r]);
+            while i < row_start[r] && k < row_start[r + 1] {
+                let ((a0, e0), (a1, e1)) = (runs[i], runs[k]);
+                if a0 < e1 && a1 < e0 {
+                    let (ri, rk) = (root(&mut parent, i), root(&mut parent, k));
+                    parent[ri] = rk;
                 }
-                if i + 1 < w {
-                    visit(i + 1, j);
+                if e0 < e1 {
+                    i += 1;
+                } else {
+                    k += 1;
                 }
-                if j > 0 {
-                    visit(i, j - 1);
-                }
-                if j + 1 < h {
-                    visit(i, j + 1);
-                }
-            }
-            if size >= min_px {
-                count += 1;
             }
         }
-        count
+        let mut size = vec![0usize; runs.len()];
+        for (i, &(a, e)) in runs.iter().enumerate() {
+            let r = root(&mut parent, i);
+            size[r] += e - a;
+        }
+        size.iter().filter(|&&n| n >= min_px).count()
+    }
+
+    /// The area (tile widths squared) that [`Search::runs_cut`] leaves out of the lines of
+    /// the box across `y` (pixel rows if `y`, else columns) for a cell whose side `cut` meets
+    /// the next cell, beyond the tile nearest that side (the next cell's first row reaches
+    /// that far): no row of this cell covers it, so it is left empty. Priced in
+    /// [`Search::best`] at [`DROP_PRICE`] per unit, so that the price grows with the tiles
+    /// (a decomposition that leaves a round hole's corners to the next cell is cheap at a
+    /// hundred tiles and costs tens of tile areas at thousands: more cells then cost less).
+    fn dropped(&self, b: PBox, y: bool, cut: Option<Dir>) -> f64 {
+        let Some(c) = cut else { return 0.0 };
+        if c.is_y() == y {
+            return 0.0;
+        }
+        let (k0, k1, lo, hi) = if y {
+            (b.y0, b.y1, b.x0, b.x1)
+        } else {
+            (b.x0, b.x1, b.y0, b.y1)
+        };
+        let reach = self.r.per_tile();
+        let mut px = 0.0;
+        for k in k0..k1 {
+            let all = self.runs(y, k, lo, hi);
+            if all.len() < 2 {
+                continue;
+            }
+            let kept = self.runs_cut(y, k, lo, hi, cut);
+            for r in all.iter().filter(|r| !kept.contains(r)) {
+                px += ((r.1 - r.0) as f64 - reach).max(0.0);
+            }
+        }
+        DROP_PRICE * px * self.r.px * self.r.px
     }
 
     /// True if every line across `y` (pixel rows if `y`, else columns) meets the box's pixels
@@ -375,7 +534,7 @@ impl Search<'_> {
     /// the difference (a T's wide bar below its narrow stem: the U-turn at the bar's end is
     /// far from the stem). Rows are sampled a row pitch apart; each end changes its U-turn
     /// every other row, so half of both ends' changes are priced.
-    fn steps(&self, b: PBox, y: bool) -> f64 {
+    pub(crate) fn steps(&self, b: PBox, y: bool) -> f64 {
         let tile = self.r.per_tile();
         let step = ((self.pitch * tile).round() as usize).max(1);
         let (k0, k1, lo, hi) = if y {
@@ -400,7 +559,7 @@ impl Search<'_> {
     }
 
     /// Rows of a serpentine over an extent of `px` pixels.
-    fn rows(&self, px: usize) -> f64 {
+    pub(crate) fn rows(&self, px: usize) -> f64 {
         (px as f64 * self.r.px / self.pitch).round().max(1.0)
     }
 
@@ -632,7 +791,10 @@ impl Search<'_> {
                             n,
                             either_sign: true,
                         }],
-                        cost: self.rows(extent) - 1.0 + self.steps(b, stack_y),
+                        cost: self.rows(extent) - 1.0
+                            + self.steps(b, stack_y)
+                            + self.dropped(b, stack_y, cut),
+                        slabs: false,
                     },
                     b,
                 ));
@@ -656,7 +818,10 @@ impl Search<'_> {
                     } else {
                         cap.x1 - cap.x0
                     };
-                    let cap_cost = self.rows(extent) - 1.0 + 1.0 + self.steps(cap, d.is_y());
+                    let cap_cost = self.rows(extent) - 1.0
+                        + 1.0
+                        + self.steps(cap, d.is_y())
+                        + self.dropped(cap, d.is_y(), cut);
                     for p in before.iter() {
                         let Some(last) = p.cells.last() else { continue };
                         let lb = self.pbox(last.rect);
@@ -692,6 +857,7 @@ impl Search<'_> {
                             CapPlan {
                                 cells,
                                 cost: p.cost + cap_cost + price + parity,
+                                slabs: false,
                             },
                             b,
                         ));
@@ -720,7 +886,7 @@ impl Search<'_> {
     }
 
     /// The box in the axis frame (unit tiles).
-    fn rect(&self, b: PBox) -> Rect {
+    pub(crate) fn rect(&self, b: PBox) -> Rect {
         let px = self.r.px;
         Rect::new(
             self.r.x0 + b.x0 as f64 * px,
@@ -886,6 +1052,103 @@ mod tests {
             "{best:?}"
         );
         assert!(best.cost < 20.0, "{}", best.cost);
+    }
+
+    /// A separate piece a third of a tile thick is a sliver (no tile fits in it): not a
+    /// part; a separate piece two tiles wide is one.
+    #[test]
+    fn a_sliver_is_not_a_separate_part() {
+        let square = Ring::rect(0.0, 0.0, 10.0, 10.0);
+        let sliver = Ring::rect(11.0, 2.0, 11.35, 9.0);
+        let block = Ring::rect(12.0, 2.0, 14.0, 9.0);
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square.clone(), sliver.clone()])).len(),
+            1
+        );
+        assert_eq!(
+            parts(&Shape::from_rings(vec![square, sliver, block])).len(),
+            2
+        );
+    }
+
+    /// The run-based count of connected pieces agrees with a flood fill of the pixels, on
+    /// every box of a grid of boxes over a shape with a hole and a notch.
+    #[test]
+    fn pieces_counted_from_runs_agree_with_a_flood_fill() {
+        // holes wound the other way: a hole in the middle and a notch into the left edge
+        let reversed = |r: Ring| Ring {
+            points: r.points.into_iter().rev().collect(),
+        };
+        let shape = Shape::from_rings(vec![
+            Ring::rect(0.0, 0.0, 12.0, 10.0),
+            reversed(Ring::rect(4.0, 3.0, 8.0, 7.0)),
+            reversed(Ring::rect(-1.0, 4.0, 3.0, 5.0)),
+        ]);
+        let r = Raster::new(&shape);
+        let s = Search {
+            r: &r,
+            pitch: std::f64::consts::SQRT_2,
+            min: 2,
+            memo: HashMap::new(),
+            visited: 0,
+            components_memo: RefCell::new(HashMap::new()),
+        };
+        let min_px = (0.5 * r.per_tile() * r.per_tile()).max(1.0) as usize;
+        let flood = |b: PBox| {
+            let (w, h) = (b.x1 - b.x0, b.y1 - b.y0);
+            let mut seen = vec![false; w * h];
+            let mut count = 0;
+            for start in 0..w * h {
+                let at = |c: usize| r.inside[(b.y0 + c / w) * r.nx + b.x0 + c % w];
+                if seen[start] || !at(start) {
+                    continue;
+                }
+                seen[start] = true;
+                let mut stack = vec![start];
+                let mut size = 0;
+                while let Some(c) = stack.pop() {
+                    size += 1;
+                    let (i, j) = (c % w, c / w);
+                    let mut next = Vec::new();
+                    if i > 0 {
+                        next.push(c - 1);
+                    }
+                    if i + 1 < w {
+                        next.push(c + 1);
+                    }
+                    if j > 0 {
+                        next.push(c - w);
+                    }
+                    if j + 1 < h {
+                        next.push(c + w);
+                    }
+                    for n in next {
+                        if !seen[n] && at(n) {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+                if size >= min_px {
+                    count += 1;
+                }
+            }
+            count
+        };
+        let mut several = 0;
+        for x0 in (0..r.nx).step_by(5) {
+            for x1 in (x0 + 1..=r.nx).step_by(7) {
+                for y0 in (0..r.ny).step_by(5) {
+                    for y1 in (y0 + 1..=r.ny).step_by(7) {
+                        let b = PBox { x0, x1, y0, y1 };
+                        let n = s.count_components(b);
+                        assert_eq!(n, flood(b), "{b:?}");
+                        several += usize::from(n > 1);
+                    }
+                }
+            }
+        }
+        assert!(several > 0, "no box with several pieces was tried");
     }
 
     /// A convex shape is one cell.

@@ -7,7 +7,6 @@
 
 use kurbo::{Point, Rect, Vec2};
 
-use crate::centre_grid::CentreGrid;
 use crate::plan::Plan;
 use crate::shape::Shape;
 
@@ -115,41 +114,46 @@ pub(crate) fn largest_empty_part(
     let b = work.bbox();
     let nx = ((b.width() / step).ceil() as usize).max(1);
     let ny = ((b.height() / step).ceil() as usize).max(1);
-    let grid = CentreGrid::new(centres);
+    // reached[i * nx + j]: the sample at column j, line i lies within `near` of a tile
+    // centre; each centre marks the samples of its disc, line by line (the work grows with
+    // the tiles times the samples of one disc, not with the samples times a neighbourhood
+    // search)
+    let mut reached = vec![false; nx * ny];
+    let r2 = near * near;
+    // the first sample index at or after `v` and the one after the last at or before `e`
+    let first = |v: f64, o: f64| (((v - o) / step) - 0.5).ceil().max(0.0) as usize;
+    let end = |v: f64, o: f64| ((((v - o) / step) - 0.5).floor() + 1.0).max(0.0) as usize;
+    for c in centres {
+        for i in first(c.y - near, b.y0)..end(c.y + near, b.y0).min(ny) {
+            let dy = b.y0 + (i as f64 + 0.5) * step - c.y;
+            let h2 = r2 - dy * dy;
+            if h2 < 0.0 {
+                continue;
+            }
+            let h = h2.sqrt();
+            let (j0, j1) = (first(c.x - h, b.x0), end(c.x + h, b.x0).min(nx));
+            if j0 < j1 {
+                reached[i * nx + j0..i * nx + j1].fill(true);
+            }
+        }
+    }
     // empty[i * nx + j]: the sample at column j, line i lies inside the shape at least
-    // EDGE from its outline and farther than NEAR from every tile centre. A sample is that
-    // deep when the chords of a disc of radius EDGE about it, on five lines across it, lie
-    // inside the shape.
+    // EDGE from its outline ([`DeepLine`]) and farther than `near` from every tile centre
     let mut empty = vec![false; nx * ny];
-    let chords: Vec<(f64, f64)> = [-1.0, -0.5, 0.0, 0.5, 1.0]
-        .iter()
-        .map(|&f: &f64| (f * EDGE, EDGE * (1.0 - f * f).sqrt()))
-        .collect();
     for i in 0..ny {
         let y = b.y0 + (i as f64 + 0.5) * step;
-        let lines: Vec<(f64, Vec<(f64, f64)>)> = chords
-            .iter()
-            .map(|&(dy, hw)| (hw, work.intervals_at(y + dy)))
-            .collect();
-        let deep = |x: f64| {
-            lines
-                .iter()
-                .all(|(hw, iv)| iv.iter().any(|&(a, e)| a <= x - hw && x + hw <= e))
-        };
+        // the line's chords, found the first time a sample on it is not reached
+        let mut deep_line: Option<DeepLine> = None;
         for (a, e) in work.intervals_at(y) {
             let j0 = (((a - b.x0) / step) - 0.5).ceil().max(0.0) as usize;
             let j1 = ((((e - b.x0) / step) - 0.5).floor().max(-1.0) + 1.0) as usize;
             for j in j0..j1.min(nx) {
-                let p = Point::new(b.x0 + (j as f64 + 0.5) * step, y);
-                if !deep(p.x) {
+                if reached[i * nx + j] {
                     continue;
                 }
-                let reached = if near <= 1.0 {
-                    grid.any_near(p, |t| centres[t].distance(p) <= near)
-                } else {
-                    near_wide(&grid, centres, p, near)
-                };
-                empty[i * nx + j] = !reached;
+                empty[i * nx + j] = deep_line
+                    .get_or_insert_with(|| DeepLine::new(work, y))
+                    .deep(b.x0 + (j as f64 + 0.5) * step);
             }
         }
     }
@@ -208,16 +212,33 @@ fn tile_area_exact() -> f64 {
     2.0 * (std::f64::consts::SQRT_2 - 1.0)
 }
 
-/// True if some centre lies within `near` (at most 2) of `p`: the grid's neighbourhood
-/// search looks one unit cell around a point, so the ring beyond is searched from four
-/// points a unit away.
-fn near_wide(grid: &CentreGrid, centres: &[Point], p: Point, near: f64) -> bool {
-    [(0.0, 0.0), (-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)]
-        .iter()
-        .any(|&(dx, dy)| {
-            let q = Point::new(p.x + dx, p.y + dy);
-            grid.any_near(q, |t| centres[t].distance(p) <= near)
-        })
+/// The points of one line across the shape (at height `y`, work frame) that lie at least
+/// [`EDGE`] inside the outline: a point is that deep when the chords of a disc of radius
+/// [`EDGE`] about it, on five lines across it, lie inside the shape. The empty-part measure
+/// samples only such points; a part of the shape holding none is a sliver no tile fits in
+/// ([`crate::caps`] drops those).
+pub(crate) struct DeepLine {
+    /// Each chord's half width and the shape's intervals on its line.
+    lines: Vec<(f64, Vec<(f64, f64)>)>,
+}
+
+impl DeepLine {
+    /// The line at height `y` across `work`.
+    pub(crate) fn new(work: &Shape, y: f64) -> DeepLine {
+        DeepLine {
+            lines: [-1.0, -0.5, 0.0, 0.5, 1.0]
+                .iter()
+                .map(|&f: &f64| (EDGE * (1.0 - f * f).sqrt(), work.intervals_at(y + f * EDGE)))
+                .collect(),
+        }
+    }
+
+    /// True if the point at `x` on the line is at least [`EDGE`] inside the outline.
+    pub(crate) fn deep(&self, x: f64) -> bool {
+        self.lines
+            .iter()
+            .all(|(hw, iv)| iv.iter().any(|&(a, e)| a <= x - hw && x + hw <= e))
+    }
 }
 
 /// Checks `plan` for an empty part (points farther than `near` tile widths from every

@@ -59,6 +59,7 @@ mod serpentine;
 mod shape;
 mod simplify;
 mod sizing;
+mod slabs;
 mod units;
 
 /// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
@@ -93,11 +94,16 @@ pub fn plan_svg_file_reporting(
     opts: &PlanOptions,
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
-    let text = read_file_at_most(path, MAX_DRAWING_BYTES).map_err(|source| PlanError::Read {
+    let text = read_drawing_file(path)?;
+    plan_svg_data(&text, &path.display().to_string(), opts, progress)
+}
+
+/// The bytes of the drawing in `path`, read up to [`MAX_DRAWING_BYTES`].
+pub(crate) fn read_drawing_file(path: &std::path::Path) -> Result<Vec<u8>, PlanError> {
+    read_file_at_most(path, MAX_DRAWING_BYTES).map_err(|source| PlanError::Read {
         path: path.to_path_buf(),
         source,
-    })?;
-    plan_svg_data(&text, &path.display().to_string(), opts, progress)
+    })
 }
 
 /// Plans the shape in SVG text; `name` names it in errors and in the plan's `source`.

@@ -22,15 +22,14 @@ use crate::shape::Shape;
 
 /// The preview of `plan` over the shape in the SVG file `shape_path`.
 pub fn preview_svg_file(shape_path: &Path, plan: &Plan) -> Result<String, PlanError> {
-    let data =
-        crate::read_file_at_most(shape_path, crate::MAX_DRAWING_BYTES).map_err(|source| {
-            PlanError::Read {
-                path: shape_path.to_path_buf(),
-                source,
-            }
-        })?;
-    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string())?;
+    let shape = read_shape(shape_path)?;
     Ok(preview_svg(&shape, plan))
+}
+
+/// The shape in the SVG file `shape_path`, named by the path as given.
+fn read_shape(shape_path: &Path) -> Result<Shape, PlanError> {
+    let data = crate::read_drawing_file(shape_path)?;
+    Shape::from_svg_data(&data, &shape_path.display().to_string())
 }
 
 /// A coordinate rounded to 1e-4 user units, for a compact file.
@@ -47,14 +46,7 @@ pub fn preview_svg(shape: &Shape, plan: &Plan) -> String {
 /// in the SVG file `shape_path`: marked in red as no plan, with the empty part it leaves
 /// framed.
 pub fn preview_svg_rejected(shape_path: &Path, rejected: &Rejected) -> Result<String, PlanError> {
-    let data =
-        crate::read_file_at_most(shape_path, crate::MAX_DRAWING_BYTES).map_err(|source| {
-            PlanError::Read {
-                path: shape_path.to_path_buf(),
-                source,
-            }
-        })?;
-    let shape = Shape::from_svg_data(&data, &shape_path.display().to_string())?;
+    let shape = read_shape(shape_path)?;
     Ok(preview(&shape, &rejected.plan, Some(&rejected.empty)))
 }
 

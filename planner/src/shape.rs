@@ -203,20 +203,25 @@ impl Shape {
     /// The shape under the affine map `a`.
     pub fn transformed(&self, a: Affine) -> Shape {
         Shape::from_paths(
-            self.paths
-                .iter()
-                .map(|p| FilledPath {
-                    even_odd: p.even_odd,
-                    rings: p
-                        .rings
-                        .iter()
-                        .map(|r| Ring {
-                            points: r.points.iter().map(|&q| a * q).collect(),
-                        })
-                        .collect(),
+            self.map_rings(|r| {
+                Some(Ring {
+                    points: r.points.iter().map(|&q| a * q).collect(),
                 })
-                .collect(),
+            })
+            .collect(),
         )
+    }
+
+    /// The paths with each ring replaced by `f` of it (left out where `f` gives `None`), each
+    /// path keeping its fill rule.
+    fn map_rings<'a>(
+        &'a self,
+        f: impl Fn(&Ring) -> Option<Ring> + 'a,
+    ) -> impl Iterator<Item = FilledPath> + 'a {
+        self.paths.iter().map(move |p| FilledPath {
+            even_odd: p.even_odd,
+            rings: p.rings.iter().filter_map(&f).collect(),
+        })
     }
 
     /// The shape clipped to the box `r` (each ring by Sutherland-Hodgman against the box's
@@ -255,25 +260,16 @@ impl Shape {
             }
         };
         Shape::from_paths(
-            self.paths
-                .iter()
-                .map(|p| FilledPath {
-                    even_odd: p.even_odd,
-                    rings: p
-                        .rings
-                        .iter()
-                        .filter_map(|ring| {
-                            let mut pts = ring.points.clone();
-                            pts = clip(pts, &|q| q.x >= r.x0, &at_x(r.x0));
-                            pts = clip(pts, &|q| q.x <= r.x1, &at_x(r.x1));
-                            pts = clip(pts, &|q| q.y >= r.y0, &at_y(r.y0));
-                            pts = clip(pts, &|q| q.y <= r.y1, &at_y(r.y1));
-                            (pts.len() >= 3).then_some(Ring { points: pts })
-                        })
-                        .collect(),
-                })
-                .filter(|p| !p.rings.is_empty())
-                .collect(),
+            self.map_rings(|ring| {
+                let mut pts = ring.points.clone();
+                pts = clip(pts, &|q| q.x >= r.x0, &at_x(r.x0));
+                pts = clip(pts, &|q| q.x <= r.x1, &at_x(r.x1));
+                pts = clip(pts, &|q| q.y >= r.y0, &at_y(r.y0));
+                pts = clip(pts, &|q| q.y <= r.y1, &at_y(r.y1));
+                (pts.len() >= 3).then_some(Ring { points: pts })
+            })
+            .filter(|p| !p.rings.is_empty())
+            .collect(),
         )
     }
 

@@ -159,6 +159,10 @@ pub struct PartsReport {
     /// Inequalities of thesis chapter 6 that a design breaks or only just meets (the chain
     /// may then not fold as planned).
     pub design_warnings: Vec<String>,
+    /// The warnings of the plan the chain comes from (a shape planned here, or a plan file):
+    /// a tile count off the request, a part of the shape left empty. Absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub plan_warnings: Vec<String>,
 }
 
 /// The magnets a chain needs.
@@ -236,7 +240,7 @@ pub fn print_job(
 ) -> Result<PrintJob, PrintError> {
     opts.part.validate()?;
     opts.bed.validate()?;
-    let (chain, name, origin, word) = read_source(source)?;
+    let (chain, name, origin, word, plan_warnings) = read_source(source)?;
     let n = chain.len();
     if n > MAX_PRINT_TILES {
         return Err(PrintError::BadOption {
@@ -297,6 +301,7 @@ pub fn print_job(
         total_volume_mm3: total_volume,
         estimate_basis: estimate_basis(opts.part.printer),
         design_warnings,
+        plan_warnings,
     };
     let json = serde_json::to_string_pretty(&report).map_err(|e| PrintError::Format {
         name: "parts.json".into(),
@@ -313,13 +318,20 @@ pub fn print_job(
     })
 }
 
-/// The chain of `source` (planned, for a plan's or a shape's), its name, where it came from
-/// and its fold word when it has one.
+/// The chain of `source` (planned, for a plan's or a shape's), its name, where it came from,
+/// its fold word when it has one and the plan's warnings.
+#[allow(clippy::type_complexity)]
 fn read_source(
     source: &Source,
-) -> Result<(Chain, String, Option<String>, Option<FoldWord>), PrintError> {
+) -> Result<(Chain, String, Option<String>, Option<FoldWord>, Vec<String>), PrintError> {
     Ok(match source {
-        Source::Chain { chain, name } => (chain.clone(), name.clone(), None, chain.to_word().ok()),
+        Source::Chain { chain, name } => (
+            chain.clone(),
+            name.clone(),
+            None,
+            chain.to_word().ok(),
+            Vec::new(),
+        ),
         Source::Plan { plan, name } => {
             let word = plan.fold_word()?;
             (
@@ -327,6 +339,7 @@ fn read_source(
                 name.clone(),
                 Some(plan.source.clone()),
                 Some(word),
+                plan.warnings.clone(),
             )
         }
         Source::Shape { path, options } => {
@@ -340,6 +353,7 @@ fn read_source(
                 name,
                 Some(path.display().to_string()),
                 Some(word),
+                plan.warnings,
             )
         }
     })

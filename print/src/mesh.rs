@@ -134,15 +134,22 @@ impl Mesh {
 
     /// A triangle's area, mm^2.
     pub fn triangle_area(&self, t: &[u32; 3]) -> f64 {
+        let n = self.triangle_cross(t);
+        0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+    }
+
+    /// The cross product of a triangle's edges from its first corner to the second and the
+    /// third: along its outward normal (corners counter-clockwise seen from outside), twice
+    /// its area long, mm^2.
+    pub fn triangle_cross(&self, t: &[u32; 3]) -> [f64; 3] {
         let [a, b, c] = t.map(|i| self.vertices[i as usize]);
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
+        [
             u[1] * v[2] - u[2] * v[1],
             u[2] * v[0] - u[0] * v[2],
             u[0] * v[1] - u[1] * v[0],
-        ];
-        0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+        ]
     }
 
     /// The enclosed volume, mm^3 (positive when the triangles face outwards).

@@ -31,36 +31,14 @@ impl Default for View {
 
 /// The mesh drawn as an SVG document, `title` written under it.
 pub fn mesh_svg(mesh: &Mesh, title: &str, view: &View) -> String {
-    let (az, el) = (
-        view.azimuth_deg.to_radians(),
-        view.elevation_deg.to_radians(),
-    );
-    // camera axes: right, up, and the direction the eye looks along
-    let right = [az.cos(), az.sin(), 0.0];
-    let fwd = [-az.sin() * el.cos(), az.cos() * el.cos(), -el.sin()];
-    let up = [
-        right[1] * fwd[2] - right[2] * fwd[1],
-        right[2] * fwd[0] - right[0] * fwd[2],
-        right[0] * fwd[1] - right[1] * fwd[0],
-    ];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let light = {
-        let l = [-0.4, -0.6, 0.9];
-        let n = dot(l, l).sqrt();
-        l.map(|x| x / n)
-    };
+    let (right, up, fwd) = camera(view);
+    let light = light();
     let s = view.scale;
     let mut faces: Vec<(f64, [[f64; 2]; 3], f64)> = Vec::new();
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let n = mesh.triangle_cross(t);
         let len = dot(n, n).sqrt();
         if len == 0.0 {
             continue;
@@ -119,6 +97,19 @@ pub fn mesh_svg(mesh: &Mesh, title: &str, view: &View) -> String {
     out
 }
 
+/// The dot product of two vectors.
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The direction towards the light in the part's frame, unit length: above the part (+z),
+/// towards -x and -y.
+fn light() -> [f64; 3] {
+    let l = [-0.4, -0.6, 0.9];
+    let n = dot(l, l).sqrt();
+    l.map(|x| x / n)
+}
+
 /// The camera's axes for a view: right, up and the direction it looks along.
 fn camera(view: &View) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let (az, el) = (
@@ -139,12 +130,7 @@ fn camera(view: &View) -> ([f64; 3], [f64; 3], [f64; 3]) {
 /// on white; `None` only if the encoder fails.
 pub fn mesh_png(mesh: &Mesh, view: &View) -> Option<Vec<u8>> {
     let (right, up, fwd) = camera(view);
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let light = {
-        let l = [-0.4, -0.6, 0.9];
-        let n = dot(l, l).sqrt();
-        l.map(|x| x / n)
-    };
+    let light = light();
     let ss = 2.0; // samples per pixel along each axis
     let k = view.scale * ss;
     let pts: Vec<[f64; 3]> = mesh
@@ -169,14 +155,7 @@ pub fn mesh_png(mesh: &Mesh, view: &View) -> Option<Vec<u8>> {
     let mut colour = vec![[255u8; 3]; w * h];
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| pts[i as usize]);
-        let [va, vb, vc] = t.map(|i| mesh.vertices[i as usize]);
-        let u = [vb[0] - va[0], vb[1] - va[1], vb[2] - va[2]];
-        let v = [vc[0] - va[0], vc[1] - va[1], vc[2] - va[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let n = mesh.triangle_cross(t);
         let len = dot(n, n).sqrt();
         if len == 0.0 || dot(n, fwd) >= 0.0 {
             continue;

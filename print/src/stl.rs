@@ -19,13 +19,7 @@ pub fn to_stl(mesh: &Mesh, name: &str) -> Vec<u8> {
     out.extend_from_slice(&(mesh.triangles.len() as u32).to_le_bytes());
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let n = mesh.triangle_cross(t);
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         let n = if len > 0.0 {
             n.map(|x| x / len)

@@ -73,21 +73,43 @@ pub(crate) fn closest_approach(
         track_of: &track_of,
         rates: &rates,
         precision,
-        octagon: Octagon::new(1.0),
-        circumradius: Octagon::new(1.0).circumradius(),
+        outline: Outline::unit(),
         work: 0,
         best: None,
         hints: vec![0; joints],
+        turns: vec![None; joints],
     };
     // a first bound from every pair at a few moments, then the pairs nearest first
     let samples = sample_times(&rates, tiles);
+    // every joint's turn at every sample, and each pair's pose built along the chain from
+    // tile `i` (the products `pose` forms, in its order: the same numbers, n^2 instead of
+    // n^3 compositions)
+    let turns: Vec<Vec<Rigid>> = samples
+        .iter()
+        .map(|&t| (0..joints).map(|k| turn_of(walk.angle(k, t))).collect())
+        .collect();
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    let mut row: Vec<f64> = Vec::new();
     for i in 0..tiles {
+        // row[(j - i) * samples + s]: the distance of tiles i and j at sample s
+        row.clear();
+        row.resize((tiles - i) * samples.len(), f64::INFINITY);
+        for (s, turns) in turns.iter().enumerate() {
+            let mut at = Rigid::IDENTITY;
+            for j in i + 1..tiles {
+                at = at.then(&turns[j - 1]);
+                if j >= i + 2 {
+                    row[(j - i) * samples.len() + s] = walk.outline.signed_distance(&at);
+                }
+            }
+        }
         for j in i + 2..tiles {
-            let near = samples
-                .iter()
-                .map(|&t| walk.evaluate(i, j, t))
-                .fold(f64::INFINITY, f64::min);
+            let mut near = f64::INFINITY;
+            for (s, &t) in samples.iter().enumerate() {
+                let d = row[(j - i) * samples.len() + s];
+                walk.record(i, j, t, d);
+                near = near.min(d);
+            }
             pairs.push((near, i, j));
         }
     }
@@ -117,6 +139,9 @@ struct Rates {
     width: f64,
     /// `fastest[k][b]`: joint `k`'s largest `|rate|` over the chords meeting bucket `b`.
     fastest: Vec<Vec<f64>>,
+    /// `active[k][b]`: the first bucket from `b` on in which joint `k` turns (`BUCKETS`
+    /// when none does), so a step passes a stretch of rest in one look.
+    active: Vec<Vec<u32>>,
     /// Each joint's jumps (a repeated time with another angle), sorted.
     jumps: Vec<Vec<f64>>,
 }
@@ -134,6 +159,7 @@ impl Rates {
         let span = t1 - t0;
         let width = span / BUCKETS as f64;
         let mut fastest = vec![Vec::new(); track_of.len()];
+        let mut active = vec![Vec::new(); track_of.len()];
         let mut jumps = vec![Vec::new(); track_of.len()];
         for (k, tr) in track_of.iter().enumerate() {
             let Some(tr) = tr else { continue };
@@ -154,7 +180,18 @@ impl Rates {
                     *v = v.max(rate);
                 }
             }
+            let mut next = vec![BUCKETS as u32; BUCKETS];
+            for b in (0..BUCKETS).rev() {
+                next[b] = if f[b] > 0.0 {
+                    b as u32
+                } else if b + 1 < BUCKETS {
+                    next[b + 1]
+                } else {
+                    BUCKETS as u32
+                };
+            }
             fastest[k] = f;
+            active[k] = next;
             jumps[k].dedup();
         }
         Rates {
@@ -162,6 +199,7 @@ impl Rates {
             span,
             width,
             fastest,
+            active,
             jumps,
         }
     }
@@ -193,12 +231,13 @@ struct PairWalk<'a> {
     track_of: &'a [Option<&'a JointTrack>],
     rates: &'a Rates,
     precision: f64,
-    octagon: Octagon,
-    circumradius: f64,
+    outline: Outline,
     work: usize,
     best: Option<Closest>,
     /// Each joint's chord hint ([`JointTrack::chord_at`]).
     hints: Vec<usize>,
+    /// Each joint's last angle and turn ([`PairWalk::turn`]).
+    turns: Vec<Option<(f64, Rigid)>>,
 }
 
 impl PairWalk<'_> {
@@ -210,21 +249,57 @@ impl PairWalk<'_> {
         }
     }
 
-    /// Tile `j`'s pose in tile `i`'s frame at `t`.
-    fn pose(&mut self, i: usize, j: usize, t: f64) -> Rigid {
+    /// Joint `k`'s turn at angle `a` ([`turn_of`]), kept for the next call: most joints
+    /// hold their angle over a pair's walk.
+    fn turn(&mut self, k: usize, a: f64) -> Rigid {
+        match self.turns[k] {
+            Some((b, r)) if b.to_bits() == a.to_bits() => r,
+            _ => {
+                let r = turn_of(a);
+                self.turns[k] = Some((a, r));
+                r
+            }
+        }
+    }
+
+    /// Tile `j`'s pose in tile `i`'s frame at `t`, and in `centres` the centre of tile `k`
+    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`).
+    fn pose(
+        &mut self,
+        (i, j, t): (usize, usize, f64),
+        moving: &[usize],
+        centres: &mut Vec<Point>,
+    ) -> Rigid {
+        centres.clear();
+        let mut next = moving.iter().peekable();
         let mut at = Rigid::IDENTITY;
         for k in i..j {
+            if next.next_if_eq(&&k).is_some() {
+                centres.push(at.apply(Point::ORIGIN));
+            }
             let a = self.angle(k, t);
-            at = at.then(&turn_of(a));
+            at = at.then(&self.turn(k, a));
         }
         at
     }
 
-    /// The signed distance of tiles `i` and `j` at `t`, tile widths; the best updated.
-    fn evaluate(&mut self, i: usize, j: usize, t: f64) -> f64 {
+    /// The signed distance of tiles `i` and `j` at `t`, tile widths, the best updated; the
+    /// centres of `moving`'s tiles in `centres` ([`PairWalk::pose`]); tile `j`'s centre.
+    fn evaluate(
+        &mut self,
+        (i, j, t): (usize, usize, f64),
+        moving: &[usize],
+        centres: &mut Vec<Point>,
+    ) -> (f64, Point) {
+        let pose = self.pose((i, j, t), moving, centres);
+        let d = self.outline.signed_distance(&pose);
+        self.record(i, j, t, d);
+        (d, pose.apply(Point::ORIGIN))
+    }
+
+    /// Counts one evaluation of tiles `i` and `j` at `t`, `d` apart; the best updated.
+    fn record(&mut self, i: usize, j: usize, t: f64, d: f64) {
         self.work += 1;
-        let pose = self.pose(i, j, t);
-        let d = signed_distance(&self.octagon, &pose);
         if self.best.is_none_or(|b| d < b.distance) {
             let joint = self.front(i, j, t);
             self.best = Some(Closest {
@@ -234,7 +309,6 @@ impl PairWalk<'_> {
                 joint,
             });
         }
-        d
     }
 
     /// The fold front between tiles `i` and `j` at `t`.
@@ -254,17 +328,28 @@ impl PairWalk<'_> {
     }
 
     /// Follows pair `(i, j)` over the schedule; `false` when the work budget ran out.
+    ///
+    /// The step from `t` is as long as tile `j` cannot have moved `room` towards tile `i`.
+    /// Two bounds on its speed hold, and the longer step either allows is taken: the chain's
+    /// (joint `k` turning at `w_k` moves tile `j`'s points at most `w_k 2 R (j - k)`), and
+    /// the pose's: a point of tile `j` is at most `rho_k = |c_j - c_k| + 2 R` from joint
+    /// `k`'s hinge now (`c` the centres, the hinge a vertex of tile `k`), and `rho_k` grows
+    /// no faster than the joints beyond `k` move tile `j` (`g_k = sum_{m > k} w_m 2 R (j -
+    /// m)`), so over a step `s` the tile moves at most `B s + A s^2 / 2` with `B = sum w_k
+    /// rho_k` and `A = sum w_k g_k`. The pose's bound is the tight one for tiles far apart
+    /// along the chain and near in the plane, the pairs that cost most steps.
     fn follow(&mut self, i: usize, j: usize) -> bool {
         let moving: Vec<usize> = (i..j).filter(|&k| self.track_of[k].is_some()).collect();
         let (t0, t_end) = (self.rates.t0, self.rates.t0 + self.rates.span);
+        let mut centres: Vec<Point> = Vec::with_capacity(moving.len());
         if moving.is_empty() {
-            self.evaluate(i, j, t0);
+            self.evaluate((i, j, t0), &moving, &mut centres);
             return true;
         }
         // each moving joint's lever: 2 R (j - k)
         let lever: Vec<f64> = moving
             .iter()
-            .map(|&k| 2.0 * self.circumradius * (j - k) as f64)
+            .map(|&k| 2.0 * self.outline.circumradius * (j - k) as f64)
             .collect();
         let mut fastest = vec![0.0f64; moving.len()];
         let mut t = t0;
@@ -272,10 +357,16 @@ impl PairWalk<'_> {
             if self.work > MAX_WORK {
                 return false;
             }
-            let d = self.evaluate(i, j, t);
+            let (d, cj) = self.evaluate((i, j, t), &moving, &mut centres);
             if t >= t_end {
                 return true;
             }
+            // each moving joint's reach to tile j now: rho_k, never above its lever
+            let rho: Vec<f64> = centres
+                .iter()
+                .zip(&lever)
+                .map(|(c, &l)| ((cj - *c).hypot() + 2.0 * self.outline.circumradius).min(l))
+                .collect();
             let m = self.best.map_or(d, |b| b.distance);
             // an overlap is measured to a hundredth of its depth besides the precision (a
             // tile passing through another keeps a flat depth that would cost a step per
@@ -296,24 +387,35 @@ impl PairWalk<'_> {
             let mut bb = b;
             let next = loop {
                 self.work += 1;
-                let mut speed = 0.0;
-                for (q, &k) in moving.iter().enumerate() {
+                let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
+                for (q, &k) in moving.iter().enumerate().rev() {
                     fastest[q] = fastest[q].max(self.rates.fastest[k][bb]);
                     speed += fastest[q] * lever[q];
+                    linear += fastest[q] * rho[q];
+                    growth += fastest[q] * beyond;
+                    beyond += fastest[q] * lever[q];
                 }
                 let limit = self.rates.bucket_end(bb).min(jump);
-                let reach = if speed > 0.0 {
-                    t + room / speed
-                } else {
-                    f64::INFINITY
-                };
+                let step = step_within(room, speed, linear, growth);
+                let reach = t + step;
                 let settled =
                     reach < limit || limit >= jump || bb + 1 >= BUCKETS || bb - b >= MAX_WIDEN;
                 // (a bucket that ends at t by rounding is passed)
                 if settled && limit > t {
                     break reach.min(limit);
                 }
-                bb += 1;
+                // the buckets up to the next in which a joint between the tiles turns add
+                // nothing to the bound: pass them at once
+                let idle = moving
+                    .iter()
+                    .map(|&k| {
+                        self.rates.active[k]
+                            .get(bb + 1)
+                            .map_or(BUCKETS, |&a| a as usize)
+                    })
+                    .min()
+                    .unwrap_or(BUCKETS);
+                bb = (bb + 1).max(idle.saturating_sub(1)).min(BUCKETS - 1);
             };
             // progress whatever the rounding
             t = if next > t {
@@ -325,52 +427,100 @@ impl PairWalk<'_> {
     }
 }
 
+/// The longest step over which a tile moving at most `speed`, or at most `linear + growth
+/// s` after `s`, cannot cover `room` (infinite when it does not move).
+fn step_within(room: f64, speed: f64, linear: f64, growth: f64) -> f64 {
+    let chain = if speed > 0.0 {
+        room / speed
+    } else {
+        f64::INFINITY
+    };
+    // linear s + growth s^2 / 2 = room, in the form without cancellation
+    let root = linear * linear + 2.0 * growth * room;
+    let pose = if linear > 0.0 || growth > 0.0 {
+        2.0 * room / (linear + root.max(0.0).sqrt())
+    } else {
+        f64::INFINITY
+    };
+    chain.max(pose)
+}
+
 /// The precision of an overlap's depth, besides the absolute one: a hundredth of it.
 const OVERLAP_PRECISION: f64 = 0.01;
 
 /// The most buckets one step of a pair may span.
 const MAX_WIDEN: usize = 256;
 
-/// The signed distance between the unit octagon at the origin and the one at `pose`: the
-/// gap when apart, minus the overlap depth (the least translation that parts them) when
-/// they overlap.
-fn signed_distance(octagon: &Octagon, pose: &Rigid) -> f64 {
-    let a: [Point; 8] = octagon.vertices().map(|(x, y)| Point::new(x, y));
-    let b: [Point; 8] = a.map(|p| pose.apply(p));
-    // separating axes: the face normals of both
-    let mut sep = f64::NEG_INFINITY;
-    for poly in [&a, &b] {
-        for e in 0..8 {
-            let (p, q) = (poly[e], poly[(e + 1) % 8]);
-            let n = kurbo::Vec2::new(q.y - p.y, p.x - q.x).normalize();
-            let (mut a0, mut a1) = (f64::INFINITY, f64::NEG_INFINITY);
-            let (mut b0, mut b1) = (f64::INFINITY, f64::NEG_INFINITY);
-            for v in &a {
-                let x = v.to_vec2().dot(n);
-                a0 = a0.min(x);
-                a1 = a1.max(x);
-            }
-            for v in &b {
-                let x = v.to_vec2().dot(n);
-                b0 = b0.min(x);
-                b1 = b1.max(x);
-            }
-            sep = sep.max((b0 - a1).max(a0 - b1));
+/// The unit octagon at the origin: its vertices and circumradius, computed once.
+struct Outline {
+    vertices: [Point; 8],
+    circumradius: f64,
+}
+
+impl Outline {
+    fn unit() -> Outline {
+        let o = Octagon::new(1.0);
+        Outline {
+            vertices: o.vertices().map(|(x, y)| Point::new(x, y)),
+            circumradius: o.circumradius(),
         }
     }
-    if sep <= 0.0 {
-        return sep;
-    }
-    // apart: the nearest vertex of either to an edge of the other
-    let mut d = f64::INFINITY;
-    for (p, q) in [(&a, &b), (&b, &a)] {
-        for v in p.iter() {
-            for e in 0..8 {
-                d = d.min(segment_distance(*v, q[e], q[(e + 1) % 8]));
+
+    /// The signed distance between the unit octagon at the origin and the one at `pose`:
+    /// the gap when apart, minus the overlap depth (the least translation that parts them)
+    /// when they overlap.
+    ///
+    /// Two shortcuts leave the result bit for bit what the full computation gives: octagons
+    /// whose centres are more than two circumradii apart (with a relative margin of 1e-9)
+    /// are apart, so the separating axes are skipped; and a vertex farther than the nearest
+    /// distance found so far (plus 1e-9) from the other octagon's circumscribed circle is
+    /// not measured against its edges, since none of them can be nearer.
+    fn signed_distance(&self, pose: &Rigid) -> f64 {
+        let a = &self.vertices;
+        let b: [Point; 8] = a.map(|p| pose.apply(p));
+        let r = self.circumradius;
+        let cb = pose.apply(Point::ORIGIN);
+        let apart = cb.to_vec2().hypot() > 2.0 * r * (1.0 + 1e-9);
+        if !apart {
+            // separating axes: the face normals of both
+            let mut sep = f64::NEG_INFINITY;
+            for poly in [a, &b] {
+                for e in 0..8 {
+                    let (p, q) = (poly[e], poly[(e + 1) % 8]);
+                    let n = kurbo::Vec2::new(q.y - p.y, p.x - q.x).normalize();
+                    let (mut a0, mut a1) = (f64::INFINITY, f64::NEG_INFINITY);
+                    let (mut b0, mut b1) = (f64::INFINITY, f64::NEG_INFINITY);
+                    for v in a {
+                        let x = v.to_vec2().dot(n);
+                        a0 = a0.min(x);
+                        a1 = a1.max(x);
+                    }
+                    for v in &b {
+                        let x = v.to_vec2().dot(n);
+                        b0 = b0.min(x);
+                        b1 = b1.max(x);
+                    }
+                    sep = sep.max((b0 - a1).max(a0 - b1));
+                }
+            }
+            if sep <= 0.0 {
+                return sep;
             }
         }
+        // apart: the nearest vertex of either to an edge of the other
+        let mut d = f64::INFINITY;
+        for (p, q, centre) in [(a, &b, cb), (&b, a, Point::ORIGIN)] {
+            for v in p.iter() {
+                if (*v - centre).hypot() - r > d + 1e-9 {
+                    continue;
+                }
+                for e in 0..8 {
+                    d = d.min(segment_distance(*v, q[e], q[(e + 1) % 8]));
+                }
+            }
+        }
+        d
     }
-    d
 }
 
 fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
@@ -390,7 +540,6 @@ mod tests {
 
     #[test]
     fn distances_of_two_octagons() {
-        let o = Octagon::new(1.0);
         let at = |x: f64, y: f64, _a: f64| shift(x, y);
         fn shift(x: f64, y: f64) -> Rigid {
             // a translation as the composition of two half turns
@@ -398,13 +547,13 @@ mod tests {
                 .then(&Rigid::rotation_about(Point::ORIGIN, std::f64::consts::PI))
         }
         // face to face: touching at 1, apart by 0.25 at 1.25, overlapping by 0.25 at 0.75
-        assert!(signed_distance(&o, &at(1.0, 0.0, 0.0)).abs() < 1e-12);
-        assert!((signed_distance(&o, &at(1.25, 0.0, 0.0)) - 0.25).abs() < 1e-12);
-        assert!((signed_distance(&o, &at(0.75, 0.0, 0.0)) + 0.25).abs() < 1e-12);
+        assert!(Outline::unit().signed_distance(&at(1.0, 0.0, 0.0)).abs() < 1e-12);
+        assert!((Outline::unit().signed_distance(&at(1.25, 0.0, 0.0)) - 0.25).abs() < 1e-12);
+        assert!((Outline::unit().signed_distance(&at(0.75, 0.0, 0.0)) + 0.25).abs() < 1e-12);
         // diagonal faces: the 45 degree face's distance along the diagonal
         // along the diagonal the 45 degree faces meet at a centre distance of 1
         let r = 1.0 / std::f64::consts::SQRT_2;
-        let d = signed_distance(&o, &at(r + 0.1, r + 0.1, 0.0));
+        let d = Outline::unit().signed_distance(&at(r + 0.1, r + 0.1, 0.0));
         assert!((d - 0.1 * std::f64::consts::SQRT_2).abs() < 1e-12, "{d}");
     }
 
@@ -473,7 +622,6 @@ mod tests {
                 t
             });
             let mut sampled = f64::INFINITY;
-            let o = Octagon::new(1.0);
             for q in 0..=2000 {
                 let t = rates.t0 + rates.span * q as f64 / 2000.0;
                 let angles = s.angles_at(n - 1, t);
@@ -482,7 +630,7 @@ mod tests {
                     for j in i + 1..n {
                         at = at.then(&turn_of(angles[j - 1]));
                         if j >= i + 2 {
-                            sampled = sampled.min(signed_distance(&o, &at));
+                            sampled = sampled.min(Outline::unit().signed_distance(&at));
                         }
                     }
                 }

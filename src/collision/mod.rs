@@ -61,8 +61,8 @@ pub struct CheckOptions {
     pub tolerance: f64,
     /// Check only the final shape, not the fold sweeps. Default `false`.
     pub final_only: bool,
-    /// The deepest overlap, mm, that a simulated run's check
-    /// ([`crate::simulate`], [`crate::check_reference`]) counts as touching: a graze,
+    /// The deepest overlap, mm, that a simulated run's check ([`crate::simulate`],
+    /// [`crate::reference::ReferenceRun::checked_summary`]) counts as touching: a graze,
     /// reported with its clearance ([`crate::timeline::Clearance`]) rather than as a
     /// collision. Default `0.01` (10 um). Not used by the sequential checks of words
     /// ([`check_word`], [`check_chain`]), which follow exact poses.
@@ -79,6 +79,12 @@ pub struct CheckOptions {
     /// finest printed tiles are made to (`foldchain-print`'s resin clearance): a contact that
     /// shallow is not one a printed chain could tell from touching.
     pub overlap_mm: f64,
+    /// Whether a simulated run's check also measures its smallest clearance
+    /// ([`crate::timeline::Clearance`]); the verdict does not depend on it. Default `true`;
+    /// the design search ([`crate::tolerance::Search`]), which ranks candidates by verdict
+    /// and assembly time, turns it off (on a 200-tile chain the measurement is most of a
+    /// run's work).
+    pub clearance: bool,
 }
 
 impl Default for CheckOptions {
@@ -87,11 +93,18 @@ impl Default for CheckOptions {
             tolerance: 1e-7,
             final_only: false,
             overlap_mm: 0.01,
+            clearance: true,
         }
     }
 }
 
 impl CheckOptions {
+    /// Measure a simulated run's smallest clearance (`true`, the default) or not.
+    pub fn with_clearance(mut self, clearance: bool) -> CheckOptions {
+        self.clearance = clearance;
+        self
+    }
+
     /// Only the final shape (`true`) or every sweep too (`false`).
     pub fn with_final_only(mut self, final_only: bool) -> CheckOptions {
         self.final_only = final_only;

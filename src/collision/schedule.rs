@@ -30,6 +30,9 @@ pub(crate) struct JointTrack {
     pub ended: Option<f64>,
 }
 
+/// Steps [`JointTrack::chord_at`] walks from its hint before it searches the track.
+const HINT_STEPS: usize = 8;
+
 impl JointTrack {
     /// The angle at time `t`.
     pub fn angle_at(&self, t: f64) -> f64 {
@@ -57,12 +60,16 @@ impl JointTrack {
     pub(super) fn chord_at(&self, t: f64, hint: &mut usize) -> (f64, f64) {
         let (ts, a) = (&self.times, &self.angles);
         let n = ts.len();
+        // a few steps from the hint (a walk forward in time), else a binary search: the
+        // count of times at or before `t` either way (the times do not decrease)
         let mut i = (*hint).min(n);
-        while i < n && ts[i] <= t {
+        let mut steps = 0;
+        while i < n && ts[i] <= t && steps < HINT_STEPS {
             i += 1;
+            steps += 1;
         }
-        while i > 0 && ts[i - 1] > t {
-            i -= 1;
+        if (i < n && ts[i] <= t) || (i > 0 && ts[i - 1] > t) {
+            i = ts.partition_point(|&x| x <= t);
         }
         *hint = i;
         if n == 0 {

@@ -194,9 +194,7 @@ fn run(args: &Args) -> anyhow::Result<()> {
         let svg = preview_svg_file(&args.shape, &plan).context("drawing the preview")?;
         foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
-    for w in &plan.warnings {
-        eprintln!("fold-plan: warning: {w}");
-    }
+    foldchain_cli::report::print_plan_warnings("fold-plan", &plan.warnings);
     if args.json {
         outln!("{}", plan.to_json());
     } else {

@@ -268,6 +268,9 @@ fn run(args: &Args) -> anyhow::Result<()> {
         dir.remove_stale(&stale, &ours)?;
     }
     let r = &job.report;
+    // the plan's own warnings (a count off the request, a part left empty), as fold-plan
+    // says them
+    foldchain_cli::report::print_plan_warnings("fold-print", &r.plan_warnings);
     if args.json {
         let text = String::from_utf8_lossy(
             &job.files

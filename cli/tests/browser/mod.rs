@@ -165,3 +165,23 @@ pub fn attr<'a>(attrs: &'a [(String, String)], name: &str) -> &'a str {
         .map(|a| a.1.as_str())
         .unwrap_or_else(|| panic!("no {name} in {attrs:?}"))
 }
+
+/// Rows of `row` tiles joined by tight U-turns of alternating sense, `tiles` in all, as a
+/// fold word (`S*k L L S*k R R ...`).
+pub fn serpentine(tiles: usize, row: usize) -> String {
+    let mut parts = Vec::new();
+    let (mut letters, mut left) = (0, true);
+    while letters + 1 < tiles {
+        let straight = (row - 1).min(tiles - 1 - letters);
+        parts.push(format!("S*{straight}"));
+        letters += straight;
+        for _ in 0..2 {
+            if letters + 1 < tiles {
+                parts.push(if left { "L" } else { "R" }.to_string());
+                letters += 1;
+            }
+        }
+        left = !left;
+    }
+    parts.join(" ")
+}

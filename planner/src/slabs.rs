@@ -1,0 +1,253 @@
+//! Slab decompositions (issue 26, "each part swept along its own length"; the boustrophedon
+//! cells of Bähnemann et al. 2019, each with its own sweep direction as in Fields2Cover):
+//! the shape is cut across one axis at its critical lines, where a line across the axis
+//! meets the shape in a different number of runs or where a run's end jumps by more than a
+//! tile (a key's head meets its shaft, a tooth hangs below the shaft), and every set of those
+//! cuts is a decomposition into slabs, taken in order along the axis.
+//!
+//! Unlike a cap ([`crate::caps`]), a slab need not be monotone across its rows: each slab is
+//! priced by the exact row programme ([`crate::rows::solve_rows`]) in both sweep directions
+//! (rows along x, rows along y), so its rows may bridge a short gap where that fits better
+//! than leaving a part empty (a key's two teeth below its shaft, in one row under the shaft's
+//! row), and a slab takes the direction in which it is cheaper: along its own length. A
+//! decomposition costs the sum of its slabs' misfits plus a price per join; the work is
+//! bounded: at most [`MAX_CUTS`] cuts (2^6 sets), each slab solved once. The cheapest
+//! decompositions are laid out by the cell router ([`crate::route`]) in both orders along the
+//! axis, each slab's stacking side, start and exit chosen there, and every route is checked
+//! by sequential folding like any other.
+
+use std::collections::HashMap;
+
+use kurbo::Affine;
+
+use crate::caps::{CapCell, CapPlan, Dir, PBox, Raster, Search};
+use crate::rows::{solve_rows, tile_area, Lattice, Style};
+use crate::shape::Shape;
+
+/// The most cuts considered per axis (the largest jumps): 2^6 decompositions at most.
+const MAX_CUTS: usize = 6;
+/// Decompositions returned per shape (each in both orders along its axis).
+const KEEP: usize = 2;
+/// The price of a join between slabs, in tile areas (a quarter turn is priced like a U-turn
+/// by the route; this is its share in ranking decompositions).
+const JOIN_PRICE: f64 = 1.0;
+
+/// The cheapest slab decompositions of `axis_shape` (axis frame, unit tiles) into at least
+/// two slabs for rows of `style`, cheapest first, each in both orders along its axis: at
+/// most `2 KEEP`. Empty when the shape is not one piece or has no cut.
+pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
+    let r = Raster::new(axis_shape);
+    let s = Search::new(&r, style.pitch);
+    let Some(b) = s.whole() else {
+        return Vec::new();
+    };
+    let mut priced: HashMap<PBox, Option<(f64, Dir)>> = HashMap::new();
+    let mut found: Vec<CapPlan> = Vec::new();
+    for across_x in [true, false] {
+        let (lo, hi) = if across_x { (b.x0, b.x1) } else { (b.y0, b.y1) };
+        let cuts = critical_cuts(&s, b, across_x);
+        for mask in 1u32..(1u32 << cuts.len()) {
+            let mut edges = vec![lo];
+            edges.extend(
+                cuts.iter()
+                    .enumerate()
+                    .filter(|(i, _)| mask >> i & 1 == 1)
+                    .map(|(_, &c)| c),
+            );
+            edges.push(hi);
+            let mut cells = Vec::new();
+            let mut cost = JOIN_PRICE * (edges.len() - 2) as f64;
+            let mut whole = true;
+            for e in edges.windows(2) {
+                let slab = if across_x {
+                    PBox {
+                        x0: e[0],
+                        x1: e[1],
+                        ..b
+                    }
+                } else {
+                    PBox {
+                        y0: e[0],
+                        y1: e[1],
+                        ..b
+                    }
+                };
+                let Some(t) = s.tight(slab).filter(|&t| s.components(t) == 1) else {
+                    whole = false;
+                    break;
+                };
+                let price = *priced
+                    .entry(t)
+                    .or_insert_with(|| slab_price(axis_shape, &s, t, style));
+                let Some((c, n)) = price else {
+                    whole = false;
+                    break;
+                };
+                cost += c;
+                cells.push(CapCell {
+                    rect: s.rect(t),
+                    n,
+                    either_sign: true,
+                });
+            }
+            if whole && cells.len() > 1 {
+                found.push(CapPlan {
+                    cells,
+                    cost,
+                    slabs: true,
+                });
+            }
+        }
+    }
+    found.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+    found.truncate(KEEP);
+    found
+        .into_iter()
+        .flat_map(|p| {
+            let mut rev = p.clone();
+            rev.cells.reverse();
+            [p, rev]
+        })
+        .collect()
+}
+
+/// The lines (pixel columns if `across_x`, else pixel rows) of `b` at which a slab may be
+/// cut: where the runs of a line differ in number from the line before or an end moves by
+/// more than a tile; at most [`MAX_CUTS`], the largest changes, at least a tile from the
+/// box's sides and from each other, in order.
+fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool) -> Vec<usize> {
+    let tile = s.raster().per_tile();
+    let min = tile.ceil() as usize;
+    let (lo, hi, alo, ahi) = if across_x {
+        (b.x0, b.x1, b.y0, b.y1)
+    } else {
+        (b.y0, b.y1, b.x0, b.x1)
+    };
+    // (line, size of the change)
+    let mut changes: Vec<(usize, f64)> = Vec::new();
+    let mut prev = s.runs(!across_x, lo, alo, ahi);
+    for k in lo + 1..hi {
+        let runs = s.runs(!across_x, k, alo, ahi);
+        let change = if runs.len() != prev.len() {
+            f64::INFINITY
+        } else {
+            runs.iter()
+                .zip(&prev)
+                .map(|(a, p)| (a.0.abs_diff(p.0)).max(a.1.abs_diff(p.1)) as f64)
+                .fold(0.0, f64::max)
+        };
+        if change > tile && k >= lo + min && k + min <= hi {
+            changes.push((k, change));
+        }
+        prev = runs;
+    }
+    // the largest changes first, each at least a tile from those kept
+    changes.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    let mut out: Vec<usize> = Vec::new();
+    for (k, _) in changes {
+        if out.len() >= MAX_CUTS {
+            break;
+        }
+        if out.iter().all(|&o| o.abs_diff(k) >= min) {
+            out.push(k);
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// The misfit of the slab `t` swept in its better direction, and that direction (the
+/// stacking direction of its rows): the row programme's least cost over the lattice phases,
+/// plus the area the rows of `style` would cover were they perfect (so that a slab filled
+/// as well as rows can fill costs about its turns), in tile areas. None if no row fits.
+fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Option<(f64, Dir)> {
+    let cell = axis_shape.clipped(s.rect(t));
+    let ideal = cell.area() * tile_area() / style.pitch;
+    let mut best: Option<(f64, Dir)> = None;
+    for (n, work) in [
+        (Dir::PosY, cell.clone()),
+        // rows along y: the cell with x and y swapped
+        (
+            Dir::PosX,
+            cell.transformed(Affine::new([0.0, 1.0, 1.0, 0.0, 0.0, 0.0])),
+        ),
+    ] {
+        let cost = Lattice::phased(work.bbox(), style.pitch)
+            .filter_map(|lat| {
+                solve_rows(&work, style, lat, None, None)
+                    .best_end(|_| true)
+                    .map(|e| e.0)
+            })
+            .fold(f64::INFINITY, f64::min);
+        if cost.is_finite() && best.is_none_or(|b| cost + ideal < b.0) {
+            best = Some((cost + ideal, n));
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::rows::TIGHT;
+    use crate::shape::Ring;
+    use kurbo::Point;
+
+    fn poly(points: &[(f64, f64)]) -> Shape {
+        Shape::from_rings(vec![Ring {
+            points: points.iter().map(|&p| Point::from(p)).collect(),
+        }])
+    }
+
+    /// A key in tile widths (head 12 x 14.3, shaft 20 x 2.9 with two teeth below it): the
+    /// cheapest slabs cut the head off the shaft, and the shaft's slab, teeth included, is
+    /// swept in rows along its length (one serpentine of columns across it would need 14
+    /// U-turns); each decomposition comes in both orders.
+    #[test]
+    fn a_key_is_cut_at_its_head_and_its_shaft_swept_along() {
+        let key = poly(&[
+            (0.0, 0.0),
+            (12.0, 0.0),
+            (12.0, 5.7),
+            (24.4, 5.7),
+            (24.4, 2.9),
+            (26.6, 2.9),
+            (26.6, 5.7),
+            (29.2, 5.7),
+            (29.2, 2.0),
+            (32.1, 2.0),
+            (32.1, 8.6),
+            (12.0, 8.6),
+            (12.0, 14.3),
+            (0.0, 14.3),
+        ]);
+        let plans = slab_plans(&key, TIGHT.priced(1.0));
+        let best = &plans[0];
+        assert!(best.slabs && best.cells.len() >= 2, "{best:?}");
+        let head = &best.cells[0];
+        assert!(
+            head.rect.x0 < 0.5 && (head.rect.x1 - 12.0).abs() < 0.5,
+            "{best:?}"
+        );
+        let shaft = &best.cells[1];
+        assert!((shaft.rect.x0 - 12.0).abs() < 0.5, "{best:?}");
+        assert_eq!(shaft.n, Dir::PosY, "the shaft in rows along x: {best:?}");
+        assert!(
+            shaft.rect.x1 > 26.6,
+            "the shaft's slab reaches past both teeth: {best:?}"
+        );
+        assert!(shaft.rect.y0 < 3.5, "and holds them: {best:?}");
+        // the same decomposition in the other order next
+        let rev: Vec<_> = plans[1].cells.iter().rev().map(|c| c.rect).collect();
+        let fwd: Vec<_> = best.cells.iter().map(|c| c.rect).collect();
+        assert_eq!(rev, fwd);
+    }
+
+    /// A convex shape has no cut.
+    #[test]
+    fn a_square_has_no_slabs() {
+        let s = poly(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        assert!(slab_plans(&s, TIGHT).is_empty());
+    }
+}
