@@ -88,3 +88,25 @@ fn a_serpentine_of_2000_tiles_swings_no_tile_faster_than_half_a_metre_a_second()
         "{f:?}"
     );
 }
+
+#[test]
+fn two_folds_between_long_sides_creep_to_their_ends_and_slow_as_the_cube() {
+    // S*n LL S*n, inertial: each fold turns two sides of n tiles (45 to 90 m) for months, its
+    // speed far under the magnets' rest test; before the rest test measured a joint on its
+    // own fold time, n = 1500 ended `stalled` with joint 1501 at 15 degrees and n = 3000
+    // with magnet 6001 0.04 mm short of its end, "balanced" while the fold crept on
+    let fold = |n: usize| {
+        let tl = engine(&format!("S*{n} LL S*{n}"), 0.3, Dynamics::Inertial);
+        let s = tl.summary();
+        assert!(s.completed, "n = {n}: {:?}", s.reason);
+        assert_eq!(tl.folds.len(), 2, "{n}");
+        tl.folds
+            .iter()
+            .map(|f| f.end - f.start)
+            .fold(0.0, f64::max)
+    };
+    let (short, long) = (fold(1500), fold(3000));
+    // drag-bound: the sides' drag about the hinge grows as n^3, 8 for twice the tiles
+    let ratio = long / short;
+    assert!(ratio > 7.0 && ratio < 9.0, "{short} {long} {ratio}");
+}

@@ -118,6 +118,12 @@ pub(crate) struct InertialModel {
     pub(crate) scale: f64,
     /// The shortest of the inertial time and a path's time at the bonded force (first step).
     pub(crate) first_step: f64,
+    /// Per unknown, the time scale its rest test is measured on: the run's `scale`, or for a
+    /// folding joint, if longer, its own slowest time (its fold under the bonded rest torque
+    /// against both sides' drag, [`Model::fold_time`], and its inertial time against that
+    /// drag). A fold whose sides are long turns for days at a speed that is tiny on the
+    /// magnets' scale, and is not at rest.
+    rest_scale: Vec<f64>,
 }
 
 impl fmt::Debug for InertialModel {
@@ -138,10 +144,28 @@ impl InertialModel {
         let c = Coefficients::new(model);
         // the reference's scale (its inertial driver)
         let (tau, move_time, drag_time) = c.times(model);
+        let scale = tau.max(move_time).max(drag_time);
+        let rest_scale = model
+            .unknowns
+            .iter()
+            .enumerate()
+            .map(|(i, u)| match *u {
+                Unknown::Joint(j) if c.joints[i].is_some() => {
+                    let inertial = if c.damping[i] > 0.0 {
+                        1.0 / c.damping[i]
+                    } else {
+                        0.0
+                    };
+                    scale.max(model.fold_time(j)).max(inertial)
+                }
+                _ => scale,
+            })
+            .collect();
         Some(InertialModel {
             restitution: model.geometry.design(0).restitution,
-            scale: tau.max(move_time).max(drag_time),
+            scale,
             first_step: tau.min(move_time),
+            rest_scale,
             c,
         })
     }
@@ -193,10 +217,13 @@ impl InertialModel {
         }
     }
 
-    /// Whether an unknown with velocity `v` and acceleration `a` is quiet (the reference's
-    /// rest test).
-    pub(crate) fn quiet(&self, v: f64, a: f64) -> bool {
-        v.abs() * self.scale < 1e-7 && a.abs() * self.scale * self.scale < 1e-7
+    /// Whether unknown `g` (state index) with velocity `v` and acceleration `a` is quiet:
+    /// it would move less than 1e-7 of its range over its own time scale (the reference's
+    /// and the local solves' rest test). A slow fold's joint is measured on its fold time, so
+    /// a fold that creeps under its torque against the drag is not taken for a balance.
+    pub(crate) fn quiet(&self, g: usize, v: f64, a: f64) -> bool {
+        let t = self.rest_scale.get(g).copied().unwrap_or(self.scale);
+        v.abs() * t < 1e-7 && a.abs() * t * t < 1e-7
     }
 }
 
@@ -215,6 +242,28 @@ mod tests {
 
     fn inertial() -> ModelOptions {
         ModelOptions::default().with_dynamics(Dynamics::Inertial)
+    }
+
+    #[test]
+    fn a_fold_creeping_against_long_sides_is_not_quiet() {
+        // S*1500 LL S*1500: each fold turns two 45 m sides, for days, at a speed far under
+        // 1e-7 of its range per magnet time scale; the rest test measures it on its own fold
+        // time (before, the engine called that creep a balance and the run `stalled`)
+        let chain = Chain::parse("S*1500 LL S*1500").unwrap();
+        let designs = TileDesigns::global(Design::thesis());
+        let model = Model::new(&chain, &designs, &inertial()).unwrap();
+        let im = InertialModel::new(&model).unwrap();
+        let g = model.joint_var(1500).unwrap();
+        let fold = model.fold_time(1500);
+        assert!(fold > 1e6 * im.scale, "{fold} {}", im.scale);
+        // a tenth of the fold's mean speed, no acceleration: moving
+        let v = 0.1 / fold;
+        assert!(v * im.scale < 1e-7);
+        assert!(!im.quiet(g, v, 0.0));
+        // the same speed on a magnet is quiet on the magnets' scale
+        assert!(im.quiet(model.magnet_var(3001), v, 0.0));
+        // a joint that truly stopped is quiet
+        assert!(im.quiet(g, 1e-9 / fold, 0.0));
     }
 
     #[test]
@@ -246,6 +295,6 @@ mod tests {
         assert!(im.released(&model, g, Mode::AtStart, push));
         assert!(!im.released(&model, g, Mode::AtStart, -push));
         assert!(im.released(&model, g, Mode::AtEnd, -push));
-        assert!(im.quiet(0.0, 0.0) && !im.quiet(1.0, 0.0));
+        assert!(im.quiet(g, 0.0, 0.0) && !im.quiet(g, 1.0, 0.0));
     }
 }

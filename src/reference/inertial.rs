@@ -219,7 +219,9 @@ pub(crate) fn run_inertial(
             };
             stepper.rhs(&sys, &z, &mut f, &mut stats);
         }
-        let quiet = free.iter().all(|&i| im.quiet(z[2 * i + 1], f[2 * i + 1]));
+        let quiet = free
+            .iter()
+            .all(|&i| im.quiet(i, z[2 * i + 1], f[2 * i + 1]));
         if quiet && t > log.last_event + scale {
             break;
         }

@@ -572,9 +572,9 @@ impl Driver {
             }
             let t = self.t;
             let free = self.packed.len();
-            let quiet = (0..free).all(|p| {
+            let quiet = self.packed.iter().enumerate().all(|(p, &i)| {
                 let v = BASE + 2 * p + 1;
-                self.setup.im.quiet(self.zp[v], f[v])
+                self.setup.im.quiet(i, self.zp[v], f[v])
             });
             if quiet && t > self.log.last_event + scale {
                 break;

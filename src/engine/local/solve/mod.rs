@@ -418,7 +418,10 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
                     }
                 }
                 Some(im) => {
-                    if free.iter().all(|&i| im.quiet(z[m + i], f[m + i])) {
+                    if free
+                        .iter()
+                        .all(|&i| im.quiet(s.globals[i], z[m + i], f[m + i]))
+                    {
                         break;
                     }
                 }
