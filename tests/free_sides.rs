@@ -100,10 +100,7 @@ fn two_folds_between_long_sides_creep_to_their_ends_and_slow_as_the_cube() {
         let s = tl.summary();
         assert!(s.completed, "n = {n}: {:?}", s.reason);
         assert_eq!(tl.folds.len(), 2, "{n}");
-        tl.folds
-            .iter()
-            .map(|f| f.end - f.start)
-            .fold(0.0, f64::max)
+        tl.folds.iter().map(|f| f.end - f.start).fold(0.0, f64::max)
     };
     let (short, long) = (fold(1500), fold(3000));
     // drag-bound: the sides' drag about the hinge grows as n^3, 8 for twice the tiles
