@@ -162,7 +162,7 @@ fn a_147_tile_serpentine_reports_its_clearance() {
     let chain = Chain::parse(&word).unwrap();
     assert!((140..160).contains(&chain.len()), "{}", chain.len());
     // fold-run's defaults: the thesis' design, inertial
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let (_, summary) = simulate(
         &chain,
         &TileDesigns::global(Design::thesis()),
