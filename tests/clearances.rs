@@ -174,3 +174,98 @@ fn a_147_tile_serpentine_reports_its_clearance() {
     // loose rows never come nearer than two tiles one apart along the chain
     assert!(c.mm > 0.0 && c.tiles.1 >= c.tiles.0 + 2, "{c:?}");
 }
+
+/// A 1,000-tile serpentine (rows of 20 joined by `LL` and `RR`, fold-run's defaults) reports
+/// its clearance: the pair walk followed every pair and gave `None` past 1,000 tiles (and
+/// past its work budget from about 200); it now follows only the pairs that come as near as
+/// the final shape's nearest (BENCHMARKS.md: about 3 s of CPU).
+#[test]
+fn a_1000_tile_serpentine_reports_its_clearance() {
+    let mut word = String::from("S*19");
+    let mut letters = 19;
+    let mut row = 0;
+    while letters < 999 {
+        let r = (999 - letters - 2).min(18);
+        word.push_str(if row % 2 == 0 { " LL " } else { " RR " });
+        word.push_str(&format!("S*{r}"));
+        letters += 2 + r;
+        row += 1;
+    }
+    let chain = Chain::parse(&word).unwrap();
+    assert_eq!(chain.len(), 1000);
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let (_, summary) = simulate(
+        &chain,
+        &TileDesigns::global(Design::thesis()),
+        &EngineOptions::default().with_model(model),
+        &CheckOptions::default(),
+    )
+    .unwrap();
+    let c = summary.clearance.expect("the clearance is measured");
+    // the U-turns' corners: tiles two apart, their 45-degree faces sqrt(2) - 1 widths apart
+    let w = Design::thesis().tile_width;
+    assert!((c.mm / w - (2f64.sqrt() - 1.0)).abs() < 1e-3, "{c:?}");
+    assert_eq!(c.tiles.1, c.tiles.0 + 2, "{c:?}");
+}
+
+/// This process's CPU time so far (user + system), seconds, from `/proc/self/stat`.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<&str> = stat
+        .rsplit_once(')')
+        .map_or("", |r| r.1)
+        .split_whitespace()
+        .collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|f| f.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    // utime and stime, fields 14 and 15 of stat (11 and 12 after the name), at 100 Hz
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// The cost of the clearance on serpentines of rows of 20 (`S*19 LL S*18 RR S*18 ...`) of
+/// `CLEARANCE_TILES` tiles (comma-separated, default 1000,10000), fold-run's defaults:
+/// `simulate` with and without the clearance, CPU seconds printed (BENCHMARKS.md):
+/// `CLEARANCE_TILES=1000,10000 cargo test --release -p foldchain --test clearances
+/// clearance_cost -- --ignored --nocapture --test-threads 1`.
+#[test]
+#[ignore = "a benchmark: serpentines of 1,000 and 10,000 tiles with and without the clearance"]
+fn clearance_cost() {
+    let sizes = std::env::var("CLEARANCE_TILES").unwrap_or_else(|_| "1000,10000".into());
+    for n in sizes
+        .split(',')
+        .filter_map(|s| s.trim().parse::<usize>().ok())
+    {
+        let mut word = String::from("S*19");
+        let (mut letters, mut row) = (19, 0);
+        while letters + 2 < n {
+            let r = (n - 1 - letters - 2).min(18);
+            word.push_str(if row % 2 == 0 { " LL " } else { " RR " });
+            word.push_str(&format!("S*{r}"));
+            letters += 2 + r;
+            row += 1;
+        }
+        let chain = Chain::parse(&word).unwrap();
+        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+        for clearance in [false, true] {
+            let t = cpu_seconds();
+            let (_, summary) = simulate(
+                &chain,
+                &TileDesigns::global(Design::thesis()),
+                &EngineOptions::default().with_model(model),
+                &CheckOptions::default().with_clearance(clearance),
+            )
+            .unwrap();
+            println!(
+                "{} tiles, clearance {clearance}: {:.2} s CPU, {:?}, clearance {:?}",
+                chain.len(),
+                cpu_seconds() - t,
+                summary.result,
+                summary.clearance.map(|c| (c.mm, c.tiles, c.time))
+            );
+        }
+    }
+}

@@ -15,6 +15,8 @@
 
 #[path = "../tests/browser/mod.rs"]
 mod browser;
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 use std::time::Instant;
 

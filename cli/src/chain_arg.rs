@@ -118,8 +118,7 @@ mod tests {
             e.contains("chain argument 'SLXS'") && e.contains("'X'"),
             "{e}"
         );
-        let dir = std::env::temp_dir().join(format!("foldchain-input-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::output::scratch("chain-arg");
         let f = dir.join("c.txt");
         std::fs::write(&f, "# a U-turn\nSS SL LL LS SS\n").unwrap();
         assert_eq!(read_chain_arg(f.to_str().unwrap()).unwrap().len(), 5);

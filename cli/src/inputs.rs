@@ -287,8 +287,7 @@ mod tests {
 
     #[test]
     fn an_output_equal_to_an_input_is_refused_through_links() {
-        let dir = std::env::temp_dir().join(format!("foldchain-inputs-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::output::scratch("inputs");
         let f = dir.join("sq.svg");
         std::fs::write(&f, "x").unwrap();
         let dotted = dir.join(".").join("sq.svg");

@@ -51,6 +51,21 @@ pub fn number_in(text: &str, min: f64, max: f64, unit: &str, why: &str) -> Resul
     }
 }
 
+/// A number that [`number_in`] read (`parsed`), kept when `keep` holds for it, else the
+/// message `expected {expected}`: for a range open at one end (`above 0`, `below 0.01`).
+pub fn open_range(
+    parsed: Result<f64, String>,
+    keep: impl Fn(f64) -> bool,
+    expected: &str,
+) -> Result<f64, String> {
+    let v = parsed?;
+    if keep(v) {
+        Ok(v)
+    } else {
+        Err(format!("expected {expected}"))
+    }
+}
+
 /// `n` with thin groups of three digits: `1,000,000`.
 pub fn thousands(n: u64) -> String {
     let digits = n.to_string();
@@ -87,5 +102,17 @@ mod tests {
         assert_eq!(e, "expected a number from 0.001 to 1000 N s/m");
         assert!(number_in("inf", 0.0, 1.0, "", "").is_err());
         assert_eq!(thousands(1234567), "1,234,567");
+    }
+
+    #[test]
+    fn an_open_end_is_refused_with_its_own_words() {
+        let above_0 = |s| open_range(number_in(s, 0.0, 2.0, "mm", ""), |v| v > 0.0, "above 0");
+        assert_eq!(above_0("0.5"), Ok(0.5));
+        assert_eq!(above_0("0").unwrap_err(), "expected above 0");
+        // out of the closed range: number_in's message
+        assert_eq!(
+            above_0("3").unwrap_err(),
+            "expected a number from 0 to 2 mm"
+        );
     }
 }

@@ -159,18 +159,21 @@ impl OutputDir {
     }
 }
 
+/// For the crate's unit tests: a new empty directory `foldchain-unit-{tag}-{process id}` in
+/// the temporary directory (what an earlier run left there is removed first).
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+pub(crate) fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("foldchain-unit-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-
-    fn scratch(tag: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("foldchain-output-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
-    }
 
     #[test]
     fn writes_and_replaces() {

@@ -422,18 +422,24 @@ fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-
-    fn scratch(tag: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("foldchain-rundir-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
-    }
+    use crate::output::scratch;
 
     fn ours(p: &Path) -> bool {
         p.file_name()
             .is_some_and(|n| n.to_string_lossy().starts_with("run-"))
+    }
+
+    /// A scratch directory for test `tag` and an empty `out` directory in it.
+    fn base_and_out(tag: &str) -> (PathBuf, PathBuf) {
+        let base = scratch(tag);
+        let dir = base.join("out");
+        std::fs::create_dir_all(&dir).unwrap();
+        (base, dir)
+    }
+
+    /// The text of file `path`.
+    fn text(path: &Path) -> String {
+        std::fs::read_to_string(path).unwrap()
     }
 
     fn names(dir: &Path) -> Vec<String> {
@@ -447,8 +453,7 @@ mod tests {
 
     #[test]
     fn a_run_replaces_the_earlier_one_and_keeps_the_users_files() {
-        let base = scratch("replace");
-        let dir = base.join("out");
+        let (base, dir) = base_and_out("replace");
         std::fs::create_dir_all(dir.join("notes")).unwrap();
         std::fs::write(dir.join("run-a.txt"), "old").unwrap();
         std::fs::write(dir.join("run-old-only.txt"), "old").unwrap();
@@ -458,27 +463,15 @@ mod tests {
         // nothing in DIR changes while the run writes
         std::fs::write(staged.path().join("run-a.txt"), "new").unwrap();
         std::fs::write(staged.path().join("run-b.txt"), "new").unwrap();
-        assert_eq!(
-            std::fs::read_to_string(dir.join("run-a.txt")).unwrap(),
-            "old"
-        );
+        assert_eq!(text(&dir.join("run-a.txt")), "old");
         // a second writer is refused while the first holds the lock
         let second = StagedDir::open(&dir, ours).unwrap_err();
         assert!(matches!(second, RunDirError::Locked { .. }), "{second}");
         staged.commit().unwrap();
         assert_eq!(names(&dir), ["mine.txt", "notes", "run-a.txt", "run-b.txt"]);
-        assert_eq!(
-            std::fs::read_to_string(dir.join("run-a.txt")).unwrap(),
-            "new"
-        );
-        assert_eq!(
-            std::fs::read_to_string(dir.join("mine.txt")).unwrap(),
-            "user"
-        );
-        assert_eq!(
-            std::fs::read_to_string(dir.join("notes/n.txt")).unwrap(),
-            "user"
-        );
+        assert_eq!(text(&dir.join("run-a.txt")), "new");
+        assert_eq!(text(&dir.join("mine.txt")), "user");
+        assert_eq!(text(&dir.join("notes/n.txt")), "user");
         // nothing is left beside DIR, and the lock is free again
         assert_eq!(names(&base), ["out"]);
         drop(StagedDir::open(&dir, ours).unwrap());
@@ -488,27 +481,20 @@ mod tests {
 
     #[test]
     fn an_abandoned_run_leaves_the_directory_as_it_was() {
-        let base = scratch("abandon");
-        let dir = base.join("out");
-        std::fs::create_dir_all(&dir).unwrap();
+        let (base, dir) = base_and_out("abandon");
         std::fs::write(dir.join("run-a.txt"), "old").unwrap();
         let staged = StagedDir::open(&dir, ours).unwrap();
         std::fs::write(staged.path().join("run-a.txt"), "half").unwrap();
         drop(staged);
         assert_eq!(names(&dir), ["run-a.txt"]);
-        assert_eq!(
-            std::fs::read_to_string(dir.join("run-a.txt")).unwrap(),
-            "old"
-        );
+        assert_eq!(text(&dir.join("run-a.txt")), "old");
         assert_eq!(names(&base), ["out"]);
         std::fs::remove_dir_all(&base).unwrap();
     }
 
     #[test]
     fn a_killed_runs_staging_is_cleared_and_a_moved_user_file_put_back() {
-        let base = scratch("killed");
-        let dir = base.join("out");
-        std::fs::create_dir_all(&dir).unwrap();
+        let (base, dir) = base_and_out("killed");
         // what a run killed between moving a user's folder and the exchange leaves
         let stale = base.join(".out.fold-staging.999999");
         std::fs::create_dir_all(stale.join("notes")).unwrap();
@@ -529,7 +515,7 @@ mod tests {
         std::fs::write(&f, "x").unwrap();
         let e = StagedDir::open(&f, ours).unwrap_err();
         assert!(e.to_string().contains("not a directory"), "{e}");
-        assert_eq!(std::fs::read_to_string(&f).unwrap(), "x");
+        assert_eq!(text(&f), "x");
         std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -4,11 +4,11 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 mod common;
-use common::{assert_exit, run, stderr};
+use common::{absent, assert_exit, run, stderr};
 
 #[test]
 fn a_free_body_run_writes_the_run_files() {
-    let dir = std::env::temp_dir().join(format!("fb-cli-{}", std::process::id()));
+    let dir = absent("run-files");
     let out = dir.to_str().unwrap();
     let o = run(
         "fold-run",
@@ -49,7 +49,7 @@ fn a_free_body_run_writes_the_run_files() {
 
 #[test]
 fn overdamped_free_body_is_refused() {
-    let dir = std::env::temp_dir().join(format!("fb-cli-od-{}", std::process::id()));
+    let dir = absent("overdamped");
     let o = run(
         "fold-run",
         &[

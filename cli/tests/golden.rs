@@ -12,7 +12,7 @@ use std::process::Command;
 use serde_json::Value;
 
 mod common;
-use common::{absent, root};
+use common::{absent, root, THESIS_SQUARES};
 
 /// Relative tolerance on numbers: far above the rounding a reordered sum may change, far
 /// below any change of model or algorithm.
@@ -121,28 +121,8 @@ fn collision_verdicts_are_unchanged() {
 
 /// The square planned with options: the recorded file and the options.
 const OPTION_PLANS: [(&str, [&str; 6]); 2] = [
-    (
-        "plan-square-107-tight.json",
-        [
-            "--tiles",
-            "107",
-            "--turns",
-            "tight",
-            "--tiles-tolerance",
-            "0",
-        ],
-    ),
-    (
-        "plan-square-82-loose.json",
-        [
-            "--tiles",
-            "82",
-            "--turns",
-            "loose",
-            "--tiles-tolerance",
-            "0",
-        ],
-    ),
+    ("plan-square-107-tight.json", THESIS_SQUARES[0]),
+    ("plan-square-82-loose.json", THESIS_SQUARES[1]),
 ];
 
 /// `fold-plan --json` of `shapes/{stem}.svg` with `args`, against `tests/golden/{file}`; an

@@ -16,6 +16,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
+
 /// One option: its flag, the probability it is given, and its values (`None`: a flag
 /// without a value). `@DIR`, `@FILE` and `@...` in a value stand for files of the setup.
 struct Opt {
@@ -43,7 +45,6 @@ const NUMBERS: &[&str] = &[
 
 struct Tool {
     name: &'static str,
-    bin: &'static str,
     positional: &'static [&'static str],
     options: Vec<Opt>,
 }
@@ -68,11 +69,20 @@ const CHAINS: &[&str] = &[
     "@MISSING.svg",
 ];
 
+/// Every tool, each option list ending in `--bogus`, a flag no tool has, given rarely.
 fn tools() -> Vec<Tool> {
+    let mut tools = own_options();
+    for t in &mut tools {
+        t.options.push(flag("--bogus", 0.01));
+    }
+    tools
+}
+
+/// Every tool with its own options.
+fn own_options() -> Vec<Tool> {
     vec![
         Tool {
             name: "fold-run",
-            bin: env!("CARGO_BIN_EXE_fold-run"),
             positional: CHAINS,
             options: vec![
                 opt(
@@ -138,12 +148,10 @@ fn tools() -> Vec<Tool> {
                     &["30", "20", "0", "1e-300", "1e308", "x"],
                 ),
                 opt("--turns", 0.1, &["tight", "loose", "auto", "x"]),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-check",
-            bin: env!("CARGO_BIN_EXE_fold-check"),
             positional: CHAINS,
             options: vec![
                 flag("--final-only", 0.3),
@@ -154,12 +162,10 @@ fn tools() -> Vec<Tool> {
                 ),
                 flag("--json", 0.3),
                 flag("--quiet", 0.2),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-enum",
-            bin: env!("CARGO_BIN_EXE_fold-enum"),
             positional: &[],
             options: vec![
                 opt(
@@ -186,12 +192,10 @@ fn tools() -> Vec<Tool> {
                 ),
                 flag("--json", 0.3),
                 flag("--quiet", 0.3),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-tolerance",
-            bin: env!("CARGO_BIN_EXE_fold-tolerance"),
             positional: &[
                 "SL",
                 "LL",
@@ -243,12 +247,10 @@ fn tools() -> Vec<Tool> {
                 opt("--tiles", 0.1, &["10", "12", "0", "x"]),
                 opt("--turns", 0.1, &["tight", "loose", "x"]),
                 flag("--quiet", 0.2),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-plan",
-            bin: env!("CARGO_BIN_EXE_fold-plan"),
             positional: &[
                 "@SQUARE",
                 "@SQUARE",
@@ -272,12 +274,10 @@ fn tools() -> Vec<Tool> {
                 opt("--preview", 0.2, &["@DIR.svg", "@DIR.svg", "@SQUARE"]),
                 flag("--json", 0.2),
                 flag("--quiet", 0.3),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-validate",
-            bin: env!("CARGO_BIN_EXE_fold-validate"),
             positional: &[],
             options: vec![
                 // always a scene: the whole validation takes minutes
@@ -300,12 +300,10 @@ fn tools() -> Vec<Tool> {
                 opt("--force-law", 0.2, &["dipole", "cylinder", "x"]),
                 opt("--dynamics", 0.2, &["overdamped", "inertial", "x"]),
                 flag("--quiet", 0.3),
-                flag("--bogus", 0.01),
             ],
         },
         Tool {
             name: "fold-print",
-            bin: env!("CARGO_BIN_EXE_fold-print"),
             positional: &[
                 "SL",
                 "SLLS",
@@ -343,7 +341,6 @@ fn tools() -> Vec<Tool> {
                 opt("--tiles", 0.1, &["10", "12", "0", "x"]),
                 opt("--turns", 0.1, &["tight", "loose", "x"]),
                 flag("--quiet", 0.2),
-                flag("--bogus", 0.01),
             ],
         },
     ]
@@ -522,7 +519,7 @@ fn fuzz(name: &str, default_cases: usize) {
                 .join(" ")
         );
         let started = Instant::now();
-        let ran = run_with_deadline(tool.bin, &args, &setup.base);
+        let ran = run_with_deadline(common::exe(name), &args, &setup.base);
         slowest.push((started.elapsed().as_secs_f64(), command.clone()));
         slowest.sort_by(|a, b| b.0.total_cmp(&a.0));
         slowest.truncate(3);

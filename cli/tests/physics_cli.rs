@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 mod common;
-use common::{absent, assert_exit, run, stderr, stdout_json, tool};
+use common::{absent, assert_exit, run, stderr, stdout_json, validate_quick};
 
 #[test]
 fn both_force_laws_fold_the_three_tile_experiments() {
@@ -44,29 +44,10 @@ fn both_force_laws_fold_the_three_tile_experiments() {
 #[test]
 fn fold_validate_takes_the_force_law() {
     let out = absent("validate-cylinder");
-    let o = run(
-        "fold-validate",
-        &[
-            "--scene",
-            "3-tile SL",
-            "--quick",
-            "--json",
-            "--force-law",
-            "cylinder",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
-    assert_exit(&o, 0);
-    let v = stdout_json(&o);
+    let v = validate_quick("3-tile SL", &["--force-law", "cylinder"], &out);
     assert_eq!(v["scenes"][0]["reference_outcome"], "completed");
     // the same scene with the dipole takes less time: the law reached the reference
-    let dipole = tool("fold-validate")
-        .args(["--scene", "3-tile SL", "--quick", "--json", "--out"])
-        .arg(out.join("dipole"))
-        .output()
-        .unwrap();
-    let d = stdout_json(&dipole);
+    let d = validate_quick("3-tile SL", &[], &out.join("dipole"));
     let dur = |v: &serde_json::Value| v["scenes"][0]["reference_duration_s"].as_f64().unwrap();
     assert!(dur(&v) > dur(&d), "{} {}", dur(&v), dur(&d));
     let bad = run("fold-validate", &["--force-law", "coulomb"]);

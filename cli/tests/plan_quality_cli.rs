@@ -10,7 +10,7 @@ use std::process::Output;
 use foldchain_planner::Plan;
 
 mod common;
-use common::{shape, stderr, stdout, tool};
+use common::{shape, stderr, stdout, tool, THESIS_SQUARES};
 
 fn fold_plan(args: &[&str]) -> Output {
     tool("fold-plan")
@@ -90,30 +90,15 @@ fn assert_folds(p: &Plan) {
 #[test]
 fn the_thesis_squares() {
     let sq = shape("square.svg");
-    let t = plan(&[
-        sq.to_str().unwrap(),
-        "--tiles",
-        "107",
-        "--turns",
-        "tight",
-        "--tiles-tolerance",
-        "0",
-    ]);
-    assert_eq!(t.tiles, 107);
-    assert_eq!(rows(&t), vec![11; 9], "{}", t.word);
-    assert_folds(&t);
-    let l = plan(&[
-        sq.to_str().unwrap(),
-        "--tiles",
-        "82",
-        "--turns",
-        "loose",
-        "--tiles-tolerance",
-        "0",
-    ]);
-    assert_eq!(l.tiles, 82);
-    assert_eq!(rows(&l), vec![12; 6], "{}", l.word);
-    assert_folds(&l);
+    // tight: 9 rows of 11; loose: 6 rows of 12
+    for (options, (tiles, rows_of, row)) in THESIS_SQUARES.iter().zip([(107, 9, 11), (82, 6, 12)]) {
+        let mut args = vec![sq.to_str().unwrap()];
+        args.extend(options);
+        let p = plan(&args);
+        assert_eq!(p.tiles, tiles, "{options:?}");
+        assert_eq!(rows(&p), vec![row; rows_of], "{options:?}: {}", p.word);
+        assert_folds(&p);
+    }
 }
 
 #[test]

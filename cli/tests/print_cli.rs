@@ -12,14 +12,25 @@ use foldchain::{BillOfMaterials, Chain};
 use foldchain_print::read_3mf;
 
 mod common;
-use common::{absent, root, stderr, stdout, tool};
+use common::{absent, root, stderr, stdout, text, tool};
+
+/// Runs tool `name` with `args` from the workspace root.
+fn in_root(name: &str, args: &[&str]) -> Output {
+    tool(name).args(args).current_dir(root()).output().unwrap()
+}
 
 fn print(args: &[&str]) -> Output {
-    tool("fold-print")
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
+    in_root("fold-print", args)
+}
+
+/// fold-plan's plan of the key drawing at `tiles` tiles, as JSON, after asserting exit 0.
+fn key_plan(tiles: &str) -> Output {
+    let o = in_root(
+        "fold-plan",
+        &["shapes/key.svg", "--tiles", tiles, "--json", "--quiet"],
+    );
+    ok(&o);
+    o
 }
 
 fn ok(o: &Output) {
@@ -88,18 +99,12 @@ fn a_u_turn_prints_its_parts_plates_sheet_and_report() {
         assert!(model.objects[0].1.topology().is_sound());
         assert!(dir.join(part["picture"].as_str().unwrap()).is_file());
     }
-    let sheet = std::fs::read_to_string(dir.join("assembly.svg")).unwrap();
+    let sheet = text(&dir.join("assembly.svg"));
     assert!(usvg::Tree::from_str(&sheet, &usvg::Options::default()).is_ok());
     assert_eq!(sheet.matches(">#").count(), 5);
     assert!(sheet.contains("RI S"));
-    assert_eq!(
-        std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
-        "mine"
-    );
-    assert_eq!(
-        std::fs::read_to_string(dir.join("plates/my-plate.3mf")).unwrap(),
-        "mine too"
-    );
+    assert_eq!(text(&dir.join("notes.txt")), "mine");
+    assert_eq!(text(&dir.join("plates/my-plate.3mf")), "mine too");
     // a second run with a smaller bed needs more plates; a third with the default bed
     // removes the plates it no longer writes, and only those
     ok(&print(&[
@@ -150,17 +155,12 @@ fn the_key_prints_its_plans_bill_of_materials() {
     let n = report["tiles"].as_u64().unwrap() as usize;
     assert_eq!(chain.len(), n);
     // the plan of fold-plan itself: the same chain
-    let plan = tool("fold-plan")
-        .args(["shapes/key.svg", "--tiles", "171", "--json", "--quiet"])
-        .current_dir(root())
-        .output()
-        .unwrap();
-    ok(&plan);
+    let plan = key_plan("171");
     let plan: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
     assert_eq!(plan["tile_list"], report["tile_list"]);
     assert!((150..=190).contains(&n), "{n}");
     assert_eq!(plate_counts(&dir), bom_by_name(&chain));
-    let sheet = std::fs::read_to_string(dir.join("assembly.svg")).unwrap();
+    let sheet = text(&dir.join("assembly.svg"));
     assert_eq!(sheet.matches(">#").count(), n);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -210,12 +210,7 @@ fn bad_input_is_named_with_exit_2_and_writes_nothing() {
 /// plans itself, the same warnings as fold-plan's plan of it; for a plan file, its own.
 #[test]
 fn a_plans_warnings_are_printed_as_fold_plan_prints_them() {
-    let plan = tool("fold-plan")
-        .args(["shapes/key.svg", "--tiles", "300", "--json", "--quiet"])
-        .current_dir(root())
-        .output()
-        .unwrap();
-    ok(&plan);
+    let plan = key_plan("300");
     let plan_err = String::from_utf8_lossy(&plan.stderr).into_owned();
     let mut json: serde_json::Value = serde_json::from_slice(&plan.stdout).unwrap();
     let warnings: Vec<String> = json["warnings"]

@@ -3,11 +3,11 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 mod common;
-use common::{assert_exit, run, stderr};
+use common::{absent, run, stderr, validate_quick};
 
 #[test]
 fn bad_input_exits_2() {
-    let dir = std::env::temp_dir().join(format!("fv-bad-{}", std::process::id()));
+    let dir = absent("bad");
     let out = dir.to_str().unwrap();
     let o = run("fold-validate", &["--scene", "no such scene", "--out", out]);
     assert_eq!(o.status.code(), Some(2));
@@ -25,20 +25,8 @@ fn bad_input_exits_2() {
 
 #[test]
 fn json_rows_for_one_scene() {
-    let dir = std::env::temp_dir().join(format!("fv-json-{}", std::process::id()));
-    let o = run(
-        "fold-validate",
-        &[
-            "--scene",
-            "3-tile SL",
-            "--quick",
-            "--json",
-            "--out",
-            dir.to_str().unwrap(),
-        ],
-    );
-    assert_exit(&o, 0);
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let dir = absent("json");
+    let v = validate_quick("3-tile SL", &[], &dir);
     let rows = v["rows"].as_array().unwrap();
     // the engine with both start rules, then the quick ladders
     let ladder: Vec<(String, Option<f64>)> = rows

@@ -197,24 +197,19 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
     std::fs::create_dir_all(&d).unwrap();
     let design = d.join("c28.json");
     std::fs::write(&design, r#"{"c": 2.8}"#).unwrap();
+    // SL by the kinematic engine with start rule `rule` and design file `design`, if any
+    let fold_sl = |rule: &str, design: Option<&Path>, out: &Path| {
+        let mut c = tool("fold-run");
+        c.args(["SL", "--engine", "kinematic", "--start-rule", rule]);
+        c.args(["--frames", "2"]);
+        if let Some(design) = design {
+            c.arg("--design").arg(design);
+        }
+        c.arg("--out").arg(out).output().unwrap()
+    };
     for (rule, code, result) in [("distance", 0, "completed"), ("force", 1, "stalled")] {
         let out = d.join(rule);
-        let o = tool("fold-run")
-            .args([
-                "SL",
-                "--engine",
-                "kinematic",
-                "--start-rule",
-                rule,
-                "--frames",
-                "2",
-                "--design",
-            ])
-            .arg(&design)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
+        let o = fold_sl(rule, Some(&design), &out);
         assert_eq!(o.status.code(), Some(code), "{rule}");
         let s = summary(&out);
         assert_eq!(s["result"], result, "{rule}");
@@ -227,20 +222,7 @@ fn force_start_rule_stalls_a_fold_at_the_last_joint_that_the_distance_rule_folds
         }
     }
     let out = d.join("wall");
-    let o = tool("fold-run")
-        .args([
-            "SL",
-            "--engine",
-            "kinematic",
-            "--start-rule",
-            "force",
-            "--frames",
-            "2",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = fold_sl("force", None, &out);
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(summary(&out)["result"], "completed");
     let o = tool("fold-run")
@@ -288,6 +270,19 @@ fn without_run_files(files: Vec<(String, Vec<u8>)>) -> Vec<(String, Vec<u8>)> {
         .collect()
 }
 
+/// Runs `fold-run ARGS --out OUT` to exit 0 and asserts that OUT then holds, besides the
+/// run's own files, exactly the files `before`.
+fn run_keeps(args: &[&str], out: &Path, before: &[(String, Vec<u8>)]) {
+    let o = tool("fold-run")
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(without_run_files(tree(out)), before);
+}
+
 #[test]
 fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
     let d = scratch("foreign");
@@ -312,19 +307,7 @@ fn an_output_directory_keeps_every_file_the_tool_did_not_write() {
         assert_eq!(summary(&out)["tiles"], chain.len() + 1);
     }
     // the reference run too
-    let o = tool("fold-run")
-        .args([
-            "SS",
-            "--reference",
-            "--frames",
-            "2",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(0));
-    assert_eq!(without_run_files(tree(&out)), before);
+    run_keeps(&["SS", "--reference", "--frames", "2"], &out, &before);
 }
 
 #[test]
@@ -364,12 +347,7 @@ fn a_run_killed_while_writing_leaves_no_torn_file_and_every_foreign_file() {
         }
     }
     // the next run completes and clears the temporary files a killed run left
-    let o = tool("fold-run")
-        .args(["SLLS", "--frames", "3", "--out", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(0));
-    assert_eq!(without_run_files(tree(&out)), before);
+    run_keeps(&["SLLS", "--frames", "3"], &out, &before);
 }
 
 #[test]

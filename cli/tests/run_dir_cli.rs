@@ -11,7 +11,7 @@ use foldchain_cli::run_dir::StagedDir;
 use foldchain_cli::run_files::owns_run_entry;
 
 mod common;
-use common::{assert_exit, names, scratch, stderr, tool};
+use common::{assert_exit, names, scratch, stderr, text, tool};
 
 fn frames(dir: &Path) -> usize {
     names(dir).iter().filter(|n| n.starts_with("step-")).count()
@@ -34,15 +34,9 @@ fn a_run_replaces_the_earlier_one_whole_and_keeps_a_users_files() {
     std::fs::write(dir.join("engine/sketch.txt"), "mine too").unwrap();
     run("3");
     assert_eq!(frames(&dir), 3);
-    assert_eq!(
-        std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
-        "mine"
-    );
+    assert_eq!(text(&dir.join("notes.txt")), "mine");
     // a folder of the user's that shares a name with --compare's is not the tool's
-    assert_eq!(
-        std::fs::read_to_string(dir.join("engine/sketch.txt")).unwrap(),
-        "mine too"
-    );
+    assert_eq!(text(&dir.join("engine/sketch.txt")), "mine too");
     assert_eq!(names(&base), ["out"], "nothing left beside DIR");
     std::fs::remove_dir_all(&base).unwrap();
 }
@@ -133,7 +127,7 @@ fn a_full_disk_exits_3_and_leaves_the_earlier_run() {
             return;
         }
     }
-    let read = |f: &str| std::fs::read_to_string(base.join(f)).unwrap();
+    let read = |f: &str| text(&base.join(f));
     assert_eq!(read("code.txt").trim(), "3", "{}", read("err.txt"));
     let err = read("err.txt");
     assert!(
@@ -178,23 +172,20 @@ fn interrupts_at_twenty_moments_leave_one_whole_run() {
         let straight = if row == 0 || row == 39 { 24 } else { 23 };
         word.push_str(&format!("S*{straight}"));
     }
-    let earlier_run = || {
+    // the run of `frames` frames into `out`, to its successful end
+    let run_into = |frames: &str, out: &Path| {
         let o = tool("fold-run")
-            .args([word.as_str(), "--frames", "7", "--quiet", "--out"])
-            .arg(&dir)
+            .args([word.as_str(), "--frames", frames, "--quiet", "--out"])
+            .arg(out)
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", stderr(&o));
     };
+    let earlier_run = || run_into("7", &dir);
     // the whole new run, into a directory of its own: its names and how long it takes
     let whole = base.join("whole");
     let started = std::time::Instant::now();
-    let o = tool("fold-run")
-        .args([word.as_str(), "--frames", "3000", "--quiet", "--out"])
-        .arg(&whole)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    run_into("3000", &whole);
     let span = started.elapsed().as_secs_f64();
     let new_names = names(&whole);
     assert_eq!(frames(&whole), 3000);

@@ -18,19 +18,7 @@ use common::{absent, run, stderr, stdout};
 
 /// The slicer, or `None` (with a note) when there is none outside CI.
 fn slicer() -> Option<PathBuf> {
-    let found = std::env::var_os("PATH").and_then(|paths| {
-        std::env::split_paths(&paths)
-            .map(|d| d.join("prusa-slicer"))
-            .find(|p| p.is_file())
-    });
-    if found.is_none() {
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "no prusa-slicer on PATH: CI must have it (.ci/run installs it with apt-get)"
-        );
-        eprintln!("note: no prusa-slicer on PATH; slicer test skipped");
-    }
-    found
+    common::on_path(&["prusa-slicer"], "prusa-slicer", "slicer")
 }
 
 /// Slices `model` to G-code next to it and returns the G-code; fails the test on a non-zero

@@ -37,6 +37,18 @@ const MIN_SLAB_INSIDE: f64 = 0.97;
 const ROUTES_PER_DECOMPOSITION: usize = 2;
 /// Size steps of the tile width search.
 const SIZE_STEPS: usize = 10;
+/// Tiles routed per slab group's width search (the widths it solves times the asked count):
+/// a slab group is an alternative to the caps, routed whole at every width it tries (the
+/// cell router's fold checks grow with the chain), so its search is bounded by counted
+/// work: the full search (16 widths) up to 300 tiles, 4 widths at 1000, 2 at 3000.
+const SLAB_SEARCH_TILES: usize = 4800;
+/// Widths a slab group's search solves at least.
+const SLAB_MIN_WIDTHS: usize = 2;
+/// A slab group whose routes at its first width all collide, or all leave a part empty
+/// larger than this share of the asked count (in tile areas), is given up: other phases of
+/// its rows do not fill a whole slab its order cannot reach (a U's arm swept from the
+/// wrong end leaves a third of the shape empty at every width).
+const SLAB_HOPELESS_EMPTY: f64 = 0.1;
 /// Factors tried on the tile width when every route at the width the steps settle on
 /// collides or leaves a part empty: the joins then fall on the cells at other phases.
 const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
@@ -173,10 +185,10 @@ pub(crate) fn plan_by_caps(
     let mut failed = Failed::default();
     let mut best: Option<Plan> = None;
     for axes in &groups {
-        if let Some(p) = size_group(shape, opts, style, name, axes, &mut failed) {
-            let slabs = axes
-                .iter()
-                .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
+        let slabs = axes
+            .iter()
+            .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
+        if let Some(p) = size_group(shape, opts, style, name, axes, slabs, &mut failed) {
             if slabs && centres_inside(shape, &p) < MIN_SLAB_INSIDE {
                 continue;
             }
@@ -227,13 +239,16 @@ fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
 }
 
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
-/// found, what the others said in `failed`.
+/// found, what the others said in `failed`. A group of `slabs` searches within a budget of
+/// [`SLAB_SEARCH_TILES`] and is given up at its first width if hopeless (see
+/// [`SLAB_HOPELESS_EMPTY`]).
 fn size_group(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     axes: &[(f64, Vec<CapPlan>, f64)],
+    slabs: bool,
     failed: &mut Failed,
 ) -> Option<Plan> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
@@ -258,7 +273,13 @@ fn size_group(
         settle_cost: 0.0,
     };
     let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
-    let found = search.run_checked(target, w0, |w| {
+    let budget = if slabs {
+        (SLAB_SEARCH_TILES / target.max(1)).max(SLAB_MIN_WIDTHS)
+    } else {
+        usize::MAX
+    };
+    let mut at_start = true;
+    let found = search.run_budgeted(target, w0, budget, |w| {
         let mut routes = routes_at(shape, axes, style, w);
         if opts.tile_size.is_none() {
             routes.sort_by_key(|(_, r)| r.word.tiles().abs_diff(target).saturating_sub(tol));
@@ -267,6 +288,7 @@ fn size_group(
             return Attempt::Nothing;
         };
         let n = first.1.word.tiles();
+        let mut here = Failed::default();
         let plans = checked_plans(
             shape,
             style,
@@ -278,8 +300,14 @@ fn size_group(
                 Some(_) => 0,
                 None => n.abs_diff(target).saturating_sub(tol),
             },
-            failed,
+            &mut here,
         );
+        let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
+        failed.merge(here);
+        let hopeless = least_empty.is_none_or(|e| e > SLAB_HOPELESS_EMPTY * target as f64);
+        if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
+            return Attempt::Nothing;
+        }
         // a count within the tolerance first, then no part left empty, then the fit
         match plans.into_iter().min_by(by_rank) {
             Some(p) => {

@@ -26,6 +26,25 @@ pub(crate) struct Failed {
     pub rejected: Option<(String, Box<Rejected>)>,
 }
 
+impl Failed {
+    /// Adds what `other` says: its collision if any, its rejected route if it leaves a
+    /// smaller part empty.
+    pub(crate) fn merge(&mut self, other: Failed) {
+        if !other.collide.is_empty() {
+            self.collide = other.collide;
+        }
+        if let Some((text, r)) = other.rejected {
+            if self
+                .rejected
+                .as_ref()
+                .is_none_or(|(_, b)| r.empty.tiles < b.empty.tiles)
+            {
+                self.rejected = Some((text, r));
+            }
+        }
+    }
+}
+
 /// Routes (cheapest first, over all axes) checked.
 const CHECKED_ROUTES: usize = 10;
 /// Plans measured per width (see [`checked_plans`]).

@@ -89,9 +89,25 @@ impl SizeSearch {
     pub(crate) fn run_checked<T>(
         &self,
         target: usize,
+        w: f64,
+        solve: impl FnMut(f64) -> Attempt<T>,
+    ) -> Option<Found<T>> {
+        self.run_budgeted(target, w, usize::MAX, solve)
+    }
+
+    /// [`SizeSearch::run_checked`] that solves at most `budget` widths (steps, nudges and
+    /// retries together, in that order): a deterministic bound on the work of a search whose
+    /// every width costs much (a long chain routed through many cells), counted in widths,
+    /// never in time. The best plan among the widths solved is the answer.
+    pub(crate) fn run_budgeted<T>(
+        &self,
+        target: usize,
         mut w: f64,
+        budget: usize,
         mut solve: impl FnMut(f64) -> Attempt<T>,
     ) -> Option<Found<T>> {
+        // every width tried is solved once: the budget counts them
+        let spent = |tried: &[f64]| tried.len() >= budget;
         // (miss beyond the tolerance, width) of the rejected width that missed least
         let mut rejected: Option<(usize, f64)> = None;
         // (miss beyond the tolerance, cost, width, answer)
@@ -118,6 +134,9 @@ impl SizeSearch {
             }
             if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
                 continue;
+            }
+            if spent(&tried) {
+                break;
             }
             tried.push(w);
             let (n, plan) = match solve(w) {
@@ -185,6 +204,9 @@ impl SizeSearch {
                 let w = base * f;
                 if tried.iter().any(|&t| (t - w).abs() < 1e-12 * t) {
                     continue;
+                }
+                if spent(&tried) {
+                    break;
                 }
                 tried.push(w);
                 if let Attempt::Plan(n, cost, plans) = solve(w) {
@@ -317,6 +339,43 @@ mod tests {
             }
         });
         assert!(none.is_none());
+    }
+
+    /// A budget of widths bounds the steps and the retries together, and the best plan
+    /// among the widths solved is the answer; without a budget the same search solves more.
+    #[test]
+    fn a_budget_bounds_the_widths_solved() {
+        let count = |w: f64| (10_000.0 / (w * w)).round() as usize;
+        let s = SizeSearch {
+            secant_steps: 10,
+            nudges: &[],
+            tolerance: 0,
+            explore: false,
+            shrink_when_empty: None,
+            retries: &[0.995, 1.005, 0.99, 1.01],
+            settle_cost: 0.0,
+        };
+        // every plan lacks something (cost 1): the retries would all run
+        let mut widths = Vec::new();
+        let f = s
+            .run_budgeted(100, 12.0, 3, |w| {
+                widths.push(w);
+                Attempt::Plan(count(w), 1.0, count(w))
+            })
+            .unwrap();
+        assert_eq!(widths.len(), 3, "{widths:?}");
+        let best = widths
+            .iter()
+            .map(|&w| count(w).abs_diff(100))
+            .min()
+            .unwrap();
+        assert_eq!(f.plans.abs_diff(100), best);
+        let mut all = 0;
+        s.run_checked(100, 12.0, |w| {
+            all += 1;
+            Attempt::Plan(count(w), 1.0, count(w))
+        });
+        assert!(all > 3, "{all}");
     }
 
     #[test]

@@ -6,20 +6,9 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use foldchain_planner::{plan_svg_file, Plan, PlanOptions};
-
-fn corpus(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("corpus")
-        .join(name)
-}
-
-fn plan(name: &str, tiles: usize) -> Plan {
-    plan_svg_file(&corpus(name), &PlanOptions::default().with_tiles(tiles))
-        .unwrap_or_else(|e| panic!("{name} at {tiles}: {e}"))
-}
+use common::plan_corpus as plan;
 
 /// Egypt's outline at 3000 tiles: a spit of its coast about a third of a tile thick (x 486
 /// to 500, y 68 to 72 in drawing units), which the planner's raster saw cut off from the

@@ -5,17 +5,14 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::Command;
 
+use common::corpus;
 use foldchain_planner::kurbo::Point;
 use foldchain_planner::{plan_svg_file, PlanOptions, Shape};
-
-fn corpus(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("corpus")
-        .join(name)
-}
 
 /// The drawing rendered by rsvg-convert at `px` pixels per user unit, as (width, height,
 /// alpha per pixel); `None` where rsvg-convert is missing (an error under CI, whose

@@ -1,12 +1,12 @@
 //! The energy curve of a run (thesis figure 7.5): the chain's total dipole energy against
 //! time, with the folds' windows shaded.
 
-use svg::node::element::{Polyline, Rectangle, Text};
+use svg::node::element::{Rectangle, Text};
 
 use foldchain::timeline::{EnergySample, FoldRecord};
 
 use crate::axes::Axes;
-use crate::{num, points, to_text};
+use crate::{num, plot_line, to_text};
 
 /// The total dipole energy against time, with the windows of `folds` shaded (a fold that
 /// never closed, `end` NaN, to the end of the curve).
@@ -52,13 +52,7 @@ pub fn energy_svg(folds: &[FoldRecord], curve: &[EnergySample], title: &str) -> 
         .iter()
         .zip(&ys)
         .map(|(c, &y)| (ax.px(c.time), ax.py(y)));
-    doc = doc.add(
-        Polyline::new()
-            .set("points", points(pts))
-            .set("fill", "none")
-            .set("stroke", "#c5221f")
-            .set("stroke-width", "2"),
-    );
+    doc = doc.add(plot_line(pts, "#c5221f", "2"));
     if !folds.is_empty() {
         doc = doc.add(
             Text::new("shaded: folds turning")

@@ -44,7 +44,7 @@ pub use transition::transition_svg;
 
 use std::fmt::Write;
 
-use svg::node::element::Rectangle;
+use svg::node::element::{Polyline, Rectangle};
 use svg::Document;
 
 /// A number as the pictures write it: two decimals, no trailing zeros (pixel coordinates need
@@ -69,6 +69,20 @@ fn push_num(out: &mut String, x: f64) {
         out.truncate(start);
         out.push('0');
     }
+}
+
+/// A plotted curve: an unfilled line through `pts` (pixels, as [`points`] writes them) in
+/// `colour`, `width` pixels wide (an SVG length, written as given).
+pub(crate) fn plot_line(
+    pts: impl IntoIterator<Item = (f64, f64)>,
+    colour: &str,
+    width: &str,
+) -> Polyline {
+    Polyline::new()
+        .set("points", points(pts))
+        .set("fill", "none")
+        .set("stroke", colour)
+        .set("stroke-width", width)
 }
 
 /// A `points` attribute: `x,y x,y ...`, each number as [`num`] writes it.

@@ -2,13 +2,13 @@
 //! of adjacent magnets against time, on the right the chain's total, both with dashed lines
 //! at the phase boundaries (a magnet starting or arriving, a fold starting or ending).
 
-use svg::node::element::{Line, Polyline, Text};
+use svg::node::element::{Line, Text};
 use svg::Document;
 
 use foldchain::timeline::PairEnergies;
 
 use crate::axes::Axes;
-use crate::{document, num, points, to_text};
+use crate::{document, num, plot_line, to_text};
 
 /// Colours of the pair curves, in turn.
 const COLOURS: [&str; 8] = [
@@ -78,34 +78,20 @@ pub fn pair_energy_svg(e: &PairEnergies, title: &str) -> String {
         } else {
             format!("{}-{}", k - 1, k)
         };
-        a = a
-            .add(
-                Polyline::new()
-                    .set("points", points(pts))
-                    .set("fill", "none")
-                    .set("stroke", colour)
-                    .set("stroke-width", "1.6"),
-            )
-            .add(
-                Text::new(label)
-                    .set("x", num(left.left + left.width - 8.0))
-                    .set("y", num(left.top + 16.0 + 14.0 * k as f64))
-                    .set("text-anchor", "end")
-                    .set("fill", colour),
-            );
+        a = a.add(plot_line(pts, colour, "1.6")).add(
+            Text::new(label)
+                .set("x", num(left.left + left.width - 8.0))
+                .set("y", num(left.top + 16.0 + 14.0 * k as f64))
+                .set("text-anchor", "end")
+                .set("fill", colour),
+        );
     }
     let pts = e
         .times
         .iter()
         .zip(&e.total)
         .map(|(&t, &v)| (right.px(t), right.py(v * 1e3)));
-    b = b.add(
-        Polyline::new()
-            .set("points", points(pts))
-            .set("fill", "none")
-            .set("stroke", "#c5221f")
-            .set("stroke-width", "2"),
-    );
+    b = b.add(plot_line(pts, "#c5221f", "2"));
     let (w, h) = (left.left + left.width + 30.0, left.top + left.height + 50.0);
     let doc: Document = document(2.0 * w, h + 30.0, "white")
         .set("font-size", "12")

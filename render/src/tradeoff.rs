@@ -8,7 +8,7 @@ use svg::Document;
 use foldchain::tolerance::{Candidate, Search};
 
 use crate::axes::Axes;
-use crate::{num, points, to_text};
+use crate::{num, plot_line, points, to_text};
 
 const COLOURS: [&str; 5] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"];
 
@@ -94,13 +94,7 @@ fn wall_lines(mut doc: Document, axes: &Axes, diagonal: &[&Candidate]) -> Docume
             .iter()
             .filter_map(|c| Some((axes.px(c.assembly_s?), axes.py(c.probability))))
             .collect();
-        doc = doc.add(
-            Polyline::new()
-                .set("points", points(pts.iter().copied()))
-                .set("stroke", colour)
-                .set("fill", "none")
-                .set("stroke-width", "1.5"),
-        );
+        doc = doc.add(plot_line(pts.iter().copied(), colour, "1.5"));
         for (c, p) in line.iter().zip(&pts) {
             doc = doc
                 .add(

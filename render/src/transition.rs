@@ -3,12 +3,12 @@
 //! the path from the rest point (so a curved path shows its full travel); dashed lines mark
 //! tile edges, dots where a magnet starts and ticks where it starts the next one.
 
-use svg::node::element::{Circle, Line, Polyline, Text};
+use svg::node::element::{Circle, Line, Text};
 
 use foldchain::timeline::{Geometry, TransitionData};
 
 use crate::axes::Axes;
-use crate::{num, points, to_text};
+use crate::{num, plot_line, to_text};
 
 /// The diagram of `data`, with paths and tile width from `geometry`.
 pub fn transition_svg(geometry: &Geometry, data: &TransitionData, title: &str) -> String {
@@ -50,13 +50,7 @@ pub fn transition_svg(geometry: &Geometry, data: &TransitionData, title: &str) -
             .travel
             .iter()
             .map(|&(t, u)| (ax.px(t), ax.py(position(k, u))));
-        doc = doc.add(
-            Polyline::new()
-                .set("points", points(pts))
-                .set("fill", "none")
-                .set("stroke", colour)
-                .set("stroke-width", "2"),
-        );
+        doc = doc.add(plot_line(pts, colour, "2"));
         if let Some(s0) = track.start {
             doc = doc.add(
                 Circle::new()

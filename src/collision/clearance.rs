@@ -16,9 +16,13 @@
 //! exact: separating axes for the overlap depth (the minimum translation of two convex
 //! polygons lies along a face normal) and vertex to edge distances when apart.
 //!
-//! The work is bounded: at most [`MAX_TILES`] tiles (pairs are followed one by one, so the
-//! cost grows with the square of the chain) and a budget of pair evaluations; past either
-//! the clearance is not measured (`None`), never guessed.
+//! Only the pairs that may come as near as the nearest pair of the final shape are followed
+//! ([`super::clearance_pairs`] finds them without visiting every pair): the cost grows with
+//! the pairs that come near (about linearly with the chain for a chain folding a few joints
+//! at a time), not with the square of the chain, and the result is bit for bit what
+//! following every pair gives. The work is bounded: at most [`MAX_TILES`] tiles and a budget
+//! of pair evaluations that grows with the chain; past either the clearance is not measured
+//! (`None`), never guessed.
 
 use kurbo::Point;
 
@@ -26,11 +30,15 @@ use super::chain_tree::{turn_of, Rigid};
 use super::{FoldSchedule, JointTrack};
 use crate::Octagon;
 
-/// The most tiles whose clearance is measured: 1,000 (half a million pairs).
-pub(crate) const MAX_TILES: usize = 1_000;
+/// The most tiles whose clearance is measured: ten million.
+pub(crate) const MAX_TILES: usize = 10_000_000;
 
-/// Pair evaluations a measurement may take: 30 million (a few seconds).
+/// Pair evaluations a measurement may take at least: 30 million (a few seconds).
 pub(crate) const MAX_WORK: usize = 30_000_000;
+
+/// Pair evaluations a measurement may take per tile, for chains of more than a thousand
+/// tiles (where [`MAX_WORK`] is less).
+const WORK_PER_TILE: usize = 30_000;
 
 /// Buckets the schedule's time is cut into for the joints' rate bounds.
 const BUCKETS: usize = 4096;
@@ -53,6 +61,15 @@ pub(crate) struct Closest {
 /// over `schedule` (validated) and the shape it ends in, within `precision` tile widths;
 /// `None` for a chain of more than [`MAX_TILES`] tiles or when the work budget ran out, and
 /// for a chain of fewer than three tiles (no pair that is not neighbours).
+///
+/// Only the pairs that may come within a cutoff are followed: the cutoff is an upper bound
+/// on the clearance in the shape the schedule ends in (the pairs nearest there, from their
+/// centres: two octagons are at most their centres' distance less one inradius each apart),
+/// and the pairs come from [`super::clearance_pairs`]. A pair left out never comes as near as
+/// the pair that gave the cutoff, whose last sample is taken, so it could never have changed
+/// the smallest clearance found: the result is bit for bit what following every pair gives
+/// ([`all_pairs`], kept as the tests' oracle), at a cost that grows with the pairs that come
+/// near rather than with all of them.
 pub(crate) fn closest_approach(
     tiles: usize,
     schedule: &FoldSchedule,
@@ -62,28 +79,135 @@ pub(crate) fn closest_approach(
         return None;
     }
     let joints = tiles - 1;
+    let track_of = tracks_by_joint(joints, schedule);
+    let rates = Rates::new(&track_of);
+    let budget = work_budget(tiles);
+    let mut walk = PairWalk::new(&track_of, &rates, precision, joints, budget);
+    let samples = sample_times(&rates, tiles);
+    let turns: Vec<Vec<Rigid>> = samples
+        .iter()
+        .map(|&t| (0..joints).map(|k| turn_of(walk.angle(k, t))).collect())
+        .collect();
+    let last = turns.last()?;
+    let cutoff = final_cutoff(last);
+    let candidates =
+        super::clearance_pairs::pairs_within(tiles, &track_of, rates.t0, cutoff, budget)?;
+    // a first bound from every candidate at a few moments (each pair's pose built along
+    // the chain from tile `i`, the products `pose` forms, in its order), then the pairs
+    // nearest first
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::with_capacity(candidates.len());
+    let mut row: Vec<f64> = Vec::new();
+    let mut from = 0;
+    while from < candidates.len() {
+        let i = candidates[from].0;
+        let to = from + candidates[from..].partition_point(|c| c.0 == i);
+        let reach = candidates[to - 1].1;
+        // row[(j - i) * samples + s]: the distance of tiles i and j at sample s
+        row.clear();
+        row.resize((reach - i + 1) * samples.len(), f64::INFINITY);
+        for (s, turns) in turns.iter().enumerate() {
+            let mut at = Rigid::IDENTITY;
+            let mut c = from;
+            for j in i + 1..=reach {
+                at = at.then(&turns[j - 1]);
+                if c < to && candidates[c].1 == j {
+                    row[(j - i) * samples.len() + s] = walk.outline.signed_distance(&at);
+                    c += 1;
+                }
+            }
+        }
+        walk.work += (reach - i) * samples.len();
+        for &(_, j) in &candidates[from..to] {
+            let mut near = f64::INFINITY;
+            for (s, &t) in samples.iter().enumerate() {
+                let d = row[(j - i) * samples.len() + s];
+                walk.record(i, j, t, d);
+                near = near.min(d);
+            }
+            pairs.push((near, i, j));
+        }
+        if walk.work > budget {
+            return None;
+        }
+        from = to;
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for &(_, i, j) in &pairs {
+        if !walk.follow(i, j) {
+            return None;
+        }
+    }
+    walk.best
+}
+
+/// Each joint's track, by joint (`None`: the joint never turns).
+fn tracks_by_joint(joints: usize, schedule: &FoldSchedule) -> Vec<Option<&JointTrack>> {
     let mut track_of: Vec<Option<&JointTrack>> = vec![None; joints];
     for tr in &schedule.tracks {
         if tr.joint < joints && !tr.times.is_empty() {
             track_of[tr.joint] = Some(tr);
         }
     }
+    track_of
+}
+
+/// The work a measurement of a `tiles`-tile chain may take: [`MAX_WORK`], or
+/// [`WORK_PER_TILE`] per tile for longer chains.
+fn work_budget(tiles: usize) -> usize {
+    MAX_WORK.max(tiles.saturating_mul(WORK_PER_TILE))
+}
+
+/// An upper bound on the smallest clearance of the shape at the joints' transforms `turns`
+/// (with a slack over the rounding of world coordinates): the least distance between the
+/// centres of two tiles that are not neighbours, less one inradius each (the octagons hold
+/// their inscribed discs), over tiles `i` and `i + 2` and the pairs whose centres lie within
+/// two widths (a grid of cells two widths wide).
+fn final_cutoff(turns: &[Rigid]) -> f64 {
+    let mut centres = Vec::with_capacity(turns.len() + 1);
+    let mut at = Rigid::IDENTITY;
+    centres.push(at.apply(Point::ORIGIN));
+    for t in turns {
+        at = at.then(t);
+        centres.push(at.apply(Point::ORIGIN));
+    }
+    let mut best = f64::INFINITY;
+    for i in 0..centres.len().saturating_sub(2) {
+        best = best.min((centres[i + 2] - centres[i]).hypot() - 1.0);
+    }
+    let cell = |p: Point| ((p.x / 2.0).floor() as i64, (p.y / 2.0).floor() as i64);
+    let mut grid: rustc_hash::FxHashMap<(i64, i64), Vec<usize>> = Default::default();
+    for (i, &c) in centres.iter().enumerate() {
+        grid.entry(cell(c)).or_default().push(i);
+    }
+    let mut extent = 0.0f64;
+    for (i, &c) in centres.iter().enumerate() {
+        extent = extent.max(c.to_vec2().hypot());
+        let (x, y) = cell(c);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for &j in grid.get(&(x + dx, y + dy)).into_iter().flatten() {
+                    if j >= i + 2 {
+                        best = best.min((centres[j] - c).hypot() - 1.0);
+                    }
+                }
+            }
+        }
+    }
+    best + 1e-7 + 1e-12 * extent
+}
+
+/// The pair walk over every pair, as the measurement was before it followed only the pairs
+/// that come near: the tests' oracle.
+#[cfg(test)]
+pub(crate) fn all_pairs(tiles: usize, schedule: &FoldSchedule, precision: f64) -> Option<Closest> {
+    if tiles < 3 || precision.is_nan() || precision <= 0.0 {
+        return None;
+    }
+    let joints = tiles - 1;
+    let track_of = tracks_by_joint(joints, schedule);
     let rates = Rates::new(&track_of);
-    let mut walk = PairWalk {
-        track_of: &track_of,
-        rates: &rates,
-        precision,
-        outline: Outline::unit(),
-        work: 0,
-        best: None,
-        hints: vec![0; joints],
-        turns: vec![None; joints],
-    };
-    // a first bound from every pair at a few moments, then the pairs nearest first
+    let mut walk = PairWalk::new(&track_of, &rates, precision, joints, usize::MAX);
     let samples = sample_times(&rates, tiles);
-    // every joint's turn at every sample, and each pair's pose built along the chain from
-    // tile `i` (the products `pose` forms, in its order: the same numbers, n^2 instead of
-    // n^3 compositions)
     let turns: Vec<Vec<Rigid>> = samples
         .iter()
         .map(|&t| (0..joints).map(|k| turn_of(walk.angle(k, t))).collect())
@@ -91,7 +215,6 @@ pub(crate) fn closest_approach(
     let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
     let mut row: Vec<f64> = Vec::new();
     for i in 0..tiles {
-        // row[(j - i) * samples + s]: the distance of tiles i and j at sample s
         row.clear();
         row.resize((tiles - i) * samples.len(), f64::INFINITY);
         for (s, turns) in turns.iter().enumerate() {
@@ -233,6 +356,7 @@ struct PairWalk<'a> {
     precision: f64,
     outline: Outline,
     work: usize,
+    budget: usize,
     best: Option<Closest>,
     /// Each joint's chord hint ([`JointTrack::chord_at`]).
     hints: Vec<usize>,
@@ -240,7 +364,27 @@ struct PairWalk<'a> {
     turns: Vec<Option<(f64, Rigid)>>,
 }
 
-impl PairWalk<'_> {
+impl<'a> PairWalk<'a> {
+    fn new(
+        track_of: &'a [Option<&'a JointTrack>],
+        rates: &'a Rates,
+        precision: f64,
+        joints: usize,
+        budget: usize,
+    ) -> PairWalk<'a> {
+        PairWalk {
+            track_of,
+            rates,
+            precision,
+            outline: Outline::unit(),
+            work: 0,
+            budget,
+            best: None,
+            hints: vec![0; joints],
+            turns: vec![None; joints],
+        }
+    }
+
     /// Joint `k`'s angle at `t`.
     fn angle(&mut self, k: usize, t: f64) -> f64 {
         match self.track_of[k] {
@@ -354,7 +498,7 @@ impl PairWalk<'_> {
         let mut fastest = vec![0.0f64; moving.len()];
         let mut t = t0;
         loop {
-            if self.work > MAX_WORK {
+            if self.work > self.budget {
                 return false;
             }
             let (d, cj) = self.evaluate((i, j, t), &moving, &mut centres);
@@ -564,6 +708,143 @@ mod tests {
             angles: angles.to_vec(),
             ended: times.last().copied(),
         }
+    }
+
+    /// The engine's fold schedule of `word` with magnet offset `s` mm, inertial.
+    fn engine_schedule(word: &str, s: f64) -> FoldSchedule {
+        use crate::engine::{fold_schedule, run, EngineOptions};
+        use crate::model::{Dynamics, ModelOptions};
+        use crate::timeline::TileDesigns;
+        use crate::{Chain, Design};
+        let chain = Chain::parse(word).unwrap();
+        let designs = TileDesigns::global(Design::thesis().with_s(s));
+        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+        let tl = run(
+            &chain,
+            &designs,
+            &EngineOptions::default().with_model(model),
+        )
+        .unwrap();
+        fold_schedule(&tl)
+    }
+
+    /// Every word of `len` letters.
+    fn words(len: usize) -> Vec<String> {
+        let mut out = vec![String::new()];
+        for _ in 0..len {
+            out = out
+                .iter()
+                .flat_map(|w| ['S', 'L', 'R'].map(|c| format!("{w}{c}")))
+                .collect();
+        }
+        out
+    }
+
+    /// Following only the pairs that come near gives bit for bit what following every pair
+    /// gives: every 6-letter word at s = 0 and 0.05 mm, engine schedules (sequential and
+    /// overlapping folds, collided runs with overlaps), at a run's precision.
+    #[test]
+    #[ignore = "slow (1,458 engine runs, 1-3 min): .ci/run runs it"]
+    fn the_near_pairs_measure_what_every_pair_measures_on_every_6_letter_word() {
+        let precision = crate::simulation::CLEARANCE_PRECISION_MM / 30.0;
+        let (mut measured, mut overlaps) = (0, 0);
+        for s in [0.0, 0.05] {
+            for word in words(6) {
+                let sched = engine_schedule(&word, s);
+                let fast = closest_approach(7, &sched, precision);
+                let slow = all_pairs(7, &sched, precision);
+                assert_eq!(fast, slow, "{word} at s = {s}");
+                measured += 1;
+                overlaps += usize::from(slow.is_some_and(|c| c.distance < 0.0));
+            }
+        }
+        assert!(
+            measured == 2 * 729 && overlaps > 20,
+            "{measured} {overlaps}"
+        );
+    }
+
+    /// The same on a sample of 8-letter words, and on random schedules of many joints moving
+    /// at once (the test below's).
+    #[test]
+    fn the_near_pairs_measure_what_every_pair_measures_on_8_letter_words() {
+        let precision = crate::simulation::CLEARANCE_PRECISION_MM / 30.0;
+        let all = words(8);
+        let mut rng = crate::collision::xorshift(11);
+        for _ in 0..120 {
+            let word = &all[(rng() % all.len() as u64) as usize];
+            let sched = engine_schedule(word, 0.05);
+            let fast = closest_approach(9, &sched, precision);
+            assert_eq!(fast, all_pairs(9, &sched, precision), "{word}");
+            assert!(fast.is_some(), "{word}");
+        }
+        for case in 0..40 {
+            let (n, s) = random_schedule(&mut rng, case);
+            assert_eq!(
+                closest_approach(n, &s, 1e-4),
+                all_pairs(n, &s, 1e-4),
+                "case {case}"
+            );
+        }
+    }
+
+    /// A random word's schedule with every fold's joint turning over its own random window
+    /// (many at once, non-monotone), `n` tiles.
+    fn random_schedule(rng: &mut impl FnMut() -> u64, case: usize) -> (usize, FoldSchedule) {
+        let mut unit = move || (rng() % 1_000_000) as f64 / 1_000_000.0;
+        let n = 5 + case % 12;
+        let tracks: Vec<JointTrack> = (0..n - 1)
+            .filter_map(|k| {
+                let c = ['S', 'L', 'R', 'L', 'R'][(unit() * 5.0) as usize % 5];
+                let target = match c {
+                    'L' => FRAC_PI_2,
+                    'R' => -FRAC_PI_2,
+                    _ => return None,
+                };
+                let start = unit() * 2.0;
+                let mid = start + 0.1 + unit();
+                let end = mid + 0.1 + unit();
+                Some(track(
+                    k,
+                    &[start, mid, end],
+                    &[0.0, target * unit(), target],
+                ))
+            })
+            .collect();
+        (n, FoldSchedule { tracks })
+    }
+
+    /// On a serpentine of a thousand tiles (rows of 20, sequential folds) the pairs that may
+    /// come as near as the final shape's nearest are about one per tile, not half a million
+    /// (`tests/clearances.rs` measures such a chain's clearance from the engine's run).
+    #[test]
+    fn a_long_serpentine_has_few_near_pairs() {
+        let mut word = String::new();
+        for row in 0..50 {
+            if row > 0 {
+                word.push_str(if row % 2 == 1 { "LL" } else { "RR" });
+            }
+            word.push_str(&"S".repeat(if row == 0 { 19 } else { 18 }));
+        }
+        let w = FoldWord::parse(&word).unwrap();
+        let n = w.tiles();
+        assert_eq!(n, 1000);
+        let sched = FoldSchedule::sequential(&w, 1.0);
+        let joints = n - 1;
+        let track_of = tracks_by_joint(joints, &sched);
+        let rates = Rates::new(&track_of);
+        let last: Vec<Rigid> = (0..joints)
+            .map(|k| turn_of(track_of[k].map_or(0.0, |t| t.angle_at(rates.t0 + rates.span))))
+            .collect();
+        let cutoff = final_cutoff(&last);
+        // the corners of the U-turns: tiles two apart along the chain, 0.414 apart
+        assert!(cutoff < 0.42, "{cutoff}");
+        let pairs =
+            super::super::clearance_pairs::pairs_within(n, &track_of, rates.t0, cutoff, usize::MAX)
+                .unwrap();
+        assert!(pairs.len() < 2 * n, "{}", pairs.len());
+        // the U-turns' corners, which give the cutoff, are among them
+        assert!(pairs.contains(&(19, 21)), "{pairs:?}");
     }
 
     #[test]

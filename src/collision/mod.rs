@@ -30,6 +30,7 @@ mod block_pairs;
 mod blocks;
 mod chain_tree;
 mod clearance;
+mod clearance_pairs;
 pub(crate) use clearance::closest_approach;
 mod first_hit;
 pub(crate) use first_hit::{unit_tail_frame, TailHits, NEVER as NO_TAIL_HIT};

@@ -34,6 +34,17 @@ pub(crate) struct JointTrack {
 const HINT_STEPS: usize = 8;
 
 impl JointTrack {
+    /// For tests: the track of `joint` through `(times[i], angles[i])`, never ended.
+    #[cfg(test)]
+    pub(crate) fn open(joint: usize, times: &[f64], angles: &[f64]) -> JointTrack {
+        JointTrack {
+            joint,
+            times: times.to_vec(),
+            angles: angles.to_vec(),
+            ended: None,
+        }
+    }
+
     /// The angle at time `t`.
     pub fn angle_at(&self, t: f64) -> f64 {
         let (ts, a) = (&self.times, &self.angles);
@@ -311,33 +322,18 @@ mod tests {
     fn bad_tracks_are_named() {
         let w = word("SL");
         let s = FoldSchedule {
-            tracks: vec![JointTrack {
-                joint: 5,
-                times: vec![0.0],
-                angles: vec![0.0],
-                ended: None,
-            }],
+            tracks: vec![JointTrack::open(5, &[0.0], &[0.0])],
         };
         assert!(s.validate(&w).unwrap_err().to_string().contains("joint 5"));
         let s = FoldSchedule {
-            tracks: vec![JointTrack {
-                joint: 1,
-                times: vec![1.0, 0.0],
-                angles: vec![0.0, 1.0],
-                ended: None,
-            }],
+            tracks: vec![JointTrack::open(1, &[1.0, 0.0], &[0.0, 1.0])],
         };
         assert!(matches!(
             s.validate(&w),
             Err(ScheduleError::BadTrack { .. })
         ));
         let s = FoldSchedule {
-            tracks: vec![JointTrack {
-                joint: 1,
-                times: vec![0.0],
-                angles: vec![f64::NAN],
-                ended: None,
-            }],
+            tracks: vec![JointTrack::open(1, &[0.0], &[f64::NAN])],
         };
         assert!(matches!(
             s.validate(&w),

@@ -87,8 +87,8 @@ pub struct Summary {
     /// The first collision, or null.
     pub first_collision: Option<CollisionReport>,
     /// How close two tiles that are not neighbours came, or null when not measured (no
-    /// collision check, fewer than three tiles, a chain over 1,000 tiles or a measurement
-    /// over its work budget).
+    /// collision check, fewer than three tiles, a chain over 10 million tiles or a
+    /// measurement over its work budget).
     pub clearance: Option<Clearance>,
     /// The speed law (`overdamped` with its drag, or `unit`).
     pub speed_law: SpeedLaw,

@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
 use foldchain_cli::inputs::read_chain;
-use foldchain_cli::numbers::{number_in, thousands};
+use foldchain_cli::numbers::{number_in, open_range, thousands};
 use foldchain_cli::outln;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -54,11 +54,11 @@ fn main() -> ExitCode {
 }
 
 fn tolerance_arg(s: &str) -> Result<f64, String> {
-    match number_in(s, 0.0, 0.01, "tile widths", "") {
-        Ok(t) if t < 0.01 => Ok(t),
-        Ok(_) => Err("expected a number from 0 up to (not including) 0.01 tile widths".into()),
-        Err(e) => Err(e),
-    }
+    open_range(
+        number_in(s, 0.0, 0.01, "tile widths", ""),
+        |t| t < 0.01,
+        "a number from 0 up to (not including) 0.01 tile widths",
+    )
 }
 
 fn run(args: &Args) -> anyhow::Result<u8> {

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::inputs::refuse_overwrite;
-use foldchain_cli::numbers::{count_in, number_in};
+use foldchain_cli::numbers::{count_in, number_in, open_range};
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::{errln, outln};
@@ -85,11 +85,11 @@ fn tiles_tolerance_arg(s: &str) -> Result<f64, String> {
 }
 
 fn tile_size_arg(s: &str) -> Result<f64, String> {
-    match number_in(s, 0.0, 1e9, "SVG user units", "") {
-        Ok(w) if w > 0.0 => Ok(w),
-        Ok(_) => Err("expected a tile width above 0 SVG user units".into()),
-        Err(e) => Err(e),
-    }
+    open_range(
+        number_in(s, 0.0, 1e9, "SVG user units", ""),
+        |w| w > 0.0,
+        "a tile width above 0 SVG user units",
+    )
 }
 
 fn tile_mm_arg(s: &str) -> Result<f64, String> {

@@ -1,6 +1,6 @@
 //! Headless Chromium for the viewer's tests and benchmark: a fresh profile per run, no
 //! network, standard output through a file; and reading the attributes of the page it
-//! dumps.
+//! dumps. A file that takes it also takes `common` (the PATH lookup is there).
 
 #![allow(dead_code)] // each test or bench file uses its own part
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
@@ -22,23 +22,11 @@ pub fn tmp(name: &str) -> PathBuf {
 
 /// The browser, or `None` (with a note) when there is none outside CI.
 pub fn browser() -> Option<PathBuf> {
-    let found = ["chromium", "chromium-browser", "google-chrome"]
-        .iter()
-        .find_map(|name| {
-            std::env::var_os("PATH").and_then(|paths| {
-                std::env::split_paths(&paths)
-                    .map(|d| d.join(name))
-                    .find(|p| p.is_file())
-            })
-        });
-    if found.is_none() {
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "no Chromium on PATH: CI must have it (.ci/run installs it with apt-get)"
-        );
-        eprintln!("note: no Chromium on PATH; browser test skipped");
-    }
-    found
+    crate::common::on_path(
+        &["chromium", "chromium-browser", "google-chrome"],
+        "Chromium",
+        "browser",
+    )
 }
 
 /// Runs headless Chromium on `url` with `args` (a fresh profile, no network), one at a time

@@ -92,6 +92,11 @@ pub fn names(dir: &Path) -> Vec<String> {
     v
 }
 
+/// The text of the file at `path`.
+pub fn text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap()
+}
+
 /// The JSON file at `path`.
 pub fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
@@ -101,3 +106,58 @@ pub fn read_json(path: &Path) -> serde_json::Value {
 pub fn summary(dir: &Path) -> serde_json::Value {
     read_json(&dir.join("summary.json"))
 }
+
+/// The JSON of `fold-validate --scene SCENE --quick --json` with the `extra` arguments,
+/// writing into `out`, after asserting that it exited with 0.
+pub fn validate_quick(scene: &str, extra: &[&str], out: &Path) -> serde_json::Value {
+    let o = tool("fold-validate")
+        .args(["--scene", scene, "--quick", "--json"])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    stdout_json(&o)
+}
+
+/// The first of the programs `names` found on PATH, or `None` with a note on standard error
+/// (`what` names the program, `test` the test skipped) when there is none outside CI; under
+/// `CI=true` a missing program fails the test (`.ci/run` installs it).
+pub fn on_path(names: &[&str], what: &str, test: &str) -> Option<PathBuf> {
+    let found = std::env::var_os("PATH").and_then(|paths| {
+        names.iter().find_map(|name| {
+            std::env::split_paths(&paths)
+                .map(|d| d.join(name))
+                .find(|p| p.is_file())
+        })
+    });
+    if found.is_none() {
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "no {what} on PATH: CI must have it (.ci/run installs it with apt-get)"
+        );
+        eprintln!("note: no {what} on PATH; {test} test skipped");
+    }
+    found
+}
+
+/// `fold-plan`'s options for the thesis' two squares of `shapes/square.svg`: exactly 107
+/// tiles with tight U-turns (9 rows of 11), and exactly 82 with loose ones (6 rows of 12).
+pub const THESIS_SQUARES: [[&str; 6]; 2] = [
+    [
+        "--tiles",
+        "107",
+        "--turns",
+        "tight",
+        "--tiles-tolerance",
+        "0",
+    ],
+    [
+        "--tiles",
+        "82",
+        "--turns",
+        "loose",
+        "--tiles-tolerance",
+        "0",
+    ],
+];

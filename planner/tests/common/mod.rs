@@ -7,13 +7,27 @@
 
 use std::path::{Path, PathBuf};
 
-use foldchain_planner::Plan;
+use foldchain_planner::{plan_svg_file, Plan, PlanOptions};
 
 /// A sample shape's path.
 pub fn sample(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../shapes")
         .join(name)
+}
+
+/// A drawing of the planner corpus (`planner/corpus/{name}`).
+pub fn corpus(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("corpus")
+        .join(name)
+}
+
+/// The plan of corpus drawing `name` for about `tiles` tiles with the default options;
+/// a refusal fails the test, naming the drawing and the count.
+pub fn plan_corpus(name: &str, tiles: usize) -> Plan {
+    plan_svg_file(&corpus(name), &PlanOptions::default().with_tiles(tiles))
+        .unwrap_or_else(|e| panic!("{name} at {tiles}: {e}"))
 }
 
 /// Overlap allowed between two tiles, as a share of the tile width: touching tiles (every

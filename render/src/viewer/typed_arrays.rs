@@ -11,22 +11,17 @@ pub fn encode(bytes: &[u8]) -> String {
 
 /// f64 values, little-endian, as base64.
 pub fn encode_f64(values: &[f64]) -> String {
-    encode(
-        &values
-            .iter()
-            .flat_map(|v| v.to_le_bytes())
-            .collect::<Vec<u8>>(),
-    )
+    encode_le(values, f64::to_le_bytes)
 }
 
 /// f32 values, little-endian, as base64.
 pub fn encode_f32(values: &[f32]) -> String {
-    encode(
-        &values
-            .iter()
-            .flat_map(|v| v.to_le_bytes())
-            .collect::<Vec<u8>>(),
-    )
+    encode_le(values, f32::to_le_bytes)
+}
+
+/// Values as base64 of the bytes `le` gives each, one value after the other.
+fn encode_le<T: Copy, const N: usize>(values: &[T], le: fn(T) -> [u8; N]) -> String {
+    encode(&values.iter().flat_map(|&v| le(v)).collect::<Vec<u8>>())
 }
 
 /// Unsigned integers in the fewest bytes that hold the largest (1, 2 or 4), little-endian:
@@ -70,5 +65,9 @@ mod tests {
         assert_eq!(encode_uint(&[1, 256]), (2, encode(&[1, 0, 0, 1])));
         assert_eq!(encode_uint(&[70_000]).0, 4);
         assert_eq!(encode_f64(&[1.0]), encode(&1.0f64.to_le_bytes()));
+        assert_eq!(
+            encode_f32(&[1.0, -2.5]),
+            encode(&[0, 0, 128, 63, 0, 0, 32, 192])
+        );
     }
 }

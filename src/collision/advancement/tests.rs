@@ -131,12 +131,7 @@ fn general_advancement_agrees_with_exact_sweeps() {
 #[test]
 fn bad_tracks_are_refused_before_any_check() {
     let s = FoldSchedule {
-        tracks: vec![JointTrack {
-            joint: 5,
-            times: vec![0.0],
-            angles: vec![0.0],
-            ended: None,
-        }],
+        tracks: vec![JointTrack::open(5, &[0.0], &[0.0])],
     };
     assert!(matches!(
         check_schedule(&word("SL"), &s, &CheckOptions::default()),

@@ -33,11 +33,13 @@ function makeRaster(canvas) {
     const i = Math.floor(x), j = Math.floor(y);
     if (i >= 0 && i < W && j >= 0 && j < H) px[j * W + i] = c;
   }
-  // the convex polygon xs[0..m), ys[0..m), at least its centre pixel
-  function polygon(m, c) {
+  // the pixel rows of the convex polygon xs[0..m), ys[0..m), from row `min` to row `max` at
+  // the most: onRow(row, lo, hi) for every row whose centre line crosses it, lo and hi where
+  // that line enters and leaves; whether onRow returned true for any row
+  function polygonRows(m, min, max, onRow) {
     let y0 = Infinity, y1 = -Infinity;
     for (let q = 0; q < m; q++) { if (ys[q] < y0) y0 = ys[q]; if (ys[q] > y1) y1 = ys[q]; }
-    const ra = Math.max(Math.ceil(y0 - 0.5), 0), rb = Math.min(Math.floor(y1 - 0.5), H - 1);
+    const ra = Math.max(Math.ceil(y0 - 0.5), min), rb = Math.min(Math.floor(y1 - 0.5), max);
     let drawn = false;
     for (let row = ra; row <= rb; row++) {
       const yc = row + 0.5;
@@ -51,8 +53,16 @@ function makeRaster(canvas) {
           if (x > hi) hi = x;
         }
       }
-      if (lo <= hi) { span(row, lo, hi, c); drawn = true; }
+      if (lo <= hi && onRow(row, lo, hi)) drawn = true;
     }
+    return drawn;
+  }
+  // the convex polygon xs[0..m), ys[0..m), at least its centre pixel
+  function polygon(m, c) {
+    const drawn = polygonRows(m, 0, H - 1, function (row, lo, hi) {
+      span(row, lo, hi, c);
+      return true;
+    });
     if (!drawn) {
       let cx = 0, cy = 0;
       for (let q = 0; q < m; q++) { cx += xs[q]; cy += ys[q]; }
@@ -100,25 +110,12 @@ function makeRaster(canvas) {
   // the convex polygon xs[0..m), ys[0..m) (pixels, the centre pixel's corner at 0, 0) as
   // spans pushed on `out`, at least the centre pixel
   function polygonSpans(m, out) {
-    let y0 = Infinity, y1 = -Infinity;
-    for (let q = 0; q < m; q++) { if (ys[q] < y0) y0 = ys[q]; if (ys[q] > y1) y1 = ys[q]; }
-    const ra = Math.ceil(y0 - 0.5), rb = Math.floor(y1 - 0.5);
-    let drawn = false;
-    for (let row = ra; row <= rb; row++) {
-      const yc = row + 0.5;
-      let lo = Infinity, hi = -Infinity;
-      for (let q = 0; q < m; q++) {
-        const q2 = q + 1 === m ? 0 : q + 1;
-        const ya = ys[q], yb = ys[q2];
-        if ((ya <= yc && yc < yb) || (yb <= yc && yc < ya)) {
-          const x = xs[q] + (yc - ya) * (xs[q2] - xs[q]) / (yb - ya);
-          if (x < lo) lo = x;
-          if (x > hi) hi = x;
-        }
-      }
+    const drawn = polygonRows(m, -Infinity, Infinity, function (row, lo, hi) {
       const a = Math.ceil(lo - 0.5), b = Math.floor(hi - 0.5);
-      if (lo <= hi && a <= b) { out.push(row, a, b + 1); drawn = true; }
-    }
+      if (a > b) return false;
+      out.push(row, a, b + 1);
+      return true;
+    });
     if (!drawn) out.push(0, 0, 1);
   }
   // the tile's octagon turned by `angle`, scaled by `scale` around the pixel centre
