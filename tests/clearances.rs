@@ -193,7 +193,7 @@ fn a_1000_tile_serpentine_reports_its_clearance() {
     }
     let chain = Chain::parse(&word).unwrap();
     assert_eq!(chain.len(), 1000);
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let (_, summary) = simulate(
         &chain,
         &TileDesigns::global(Design::thesis()),
@@ -249,7 +249,7 @@ fn clearance_cost() {
             row += 1;
         }
         let chain = Chain::parse(&word).unwrap();
-        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
         for clearance in [false, true] {
             let t = cpu_seconds();
             let (_, summary) = simulate(
