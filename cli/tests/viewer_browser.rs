@@ -209,7 +209,11 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     // the fold is part way and turning: the tile after the joint, against the tile before
     // it, between its start and its quarter turn, and further on 1% of the fold later
     let later = fold_mid + 0.01 * (f1 - f0);
-    let dom = dump_dom(&exe, &page, &format!("t={fold_mid}&probe={fold_mid},{later}"));
+    let dom = dump_dom(
+        &exe,
+        &page,
+        &format!("t={fold_mid}&probe={fold_mid},{later}"),
+    );
     let panel = attributes(&dom, "section", "data-poses-1");
     let turn = |name: &str| {
         let p = poses_of(&panel, name);
@@ -219,7 +223,10 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     };
     let (a, b) = (turn("data-poses-1").abs(), turn("data-poses-2").abs());
     let quarter = std::f64::consts::FRAC_PI_2;
-    assert!(a > 0.02 * quarter && a < 0.98 * quarter, "joint {joint} at {a} rad");
+    assert!(
+        a > 0.02 * quarter && a < 0.98 * quarter,
+        "joint {joint} at {a} rad"
+    );
     assert!(b > a + 1e-4, "joint {joint}: {a} then {b} rad");
     std::fs::remove_dir_all(&d).unwrap();
 }
