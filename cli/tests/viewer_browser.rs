@@ -188,9 +188,9 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
     };
     let (t0, last) = events
         .iter()
-        .filter(|e| e.1 == "magnet_starts")
+        .rev()
+        .find(|e| e.1 == "magnet_starts")
         .map(|e| (e.0, e.2))
-        .last()
         .unwrap();
     let magnet_mid = 0.5 * (t0 + at("magnet_arrives", last, t0));
     let moving = body(&exe, &page, &format!("t={magnet_mid}"));
