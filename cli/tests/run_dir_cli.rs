@@ -83,12 +83,25 @@ fn an_interrupt_leaves_one_whole_run() {
         .unwrap();
     let status = child.wait().unwrap();
     let now = names(&dir);
+    // the whole new run: the earlier run's files with 400 frames in place of 5
+    let mut whole_new: Vec<String> = earlier
+        .iter()
+        .filter(|n| !n.starts_with("step-"))
+        .cloned()
+        .chain((0..400).map(|i| format!("step-{i:04}.svg")))
+        .collect();
+    whole_new.sort();
     if status.success() {
         // it finished before the signal
-        assert_eq!(frames(&dir), 400);
+        assert_eq!(now, whole_new);
     } else {
         assert_eq!(status.code(), Some(130));
-        assert_eq!(now, earlier);
+        // A signal during the exchange waits for it and then exits 130 (run_dir.rs), so
+        // DIR holds either the earlier run or the new one, each whole, never a mix.
+        assert!(
+            now == earlier || now == whole_new,
+            "DIR holds a mix after Ctrl-C: {now:?}"
+        );
     }
     assert_eq!(
         names(&base),
