@@ -47,6 +47,7 @@ mod error;
 mod fit;
 mod flatten;
 mod frame;
+mod narrow;
 mod options;
 mod plan;
 mod plan_shape;

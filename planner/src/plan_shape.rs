@@ -11,7 +11,8 @@ use crate::cell_plan::CellFailure;
 use crate::empty::{empty_key, note_empty};
 use crate::error::{PlanError, Rejected};
 use crate::fit::plan_score;
-use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
+use crate::narrow;
+use crate::options::{PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
 use crate::plan::Plan;
 use crate::refusal;
 use crate::rows::{Style, LOOSE, TIGHT};
@@ -54,6 +55,25 @@ pub(crate) fn plan_shape(
     let parts = separate_parts(shape, tiles_est);
     if parts.len() > 1 {
         return Err(refusal::separate_parts(name, &parts, mm_per_unit));
+    }
+    // the raster found no part that holds a tile: unless a finer look finds one, no chain
+    // can fill the drawing at this tile width, refused at once (searching widths at which
+    // every row sticks out of it took minutes)
+    if parts.is_empty() {
+        let w = opts
+            .tile_size
+            .unwrap_or_else(|| width_for(shape.area(), tiles_est.max(1), TIGHT.pitch));
+        if !narrow::fits_a_tile(&shape.scaled(1.0 / w)) {
+            let min_w = width_for(shape.area(), MAX_PLAN_TILES, TIGHT.pitch);
+            return Err(refusal::too_narrow(
+                name,
+                tiles_est,
+                w,
+                opts.tile_size.is_some(),
+                narrow::fitting_width(shape, w, min_w),
+                mm_per_unit,
+            ));
+        }
     }
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);

@@ -81,6 +81,45 @@ pub(crate) fn separate_parts(name: &str, parts: &[Rect], mm_per_unit: f64) -> Pl
     }
 }
 
+/// The refusal of a drawing no tile fits in: no point lies half a tile inside its outline
+/// ([`crate::narrow`]). `asked` tiles (or, with `by_width`, the count a tile width gives)
+/// are tiles `w` wide; `fits` is the first smaller width at which one fits, `k` halvings of
+/// the tile area down (so about `asked * 2^k` tiles), if any.
+pub(crate) fn too_narrow(
+    name: &str,
+    asked: usize,
+    w: f64,
+    by_width: bool,
+    fits: Option<(u32, f64)>,
+    mm_per_unit: f64,
+) -> PlanError {
+    let tile = format!("{} units ({} mm)", units(w), mm(w * mm_per_unit));
+    let what = if by_width {
+        format!("no part of the drawing is wide enough for a tile {tile} wide")
+    } else {
+        format!("no part of the drawing is wide enough for a tile: at {asked} tiles a tile is {tile} wide")
+    };
+    let advice = match fits {
+        Some((_, v)) if by_width => format!(
+            "try a tile width of {} units ({} mm) or less, or draw it wider",
+            units(v),
+            mm(v * mm_per_unit)
+        ),
+        Some((k, v)) => format!(
+            "try {} tiles or more (tiles {} units wide fit), or draw it wider",
+            asked.saturating_mul(1usize << k.min(40)),
+            units(v)
+        ),
+        None => "draw it wider: no tile count the planner takes fits".into(),
+    };
+    PlanError::Unplannable {
+        name: name.into(),
+        reason: format!("{what}; {advice}"),
+        detail: Vec::new(),
+        rejected: None,
+    }
+}
+
 /// Tile counts a refusal tries, as shares of the count asked, largest first: a count that
 /// plans is named in the refusal (checked, not estimated).
 const FEWER: [f64; 4] = [2.0 / 3.0, 1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0];
