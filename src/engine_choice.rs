@@ -105,14 +105,9 @@ mod tests {
         let serpentine = count(&row.repeat(150));
         assert!(serpentine < 10 * width(), "{serpentine}");
         // a fold word of no repeating pattern: about one a tile
-        let mut x = 12345u64;
+        let mut rng = crate::rng::SplitMix64::new(12345);
         let random: String = (0..3000)
-            .map(|_| {
-                x = x
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ['S', 'S', 'L', 'R'][(x >> 62) as usize]
-            })
+            .map(|_| ['S', 'S', 'L', 'R'][(rng.next_u64() >> 62) as usize])
             .collect();
         let r = count(&random);
         assert!(r > 2_900 && r <= 3_001, "{r}");

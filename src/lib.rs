@@ -63,6 +63,7 @@ mod progress;
 pub mod reference;
 mod rng;
 mod simulation;
+mod text_serde;
 mod tile;
 mod tile_frame;
 pub mod timeline;

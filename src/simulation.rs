@@ -93,13 +93,8 @@ fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, 
         .iter()
         .map(|f| {
             let tr = Track::from_samples(&joint_angle_samples(run, f.joint), 0.0);
-            let (times, angles) = tr.points.iter().map(|&(dt, a)| (tr.start + dt, a)).unzip();
-            JointTrack {
-                joint: f.joint,
-                times,
-                angles,
-                ended: f.end.is_finite().then_some(f.end),
-            }
+            let points = tr.points.iter().map(|&(dt, a)| (tr.start + dt, a)).unzip();
+            JointTrack::of_fold(f.joint, points, f.end)
         })
         .collect();
     let schedule = FoldSchedule { tracks };

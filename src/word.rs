@@ -188,18 +188,7 @@ impl fmt::Display for FoldWord {
     }
 }
 
-impl serde::Serialize for FoldWord {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(self)
-    }
-}
-
-impl<'de> serde::Deserialize<'de> for FoldWord {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<FoldWord, D::Error> {
-        let s = <std::borrow::Cow<'de, str>>::deserialize(d)?;
-        FoldWord::parse(&s).map_err(serde::de::Error::custom)
-    }
-}
+crate::text_serde::serde_as_text!(FoldWord);
 
 #[cfg(test)]
 mod tests {
@@ -226,26 +215,20 @@ mod tests {
                 position: 2
             })
         );
-        assert!(matches!(
-            FoldWord::parse("S*0"),
-            Err(ChainError::BadCount { .. })
-        ));
-        assert!(matches!(
-            FoldWord::parse("S*"),
-            Err(ChainError::BadCount { .. })
-        ));
-        assert!(matches!(
-            FoldWord::parse("S*-3"),
-            Err(ChainError::BadCount { .. })
-        ));
-        assert!(matches!(
-            FoldWord::parse("S*99999999999999999999999"),
-            Err(ChainError::TooLong { .. })
-        ));
-        assert!(matches!(
-            FoldWord::parse("S*99999999 S*99999999"),
-            Err(ChainError::TooLong { .. })
-        ));
+        for bad in ["S*0", "S*", "S*-3"] {
+            let parsed = FoldWord::parse(bad);
+            assert!(
+                matches!(parsed, Err(ChainError::BadCount { .. })),
+                "{bad}: {parsed:?}"
+            );
+        }
+        for long in ["S*99999999999999999999999", "S*99999999 S*99999999"] {
+            let parsed = FoldWord::parse(long);
+            assert!(
+                matches!(parsed, Err(ChainError::TooLong { .. })),
+                "{long}: {parsed:?}"
+            );
+        }
     }
 
     #[test]

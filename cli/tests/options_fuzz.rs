@@ -554,23 +554,42 @@ fn fuzz(name: &str, default_cases: usize) {
     assert!(exits[0] > 0 && exits[2] > 0, "{exits:?}");
 }
 
-/// The tools, in the order of the README.
-const TOOLS: [&str; 7] = [
-    "fold-plan",
-    "fold-run",
-    "fold-check",
-    "fold-enum",
-    "fold-tolerance",
-    "fold-validate",
-    "fold-print",
-];
+// A quick pass for every test run: 40 cases per tool, a test per tool (so that they run
+// side by side).
 
-/// A quick pass for every test run: 40 cases per tool.
 #[test]
-fn a_quick_pass_over_every_tool() {
-    for t in TOOLS {
-        fuzz(t, 40);
-    }
+fn fold_run_options_quick() {
+    fuzz("fold-run", 40);
+}
+
+#[test]
+fn fold_check_options_quick() {
+    fuzz("fold-check", 40);
+}
+
+#[test]
+fn fold_enum_options_quick() {
+    fuzz("fold-enum", 40);
+}
+
+#[test]
+fn fold_tolerance_options_quick() {
+    fuzz("fold-tolerance", 40);
+}
+
+#[test]
+fn fold_plan_options_quick() {
+    fuzz("fold-plan", 40);
+}
+
+#[test]
+fn fold_validate_options_quick() {
+    fuzz("fold-validate", 40);
+}
+
+#[test]
+fn fold_print_options_quick() {
+    fuzz("fold-print", 40);
 }
 
 // The full fuzz, 1,000 cases per tool: minutes on two cores, run by CI (`.ci/run` runs the

@@ -1,6 +1,7 @@
-//! A real slicer takes what `fold-print` writes: PrusaSlicer's command line slices every
-//! tile type of the thesis design (nine 3MF files) and a plate written by the binary, each
-//! to G-code, with exit 0 and no error in its output.
+//! A real slicer takes what `fold-print` writes: PrusaSlicer's command line slices a tile
+//! of the thesis design and a plate written by the binary (and, in the slow test `.ci/run`
+//! runs, every tile type: nine 3MF files), each to G-code, with exit 0 and no error in its
+//! output.
 //!
 //! Without `prusa-slicer` on PATH this test prints a note and passes, except under
 //! `CI=true`, where it fails (`.ci/run` installs Debian's `prusa-slicer`).
@@ -59,14 +60,10 @@ fn comment<'a>(gcode: &'a str, key: &str) -> &'a str {
         .unwrap_or("?")
 }
 
-#[test]
-fn prusaslicer_slices_every_tile_type_and_a_plate() {
-    let Some(exe) = slicer() else { return };
-    let dir = absent("slicer");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+/// Slices a tile of each of `tiles` (its own 3MF, in the bed's middle) into `dir`.
+fn slice_tiles(exe: &Path, dir: &Path, tiles: &[Tile]) {
     let opts = PartOptions::default();
-    for tile in Tile::ALL {
+    for &tile in tiles {
         let part = TilePart::new(tile, &Design::thesis(), &opts).unwrap();
         let file = dir.join(format!("{tile}.3mf"));
         let bytes = to_3mf(
@@ -85,7 +82,7 @@ fn prusaslicer_slices_every_tile_type_and_a_plate() {
         )
         .unwrap();
         std::fs::write(&file, bytes).unwrap();
-        let g = slice(&exe, &file, &[]);
+        let g = slice(exe, &file, &[]);
         println!(
             "{tile}: mesh {:.0} mm3; PrusaSlicer: {} cm3 of filament, {}",
             part.volume(),
@@ -93,7 +90,23 @@ fn prusaslicer_slices_every_tile_type_and_a_plate() {
             comment(&g, "estimated printing time (normal mode)")
         );
     }
-    // a plate the binary writes (a tight U-turn: five tiles of four parts)
+}
+
+/// The scratch directory `name`, emptied.
+fn fresh(name: &str) -> PathBuf {
+    let dir = absent(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn prusaslicer_slices_a_tile_and_a_plate() {
+    let Some(exe) = slicer() else { return };
+    let dir = fresh("slicer");
+    // RR, a tile of two curved channels, then a plate the binary writes (a tight U-turn:
+    // five tiles of four parts)
+    slice_tiles(&exe, &dir, &["RR".parse().unwrap()]);
     let out = dir.join("u");
     let o = run("fold-print", &["SLLS", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -107,5 +120,14 @@ fn prusaslicer_slices_every_tile_type_and_a_plate() {
         comment(&g, "filament used [cm3]"),
         comment(&g, "estimated printing time (normal mode)")
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+#[ignore = "slow: slices every tile type with PrusaSlicer (a minute on two cores); .ci/run runs it"]
+fn prusaslicer_slices_every_tile_type() {
+    let Some(exe) = slicer() else { return };
+    let dir = fresh("slicer-every-tile");
+    slice_tiles(&exe, &dir, &Tile::ALL);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -118,13 +118,7 @@ pub(crate) fn closest_approach(
         }
         walk.work += (reach - i) * samples.len();
         for &(_, j) in &candidates[from..to] {
-            let mut near = f64::INFINITY;
-            for (s, &t) in samples.iter().enumerate() {
-                let d = row[(j - i) * samples.len() + s];
-                walk.record(i, j, t, d);
-                near = near.min(d);
-            }
-            pairs.push((near, i, j));
+            pairs.push((walk.record_row(i, j, &samples, &row), i, j));
         }
         if walk.work > budget {
             return None;
@@ -227,13 +221,7 @@ pub(crate) fn all_pairs(tiles: usize, schedule: &FoldSchedule, precision: f64) -
             }
         }
         for j in i + 2..tiles {
-            let mut near = f64::INFINITY;
-            for (s, &t) in samples.iter().enumerate() {
-                let d = row[(j - i) * samples.len() + s];
-                walk.record(i, j, t, d);
-                near = near.min(d);
-            }
-            pairs.push((near, i, j));
+            pairs.push((walk.record_row(i, j, &samples, &row), i, j));
         }
     }
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -453,6 +441,18 @@ impl<'a> PairWalk<'a> {
                 joint,
             });
         }
+    }
+
+    /// Records tiles `i` and `j` at every one of the `samples` (their distances in `row`, at
+    /// `(j - i) * samples.len() + s`); returns the nearest of them.
+    fn record_row(&mut self, i: usize, j: usize, samples: &[f64], row: &[f64]) -> f64 {
+        let mut near = f64::INFINITY;
+        for (s, &t) in samples.iter().enumerate() {
+            let d = row[(j - i) * samples.len() + s];
+            self.record(i, j, t, d);
+            near = near.min(d);
+        }
+        near
     }
 
     /// The fold front between tiles `i` and `j` at `t`.

@@ -34,6 +34,21 @@ pub(crate) struct JointTrack {
 const HINT_STEPS: usize = 8;
 
 impl JointTrack {
+    /// The track of a fold of `joint` through `(times[i], angles[i])` that ended at `end`
+    /// (not finite: it never did).
+    pub(crate) fn of_fold(
+        joint: usize,
+        (times, angles): (Vec<f64>, Vec<f64>),
+        end: f64,
+    ) -> JointTrack {
+        JointTrack {
+            joint,
+            times,
+            angles,
+            ended: end.is_finite().then_some(end),
+        }
+    }
+
     /// For tests: the track of `joint` through `(times[i], angles[i])`, never ended.
     #[cfg(test)]
     pub(crate) fn open(joint: usize, times: &[f64], angles: &[f64]) -> JointTrack {

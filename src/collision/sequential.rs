@@ -367,13 +367,8 @@ mod tests {
 
     #[test]
     fn fast_path_matches_brute_force_on_random_words() {
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = crate::rng::SplitMix64::new(0x2545_F491_4F6C_DD1D);
+        let mut next = || rng.next_u64();
         let mut collided = 0;
         for round in 0..400 {
             let n = 5 + (next() % 60) as usize;

@@ -50,18 +50,7 @@ impl FromStr for Shard {
     }
 }
 
-impl serde::Serialize for Shard {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(self)
-    }
-}
-
-impl<'de> serde::Deserialize<'de> for Shard {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Shard, D::Error> {
-        let text = String::deserialize(d)?;
-        text.parse().map_err(serde::de::Error::custom)
-    }
-}
+crate::text_serde::serde_as_text!(Shard);
 
 /// What `fold-enum --json` prints: the rows, the wall time, and for a shard which part it is
 /// and the options of its search (so that parts of different searches are not added).

@@ -4,9 +4,8 @@
 use crate::engine::{energy_curve, fold_angle, joint_angles_at, Timeline};
 use crate::kinematics::poses_at_angles;
 use crate::timeline::{
-    ChainState, EnergySample, EventKind, FoldRecord, Geometry, MagnetTrack, RunSource,
-    TimelineJson, Track, TransitionData, ANGLE_TOLERANCE, DETAIL_TILES, EVENT_INDEX,
-    TRAVEL_TOLERANCE,
+    ChainState, EnergySample, FoldRecord, Geometry, MagnetTrack, RunSource, TimelineJson, Track,
+    TransitionData, ANGLE_TOLERANCE, DETAIL_TILES, EVENT_INDEX, TRAVEL_TOLERANCE,
 };
 
 impl RunSource for Timeline {
@@ -126,22 +125,9 @@ fn transition(tl: &Timeline, first: usize, last: usize) -> TransitionData {
             }
         })
         .collect();
-    let triggers = tl
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::TriggerReached && (k0..=k1).contains(&(e.index as usize)))
-        .map(|e| {
-            let k = e.index as usize;
-            (k, e.time, tl.travel_at(k, e.time))
-        })
-        .collect();
-    TransitionData {
-        first,
-        last,
-        t1,
-        tracks,
-        triggers,
-    }
+    TransitionData::from_tracks((first, last), t1, tracks, &tl.events, |_, k, t| {
+        tl.travel_at(k, t)
+    })
 }
 
 /// The most events written by [`timeline_json`] (about 70 MB): a longer run writes the first

@@ -22,12 +22,14 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::margins::placed_tiles::{PlacedTiles, State};
 use crate::margins::{ChainModel, MarginOptions, StartMargin};
+use crate::ode::locate::halve;
 use crate::physics::ForceLaw;
 use crate::timeline::joint_of_magnet;
 use crate::Fold;
 
 /// Bisection steps locating a start or a stall: 2^-32 of the movers' way (about 2 pm).
 const BISECTIONS: usize = 32;
+
 /// Golden-section steps refining an interior maximum: 0.618^24 of two samples' spacing.
 const GOLDEN_STEPS: usize = 24;
 
@@ -145,15 +147,12 @@ pub(crate) fn start_margin(
         }
         if i > 0 && i < n && dv <= threshold && !sweep.fold_takes_over(x) {
             // the movers stop between the last sample and this one: find where
-            let (mut a, mut b) = (prev.0, x);
-            for _ in 0..BISECTIONS {
-                let mid = 0.5 * (a + b);
-                if sweep.at(mid).1 > threshold {
-                    a = mid;
-                } else {
-                    b = mid;
-                }
-            }
+            let (a, _) = halve(
+                (prev.0, x),
+                BISECTIONS,
+                |_, _| false,
+                |mid| sweep.at(mid).1 <= threshold,
+            );
             let (dm_stop, _) = sweep.at(a);
             if dm_stop > best.0 {
                 best = (dm_stop, a);
@@ -312,15 +311,13 @@ impl Sweep<'_, '_> {
 
     /// The first fraction in `(a, b]` where the drive on `m` exceeds `threshold`, knowing it
     /// does at `b` and not at `a`.
-    fn first_positive(&mut self, mut a: f64, mut b: f64, threshold: f64) -> f64 {
-        for _ in 0..BISECTIONS {
-            let mid = 0.5 * (a + b);
-            if self.at(mid).0 > threshold {
-                b = mid;
-            } else {
-                a = mid;
-            }
-        }
-        b
+    fn first_positive(&mut self, a: f64, b: f64, threshold: f64) -> f64 {
+        halve(
+            (a, b),
+            BISECTIONS,
+            |_, _| false,
+            |mid| self.at(mid).0 > threshold,
+        )
+        .1
     }
 }

@@ -19,15 +19,46 @@ pub(crate) struct RestState<'a> {
     pub(crate) drive: &'a [f64],
 }
 
+/// Where a run that neither completed nor was inhibited stalled (see [`RestState::ending`]).
+pub(crate) struct Stall {
+    /// The first magnet (but the last) that neither arrived nor was passed.
+    pub(crate) unarrived: Option<usize>,
+    /// The first folding joint left open.
+    pub(crate) open: Option<usize>,
+    /// The joint named: the first joint of the two above.
+    pub(crate) joint: usize,
+}
+
 impl RestState<'_> {
-    /// The outcome, dated `time` (the last event).
-    pub(crate) fn outcome(&self, time: f64) -> Outcome {
-        let m = self.model;
-        let n = m.geometry.magnets();
-        let unarrived = (0..n.saturating_sub(1))
-            .find(|&k| self.modes[m.magnet_var(k)] != Mode::AtEnd && !self.passed(k));
-        let open = (0..m.geometry.tiles().saturating_sub(1))
-            .find(|&j| m.joint_var(j).is_some_and(|v| self.modes[v] != Mode::AtEnd));
+    /// How a run of `model` ended at `time`, read from each magnet's mode `magnet_mode(k)` and
+    /// each folding joint's mode `joint_mode(j)` (`None`: no mode known): the one verdict of
+    /// the reference and the engine (see the module's opening); a stalled run's reason in
+    /// words from `reason`.
+    pub(crate) fn ending(
+        model: &Model,
+        magnet_mode: impl Fn(usize) -> Option<Mode>,
+        joint_mode: impl Fn(usize) -> Option<Mode>,
+        time: f64,
+        reason: impl FnOnce(&Stall) -> String,
+    ) -> Outcome {
+        let g = &model.geometry;
+        let n = g.magnets();
+        // passed: at rest mid-path at a rigid joint while its partner across the joint
+        // (magnet `k + 1` for odd `k`, `k - 1` for even) arrived
+        let passed = |k: usize| {
+            let j = joint_of_magnet(k);
+            let rigid = j + 1 >= g.tiles() || model.joint_var(j).is_none();
+            let partner = if k % 2 == 1 { k + 1 } else { k.wrapping_sub(1) };
+            rigid
+                && k > 0
+                && partner < n
+                && magnet_mode(k) == Some(Mode::Free)
+                && magnet_mode(partner) == Some(Mode::AtEnd)
+        };
+        let unarrived =
+            (0..n.saturating_sub(1)).find(|&k| magnet_mode(k) != Some(Mode::AtEnd) && !passed(k));
+        let open = (0..g.tiles().saturating_sub(1))
+            .find(|&j| model.joint_var(j).is_some() && joint_mode(j) != Some(Mode::AtEnd));
         let joint = match (unarrived.map(joint_of_magnet), open) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -35,8 +66,8 @@ impl RestState<'_> {
         let Some(j) = joint else {
             return Outcome::Completed;
         };
-        let (diverges, end, rest) = if j + 1 < m.geometry.tiles() {
-            m.geometry.pair_diverges(j)
+        let (diverges, end, rest) = if j + 1 < g.tiles() {
+            g.pair_diverges(j)
         } else {
             (false, 0.0, 0.0)
         };
@@ -49,29 +80,29 @@ impl RestState<'_> {
             };
         }
         let never = (0..n.saturating_sub(1))
-            .find(|&k| self.modes[m.magnet_var(k)] == Mode::AtStart)
+            .find(|&k| magnet_mode(k) == Some(Mode::AtStart))
             .unwrap_or(n.saturating_sub(1));
+        let stall = Stall {
+            unarrived,
+            open,
+            joint: j,
+        };
         Outcome::Stalled {
             joint: j,
             time,
             magnet: never,
-            reason: self.stall_reason(unarrived, open, j),
+            reason: reason(&stall),
         }
     }
 
-    /// Whether magnet `k` rests mid-path at a rigid joint while its partner across the
-    /// joint (magnet `k + 1` for odd `k`, `k - 1` for even) arrived.
-    fn passed(&self, k: usize) -> bool {
+    /// The outcome, dated `time` (the last event).
+    pub(crate) fn outcome(&self, time: f64) -> Outcome {
         let m = self.model;
-        let n = m.geometry.magnets();
-        let j = joint_of_magnet(k);
-        let rigid = j + 1 >= m.geometry.tiles() || m.joint_var(j).is_none();
-        let partner = if k % 2 == 1 { k + 1 } else { k.wrapping_sub(1) };
-        rigid
-            && k > 0
-            && partner < n
-            && self.modes[m.magnet_var(k)] == Mode::Free
-            && self.modes[m.magnet_var(partner)] == Mode::AtEnd
+        let magnet_mode = |k: usize| Some(self.modes[m.magnet_var(k)]);
+        let joint_mode = |j: usize| m.joint_var(j).map(|v| self.modes[v]);
+        RestState::ending(m, magnet_mode, joint_mode, time, |stall| {
+            self.stall_reason(stall.unarrived, stall.open, stall.joint)
+        })
     }
 
     fn stall_reason(&self, unarrived: Option<usize>, open: Option<usize>, j: usize) -> String {

@@ -155,10 +155,7 @@ mod tests {
         let mut seed = 12345u64;
         for i in 0..n {
             for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
-                seed = seed
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                let v = ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
+                let v = next(&mut seed);
                 let v = if i == j { 1e-3 * v } else { v };
                 a.set(i, j, v);
                 dense[i][j] = v;

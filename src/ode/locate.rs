@@ -69,12 +69,28 @@ pub(crate) fn illinois(
 /// true, by bisection until the bracket is within `1e-13` of the time (or of `scale` near
 /// zero), at most 60 halvings: the last time found false and the first found true.
 pub(crate) fn bisect(
-    (mut lo, mut hi): (f64, f64),
+    bracket: (f64, f64),
     scale: f64,
+    holds: impl FnMut(f64) -> bool,
+) -> (f64, f64) {
+    halve(
+        bracket,
+        60,
+        |lo, hi| hi - lo <= 1e-13 * hi.abs().max(scale),
+        holds,
+    )
+}
+
+/// Halves the bracket `(lo, hi)` at most `halvings` times, until `narrow(lo, hi)`: the
+/// midpoint becomes the upper end where `holds` there, the lower end where it does not.
+pub(crate) fn halve(
+    (mut lo, mut hi): (f64, f64),
+    halvings: usize,
+    narrow: impl Fn(f64, f64) -> bool,
     mut holds: impl FnMut(f64) -> bool,
 ) -> (f64, f64) {
-    for _ in 0..60 {
-        if hi - lo <= 1e-13 * hi.abs().max(scale) {
+    for _ in 0..halvings {
+        if narrow(lo, hi) {
             break;
         }
         let mid = 0.5 * (lo + hi);

@@ -23,6 +23,7 @@
 use std::fmt::Debug;
 
 use crate::ode::band::Singular;
+use crate::ode::stepper::StepStart;
 use crate::ode::{StepStats, Stepper, System};
 
 /// ROS2's diagonal `gamma`.
@@ -68,17 +69,14 @@ impl<W: Default + Debug> Stepper<W> {
         self.jac_fresh = true;
     }
 
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn ros2<S: System<Work = W>>(
         &mut self,
         sys: &S,
-        y0: &[f64],
-        f0: &[f64],
-        h: f64,
-        tol: f64,
+        from: StepStart<'_>,
         stats: &mut StepStats,
         y: &mut [f64],
     ) -> Result<f64, Singular> {
+        let StepStart { y0, f0, h, tol } = from;
         let n = y0.len();
         if !self.jac_fresh {
             self.jacobian(sys, y0, f0, stats);

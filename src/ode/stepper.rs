@@ -67,6 +67,16 @@ pub(crate) trait System {
     fn rhs(&self, y: &[f64], work: &mut Self::Work, out: &mut [f64]);
 }
 
+/// Where a step attempt starts: the state `y0`, its rates `f0 = dy/dt(y0)`, the step size
+/// `h` and the tolerance `tol`.
+#[derive(Clone, Copy)]
+pub(super) struct StepStart<'a> {
+    pub(super) y0: &'a [f64],
+    pub(super) f0: &'a [f64],
+    pub(super) h: f64,
+    pub(super) tol: f64,
+}
+
 /// One integrator's working storage for a system of `n` unknowns with scratch `W`: nothing
 /// is allocated per step.
 #[derive(Debug)]
@@ -149,23 +159,21 @@ impl<W: Default + Debug> Stepper<W> {
         stats: &mut StepStats,
         y1: &mut [f64],
     ) -> Result<f64, Singular> {
+        let from = StepStart { y0, f0, h, tol };
         match self.method {
-            Method::Dopri5 => Ok(self.dopri5(sys, y0, f0, h, tol, stats, y1)),
-            Method::Ros2 => self.ros2(sys, y0, f0, h, tol, stats, y1),
+            Method::Dopri5 => Ok(self.dopri5(sys, from, stats, y1)),
+            Method::Ros2 => self.ros2(sys, from, stats, y1),
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn dopri5<S: System<Work = W>>(
         &mut self,
         sys: &S,
-        y0: &[f64],
-        f0: &[f64],
-        h: f64,
-        tol: f64,
+        from: StepStart<'_>,
         stats: &mut StepStats,
         y: &mut [f64],
     ) -> f64 {
+        let StepStart { y0, f0, h, tol } = from;
         let n = y0.len();
         self.k[0].copy_from_slice(f0);
         let mut k = std::mem::take(&mut self.k);

@@ -63,16 +63,7 @@ impl Table {
         t.tail[NODES - 1] = acc;
         for i in (0..NODES - 1).rev() {
             // Simpson on 16 sub-intervals of [x_i, x_i+1]
-            let (a, b) = (t.x[i], t.x[i + 1]);
-            let n = 16;
-            let h = (b - a) / n as f64;
-            let f = |s: f64| t.ratio(s) / s.powi(4);
-            let mut sum = f(a) + f(b);
-            for k in 1..n {
-                let w = if k % 2 == 1 { 4.0 } else { 2.0 };
-                sum += w * f(a + k as f64 * h);
-            }
-            acc += sum * h / 3.0;
+            acc += simpson(|s| t.ratio(s) / s.powi(4), t.x[i], t.x[i + 1]);
             t.tail[i] = acc;
         }
         t
@@ -114,16 +105,8 @@ impl Table {
             return 3.0 * x.powi(3) * (1.0 / (3.0 * x.powi(3)) + c / (5.0 * x.powi(5)));
         }
         let i = self.interval(x);
-        let b = self.x[i + 1];
-        let n = 16;
-        let h = (b - x) / n as f64;
-        let f = |s: f64| self.ratio(s) / s.powi(4);
-        let mut sum = f(x) + f(b);
-        for k in 1..n {
-            let w = if k % 2 == 1 { 4.0 } else { 2.0 };
-            sum += w * f(x + k as f64 * h);
-        }
-        3.0 * x.powi(3) * (self.tail[i + 1] + sum * h / 3.0)
+        let near = simpson(|s| self.ratio(s) / s.powi(4), x, self.x[i + 1]);
+        3.0 * x.powi(3) * (self.tail[i + 1] + near)
     }
 
     fn interval(&self, x: f64) -> usize {
@@ -138,6 +121,18 @@ impl Table {
         }
         i
     }
+}
+
+/// The integral of `f` over `[a, b]` by Simpson's rule on 16 sub-intervals.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+    let n = 16;
+    let h = (b - a) / n as f64;
+    let mut sum = f(a) + f(b);
+    for k in 1..n {
+        let w = if k % 2 == 1 { 4.0 } else { 2.0 };
+        sum += w * f(a + k as f64 * h);
+    }
+    sum * h / 3.0
 }
 
 /// Fritsch-Carlson slopes: a cubic Hermite interpolant through `(x, y)` that keeps the

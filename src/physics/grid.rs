@@ -48,13 +48,8 @@ mod tests {
     #[test]
     fn finds_exactly_the_close_pairs() {
         // a pseudo-random cloud against all pairs
-        let mut s = 12345u64;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s % 10_000) as f64 / 100.0 - 50.0
-        };
+        let mut rng = crate::rng::SplitMix64::new(12345);
+        let mut next = || (rng.next_u64() % 10_000) as f64 / 100.0 - 50.0;
         let pts: Vec<Point> = (0..300).map(|_| Point::new(next(), next())).collect();
         for r in [0.5, 3.0, 17.0] {
             let mut want = Vec::new();

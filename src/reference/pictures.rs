@@ -212,22 +212,9 @@ pub fn reference_transition(run: &ReferenceRun, first: usize, last: usize) -> Tr
             }
         })
         .collect();
-    let triggers = run
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::TriggerReached && is_magnet(e.index as usize))
-        .map(|e| {
-            let k = e.index as usize;
-            (k, e.time, along(&tracks[k - k0].travel, e.time))
-        })
-        .collect();
-    TransitionData {
-        first,
-        last,
-        t1,
-        tracks,
-        triggers,
-    }
+    TransitionData::from_tracks((first, last), t1, tracks, &run.events, |track, _, t| {
+        along(&track.travel, t)
+    })
 }
 
 /// The recorded state nearest `time`, stamped with that state's own time (the final state

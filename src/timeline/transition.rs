@@ -1,6 +1,8 @@
 //! The transition diagram's data (thesis figure 6.3): each magnet's travel along its path
 //! against time for a range of tiles, and where a moving magnet started the next one.
 
+use crate::timeline::{Event, EventKind};
+
 /// One magnet's line in the transition diagram.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct MagnetTrack {
@@ -28,6 +30,33 @@ pub struct TransitionData {
 }
 
 impl TransitionData {
+    /// The diagram of magnets `2 * first ..= 2 * last + 1` with their `tracks` (in magnet
+    /// order) on an axis to `t1`, its trigger ticks from the `events` of those magnets: each
+    /// at the travel `travel_at(track, magnet, time)` of the magnet that reached it.
+    pub(crate) fn from_tracks(
+        (first, last): (usize, usize),
+        t1: f64,
+        tracks: Vec<MagnetTrack>,
+        events: &[Event],
+        travel_at: impl Fn(&MagnetTrack, usize, f64) -> f64,
+    ) -> TransitionData {
+        let magnets = 2 * first..=2 * last + 1;
+        let triggers = events
+            .iter()
+            .filter(|e| e.kind == EventKind::TriggerReached)
+            .map(|e| (e.index as usize, e.time))
+            .filter(|(k, _)| magnets.contains(k))
+            .map(|(k, t)| (k, t, travel_at(&tracks[k - 2 * first], k, t)))
+            .collect();
+        TransitionData {
+            first,
+            last,
+            t1,
+            tracks,
+            triggers,
+        }
+    }
+
     /// The time axis' end for a diagram whose last shown magnet arrives at `end_time`.
     pub fn axis_end(end_time: f64) -> f64 {
         end_time.max(1e-9) * 1.08

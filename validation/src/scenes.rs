@@ -93,11 +93,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn square_has_107_tiles_and_folds_cleanly() {
+    fn square_has_107_tiles_and_16_folds() {
         let w = square_107_word();
         assert_eq!(w.len(), 106);
-        let chain = Chain::parse(&w).unwrap();
-        assert_eq!(chain.len(), 107);
+        assert_eq!(Chain::parse(&w).unwrap().len(), 107);
+        // eight tight U-turns of two folds each
+        assert_eq!(w.chars().filter(|&c| c != 'S').count(), 16);
+    }
+
+    #[test]
+    #[ignore = "slow: simulates the 107-tile square (tens of seconds on two cores); .ci/run runs it"]
+    fn square_folds_cleanly() {
+        let chain = Chain::parse(&square_107_word()).unwrap();
         let (_, summary) = foldchain::simulate(
             &chain,
             &TileDesigns::default(),

@@ -29,7 +29,7 @@ use std::f64::consts::FRAC_PI_2;
 
 pub(crate) use relaxation::ChainSolution;
 
-use crate::model::{Mode, Model};
+use crate::model::{Mode, Model, RestState};
 use crate::timeline::{joint_of_magnet, start_fraction, Event, EventKind, FoldRecord, Outcome};
 use crate::Fold;
 
@@ -210,94 +210,52 @@ fn magnet_slot(k: usize) -> (usize, usize) {
     }
 }
 
-/// How the run ended, from each unit's final modes (as the reference's verdict).
+/// How the run ended, from each unit's final modes (the reference's verdict,
+/// [`RestState::ending`]).
 fn outcome(model: &Model, chain: &ChainSolution, time: f64) -> Outcome {
-    let g = &model.geometry;
-    let n = g.magnets();
-    let mode = |k: usize| {
+    let magnet_mode = |k: usize| {
         let (u, i) = magnet_slot(k);
         chain.units[u].0.solution.modes.get(i).copied()
     };
     let joint_mode = |j: usize| chain.units[j + 1].0.solution.modes.get(2).copied();
-    // passed, as the reference's verdict says: at rest mid-path at a rigid joint while its
-    // partner across the joint arrived (a curved path paired with a straight one)
-    let passed = |k: usize| {
-        let j = joint_of_magnet(k);
-        let rigid = j + 1 >= g.tiles() || model.joint_var(j).is_none();
-        let partner = if k % 2 == 1 { k + 1 } else { k.wrapping_sub(1) };
-        rigid
-            && k > 0
-            && partner < n
-            && mode(k) == Some(Mode::Free)
-            && mode(partner) == Some(Mode::AtEnd)
-    };
-    let unarrived = (0..n.saturating_sub(1)).find(|&k| mode(k) != Some(Mode::AtEnd) && !passed(k));
-    let open = (0..g.tiles().saturating_sub(1))
-        .find(|&j| model.joint_var(j).is_some() && joint_mode(j) != Some(Mode::AtEnd));
-    let joint = match (unarrived.map(joint_of_magnet), open) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
-    };
-    let Some(j) = joint else {
-        return Outcome::Completed;
-    };
-    let (diverges, end, rest) = if j + 1 < g.tiles() {
-        g.pair_diverges(j)
-    } else {
-        (false, 0.0, 0.0)
-    };
-    if diverges {
-        return Outcome::Inhibited {
-            joint: j,
-            time,
-            end_distance_mm: end,
-            rest_distance_mm: rest,
+    RestState::ending(model, magnet_mode, joint_mode, time, |stall| {
+        let j = stall.joint;
+        let reason = match stall.unarrived.filter(|&k| joint_of_magnet(k) == j) {
+            Some(k) => {
+                let (u, i) = magnet_slot(k);
+                let sol = &chain.units[u].0.solution;
+                let drive = sol.drive.get(i).copied().unwrap_or(0.0);
+                let len = model.path_length(k);
+                match sol.modes.get(i) {
+                    Some(Mode::AtStart) => format!(
+                        "magnet {k} never started: the force along its path stays {drive:.3e} N (towards its rest point) once every magnet before it has stopped (local solve)"
+                    ),
+                    _ => format!(
+                        "magnet {k} came to rest {:.4} mm along its {len:.4} mm path, the forces along it balanced ({drive:.3e} N): it cannot reach the point that starts the next magnet (local solve)",
+                        sol.y.get(i).copied().unwrap_or(0.0) * len
+                    ),
+                }
+            }
+            None => match stall.open {
+                Some(jj) => {
+                    let sol = &chain.units[jj + 1].0.solution;
+                    format!(
+                        "joint {jj} stopped at {:.2} degrees, its torque balanced ({:.3e} N m) before the walls close it (local solve)",
+                        sol.y.get(2).copied().unwrap_or(0.0) * 90.0,
+                        sol.drive.get(2).copied().unwrap_or(0.0)
+                    )
+                }
+                None => format!("propagation stopped at joint {j} (local solve)"),
+            },
         };
-    }
-    let never = (0..n.saturating_sub(1))
-        .find(|&k| mode(k) == Some(Mode::AtStart))
-        .unwrap_or(n.saturating_sub(1));
-    let reason = match unarrived.filter(|&k| joint_of_magnet(k) == j) {
-        Some(k) => {
-            let (u, i) = magnet_slot(k);
-            let sol = &chain.units[u].0.solution;
-            let drive = sol.drive.get(i).copied().unwrap_or(0.0);
-            let len = model.path_length(k);
-            match sol.modes.get(i) {
-                Some(Mode::AtStart) => format!(
-                    "magnet {k} never started: the force along its path stays {drive:.3e} N (towards its rest point) once every magnet before it has stopped (local solve)"
-                ),
-                _ => format!(
-                    "magnet {k} came to rest {:.4} mm along its {len:.4} mm path, the forces along it balanced ({drive:.3e} N): it cannot reach the point that starts the next magnet (local solve)",
-                    sol.y.get(i).copied().unwrap_or(0.0) * len
-                ),
-            }
-        }
-        None => match open {
-            Some(jj) => {
-                let sol = &chain.units[jj + 1].0.solution;
-                format!(
-                    "joint {jj} stopped at {:.2} degrees, its torque balanced ({:.3e} N m) before the walls close it (local solve)",
-                    sol.y.get(2).copied().unwrap_or(0.0) * 90.0,
-                    sol.drive.get(2).copied().unwrap_or(0.0)
-                )
-            }
-            None => format!("propagation stopped at joint {j} (local solve)"),
-        },
-    };
-    // a solve that ran out of its work budget decided nothing: its reason alone (the run is
-    // `undecided`, `crate::simulation::check_engine_run`), not a rest it never came to
-    let reason = chain
-        .units
-        .iter()
-        .find_map(|u| u.0.solution.stopped.clone())
-        .unwrap_or(reason);
-    Outcome::Stalled {
-        joint: j,
-        time,
-        magnet: never,
-        reason,
-    }
+        // a solve that ran out of its work budget decided nothing: its reason alone (the run is
+        // `undecided`, `crate::simulation::check_engine_run`), not a rest it never came to
+        chain
+            .units
+            .iter()
+            .find_map(|u| u.0.solution.stopped.clone())
+            .unwrap_or(reason)
+    })
 }
 
 /// The signed angle of `fold` at `t` from its joint's solved track.
