@@ -21,7 +21,6 @@ use std::time::Instant;
 use foldchain::collision::{check_word, CheckOptions};
 use foldchain::engine::{run, EngineMethod, EngineOptions, SValue, TileDesigns};
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::Inertia;
 use foldchain::timeline::Summary;
 use foldchain::{Fold, FoldWord};
 
@@ -158,7 +157,7 @@ fn local_check(file: &str) {
     let chain = FoldWord::parse(text.trim()).expect("fold word").to_chain();
     let designs = TileDesigns::default().with_s(SValue::Millimetres(0.1));
     let t = Instant::now();
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let tl = run(
         &chain,
         &designs,

@@ -17,16 +17,26 @@ pub(crate) const DEFAULT_WALL: f64 = 0.8;
 /// Density of sintered NdFeB, g/cm^3 (manufacturers quote 7.4 to 7.6).
 pub(crate) const NDFEB_DENSITY: f64 = 7.5;
 
+/// Default magnet mass, g: a 3 mm x 5 mm cylinder of NdFeB at [`NDFEB_DENSITY`] (0.2651 g).
+pub(crate) const DEFAULT_MAGNET_MASS: f64 = 0.265;
+
 /// Tile and magnet design. Lengths in millimetres, mass in grams, remanence in tesla.
 ///
 /// Defaults are the thesis design (SPEC section 4): 30 mm tiles (`d` = 15 mm), `s` = 0.3 mm,
-/// path length `a` = 5 mm (so `e` = 4.7 mm), `c = d/2 - e`, 3 mm x 5 mm NdFeB magnets of
-/// 0.625 g with a remanence of 1.3 T (grade N42, a typical value; the thesis gives no grade),
-/// a 0.8 mm wall between a curved path's final point and the tile's diagonal face.
+/// path length `a` = 5 mm (so `e` = 4.7 mm), `c = d/2 - e`, 3 mm x 5 mm NdFeB magnets with a
+/// remanence of 1.3 T (grade N42, a typical value; the thesis gives no grade), a 0.8 mm wall
+/// between a curved path's final point and the tile's diagonal face.
 ///
-/// The thesis' 0.625 g per magnet does not fit a 3 mm x 5 mm NdFeB cylinder: at the alloy's
-/// density of about 7.5 g/cm^3 it weighs 0.265 g ([`Design::cylinder_mass`]). The field keeps
-/// the thesis' figure; the inertial reference model takes its mass from its own options.
+/// **Physical parameters.** The design also carries everything the dynamics need, each used
+/// by every model that runs (the event engine, the joint-angle and free-body references) or
+/// refused where a model cannot use it: the masses of a magnet and of a tile, the drag and
+/// friction of a magnet in its channel, the restitution at a wall, and the water the tiles
+/// float on (viscosity, the sheared film under a tile, density, form drag). The thesis
+/// measures none of the dynamics: every default is an estimate, with its reasoning in the
+/// field's documentation and in `docs/physics.md`. The thesis' 0.625 g per magnet does not
+/// fit a 3 mm x 5 mm NdFeB cylinder, which weighs 0.265 g at the alloy's density of about
+/// 7.5 g/cm^3 ([`Design::cylinder_mass`]): the default is the cylinder's mass, the magnet the
+/// model's forces are computed for.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Design {
@@ -47,7 +57,8 @@ pub struct Design {
     pub magnet_height: f64,
     /// Magnet remanence, T. Default 1.3.
     pub remanence: f64,
-    /// Magnet mass, g. Default 0.625 (the thesis' figure; see the type's documentation).
+    /// Magnet mass, g. Default 0.265: a 3 mm x 5 mm NdFeB cylinder (the thesis quotes 0.625 g,
+    /// which does not fit that size; see the type's documentation).
     pub magnet_mass: f64,
     /// Wall thickness between a curved path's final point and the tile's diagonal face
     /// that closes the fold, mm. Default 0.8: a wall that FDM printing (two 0.4 mm
@@ -56,6 +67,45 @@ pub struct Design {
     /// which then sets that distance as before (the thesis' layout `c` = 2.8 mm amounts to a
     /// 1.3 mm wall).
     pub wall: f64,
+    /// Mass of a printed tile without its magnets, g. Default 3.0. Estimate: the thesis'
+    /// tiles float in about 5 mm of water (7.3), so with their two magnets they draw less
+    /// than 5 mm: at most 998 kg/m^3 x 7.46 cm^2 x 5 mm = 3.7 g in all, 3.2 g without the
+    /// magnets (a solid 30 mm octagon 7.5 mm thick of printed resin would weigh 6.7 g and
+    /// sink: the tiles are hollow, their channels water-filled). Range 2 to 3.2 g.
+    pub tile_mass: f64,
+    /// Drag of a magnet sliding in its channel, N s/m; `None` (default): the dynamics'
+    /// estimate, 0.05 N s/m inertial (water and silicone oil round a 3 mm magnet and in a
+    /// 1-10 um film under its base: range 1e-3 to 1) or 5 N s/m overdamped (the earlier
+    /// assumption that makes every move slow: the overdamped model is the stiff limit).
+    pub magnet_drag: Option<f64>,
+    /// Coulomb (sliding) friction of a magnet in its channel, N. Default 0 (lubricated;
+    /// range 0 to 1 mN). A magnet at rest starts only when the force along its path exceeds
+    /// it.
+    pub friction: f64,
+    /// Coefficient of restitution of a magnet at its path's end or a fold at its walls.
+    /// Default 0.3 (a plated magnet on a printed wall, damped by the liquid; range 0 to 0.6;
+    /// the thesis saw magnets bounce, 7.3.1).
+    pub restitution: f64,
+    /// Dynamic viscosity of the water, Pa s. Default 1.0e-3 (water at 20 C; 0.89e-3 at 25 C).
+    /// 0 (no water drag) is taken by the inertial models only, as an idealisation; design
+    /// files and command lines are held to 1e-5 (air) or more.
+    pub water_viscosity: f64,
+    /// Thickness of the sheared water under a tile, mm. Default 0.25. Estimate: a tile
+    /// (with [`Design::tile_mass`] and its magnets) floats about 4.75 mm deep in the thesis'
+    /// container of about 5 mm of water (7.3: "if too much water is used there can be
+    /// difficulties with water resistance"), so its underside glides over the floor on a
+    /// film of about 0.25 mm, sheared linearly (Couette flow). The depth is "approximately
+    /// 5mm": range 0.1 to 1.5 mm (a plate moving for about a second in deep water shears a
+    /// layer `sqrt(nu t)` = 1 mm). A tile's linear drag is `mu A / h` translating and
+    /// `mu J / h` turning about its centre (`A`, `J` its area and polar area moment).
+    pub water_film: f64,
+    /// Form drag coefficient of a tile's immersed edge, `C_d` in `F = rho C_d A |v| v / 2`
+    /// (`A` the tile's width times its draft): 0 (default) leaves it out; about 1 to 2 for a
+    /// blunt plate edge. Only the free-body reference (inertial) integrates it; the other
+    /// models refuse a value above 0.
+    pub form_drag: f64,
+    /// Density of the water, kg/m^3 (form drag; a tile's draft). Default 998.
+    pub water_density: f64,
 }
 
 impl Default for Design {
@@ -69,8 +119,16 @@ impl Default for Design {
             magnet_diameter: 3.0,
             magnet_height: 5.0,
             remanence: 1.3,
-            magnet_mass: 0.625,
+            magnet_mass: DEFAULT_MAGNET_MASS,
             wall: DEFAULT_WALL,
+            tile_mass: 3.0,
+            magnet_drag: None,
+            friction: 0.0,
+            restitution: 0.3,
+            water_viscosity: 1.0e-3,
+            water_film: 0.25,
+            form_drag: 0.0,
+            water_density: 998.0,
         }
     }
 }
@@ -166,7 +224,7 @@ pub(crate) struct FieldRange {
 /// The physical ranges of the design fields held to a fixed range; the lengths inside a tile
 /// (`d`, `s`, `e`, `c`, `magnet_diameter`) are bounded by the tile's own size
 /// ([`Design::validate`]).
-pub(crate) const RANGES: [FieldRange; 5] = [
+pub(crate) const RANGES: [FieldRange; 13] = [
     FieldRange {
         name: "tile_width",
         min: 0.01,
@@ -206,6 +264,70 @@ pub(crate) const RANGES: [FieldRange; 5] = [
         relative_to_width: true,
         unit: "mm",
         why: "a wall inside the tile's corner",
+    },
+    FieldRange {
+        name: "tile_mass",
+        min: 0.0,
+        max: 100_000.0,
+        relative_to_width: false,
+        unit: "g",
+        why: "a tile lighter than 100 kg",
+    },
+    FieldRange {
+        name: "magnet_drag",
+        min: 0.0,
+        max: 1e4,
+        relative_to_width: false,
+        unit: "N s/m",
+        why: "from a free magnet in water (3e-5) to one stuck in grease",
+    },
+    FieldRange {
+        name: "friction",
+        min: 0.0,
+        max: 10.0,
+        relative_to_width: false,
+        unit: "N",
+        why: "below the pull of any magnet the model knows",
+    },
+    FieldRange {
+        name: "restitution",
+        min: 0.0,
+        max: 0.99,
+        relative_to_width: false,
+        unit: "",
+        why: "a bounce loses energy",
+    },
+    FieldRange {
+        name: "water_viscosity",
+        min: 1e-5,
+        max: 100.0,
+        relative_to_width: false,
+        unit: "Pa s",
+        why: "from air (1.8e-5) to honey (about 10)",
+    },
+    FieldRange {
+        name: "water_film",
+        min: 1e-3,
+        max: 1000.0,
+        relative_to_width: false,
+        unit: "mm",
+        why: "from a micrometre film to a metre of water",
+    },
+    FieldRange {
+        name: "form_drag",
+        min: 0.0,
+        max: 10.0,
+        relative_to_width: false,
+        unit: "",
+        why: "a plate broadside has about 2",
+    },
+    FieldRange {
+        name: "water_density",
+        min: 1.0,
+        max: 20_000.0,
+        relative_to_width: false,
+        unit: "kg/m^3",
+        why: "from air to mercury",
     },
 ];
 
@@ -310,6 +432,17 @@ impl Design {
             })
         };
         self.check_signs()?;
+        if let Some(g) = self.magnet_drag.filter(|g| *g <= 0.0) {
+            return bad("magnet_drag", g, "N s/m", "a finite number > 0".into());
+        }
+        if self.restitution >= 1.0 {
+            return bad(
+                "restitution",
+                self.restitution,
+                "",
+                "a number from 0 up to, not including, 1 (a bounce loses energy)".into(),
+            );
+        }
         self.check_geometry()?;
         let (lo, hi) = NUMERIC_RANGE;
         for (name, value, unit) in self
@@ -458,6 +591,27 @@ impl Design {
         Ok(())
     }
 
+    /// The physical parameters of the dynamics this design sets to other than their
+    /// defaults (masses, drags, friction, restitution, the water), by field name: a static
+    /// study (margins, the tolerance study) uses none of them and refuses them.
+    pub fn dynamic_fields_set(&self) -> Vec<&'static str> {
+        let d = Design::default();
+        [
+            ("magnet_mass", self.magnet_mass != d.magnet_mass),
+            ("tile_mass", self.tile_mass != d.tile_mass),
+            ("magnet_drag", self.magnet_drag != d.magnet_drag),
+            ("friction", self.friction != d.friction),
+            ("restitution", self.restitution != d.restitution),
+            ("water_viscosity", self.water_viscosity != d.water_viscosity),
+            ("water_film", self.water_film != d.water_film),
+            ("form_drag", self.form_drag != d.form_drag),
+            ("water_density", self.water_density != d.water_density),
+        ]
+        .into_iter()
+        .filter_map(|(name, set)| set.then_some(name))
+        .collect()
+    }
+
     /// The largest `s` a tile of this design can be built with, mm: at most `e`, and the
     /// tile's two magnets at rest at least a magnet diameter apart.
     pub fn s_max(&self) -> f64 {
@@ -479,6 +633,17 @@ impl Design {
                 "remanence" => self.remanence,
                 "magnet_mass" => self.magnet_mass,
                 "wall" => self.wall,
+                "tile_mass" => self.tile_mass,
+                "magnet_drag" => match self.magnet_drag {
+                    Some(v) => v,
+                    None => continue,
+                },
+                "friction" => self.friction,
+                "restitution" => self.restitution,
+                "water_viscosity" => self.water_viscosity,
+                "water_film" => self.water_film,
+                "form_drag" => self.form_drag,
+                "water_density" => self.water_density,
                 _ => continue,
             };
             let max = if range.relative_to_width {
@@ -508,7 +673,7 @@ impl Design {
         self.validate()
     }
 
-    fn positive_fields(&self) -> [(&'static str, f64, &'static str); 7] {
+    fn positive_fields(&self) -> [(&'static str, f64, &'static str); 10] {
         [
             ("tile_width", self.tile_width, "mm"),
             ("d", self.d, "mm"),
@@ -517,6 +682,9 @@ impl Design {
             ("magnet_height", self.magnet_height, "mm"),
             ("remanence", self.remanence, "T"),
             ("magnet_mass", self.magnet_mass, "g"),
+            ("tile_mass", self.tile_mass, "g"),
+            ("water_film", self.water_film, "mm"),
+            ("water_density", self.water_density, "kg/m^3"),
         ]
     }
 
@@ -526,6 +694,15 @@ impl Design {
             v.push(("c", c, "mm"));
         }
         v.push(("wall", self.wall, "mm"));
+        if let Some(g) = self.magnet_drag {
+            v.push(("magnet_drag", g, "N s/m"));
+        }
+        // 0 (no water drag) is an idealisation the library takes (momentum studies); a design
+        // file or command line is held to the physical range ([`Design::check_ranges`])
+        v.push(("water_viscosity", self.water_viscosity, "Pa s"));
+        v.push(("friction", self.friction, "N"));
+        v.push(("restitution", self.restitution, ""));
+        v.push(("form_drag", self.form_drag, ""));
         v
     }
 

@@ -86,6 +86,7 @@ fn design_from(v: &[f64], c: Option<f64>) -> Design {
         remanence: v[6],
         magnet_mass: v[7],
         wall: 0.8,
+        ..Design::default()
     }
 }
 

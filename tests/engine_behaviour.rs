@@ -311,7 +311,7 @@ fn local_solves_on_one_thread_or_two_give_the_same_events() {
     use foldchain::model::{Dynamics, ModelOptions};
     let chain = Chain::parse("S*30 LL S*30 RR S*30 LL S*30").unwrap();
     let designs = TileDesigns::global(Design::thesis().with_s(0.1));
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let on = |threads| {
         let opts = EngineOptions::default()
             .with_model(model)

@@ -8,10 +8,18 @@ use foldchain::model::{Dynamics, ModelOptions};
 use foldchain::reference::ReferenceError;
 use foldchain::reference::{run_free_body, FreeBodyOptions, ReferenceOptions};
 use foldchain::timeline::{Outcome, TileDesigns};
-use foldchain::Chain;
+use foldchain::{Chain, Design};
 
 fn run(word: &str, opts: &FreeBodyOptions) -> foldchain::reference::FreeBodyRun {
-    run_free_body(&Chain::parse(word).unwrap(), &TileDesigns::default(), opts).unwrap()
+    run_in(word, &TileDesigns::default(), opts)
+}
+
+fn run_in(
+    word: &str,
+    designs: &TileDesigns,
+    opts: &FreeBodyOptions,
+) -> foldchain::reference::FreeBodyRun {
+    run_free_body(&Chain::parse(word).unwrap(), designs, opts).unwrap()
 }
 
 #[test]
@@ -20,12 +28,14 @@ fn momentum_is_conserved_without_drag() {
     // impulse inside the chain; from rest the momentum stays zero, within 1e-9 of the
     // momenta of the parts that move (measured: 1.4e-10 at most over these chains at
     // tolerance 1e-10; about 1e-8 at the default 1e-8, the integrator's own error)
-    let base = FreeBodyOptions::default()
-        .with_water_viscosity(0.0)
-        .with_momentum_track();
+    let still = TileDesigns::global(Design {
+        water_viscosity: 0.0,
+        ..Design::thesis()
+    });
+    let base = FreeBodyOptions::default().with_momentum_track();
     let opts = base.with_reference(base.reference.with_tolerance(1e-10));
     for word in ["SLS", "SLLS", "SLSRS", "SSLSSRRS"] {
-        let r = run(word, &opts);
+        let r = run_in(word, &still, &opts);
         assert_eq!(r.run.outcome, Outcome::Completed, "{word}");
         let (mut p, mut l, mut ps, mut ls): (f64, f64, f64, f64) = (0.0, 0.0, 0.0, 0.0);
         for m in &r.momentum {
@@ -77,8 +87,11 @@ fn what_it_does_not_take_is_refused() {
         run_free_body(&chain, &d, &overdamped),
         Err(ReferenceError::FreeBodyUnsupported { .. })
     ));
-    let light = FreeBodyOptions::default().with_tile_mass(0.0);
-    let e = run_free_body(&chain, &d, &light).unwrap_err();
+    let light = TileDesigns::global(Design {
+        tile_mass: 0.0,
+        ..Design::thesis()
+    });
+    let e = run_free_body(&chain, &light, &FreeBodyOptions::default()).unwrap_err();
     assert!(e.to_string().contains("tile_mass"), "{e}");
     let cutoff = FreeBodyOptions::default();
     let cutoff = cutoff.with_reference(

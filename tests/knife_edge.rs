@@ -30,7 +30,7 @@ fn assert_undecided(what: &str, result: RunResult, reason: &str) {
 #[test]
 fn the_engine_says_undecided_within_its_budget() {
     let chain = Chain::parse("SL").unwrap();
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let (_, s) = simulate(
         &chain,
         &designs(),
@@ -46,7 +46,7 @@ fn the_engine_says_undecided_within_its_budget() {
 #[test]
 fn the_reference_says_undecided_within_its_budget() {
     let chain = Chain::parse("SL").unwrap();
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
     let opts = ReferenceOptions::default().with_model(model);
     let run = run_reference(&chain, &designs(), &opts).unwrap();
     // the budget: steps proportional to the chain

@@ -136,7 +136,9 @@ fn moments_from_1e_minus_6_to_1e6_scale_time_only() {
 fn micrometre_tiles() {
     // thesis 8.2.1: the design scaled by 1e-3 (30 um tiles, 3 um x 5 um magnets). With
     // Stokes drag (~ size, rotational ~ size^3) the timeline is the same as at 30 mm: forces
-    // go as size^2 (moments ~ size^3, 1/r^4), torques as size^3.
+    // go as size^2 (moments ~ size^3, 1/r^4), torques as size^3. The magnet's drag scales by
+    // the size, and the tiles' water drag with a film scaled alike (`mu A / h` ~ size,
+    // `mu J / h` ~ size^3).
     let t = Design::thesis();
     let k = 1e-3;
     let micro = Design {
@@ -147,14 +149,13 @@ fn micrometre_tiles() {
         magnet_diameter: 3.0 * k,
         magnet_height: 5.0 * k,
         wall: t.wall * k,
+        magnet_drag: Some(5.0 * k), // the overdamped default, 5 N s/m
+        water_film: t.water_film * k,
         ..t
     };
     let mo = ModelOptions::default();
     let macro_run = reference("SLLS", t, mo, Method::Dopri5);
-    let stokes = mo
-        .with_drag(mo.drag * k)
-        .with_rotational_drag(mo.rotational_drag * k * k * k);
-    let r = reference("SLLS", micro, stokes, Method::Dopri5);
+    let r = reference("SLLS", micro, mo, Method::Dopri5);
     assert_eq!(r.outcome, macro_run.outcome);
     assert_eq!(r.folded_joints(), vec![1, 2]);
     let rel = (r.duration() - macro_run.duration()).abs() / macro_run.duration();
@@ -163,8 +164,11 @@ fn micrometre_tiles() {
     // before it starts: a diagnosis, not a hang
     let r = reference(
         "SLLS",
-        micro,
-        stokes.with_static_friction(1e-6),
+        Design {
+            friction: 1e-6,
+            ..micro
+        },
+        mo,
         Method::Dopri5,
     );
     match &r.outcome {
@@ -243,7 +247,16 @@ fn summary_and_timeline_say_what_the_run_did() {
         Method::Dopri5,
     );
     // the summary, in the engine's fields, holds the run's own values
-    let json: serde_json::Value = serde_json::to_value(r.to_summary()).unwrap();
+    let mut json: serde_json::Value = serde_json::to_value(r.to_summary()).unwrap();
+    // the parameters the run used, defaults filled in; no free motion without recorded states
+    let parameters = json.as_object_mut().unwrap().remove("parameters").unwrap();
+    assert_eq!(parameters["model"], "joint-angle reference");
+    assert_eq!(parameters["magnet_drag_n_s_per_m"], 5.0);
+    assert_eq!(parameters["water_viscosity_pa_s"], 1e-3);
+    assert_eq!(
+        json.as_object_mut().unwrap().remove("free_motion"),
+        Some(serde_json::Value::Null)
+    );
     let duration = r.duration();
     assert!(duration > 0.0 && duration <= r.end_time);
     let want = serde_json::json!({
@@ -260,7 +273,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         "first_collision": null,
         // measured by the collision check (check_reference), not by the run
         "clearance": null,
-        "speed_law": {"overdamped": {"drag": ModelOptions::DEFAULT_DRAG}},
+        "speed_law": {"overdamped": {"drag": 5.0}},
     });
     assert!(same_json(&json, &want), "{json}");
     // every magnet but the last started and arrived, both folds started and ended
@@ -294,8 +307,7 @@ fn summary_and_timeline_say_what_the_run_did() {
         "speed_law": {"reference": {
             "method": "dopri5",
             "tolerance": 1e-5,
-            "drag": ModelOptions::DEFAULT_DRAG,
-            "rotational_drag": ModelOptions::default().rotational_drag,
+            "drag": 5.0,
         }},
         "index": "magnet k is magnet k mod 2 of tile k/2; joint events index the joint",
         "events": events,

@@ -7,7 +7,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::{ForceLaw, Inertia};
+use foldchain::physics::ForceLaw;
 use foldchain::reference::{run_reference, Recording, ReferenceOptions, ReferenceRun};
 use foldchain::timeline::RunSource;
 use foldchain::timeline::{EventKind, Outcome, TileDesigns};
@@ -24,7 +24,7 @@ fn run(word: &str, design: Design, model: ModelOptions) -> ReferenceRun {
 }
 
 fn inertial() -> ModelOptions {
-    ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+    ModelOptions::default().with_dynamics(Dynamics::Inertial)
 }
 
 #[test]
@@ -60,12 +60,14 @@ fn overdamped_is_the_limit_of_negligible_mass() {
     // the same drag, a magnet of 0.0265 g: m / gamma = 5e-6 s against moves of ~0.1 s
     let d = Design::thesis();
     let od = ModelOptions::default();
-    let light = Inertia::default()
-        .with_magnet_mass(0.0265)
-        .with_drag(od.drag);
+    let light = Design {
+        magnet_mass: 0.0265,
+        magnet_drag: Some(5.0), /* the overdamped default */
+        ..d
+    };
     let word = "SS";
     let a = run(word, d, od);
-    let b = run(word, d, od.with_dynamics(Dynamics::Inertial(light)));
+    let b = run(word, light, od.with_dynamics(Dynamics::Inertial));
     assert_eq!(a.outcome, b.outcome);
     let rel = (a.duration() - b.duration()).abs() / a.duration();
     assert!(rel < 1e-3, "{word}: {} {}", a.duration(), b.duration());
@@ -83,14 +85,16 @@ fn magnets_bounce_at_their_path_ends() {
     // with restitution the magnets rebound before they stay: arrivals come later than
     // without, and the outcome is the same
     let d = Design::thesis();
-    let dead = Inertia::default().with_restitution(0.0);
-    let bouncy = Inertia::default().with_restitution(0.6);
-    let a = run("SS", d, inertial().with_dynamics(Dynamics::Inertial(dead)));
-    let b = run(
-        "SS",
-        d,
-        inertial().with_dynamics(Dynamics::Inertial(bouncy)),
-    );
+    let dead = Design {
+        restitution: 0.0,
+        ..d
+    };
+    let bouncy = Design {
+        restitution: 0.6,
+        ..d
+    };
+    let a = run("SS", dead, inertial());
+    let b = run("SS", bouncy, inertial());
     assert_eq!(a.outcome, Outcome::Completed);
     assert_eq!(b.outcome, Outcome::Completed);
     assert!(
@@ -102,10 +106,11 @@ fn magnets_bounce_at_their_path_ends() {
     // a heavier magnet (the thesis' 0.625 g) is slower
     let heavy = run(
         "SS",
-        d,
-        inertial().with_dynamics(Dynamics::Inertial(
-            Inertia::default().with_magnet_mass(0.625),
-        )),
+        Design {
+            magnet_mass: 0.625,
+            ..d
+        },
+        inertial(),
     );
     assert!(heavy.duration() > run("SS", d, inertial()).duration());
 }
@@ -127,11 +132,14 @@ fn inertia_does_not_rescue_the_old_final_point() {
         );
     }
     // and bad inertial parameters are refused by name
-    let bad = Inertia::default().with_restitution(1.5);
+    let bad = Design {
+        restitution: 1.5,
+        ..Design::thesis()
+    };
     let e = run_reference(
         &Chain::parse("SS").unwrap(),
-        &TileDesigns::default(),
-        &ReferenceOptions::default().with_model(inertial().with_dynamics(Dynamics::Inertial(bad))),
+        &TileDesigns::global(bad),
+        &ReferenceOptions::default().with_model(inertial()),
     )
     .unwrap_err();
     assert!(e.to_string().contains("restitution"), "{e}");

@@ -16,14 +16,13 @@ use rayon::prelude::*;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::EngineOptions;
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::Inertia;
 use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{RunResult, Summary, TileDesigns};
 use foldchain::{simulate, Chain, Design};
 
 /// The inertial dynamics with the default parameters (fold-run's default).
 fn inertial() -> Dynamics {
-    Dynamics::Inertial(Inertia::default())
+    Dynamics::Inertial
 }
 
 /// The two verdicts of `word` at `s` mm with `dynamics`, and whether they agree.

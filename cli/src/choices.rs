@@ -5,7 +5,6 @@ use std::fmt;
 
 use clap::ValueEnum;
 use foldchain::model::Dynamics;
-use foldchain::physics::Inertia;
 use foldchain::tolerance::Printer;
 
 /// The physics of the local solves and of the reference.
@@ -22,7 +21,7 @@ impl DynamicsChoice {
     pub fn to_dynamics(self) -> Dynamics {
         match self {
             DynamicsChoice::Overdamped => Dynamics::Overdamped,
-            DynamicsChoice::Inertial => Dynamics::Inertial(Inertia::default()),
+            DynamicsChoice::Inertial => Dynamics::Inertial,
         }
     }
 }
@@ -152,7 +151,7 @@ mod tests {
         assert_eq!(PrinterChoice::Fdm.to_string(), "fdm");
         assert!(matches!(
             DynamicsChoice::Inertial.to_dynamics(),
-            Dynamics::Inertial(_)
+            Dynamics::Inertial
         ));
     }
 }

@@ -7,7 +7,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::{ForceLaw, Inertia};
+use foldchain::physics::ForceLaw;
 use foldchain::Design;
 use foldchain_render::pair_energy_svg;
 use foldchain_validation::experiments::{run_experiments, ExperimentResult};
@@ -34,7 +34,7 @@ impl ExperimentsReport {
 /// Runs the experiments in the four models and writes `experiment-NAME.svg` into `out`.
 pub fn experiments(out: &Path, json: bool) -> anyhow::Result<ExperimentsReport> {
     let d = Design::thesis();
-    let inertial = Dynamics::Inertial(Inertia::default());
+    let inertial = Dynamics::Inertial;
     let mut models = Vec::new();
     for dynamics in [inertial, Dynamics::Overdamped] {
         for law in [ForceLaw::PointDipole, ForceLaw::cylinder(&d)] {

@@ -7,7 +7,7 @@
 //! chain named on the command line ([`chain_arg`]) and guarding input files ([`inputs`]), the
 //! thesis' experiments ([`experiments`]), progress on stderr ([`progress`]), a run's margins
 //! ([`margins_file`]), its name ([`run_name`]), the named choices of the options
-//! ([`choices`]) and error messages ([`report`]). The libraries `foldchain` and
+//! ([`choices`]), the physical parameters ([`physics_args`]) and error messages ([`report`]). The libraries `foldchain` and
 //! `foldchain-planner` compute; this crate parses, prints, writes and exits.
 //!
 //! Install all seven tools with `cargo install --path cli` from the repository root.
@@ -20,6 +20,7 @@ pub mod inputs;
 pub mod margins_file;
 pub mod numbers;
 pub mod output;
+pub mod physics_args;
 pub mod progress;
 pub mod report;
 pub mod run_dir;

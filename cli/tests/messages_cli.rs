@@ -269,10 +269,11 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
     };
     let o = run_design();
     bad(&o, &["absurd.json", "`remanence` = 1e300 T", "up to 2 T"]);
-    // 10 um tiles under the 30 mm tiles' drag take years of simulated time: say so
+    // 10 um tiles with weak magnets in grease take years of simulated time: say so (their
+    // water drag scales with them, so the channel's drag and the magnets make it slow)
     std::fs::write(
         &design,
-        r#"{"tile_width": 0.01, "d": 0.005, "e": 0.0015, "s": 0.0001, "magnet_diameter": 0.001, "magnet_height": 0.0015, "wall": 0.0002}"#,
+        r#"{"tile_width": 0.01, "d": 0.005, "e": 0.0015, "s": 0.0001, "magnet_diameter": 0.001, "magnet_height": 0.0015, "wall": 0.0002, "remanence": 0.01, "magnet_drag": 10000}"#,
     )
     .unwrap();
     let o = run_design();

@@ -44,6 +44,24 @@ fn fold_run_page(chain: &str, d: &Path, extra: &[&str]) -> std::process::Output 
     run("fold-run", &args)
 }
 
+/// The events of the run written into `d` (`timeline.json`): time, kind, index.
+fn timeline_events(d: &Path) -> Vec<(f64, String, u64)> {
+    let text = std::fs::read_to_string(d.join("timeline.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| {
+            (
+                e[0].as_f64().unwrap(),
+                e[1].as_str().unwrap().to_string(),
+                e[2].as_u64().unwrap(),
+            )
+        })
+        .collect()
+}
+
 /// The page at `hash` as Chromium shows it after 3 s (virtual time): its DOM.
 fn dump_dom(exe: &Path, page: &Path, hash: &str) -> String {
     chromium(
@@ -155,10 +173,61 @@ fn opens_at_the_start_and_at_the_end_with_the_summarys_folds() {
         (t_end - duration).abs() < 1e-9 * duration,
         "{t_end} {duration}"
     );
-    // half way, something moves; render time is reported
-    let mid = body(&exe, &page, &format!("t={}", 0.5 * duration));
-    assert!(attr(&mid, "data-moving").parse::<usize>().unwrap() > 0);
-    assert!(attr(&mid, "data-render-ms").parse::<f64>().unwrap() > 0.0);
+    // mid-run, something moves. Half the duration is no such moment: both sides of a fold
+    // turn against their inertia on the water, so the magnets have all arrived long before
+    // the folds end (SSLLSS: the last magnet at 0.32 s, the folds at 0.63 and 0.80 s). The
+    // moments come from the run's own timeline instead: half way through the last magnet's
+    // move, and half way through the first fold
+    let events = timeline_events(&d);
+    let at = |kind: &str, index: u64, after: f64| {
+        events
+            .iter()
+            .find(|(t, k, i)| k == kind && *i == index && *t >= after)
+            .map(|e| e.0)
+            .unwrap_or_else(|| panic!("no {kind} {index} after {after} s"))
+    };
+    let (t0, last) = events
+        .iter()
+        .rev()
+        .find(|e| e.1 == "magnet_starts")
+        .map(|e| (e.0, e.2))
+        .unwrap();
+    let magnet_mid = 0.5 * (t0 + at("magnet_arrives", last, t0));
+    let moving = body(&exe, &page, &format!("t={magnet_mid}"));
+    assert!(attr(&moving, "data-moving").parse::<usize>().unwrap() > 0);
+    assert!(attr(&moving, "data-render-ms").parse::<f64>().unwrap() > 0.0);
+    let (f0, joint) = events
+        .iter()
+        .find(|e| e.1 == "fold_starts")
+        .map(|e| (e.0, e.2))
+        .unwrap();
+    let f1 = at("fold_ends", joint, f0);
+    let fold_mid = 0.5 * (f0 + f1);
+    let mid = body(&exe, &page, &format!("t={fold_mid}"));
+    assert!(attr(&mid, "data-status").starts_with("folding"));
+    assert!(attr(&mid, "data-folded").parse::<usize>().unwrap() < folds);
+    // the fold is part way and turning: the tile after the joint, against the tile before
+    // it, between its start and its quarter turn, and further on 1% of the fold later
+    let later = fold_mid + 0.01 * (f1 - f0);
+    let dom = dump_dom(
+        &exe,
+        &page,
+        &format!("t={fold_mid}&probe={fold_mid},{later}"),
+    );
+    let panel = attributes(&dom, "section", "data-poses-1");
+    let turn = |name: &str| {
+        let p = poses_of(&panel, name);
+        let j = joint as usize;
+        (p[j + 1].angle - p[j].angle + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI
+    };
+    let (a, b) = (turn("data-poses-1").abs(), turn("data-poses-2").abs());
+    let quarter = std::f64::consts::FRAC_PI_2;
+    assert!(
+        a > 0.02 * quarter && a < 0.98 * quarter,
+        "joint {joint} at {a} rad"
+    );
+    assert!(b > a + 1e-4, "joint {joint}: {a} then {b} rad");
     std::fs::remove_dir_all(&d).unwrap();
 }
 

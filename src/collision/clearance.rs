@@ -718,7 +718,7 @@ mod tests {
         use crate::{Chain, Design};
         let chain = Chain::parse(word).unwrap();
         let designs = TileDesigns::global(Design::thesis().with_s(s));
-        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial(Default::default()));
+        let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
         let tl = run(
             &chain,
             &designs,

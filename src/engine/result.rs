@@ -6,7 +6,9 @@ use crate::engine::run_state::RunState;
 use crate::engine::speed::{Motion, MotionTable};
 use crate::physics::ForceLaw;
 use crate::timeline::Event;
-use crate::timeline::{EventKind, FoldRecord, Geometry, Outcome, RunFacts, SpeedLaw, Summary};
+use crate::timeline::{
+    EventKind, FoldRecord, FreeMotion, Geometry, Outcome, Parameters, RunFacts, SpeedLaw, Summary,
+};
 
 /// The result of a run: every event, each magnet's start, the folds and the outcome.
 #[derive(Debug)]
@@ -29,6 +31,10 @@ pub struct Timeline {
     pub(crate) fold_of_joint: Vec<u32>,
     /// The local solves' tracks (`None` for the kinematic baseline).
     pub(crate) solved: Option<Box<Solved>>,
+    /// The physical parameters the run used.
+    pub parameters: Parameters,
+    /// How the chain moved on the water (`None` for the kinematic baseline).
+    pub free_motion: Option<FreeMotion>,
 }
 
 /// What decides an inhibition in the engine, for its reason.
@@ -141,7 +147,7 @@ impl Timeline {
     /// The run's summary (the collision check's verdict is added by
     /// [`crate::simulate`]).
     pub fn summary(&self) -> Summary {
-        Summary::new(RunFacts {
+        let summary = Summary::new(RunFacts {
             tiles: self.tiles(),
             outcome: &self.outcome,
             decided_by: DECIDED_BY,
@@ -151,6 +157,11 @@ impl Timeline {
             max_moving_magnets: self.max_moving_magnets(),
             speed_law: self.speed,
         })
+        .with_parameters(self.parameters.clone());
+        match &self.free_motion {
+            Some(f) => summary.with_free_motion(f.clone()),
+            None => summary,
+        }
     }
 }
 

@@ -21,8 +21,8 @@ use crate::engine::DEFAULT_LOCAL_TOLERANCE;
 use crate::model::{Dynamics, Model, ModelError, ModelOptions};
 use crate::physics::ForceLaw;
 use crate::timeline::{
-    joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, SpeedLaw,
-    TileDesigns,
+    joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, Parameters,
+    SpeedLaw, TileDesigns,
 };
 use crate::{Chain, Fold};
 
@@ -215,16 +215,14 @@ fn run_local_engine(
         Err(e) => return Err(EngineError::Model(Box::new(e))),
     };
     let local = run_local(&model, opts.tolerance, opts.threads, opts.max_steps);
-    let speed = SpeedLaw::Overdamped {
-        drag: opts.model.drag,
-    };
+    let speed = SpeedLaw::Overdamped { drag: model.drag };
     let motions = MotionTable::new(&model.geometry, speed);
     // the law the times are in, as summary.json and timeline.json report it
     let reported = match opts.model.dynamics {
-        Dynamics::Inertial(i) => SpeedLaw::Inertial { drag: i.drag },
+        Dynamics::Inertial => SpeedLaw::Inertial { drag: model.drag },
         _ => speed,
     };
-    Ok(Timeline {
+    let mut timeline = Timeline {
         speed: reported,
         force_law: opts.model.force_law,
         motions,
@@ -235,8 +233,12 @@ fn run_local_engine(
         max_moving: local.max_moving,
         fold_of_joint: local.fold_of_joint,
         solved: Some(Box::new(local.solved)),
+        parameters: model.parameters("event engine"),
+        free_motion: None,
         geometry: Geometry::from_designs(chain, designs)?,
-    })
+    };
+    timeline.free_motion = Some(model.free_motion(&timeline));
+    Ok(timeline)
 }
 
 /// A run in the making.
@@ -447,7 +449,10 @@ impl Runner {
     }
 
     fn finish(self) -> Timeline {
+        let parameters = kinematic_parameters(&self.geometry, &self.opts);
         Timeline {
+            parameters,
+            free_motion: None,
             geometry: self.geometry,
             speed: self.opts.speed,
             force_law: self.opts.model.force_law,
@@ -460,6 +465,38 @@ impl Runner {
             fold_of_joint: self.fold_of_joint,
             solved: None,
         }
+    }
+}
+
+/// The parameters of a kinematic run: its speed law's drag and the design's masses (which its
+/// closed-form motion does not use: it moves every magnet at the overdamped speed law's pace).
+fn kinematic_parameters(geometry: &Geometry, opts: &EngineOptions) -> Parameters {
+    let d = geometry.design(0);
+    let tile = crate::physics::TileBody::of(d);
+    Parameters {
+        model: "kinematic baseline",
+        dynamics: "kinematic",
+        force_law: opts.model.force_law.name(),
+        cutoff: match opts.start {
+            StartRule::Force { cutoff } => cutoff,
+            StartRule::Distance => 1,
+        },
+        distance_cutoff_mm: None,
+        magnet_mass_g: d.magnet_mass,
+        tile_mass_g: d.tile_mass,
+        tile_inertia_kg_m2: tile.inertia,
+        magnet_drag_n_s_per_m: match opts.speed {
+            SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => drag,
+            SpeedLaw::Unit => 0.0,
+        },
+        friction_n: d.friction,
+        restitution: d.restitution,
+        water_viscosity_pa_s: d.water_viscosity,
+        water_film_mm: d.water_film,
+        water_density_kg_m3: d.water_density,
+        form_drag_cd: d.form_drag,
+        tile_drag_n_s_per_m: tile.drag,
+        tile_rotational_drag_n_m_s: tile.rotational_drag,
     }
 }
 
@@ -485,11 +522,12 @@ mod tests {
         // kinematic motion table uses
         let chain = Chain::parse("SLLS").unwrap();
         let designs = TileDesigns::global(Design::thesis());
-        let inertia = crate::physics::Inertia::default();
         for (dynamics, want) in [
             (
-                Dynamics::Inertial(inertia),
-                SpeedLaw::Inertial { drag: inertia.drag },
+                Dynamics::Inertial,
+                SpeedLaw::Inertial {
+                    drag: crate::physics::DEFAULT_INERTIAL_DRAG,
+                },
             ),
             (Dynamics::Overdamped, SpeedLaw::default()),
         ] {

@@ -66,12 +66,8 @@ pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
             knots.push(f.end);
             knots.sort_by(f64::total_cmp);
             knots.dedup();
-            let n0 = 8;
             for w in knots.windows(2) {
-                let (a, b) = (w[0], w[1]);
-                for i in 0..n0 {
-                    let t0 = a + (b - a) * i as f64 / n0 as f64;
-                    let t1 = a + (b - a) * (i + 1) as f64 / n0 as f64;
+                for (t0, t1) in subintervals(w[0], w[1], FIRST_SPLIT) {
                     refine(timeline, f, (t0, t1), tol, 0, (&mut times, &mut angles));
                 }
             }
@@ -84,6 +80,24 @@ pub(crate) fn fold_schedule(timeline: &Timeline) -> FoldSchedule {
         })
         .collect();
     FoldSchedule { tracks }
+}
+
+/// Intervals a knot-to-knot stretch of a track is first cut into: 8.
+const FIRST_SPLIT: usize = 8;
+
+/// `[a, b]` cut into `n` equal intervals, the last ending at `b` exactly and none reaching
+/// past it: `a + (b - a)` can round one unit above `b`, and a knot one unit below the next
+/// (a magnet's arrival computed to the last bit of its fold's end, 100,000-tile inertial
+/// serpentine, joint 9191) then put the track's times out of order.
+fn subintervals(a: f64, b: f64, n: usize) -> impl Iterator<Item = (f64, f64)> {
+    let at = move |i: usize| {
+        if i == n {
+            b
+        } else {
+            (a + (b - a) * i as f64 / n as f64).min(b)
+        }
+    };
+    (0..n).map(move |i| (at(i), at(i + 1)))
 }
 
 fn refine(
@@ -113,6 +127,26 @@ mod tests {
 
     use super::*;
     use crate::engine::thesis_timeline;
+
+    /// The 100,000-tile inertial serpentine's joint 9191 (s = 0.1 mm): a magnet arrives one
+    /// unit of the last place before the fold ends, and its track's times went back there
+    /// ("times must be finite and non-decreasing").
+    #[test]
+    fn a_knot_a_rounding_before_the_end_keeps_the_times_in_order() {
+        let knots = [252.3154602017206, 1343.5895102293132, 1343.5895102293134];
+        // the old cut: the first stretch's last time rounded past the next knot
+        let (a, b) = (knots[0], knots[1]);
+        assert!(a + (b - a) > b);
+        let mut times = vec![knots[0]];
+        for w in knots.windows(2) {
+            for (t0, t1) in subintervals(w[0], w[1], FIRST_SPLIT) {
+                assert!(t0 <= t1 && t0 >= w[0] && t1 <= w[1]);
+                times.push(t1);
+            }
+        }
+        assert!(times.windows(2).all(|w| w[0] <= w[1]), "{times:?}");
+        assert_eq!(times.last(), knots.last());
+    }
 
     #[test]
     fn tracks_follow_the_law_within_tolerance() {

@@ -30,15 +30,24 @@ use kurbo::Point;
 
 use crate::magnet_path::MagnetPath;
 use crate::model::mode::Mode;
-use crate::model::{Dynamics, ModelOptions};
+use crate::model::sides::{joint_sides, Sides};
+use crate::model::ModelOptions;
 use crate::physics::ReactionInitiator;
-use crate::timeline::{Geometry, GeometryError, TileDesigns};
+use crate::physics::{magnet_drag, TileBody};
+use crate::timeline::{Geometry, GeometryError, Parameters, TileDesigns};
 use crate::{Chain, Octagon, Pose};
 
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
 /// on a rounding error: 1e-12.
 pub(crate) const BALANCE_TOLERANCE: f64 = 1e-12;
+
+/// What a model may take that the joint-angle model cannot integrate.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Allow {
+    /// Form drag (the free-body reference, inertial).
+    pub(crate) form_drag: bool,
+}
 
 /// What one unknown is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,6 +64,14 @@ pub struct Model {
     /// The chain at rest (paths in tile frames).
     pub geometry: Geometry,
     pub(super) opts: ModelOptions,
+    /// Drag of a magnet in its channel, N s/m (the design's, or the dynamics' default).
+    pub(crate) drag: f64,
+    /// Coulomb friction of a magnet in its channel, N.
+    pub(crate) friction: f64,
+    /// Mass of each magnet, kg.
+    pub(crate) magnet_mass: Vec<f64>,
+    /// Each joint's two sides (`None` where it does not fold).
+    pub(crate) sides: Vec<Option<Sides>>,
     /// The unknowns, in state order.
     pub(crate) unknowns: Vec<Unknown>,
     /// State index of each magnet.
@@ -84,8 +101,18 @@ pub enum ModelError {
     /// A design parameter out of range, or a curved path that cannot be built.
     #[error(transparent)]
     Geometry(#[from] GeometryError),
+    /// A physical parameter this model cannot use.
+    #[error("design parameter `{name}` = {value}: not usable here: {why}")]
+    Unsupported {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// Why.
+        why: &'static str,
+    },
     /// A model option out of range.
-    #[error("reference option `{name}` = {value}: expected {expected}")]
+    #[error("model option `{name}` = {value}: expected {expected}")]
     BadOption {
         /// The option.
         name: &'static str,
@@ -103,26 +130,21 @@ impl Model {
         designs: &TileDesigns,
         opts: &ModelOptions,
     ) -> Result<Model, ModelError> {
+        Model::build(chain, designs, opts, Allow::default())
+    }
+
+    /// The model, allowing what a particular integrator can use.
+    pub(crate) fn build(
+        chain: &Chain,
+        designs: &TileDesigns,
+        opts: &ModelOptions,
+        allow: Allow,
+    ) -> Result<Model, ModelError> {
         let bad = |name, value: f64, expected| ModelError::BadOption {
             name,
             value,
             expected,
         };
-        for (name, v) in [
-            ("drag", opts.drag),
-            ("rotational_drag", opts.rotational_drag),
-        ] {
-            if !v.is_finite() || v <= 0.0 {
-                return Err(bad(name, v, "a finite number > 0"));
-            }
-        }
-        if !opts.static_friction.is_finite() || opts.static_friction < 0.0 {
-            return Err(bad(
-                "static_friction",
-                opts.static_friction,
-                "a finite number >= 0",
-            ));
-        }
         if opts.cutoff == 0 {
             return Err(bad("cutoff", 0.0, "at least 1"));
         }
@@ -131,28 +153,6 @@ impl Model {
             .filter(|r| !(r.is_finite() && *r > 0.0))
         {
             return Err(bad("distance_cutoff", r, "a finite number > 0 (mm)"));
-        }
-        if let Dynamics::Inertial(i) = opts.dynamics {
-            for (name, v) in [
-                ("drag", i.drag),
-                ("tile_inertia", i.tile_inertia),
-                ("magnet_mass", i.magnet_mass_g.unwrap_or(1.0)),
-            ] {
-                if !v.is_finite() || v <= 0.0 {
-                    return Err(bad(name, v, "a finite number > 0"));
-                }
-            }
-            for (name, v) in [
-                ("coulomb", i.coulomb),
-                ("tile_rotational_drag", i.tile_rotational_drag),
-            ] {
-                if !v.is_finite() || v < 0.0 {
-                    return Err(bad(name, v, "a finite number >= 0"));
-                }
-            }
-            if !(0.0..1.0).contains(&i.restitution) {
-                return Err(bad("restitution", i.restitution, "a number in [0, 1)"));
-            }
         }
         let geometry = Geometry::from_designs(chain, designs)?;
         let tiles = geometry.tiles();
@@ -180,7 +180,30 @@ impl Model {
         let oct = Octagon::new(geometry.w);
         let force_scale = opts.force_law.bonded_rest_force(geometry.design(0));
         let torque_scale = force_scale * 0.5 * oct.side() * 1e-3;
-        let time_scale = opts.drag * lengths[0] * 1e-3 / force_scale;
+        let d0 = *geometry.design(0);
+        let inertial = opts.dynamics.is_inertial();
+        if d0.form_drag > 0.0 && !allow.form_drag {
+            return Err(ModelError::Unsupported {
+                name: "form_drag",
+                value: d0.form_drag,
+                why: "the joint-angle model and the event engine take the water's drag as linear; only the free-body reference with inertial dynamics integrates form drag",
+            });
+        }
+        if !inertial {
+            if let Some(t) = (0..tiles).find(|&t| geometry.design(t).water_viscosity <= 0.0) {
+                return Err(ModelError::Unsupported {
+                    name: "water_viscosity",
+                    value: geometry.design(t).water_viscosity,
+                    why: "the overdamped dynamics turn a fold at its torque over the water's drag: they need water with a viscosity above 0 (the inertial dynamics take 0)",
+                });
+            }
+        }
+        let drag = magnet_drag(&d0, inertial);
+        let magnet_mass: Vec<f64> = (0..n)
+            .map(|k| geometry.design(k / 2).magnet_mass * 1e-3)
+            .collect();
+        let sides = joint_sides(&geometry, &joint_sign);
+        let time_scale = drag * lengths[0] * 1e-3 / force_scale;
         let cutoff = opts.cutoff;
         // bandwidth: the widest span of state indices over a window of cutoff + 1 magnets
         let mut bandwidth = 1;
@@ -190,6 +213,10 @@ impl Model {
         }
         Ok(Model {
             opts: *opts,
+            drag,
+            friction: d0.friction,
+            magnet_mass,
+            sides,
             unknowns,
             magnet_var,
             joint_var,
@@ -260,7 +287,7 @@ impl Model {
     pub(crate) fn threshold(&self, i: usize) -> f64 {
         let balance = BALANCE_TOLERANCE * self.drive_scale(i);
         match self.unknowns[i] {
-            Unknown::Magnet(_) => self.opts.static_friction.max(balance),
+            Unknown::Magnet(_) => self.friction.max(balance),
             Unknown::Joint(_) => balance,
         }
     }
@@ -303,19 +330,86 @@ impl Model {
             .collect()
     }
 
-    /// The rate of unknown `i` (per second) for drive `drive` in mode `mode`.
-    pub(crate) fn rate(&self, i: usize, drive: f64, mode: Mode) -> f64 {
+    /// The longest time a fold takes under the bonded rest torque against its drag alone,
+    /// s: the slowest of the model's time scales (0 without folds).
+    pub fn slowest_fold_time(&self) -> f64 {
+        (0..self.joint_var.len())
+            .map(|j| self.fold_time(j))
+            .fold(0.0, f64::max)
+    }
+
+    /// The time joint `j`'s fold takes under the bonded rest torque against its drag alone
+    /// (both sides' drag about the hinge), s; 0 for a joint that does not fold.
+    pub(crate) fn fold_time(&self, j: usize) -> f64 {
+        if self.sides[j].is_some() {
+            self.joint_drag(j, 0.0) * FRAC_PI_2 / self.torque_scale
+        } else {
+            0.0
+        }
+    }
+
+    /// What joint `j`'s motion depends on besides the forces (its sides' inertia and drag),
+    /// as bits for a cache key; `None` for a joint that does not fold.
+    pub(crate) fn joint_key(&self, j: usize) -> Option<[u64; 8]> {
+        self.sides[j].map(|s| {
+            let (a, b) = (s.inertia.bits(), s.drag.bits());
+            [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
+        })
+    }
+
+    /// The physical parameters this model uses, resolved, for a run by `model` (the name a
+    /// summary gives the integrator).
+    pub fn parameters(&self, model: &'static str) -> Parameters {
+        let d = self.geometry.design(0);
+        let tile = TileBody::of(d);
+        Parameters {
+            model,
+            dynamics: self.opts.dynamics.name(),
+            force_law: self.opts.force_law.name(),
+            cutoff: self.opts.cutoff,
+            distance_cutoff_mm: self.opts.distance_cutoff,
+            magnet_mass_g: d.magnet_mass,
+            tile_mass_g: d.tile_mass,
+            tile_inertia_kg_m2: tile.inertia,
+            magnet_drag_n_s_per_m: self.drag,
+            friction_n: self.friction,
+            restitution: d.restitution,
+            water_viscosity_pa_s: d.water_viscosity,
+            water_film_mm: d.water_film,
+            water_density_kg_m3: d.water_density,
+            form_drag_cd: d.form_drag,
+            tile_drag_n_s_per_m: tile.drag,
+            tile_rotational_drag_n_m_s: tile.rotational_drag,
+        }
+    }
+
+    /// The signed angle (radians) of joint `j` at fold fraction `psi`.
+    pub(crate) fn joint_angle(&self, j: usize, psi: f64) -> f64 {
+        self.joint_sign[j] * psi * FRAC_PI_2
+    }
+
+    /// Joint `j`'s effective drag (N m s) at fold fraction `psi`: both sides free
+    /// ([`crate::model`]'s sides).
+    pub(crate) fn joint_drag(&self, j: usize, psi: f64) -> f64 {
+        match &self.sides[j] {
+            Some(s) => s.drag.at(self.joint_angle(j, psi.clamp(0.0, 1.0))).0,
+            None => f64::INFINITY,
+        }
+    }
+
+    /// The rate of unknown `i` (per second) at value `y` for drive `drive` in mode `mode`.
+    pub(crate) fn rate(&self, i: usize, y: f64, drive: f64, mode: Mode) -> f64 {
         if mode != Mode::Free {
             return 0.0;
         }
         match self.unknowns[i] {
             Unknown::Magnet(k) => {
-                let fr = self.opts.static_friction;
+                let fr = self.friction;
                 let f = drive.signum() * (drive.abs() - fr).max(0.0);
                 // mm/s over the path length in mm
-                f / self.opts.drag * 1e3 / self.lengths[k]
+                f / self.drag * 1e3 / self.lengths[k]
             }
-            Unknown::Joint(_) => drive / self.opts.rotational_drag / FRAC_PI_2,
+            Unknown::Joint(j) => drive / self.joint_drag(j, y) / FRAC_PI_2,
         }
     }
 }

@@ -6,8 +6,9 @@
 //! **Motion.** A magnet of mass `m` on a path of length `L` (its unknown `x = u / L`):
 //! `m L x'' = F . t - gamma L x' - f_c sign(x')` (the force along its path, the drag, the
 //! Coulomb friction). A folding joint `j` (its unknown `psi = |theta| / (pi/2)`):
-//! `I_j (pi/2) psi'' = tau - g_j (pi/2) psi'`, with `I_j` and `g_j` the per-tile inertia and
-//! drag of [`Inertia`] times the tiles downstream of the joint.
+//! `I_j (pi/2) psi'' + I_j'(psi) psi'^2 (pi/2) / 2 = tau - g_j (pi/2) psi'`, with `I_j` and
+//! `g_j` the effective inertia and drag of the joint's two free sides at its angle
+//! ([`crate::model`]'s sides: nothing is anchored).
 //!
 //! **Walls.** At a wall (0 or 1) a free unknown moving outwards bounces with the
 //! restitution, or stays there when the rebound would rise less than [`REST_HEIGHT`] of the
@@ -20,18 +21,39 @@ use std::f64::consts::FRAC_PI_2;
 use std::fmt;
 
 use crate::model::chain_model::Unknown;
+use crate::model::sides::Sides;
 use crate::model::{Dynamics, Mode, Model};
-use crate::physics::Inertia;
 
 /// A rebound that would rise less than this fraction of the range ends the bouncing.
 pub(crate) const REST_HEIGHT: f64 = 1e-3;
 
-/// Per unknown: inverse effective mass (acceleration of the unknown per unit drive), the
-/// damping rate (1/s), and the Coulomb friction (in drive units).
+/// A folding joint's coefficients: its sides' inertia and drag, and its sign.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct JointCoefficients {
+    sides: Sides,
+    /// +1 left, -1 right.
+    sign: f64,
+}
+
+impl JointCoefficients {
+    /// The effective inertia (kg m^2), its derivative by the fold fraction, and the
+    /// effective drag (N m s) at fold fraction `psi`.
+    fn at(&self, psi: f64) -> (f64, f64, f64) {
+        let phi = self.sign * psi.clamp(0.0, 1.0) * FRAC_PI_2;
+        let (inertia, slope) = self.sides.inertia.at(phi);
+        let (drag, _) = self.sides.drag.at(phi);
+        (inertia, slope * self.sign * FRAC_PI_2, drag)
+    }
+}
+
+/// Per unknown: for a magnet, its inverse effective mass (acceleration of the unknown per
+/// unit drive), its damping rate (1/s) and its Coulomb friction (in drive units); for a
+/// joint, its sides ([`JointCoefficients`]), whose inertia and drag depend on the fold.
 pub(crate) struct Coefficients {
     pub(crate) inv_mass: Vec<f64>,
     pub(crate) damping: Vec<f64>,
     pub(crate) coulomb: Vec<f64>,
+    joints: Vec<Option<JointCoefficients>>,
 }
 
 impl Coefficients {
@@ -51,24 +73,30 @@ impl Coefficients {
         (tau, move_time, drag_time)
     }
 
-    pub(crate) fn new(model: &Model, inertia: &Inertia) -> Coefficients {
-        let tiles = model.geometry.tiles();
+    pub(crate) fn new(model: &Model) -> Coefficients {
         let n = model.len();
         let (mut inv_mass, mut damping, mut coulomb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut joints = vec![None; n];
         for (i, u) in model.unknowns.iter().enumerate() {
             match *u {
                 Unknown::Magnet(k) => {
-                    let m = inertia.magnet_mass_kg(model.geometry.design(k / 2));
+                    let m = model.magnet_mass[k];
                     let len = model.path_length(k) * 1e-3;
                     inv_mass[i] = 1.0 / (m * len);
-                    damping[i] = inertia.drag / m;
-                    coulomb[i] = inertia.coulomb;
+                    damping[i] = model.drag / m;
+                    coulomb[i] = model.friction;
                 }
                 Unknown::Joint(j) => {
-                    let swung = (tiles - 1 - j) as f64;
-                    let inertia_j = inertia.tile_inertia * swung;
-                    inv_mass[i] = 1.0 / (inertia_j * FRAC_PI_2);
-                    damping[i] = inertia.tile_rotational_drag * swung / inertia_j;
+                    if let Some(sides) = model.sides[j] {
+                        let jc = JointCoefficients {
+                            sides,
+                            sign: model.joint_sign(j),
+                        };
+                        let (inertia, _, drag) = jc.at(0.0);
+                        inv_mass[i] = 1.0 / (inertia * FRAC_PI_2);
+                        damping[i] = drag / inertia;
+                        joints[i] = Some(jc);
+                    }
                 }
             }
         }
@@ -76,6 +104,7 @@ impl Coefficients {
             inv_mass,
             damping,
             coulomb,
+            joints,
         }
     }
 }
@@ -89,6 +118,12 @@ pub(crate) struct InertialModel {
     pub(crate) scale: f64,
     /// The shortest of the inertial time and a path's time at the bonded force (first step).
     pub(crate) first_step: f64,
+    /// Per unknown, the time scale its rest test is measured on: the run's `scale`, or for a
+    /// folding joint, if longer, its own slowest time (its fold under the bonded rest torque
+    /// against both sides' drag, [`Model::fold_time`], and its inertial time against that
+    /// drag). A fold whose sides are long turns for days at a speed that is tiny on the
+    /// magnets' scale, and is not at rest.
+    rest_scale: Vec<f64>,
 }
 
 impl fmt::Debug for InertialModel {
@@ -103,22 +138,47 @@ impl fmt::Debug for InertialModel {
 impl InertialModel {
     /// The inertial coefficients of `model`, if its dynamics are inertial.
     pub(crate) fn new(model: &Model) -> Option<InertialModel> {
-        let Dynamics::Inertial(inertia) = model.options().dynamics else {
+        if model.options().dynamics != Dynamics::Inertial {
             return None;
-        };
-        let c = Coefficients::new(model, &inertia);
+        }
+        let c = Coefficients::new(model);
         // the reference's scale (its inertial driver)
         let (tau, move_time, drag_time) = c.times(model);
+        let scale = tau.max(move_time).max(drag_time);
+        let rest_scale = model
+            .unknowns
+            .iter()
+            .enumerate()
+            .map(|(i, u)| match *u {
+                Unknown::Joint(j) if c.joints[i].is_some() => {
+                    let inertial = if c.damping[i] > 0.0 {
+                        1.0 / c.damping[i]
+                    } else {
+                        0.0
+                    };
+                    scale.max(model.fold_time(j)).max(inertial)
+                }
+                _ => scale,
+            })
+            .collect();
         Some(InertialModel {
-            restitution: inertia.restitution,
-            scale: tau.max(move_time).max(drag_time),
+            restitution: model.geometry.design(0).restitution,
+            scale,
             first_step: tau.min(move_time),
+            rest_scale,
             c,
         })
     }
 
-    /// The acceleration of unknown `g` (state index) at velocity `v` under `drive`.
-    pub(crate) fn acceleration(&self, g: usize, drive: f64, v: f64) -> f64 {
+    /// The acceleration of unknown `g` (state index) at value `y` and velocity `v` under
+    /// `drive`: a magnet's `(F - f_c) / (m L) - (gamma / m) v`; a joint's
+    /// `(tau / (pi/2) - g psi' - I' psi'^2 / 2) / I` with its sides' inertia `I` and drag `g`
+    /// at its angle ([`crate::model`]'s sides).
+    pub(crate) fn acceleration(&self, g: usize, y: f64, drive: f64, v: f64) -> f64 {
+        if let Some(jc) = &self.c.joints[g] {
+            let (inertia, slope, drag) = jc.at(y);
+            return (drive / FRAC_PI_2 - drag * v - 0.5 * slope * v * v) / inertia;
+        }
         let fc = self.c.coulomb[g];
         let friction = if fc > 0.0 { fc * (v * 1e3).tanh() } else { 0.0 };
         (drive - friction) * self.c.inv_mass[g] - self.c.damping[g] * v
@@ -145,7 +205,11 @@ impl InertialModel {
         let rebound = -self.restitution * v;
         // the drive pressing it on against the wall, as an acceleration
         let press = if wall == 1.0 { drive } else { -drive };
-        let a = press.max(0.0) * self.c.inv_mass[g];
+        let inv_mass = match &self.c.joints[g] {
+            Some(jc) => 1.0 / (jc.at(wall).0 * FRAC_PI_2),
+            None => self.c.inv_mass[g],
+        };
+        let a = press.max(0.0) * inv_mass;
         if self.restitution <= 0.0 || rebound * rebound < 2.0 * a * REST_HEIGHT {
             None
         } else {
@@ -153,10 +217,13 @@ impl InertialModel {
         }
     }
 
-    /// Whether an unknown with velocity `v` and acceleration `a` is quiet (the reference's
-    /// rest test).
-    pub(crate) fn quiet(&self, v: f64, a: f64) -> bool {
-        v.abs() * self.scale < 1e-7 && a.abs() * self.scale * self.scale < 1e-7
+    /// Whether unknown `g` (state index) with velocity `v` and acceleration `a` is quiet:
+    /// it would move less than 1e-7 of its range over its own time scale (the reference's
+    /// and the local solves' rest test). A slow fold's joint is measured on its fold time, so
+    /// a fold that creeps under its torque against the drag is not taken for a balance.
+    pub(crate) fn quiet(&self, g: usize, v: f64, a: f64) -> bool {
+        let t = self.rest_scale.get(g).copied().unwrap_or(self.scale);
+        v.abs() * t < 1e-7 && a.abs() * t * t < 1e-7
     }
 }
 
@@ -174,7 +241,29 @@ mod tests {
     use crate::{Chain, Design};
 
     fn inertial() -> ModelOptions {
-        ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+        ModelOptions::default().with_dynamics(Dynamics::Inertial)
+    }
+
+    #[test]
+    fn a_fold_creeping_against_long_sides_is_not_quiet() {
+        // S*1500 LL S*1500: each fold turns two 45 m sides, for days, at a speed far under
+        // 1e-7 of its range per magnet time scale; the rest test measures it on its own fold
+        // time (before, the engine called that creep a balance and the run `stalled`)
+        let chain = Chain::parse("S*1500 LL S*1500").unwrap();
+        let designs = TileDesigns::global(Design::thesis());
+        let model = Model::new(&chain, &designs, &inertial()).unwrap();
+        let im = InertialModel::new(&model).unwrap();
+        let g = model.joint_var(1500).unwrap();
+        let fold = model.fold_time(1500);
+        assert!(fold > 1e6 * im.scale, "{fold} {}", im.scale);
+        // a tenth of the fold's mean speed, no acceleration: moving
+        let v = 0.1 / fold;
+        assert!(v * im.scale < 1e-7);
+        assert!(!im.quiet(g, v, 0.0));
+        // the same speed on a magnet is quiet on the magnets' scale
+        assert!(im.quiet(model.magnet_var(3001), v, 0.0));
+        // a joint that truly stopped is quiet
+        assert!(im.quiet(g, 1e-9 / fold, 0.0));
     }
 
     #[test]
@@ -206,6 +295,6 @@ mod tests {
         assert!(im.released(&model, g, Mode::AtStart, push));
         assert!(!im.released(&model, g, Mode::AtStart, -push));
         assert!(im.released(&model, g, Mode::AtEnd, -push));
-        assert!(im.quiet(0.0, 0.0) && !im.quiet(1.0, 0.0));
+        assert!(im.quiet(g, 0.0, 0.0) && !im.quiet(g, 1.0, 0.0));
     }
 }

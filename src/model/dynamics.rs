@@ -1,22 +1,17 @@
-//! Which dynamics the reference integrates: overdamped (first order, the stiff limit) or
-//! inertial (second order, [`Inertia`]). A choice of its own, so that the model
-//! ([`crate::model::Model`]) and the inertial driver both name it without importing
-//! each other.
-
-use crate::physics::Inertia;
+//! Which dynamics the models integrate: overdamped (first order, the stiff limit) or
+//! inertial (second order). The physical parameters of both are the design's
+//! ([`crate::Design`]: masses, drags, restitution, the water).
 
 /// How the chain answers the forces.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum Dynamics {
-    /// First order: every velocity proportional to its drive (drag
-    /// [`crate::model::ModelOptions::drag`] and
-    /// [`crate::model::ModelOptions::rotational_drag`]); the limit of negligible mass,
-    /// and the stiff case. The default.
+    /// First order: every velocity proportional to its drive, against the drags alone; the
+    /// limit of negligible mass, and the stiff case. The default.
     #[default]
     Overdamped,
-    /// Second order, with mass, drag, friction and bouncing walls ([`Inertia`]).
-    Inertial(Inertia),
+    /// Second order, with the masses, drags, friction and bouncing walls of the design.
+    Inertial,
 }
 
 impl Dynamics {
@@ -24,7 +19,12 @@ impl Dynamics {
     pub fn name(self) -> &'static str {
         match self {
             Dynamics::Overdamped => "overdamped",
-            Dynamics::Inertial(_) => "inertial",
+            Dynamics::Inertial => "inertial",
         }
+    }
+
+    /// Whether the dynamics carry masses.
+    pub fn is_inertial(self) -> bool {
+        self == Dynamics::Inertial
     }
 }

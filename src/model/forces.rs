@@ -330,7 +330,7 @@ impl Model {
     pub(crate) fn rhs(&self, y: &[f64], modes: &[Mode], work: &mut Forces, dy: &mut [f64]) {
         self.forces_moving(y, modes, work);
         for i in 0..self.len() {
-            dy[i] = self.rate(i, work.drive[i], modes[i]);
+            dy[i] = self.rate(i, y[i], work.drive[i], modes[i]);
         }
     }
 

@@ -18,21 +18,25 @@
 //! // the defaults: overdamped, the dipole law, three neighbours each way
 //! let opts = ModelOptions::default();
 //! assert_eq!(opts.dynamics, Dynamics::Overdamped);
-//! let slow = opts.with_drag(2.0 * opts.drag);
-//! assert_eq!(slow.drag, 2.0 * opts.drag);
+//! assert_eq!(opts.cutoff, ModelOptions::DEFAULT_CUTOFF);
+//! // the masses, drags and the water are the design's (`foldchain::Design`)
+//! let inertial = opts.with_dynamics(Dynamics::Inertial);
+//! assert!(inertial.dynamics.is_inertial());
 //! ```
 
 mod chain_model;
 mod coefficients;
 mod dynamics;
 mod forces;
+mod free_motion;
 mod mode;
 mod options;
+mod sides;
 mod verdict;
 
 pub use chain_model::Model;
 pub use chain_model::ModelError;
-pub(crate) use chain_model::Unknown;
+pub(crate) use chain_model::{Allow, Unknown};
 pub(crate) use coefficients::{at_wall, InertialModel, REST_HEIGHT};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;

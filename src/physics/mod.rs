@@ -1,6 +1,6 @@
 //! The physics both simulations share: the pair law between two magnets, what a force does
 //! to the chain (its drive along a magnet's path, its torque about a hinge), which pairs
-//! interact (chain index, polarity and the cutoff), the reaction initiator, the drags, and
+//! interact (chain index, polarity and the cutoff), the reaction initiator, the drags, a tile as a rigid body on the water, and
 //! the chain's dipole energy.
 //!
 //! The event engine's force start rule ([`crate::engine::StartRule::Force`]) and the
@@ -31,15 +31,18 @@ mod drive;
 mod energy;
 mod force_law;
 mod grid;
-mod inertia;
 mod poles;
 mod ri;
+mod tile_body;
 
-pub(crate) use drag::{DEFAULT_DRAG, DEFAULT_ROTATIONAL_DRAG};
+pub use drag::magnet_drag;
+pub(crate) use drag::DEFAULT_DRAG;
+#[cfg(test)]
+pub(crate) use drag::DEFAULT_INERTIAL_DRAG;
 pub(crate) use drive::{along_path, joints_between, torque_about};
 pub(crate) use energy::EnergyUnit;
 pub use force_law::ForceLaw;
 pub(crate) use grid::pairs_within;
-pub use inertia::Inertia;
 pub(crate) use poles::{neighbours, reach, upstream, Pole, DEFAULT_CUTOFF};
 pub(crate) use ri::ReactionInitiator;
+pub(crate) use tile_body::TileBody;

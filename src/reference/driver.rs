@@ -14,8 +14,6 @@
 //! after `1e4` times its slowest time scale without an event, or when the step size falls
 //! below 1e-14 of the time: never a hang.
 
-use std::f64::consts::FRAC_PI_2;
-
 use crate::model::Forces;
 use crate::model::RestState;
 use crate::model::{condition, undecided_margin};
@@ -208,8 +206,7 @@ impl Driver {
         let scale = self.model.time_scale;
         // the slowest of the model's time scales: a path at the bonded rest force's speed, or
         // a fold under the bonded rest torque (heavy tiles fold far slower than magnets move)
-        let slowest =
-            scale.max(self.model.options().rotational_drag * FRAC_PI_2 / self.model.torque_scale);
+        let slowest = scale.max(self.model.slowest_fold_time());
         let mut h = scale * 1e-3 * tol.powf(1.0 / (f64::from(q) + 1.0));
         let mut stopped = None;
         let mut rec = self.recorder(scale);
@@ -334,7 +331,7 @@ impl Driver {
             y[i] += delta;
             self.model.forces(&y, &mut work);
             self.stats.rhs += 1;
-            let rate = self.model.rate(i, work.drive[i], Mode::Free);
+            let rate = self.model.rate(i, y[i], work.drive[i], Mode::Free);
             y[i] = self.y[i];
             let lambda = (rate - f[i]) / delta;
             let left = (f[i] / lambda).abs();
@@ -377,6 +374,7 @@ impl Driver {
         let mut events = self.log.events;
         events.extend(outcome.stop_event(time));
         ReferenceRun {
+            made_by: "joint-angle reference",
             end_time: self.t,
             final_state: self.y,
             states,

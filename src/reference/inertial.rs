@@ -60,7 +60,7 @@ impl System for Inertial<'_> {
             }
             let v = z[2 * i + 1];
             out[2 * i] = v;
-            out[2 * i + 1] = self.im.acceleration(i, work.forces.drive[i], v);
+            out[2 * i + 1] = self.im.acceleration(i, z[2 * i], work.forces.drive[i], v);
         }
     }
 }
@@ -219,7 +219,9 @@ pub(crate) fn run_inertial(
             };
             stepper.rhs(&sys, &z, &mut f, &mut stats);
         }
-        let quiet = free.iter().all(|&i| im.quiet(z[2 * i + 1], f[2 * i + 1]));
+        let quiet = free
+            .iter()
+            .all(|&i| im.quiet(i, z[2 * i + 1], f[2 * i + 1]));
         if quiet && t > log.last_event + scale {
             break;
         }
@@ -400,6 +402,7 @@ pub(crate) fn run_inertial(
     events.extend(outcome.stop_event(time));
     let states = rec.map(|r| r.finish(t, &y)).unwrap_or_default();
     ReferenceRun {
+        made_by: "joint-angle reference",
         end_time: t,
         final_state: y,
         states,

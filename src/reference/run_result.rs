@@ -48,6 +48,9 @@ pub struct ReferenceRun {
     pub max_moving: (usize, f64),
     /// Work counters.
     pub stats: StepStats,
+    /// Which reference made the run, as `summary.json`'s parameters name it
+    /// ("joint-angle reference" or "free-body reference").
+    pub made_by: &'static str,
 }
 
 /// The law a reference timeline's times are in, as its JSON names it.
@@ -61,7 +64,6 @@ struct ReferenceSettings {
     method: Method,
     tolerance: f64,
     drag: f64,
-    rotational_drag: f64,
 }
 
 impl ReferenceRun {
@@ -124,12 +126,19 @@ impl ReferenceRun {
             folds: self.folded_joints(),
             max_moving_magnets: self.max_moving.0,
             speed_law: match self.model.options().dynamics {
-                Dynamics::Inertial(i) => SpeedLaw::Inertial { drag: i.drag },
+                Dynamics::Inertial => SpeedLaw::Inertial {
+                    drag: self.model.drag,
+                },
                 _ => SpeedLaw::Overdamped {
-                    drag: self.model.options().drag,
+                    drag: self.model.drag,
                 },
             },
         });
+        let mut summary = summary.with_parameters(self.model.parameters(self.made_by));
+        // the joints' angles against time are known only from recorded states
+        if !self.states.is_empty() {
+            summary = summary.with_free_motion(self.model.free_motion(self));
+        }
         match &self.stopped {
             Some(why) if self.undecided => summary.undecided(why.clone()),
             Some(why) => summary.overruled(RunResult::Stopped, why.clone()),
@@ -139,15 +148,13 @@ impl ReferenceRun {
 
     /// `timeline.json` in the event engine's format, the law named `reference`.
     pub fn timeline_json(&self) -> String {
-        let model = self.model.options();
         TimelineJson {
             tiles: self.tiles(),
             speed_law: ReferenceLaw {
                 reference: ReferenceSettings {
                     method: self.options.method,
                     tolerance: self.options.tolerance,
-                    drag: model.drag,
-                    rotational_drag: model.rotational_drag,
+                    drag: self.model.drag,
                 },
             },
             events_total: None,

@@ -15,7 +15,7 @@ pub enum SpeedLaw {
     },
     /// 1 mm per second: the transition diagram's timeline.
     Unit,
-    /// The inertial dynamics ([`crate::physics::Inertia`]) of the engine's local solves:
+    /// The inertial dynamics (the design's masses and drags, [`crate::Design`]) of the engine's local solves:
     /// magnets with mass against a drag, tiles with rotational inertia, bouncing at path ends
     /// and walls. A kinematic engine given it moves its magnets by the overdamped law with
     /// this drag (the kinematic speed laws have no mass).
@@ -26,7 +26,7 @@ pub enum SpeedLaw {
 }
 
 impl Default for SpeedLaw {
-    /// Overdamped with [`ModelOptions::DEFAULT_DRAG`](crate::model::ModelOptions::DEFAULT_DRAG).
+    /// Overdamped with the overdamped model's default magnet drag, 5 N s/m.
     fn default() -> SpeedLaw {
         SpeedLaw::Overdamped { drag: DEFAULT_DRAG }
     }

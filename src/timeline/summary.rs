@@ -1,7 +1,7 @@
 //! The summary of a run: what `summary.json` holds and `fold-run --json` prints, the same
 //! fields whichever simulation made the run.
 
-use crate::timeline::{Outcome, RunResult, SpeedLaw};
+use crate::timeline::{FreeMotion, Outcome, Parameters, RunResult, SpeedLaw};
 
 /// The first collision of a run.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -92,6 +92,12 @@ pub struct Summary {
     pub clearance: Option<Clearance>,
     /// The speed law (`overdamped` with its drag, or `unit`).
     pub speed_law: SpeedLaw,
+    /// The physical parameters the run used (null when not known: a summary made from a
+    /// run's facts alone).
+    pub parameters: Option<Parameters>,
+    /// How the chain moved on the water, nothing anchored (null for the kinematic baseline
+    /// and a summary made from a run's facts alone).
+    pub free_motion: Option<FreeMotion>,
 }
 
 impl Summary {
@@ -119,7 +125,21 @@ impl Summary {
             first_collision: None,
             clearance: None,
             speed_law: facts.speed_law,
+            parameters: None,
+            free_motion: None,
         }
+    }
+
+    /// The same summary stating the parameters the run used.
+    pub fn with_parameters(mut self, parameters: Parameters) -> Summary {
+        self.parameters = Some(parameters);
+        self
+    }
+
+    /// The same summary stating how the chain moved on the water.
+    pub fn with_free_motion(mut self, free_motion: FreeMotion) -> Summary {
+        self.free_motion = Some(free_motion);
+        self
     }
 
     /// The same summary, `undecided` because the run ran out of its work budget before the

@@ -254,6 +254,13 @@ impl TileDesigns {
         self
     }
 
+    /// The same designs with the global design edited by `edit` (the physical parameters a
+    /// command line sets: per-tile overrides change only `s` and `e`, so every tile follows).
+    pub fn with_global(mut self, edit: impl FnOnce(&mut Design)) -> TileDesigns {
+        edit(&mut self.global);
+        self
+    }
+
     /// The global design (with `s` from [`TileDesigns::with_s`] applied).
     pub fn global_design(&self) -> Design {
         let mut d = self.global;

@@ -44,8 +44,22 @@ pub struct EventComparison {
     pub error_time_scaled: f64,
 }
 
-/// Compares `run`'s events with `reference`'s, whose run lasted `duration` s.
+/// Compares `run`'s events with `reference`'s, whose run lasted `duration` s; two events
+/// within 1e-9 of the duration of each other count as tied (not out of order).
 pub fn compare_events(reference: &[Event], run: &[Event], duration: f64) -> EventComparison {
+    compare_events_within(reference, run, duration, 1e-9)
+}
+
+/// [`compare_events`], with two events within `tie` of the duration of each other (in either
+/// run) counted as tied: a run whose event times are known only to some fraction of its
+/// duration cannot order events closer than that (the event engine's sweeps stop when no
+/// event moves by 1e-6 of the duration).
+pub fn compare_events_within(
+    reference: &[Event],
+    run: &[Event],
+    duration: f64,
+    tie: f64,
+) -> EventComparison {
     let a = keyed(reference);
     let b = keyed(run);
     let map: FxHashMap<(EventKind, u32), f64> = b.iter().copied().collect();
@@ -67,8 +81,8 @@ pub fn compare_events(reference: &[Event], run: &[Event], duration: f64) -> Even
         .map(|p| (p.1 - time_factor * p.2).abs())
         .fold(0.0, f64::max)
         / span;
-    // tied within 1e-9 of the duration in either run: not out of order
-    let tie = 1e-9 * duration;
+    // tied within `tie` of the duration in either run: not out of order
+    let tie = tie * duration;
     let (mut inversions, mut interleavings) = (0, 0);
     for i in 0..pairs.len() {
         for j in i + 1..pairs.len() {

@@ -169,7 +169,7 @@ fn dynamics_name(d: Dynamics) -> &'static str {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use foldchain::physics::{ForceLaw, Inertia};
+    use foldchain::physics::ForceLaw;
 
     #[test]
     fn chains_parse_and_energy_falls() {
@@ -178,7 +178,7 @@ mod tests {
         }
         let model = ModelOptions::default()
             .with_force_law(ForceLaw::PointDipole)
-            .with_dynamics(Dynamics::Inertial(Inertia::default()));
+            .with_dynamics(Dynamics::Inertial);
         let runs = run_experiments(&[model], 200).unwrap();
         assert_eq!(runs.len(), EXPERIMENTS.len());
         for (r, run) in &runs {

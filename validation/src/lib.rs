@@ -32,7 +32,7 @@ use foldchain::reference::Method;
 use foldchain::reference::{run_reference, ReferenceError, ReferenceOptions, ReferenceRun};
 use foldchain::Pose;
 
-pub use compare::{compare_events, EventComparison};
+pub use compare::{compare_events, compare_events_within, EventComparison};
 pub use results::{Row, SceneReport, Validation};
 
 /// Options of a validation. Defaults: every scene, reference tolerance 1e-10 (Dormand-Prince),

@@ -4,14 +4,15 @@
 //!
 //! **Where the model is stiff.** Two time scales meet in it: a magnet's, its path travelled
 //! at the bonded rest force's speed ([`Model::time_scale`]), and a fold's, a quarter turn
-//! under the bonded rest torque against the rotational drag ([`TimeScales::fold_s`]). With
-//! the default drags a fold is the faster (about a tenth of the magnets' scale) and nothing
-//! is stiff. Heavy, slowly turning tiles (a rotational drag many decades above the default)
+//! under the bonded rest torque against its two sides' water drag ([`TimeScales::fold_s`]).
+//! With the default drags a fold is the faster (the overdamped model's magnet drag is an
+//! assumption far above the water's) and nothing is stiff. Tiles turning slowly in a
+//! liquid many decades more viscous than water
 //! make the folds far slower than the magnets: the magnets of a folding pair then follow
 //! their balances, which the fold moves slowly, relaxing to them at a rate of the order of
 //! `1 / time_scale`. That is a stiff system. Dormand-Prince's stability region bounds its
 //! step by about `3.3 / |lambda|` whatever the tolerance, so its step count grows in
-//! proportion to the fold time (to the rotational drag); ROS2 is L-stable and steps at the
+//! proportion to the fold time (to the viscosity); ROS2 is L-stable and steps at the
 //! pace the fold's own accuracy asks, so its count does not grow. On non-stiff cases ROS2,
 //! second order, needs more steps than the fifth-order Dormand-Prince: the control cases
 //! show that too.
@@ -34,7 +35,6 @@
 //! assert!(study.cases[0].stiffness_ratio < 1.0); // default drags: not stiff
 //! ```
 
-use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
 use foldchain::model::{Model, ModelOptions};
@@ -52,9 +52,9 @@ pub struct StiffCase {
     pub word: &'static str,
     /// Every magnet's remanence (so its moment) times this, on the thesis design.
     pub moment_factor: f64,
-    /// The rotational drag is default (1.125e-5 N m s) times
-    /// this (the magnet drag stays the default).
-    pub rotational_drag_factor: f64,
+    /// The water's viscosity is the design's times this, and with it every tile's drag on
+    /// the water (the magnet drag in its channel stays the default).
+    pub viscosity_factor: f64,
     /// Tolerance of both integrators.
     pub tolerance: f64,
     /// Whether the case is meant to be stiff (false: a non-stiff control).
@@ -64,15 +64,15 @@ pub struct StiffCase {
 }
 
 /// The cases, in table order: two non-stiff controls, then three stiff cases by growing
-/// rotational drag. `SLLS rot x1e7` is cheap enough for the tests (Dormand-Prince under a
-/// second in release); `SLLS rot x1e8` shows the widest gap (Dormand-Prince several
+/// water viscosity (so tile drag). `SLLS visc x1e9` is cheap enough for the tests (Dormand-Prince under a
+/// second in release); `SLLS visc x1e10` shows the widest gap (Dormand-Prince several
 /// seconds).
 pub const STIFF_CASES: &[StiffCase] = &[
     StiffCase {
         name: "SLLS control",
         word: "SLLS",
         moment_factor: 100.0,
-        rotational_drag_factor: 1.0,
+        viscosity_factor: 1.0,
         tolerance: 1e-3,
         stiff: false,
         why: "default drags: a fold is no slower than the magnets' move, so nothing is stiff and the fifth-order explicit method needs fewer steps than the second-order ROS2",
@@ -81,34 +81,34 @@ pub const STIFF_CASES: &[StiffCase] = &[
         name: "SLLS control 1e-6",
         word: "SLLS",
         moment_factor: 100.0,
-        rotational_drag_factor: 1.0,
+        viscosity_factor: 1.0,
         tolerance: 1e-6,
         stiff: false,
         why: "the same non-stiff case at a tight tolerance, where ROS2's second order costs it most: the explicit method's fifth order wins by far",
     },
     StiffCase {
-        name: "LL rot x1e6",
+        name: "LL visc x1e8",
         word: "LL",
         moment_factor: 100.0,
-        rotational_drag_factor: 1e6,
+        viscosity_factor: 1e8,
         tolerance: 1e-4,
         stiff: true,
         why: "heavy tiles fold about 1e5 times slower than the magnets move; the magnets of the folding pair follow their slowly moving balances, so the explicit method's steps are held to its stability bound",
     },
     StiffCase {
-        name: "SLLS rot x1e7",
+        name: "SLLS visc x1e9",
         word: "SLLS",
         moment_factor: 100.0,
-        rotational_drag_factor: 1e7,
+        viscosity_factor: 1e9,
         tolerance: 1e-3,
         stiff: true,
         why: "heavier tiles, folds about 1e6 times slower than the magnets: the explicit method's steps grow with the fold time, ROS2's do not",
     },
     StiffCase {
-        name: "SLLS rot x1e8",
+        name: "SLLS visc x1e10",
         word: "SLLS",
         moment_factor: 100.0,
-        rotational_drag_factor: 1e8,
+        viscosity_factor: 1e10,
         tolerance: 1e-3,
         stiff: true,
         why: "ten times heavier again, folds about 1e7 times slower than the magnets: ten times the explicit method's steps, ROS2's the same",
@@ -150,8 +150,8 @@ pub enum StiffError {
 pub struct TimeScales {
     /// A magnet's time scale, s: its path travelled at the bonded rest force's speed.
     pub magnet_s: f64,
-    /// A fold's, s: a quarter turn at the bonded rest torque against the rotational drag,
-    /// `rotational_drag * (pi/2) / torque_scale`. An estimate: the torque on a real fold
+    /// A fold's, s: the slowest quarter turn at the bonded rest torque against its two
+    /// sides' water drag about the hinge ([`Model::slowest_fold_time`]). An estimate: the torque on a real fold
     /// changes as it turns and its magnets move; on these cases the folds measured
     /// ([`StiffRow::longest_fold_s`]) take between about 0.4 and 2 times this.
     pub fold_s: f64,
@@ -173,19 +173,20 @@ impl StiffCase {
         })
     }
 
-    /// The thesis design with the moments scaled by [`StiffCase::moment_factor`].
+    /// The thesis design with the moments scaled by [`StiffCase::moment_factor`] and the
+    /// water's viscosity by [`StiffCase::viscosity_factor`].
     pub fn designs(&self) -> TileDesigns {
         let t = Design::thesis();
         TileDesigns::global(Design {
             remanence: t.remanence * self.moment_factor,
+            water_viscosity: t.water_viscosity * self.viscosity_factor,
             ..t
         })
     }
 
-    /// The default model with the rotational drag scaled.
+    /// The default model (overdamped).
     pub fn model_options(&self) -> ModelOptions {
-        let m = ModelOptions::default();
-        m.with_rotational_drag(m.rotational_drag * self.rotational_drag_factor)
+        ModelOptions::default()
     }
 
     /// The reference options of a run with `method`.
@@ -209,7 +210,7 @@ impl StiffCase {
             .map_err(|e| self.reference_error(e.into()))?;
         Ok(TimeScales {
             magnet_s: model.time_scale,
-            fold_s: model.options().rotational_drag * FRAC_PI_2 / model.torque_scale,
+            fold_s: model.slowest_fold_time(),
         })
     }
 
@@ -397,12 +398,12 @@ impl StiffStudy {
         );
         for c in &self.cases {
             s.push_str(&format!(
-                "\n{} ({}; {}, moments x{}, rotational drag x{:e}, tolerance {:.0e}): fold time scale {:.3e} s over the magnets' {:.3e} s = {:.2e}; dopri5 took {}x ROS2's accepted steps.\n  {}\n",
+                "\n{} ({}; {}, moments x{}, water viscosity x{:e}, tolerance {:.0e}): fold time scale {:.3e} s over the magnets' {:.3e} s = {:.2e}; dopri5 took {}x ROS2's accepted steps.\n  {}\n",
                 c.case.name,
                 if c.case.stiff { "stiff" } else { "control" },
                 c.case.word,
                 c.case.moment_factor,
-                c.case.rotational_drag_factor,
+                c.case.viscosity_factor,
                 c.case.tolerance,
                 c.time_scales.fold_s,
                 c.time_scales.magnet_s,
@@ -459,7 +460,7 @@ mod tests {
         let e = select_cases(&["SLLS rot x1e9".to_string()]).unwrap_err();
         let msg = e.to_string();
         assert!(msg.contains("'SLLS rot x1e9'"), "{msg}");
-        assert!(msg.contains("'SLLS rot x1e8'"), "{msg}");
+        assert!(msg.contains("'SLLS visc x1e10'"), "{msg}");
         assert_eq!(select_cases(&[]).unwrap().len(), STIFF_CASES.len());
     }
 

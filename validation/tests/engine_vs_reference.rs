@@ -8,12 +8,11 @@
 
 use foldchain::engine::{run, EngineMethod, EngineOptions, StartRule};
 use foldchain::model::{Dynamics, ModelOptions};
-use foldchain::physics::Inertia;
 use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Event, EventKind, Outcome, RunSource, TileDesigns};
 use foldchain::{Chain, Design};
-use foldchain_validation::compare_events;
 use foldchain_validation::scenes::all_scenes;
+use foldchain_validation::{compare_events, compare_events_within};
 
 fn only(events: &[Event], kinds: &[EventKind]) -> Vec<Event> {
     events
@@ -42,7 +41,11 @@ fn local_solves_time_every_event_as_the_reference_does() {
         .unwrap();
         let tl = run(&sc.chain, &sc.designs, &EngineOptions::default()).unwrap();
         assert_eq!(key(&tl.outcome), key(&r.outcome), "{}", sc.name);
-        let c = compare_events(&r.events, &tl.events, r.duration());
+        // the engine's event times are converged to 1e-6 of the duration (its sweeps stop
+        // when no event moves by more, `engine::local::sweep::SWEEP_TOLERANCE`): events
+        // closer than that are tied as far as the engine can tell (the 107-tile square had
+        // an arrival 4.4e-9 of the run before another magnet's start)
+        let c = compare_events_within(&r.events, &tl.events, r.duration(), 1e-6);
         assert_eq!(
             (c.missing, c.inversions, c.interleavings),
             (0, 0, 0),
@@ -135,19 +138,20 @@ fn the_distance_rule_disagrees_where_the_longer_range_forces_decide() {
 }
 
 fn inertial() -> ModelOptions {
-    ModelOptions::default().with_dynamics(Dynamics::Inertial(Inertia::default()))
+    ModelOptions::default().with_dynamics(Dynamics::Inertial)
 }
 
 #[test]
 fn inertial_engine_events_are_the_inertial_references() {
-    // a serpentine repeats its U-turns: a cached unit must not stand for a joint that
-    // swings a different tail (its inertia grows with the tiles it swings)
+    // a serpentine repeats its U-turns: a cached unit must not stand for a joint whose sides
+    // differ (its inertia and drag are those of the whole chain either side)
     let serpentine = "S*8 L L S*8 R R S*8 L L S*8 R R S*8";
     for (word, s, most) in [
         ("SL", 0.3, 1.0),
         ("LL", 0.3, 1.0),
         ("SSLS", 0.05, 1.0),
-        (serpentine, 0.3, 5.0),
+        // its U-turns turn rafts of up to 45 tiles on the water: some 11 s
+        (serpentine, 0.3, 30.0),
     ] {
         let chain = Chain::parse(word).unwrap();
         let designs = TileDesigns::global(Design::thesis().with_s(s));

@@ -19,11 +19,11 @@ fn starts(events: &[Event]) -> Vec<u32> {
 
 #[test]
 fn stiff_case_ros2_finishes_in_a_twentieth_of_the_steps() {
-    // heavy, slowly folding tiles (rotational drag 1e7 times the default): the folds take
+    // heavy, slowly folding tiles (water 1e9 times as viscous): the folds take
     // about 1e6 magnet time scales, the magnets of each folding pair follow their balances,
     // and Dormand-Prince is held to its stability bound while ROS2 (L-stable) is not.
     // Counts, not wall times: the step counts are deterministic.
-    let case = select_cases(&["SLLS rot x1e7".to_string()])
+    let case = select_cases(&["SLLS visc x1e9".to_string()])
         .unwrap()
         .remove(0);
     assert!(case.stiff);

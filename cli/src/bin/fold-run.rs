@@ -16,7 +16,7 @@ use clap::Parser;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{SValue, StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
-use foldchain::physics::ForceLaw;
+use foldchain::physics::{magnet_drag, ForceLaw};
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::SpeedLaw;
 use foldchain_cli::choices::{
@@ -25,6 +25,7 @@ use foldchain_cli::choices::{
 use foldchain_cli::fold_run::{run, EngineRequest, ReferenceModel, RunMode, RunReport, RunRequest};
 use foldchain_cli::inputs::{refuse_overwrite_in, resolve_chain, ChainArgs};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::physics_args::PhysicsArgs;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_dir::install_interrupt_cleanup;
@@ -119,8 +120,9 @@ struct Args {
     force_law: String,
     /// The physics of the event engine's local solves and of the reference (--reference,
     /// --compare): inertial (the default: magnets of 0.265 g with a drag of 0.05 N s/m,
-    /// tiles with rotational inertia, bouncing at path ends; docs/physics.md) or
-    /// overdamped (first order, drag --drag: the stiff limit of negligible mass). Refused with
+    /// tiles of 3 g on water, both sides of a fold turning, bouncing at path ends;
+    /// docs/physics.md) or overdamped (first order, magnet drag 5 N s/m unless --drag: the
+    /// stiff limit of negligible mass). Refused with
     /// the kinematic engine, which does not use it.
     #[arg(long, value_enum)]
     dynamics: Option<DynamicsChoice>,
@@ -129,10 +131,10 @@ struct Args {
     /// pairs up to 3 apart in chain index only. With --reference or --compare.
     #[arg(long, value_name = "MM", value_parser = cutoff_arg, allow_hyphen_values = true)]
     distance_cutoff: Option<f64>,
-    /// Drag coefficient of the overdamped law, N s/m (0.001 to 10000; default 5): the
-    /// kinematic engine's speed law and --dynamics overdamped.
-    #[arg(long, value_name = "N_S_PER_M", value_parser = drag_arg, allow_hyphen_values = true)]
-    drag: Option<f64>,
+    /// The physical parameters (each overrides the design file's, for every model the run
+    /// uses).
+    #[command(flatten)]
+    physics: PhysicsArgs,
     /// Threads of the local solves' sweeps (1 to 256): 1 one sweep after the other, 2 two at
     /// once (the events are the same to the last bit); default: the machine's cores, one
     /// thread under 500 tiles.
@@ -209,16 +211,6 @@ fn overlap_arg(s: &str) -> Result<f64, String> {
     number_in(s, 0.0, 1.0, "mm", "")
 }
 
-fn drag_arg(s: &str) -> Result<f64, String> {
-    number_in(
-        s,
-        1e-3,
-        1e4,
-        "N s/m",
-        "below 0.001 the magnets' inertia matters: use --dynamics inertial",
-    )
-}
-
 fn tile_size_arg(s: &str) -> Result<f64, String> {
     match number_in(s, 0.0, 1e9, "SVG user units", "") {
         Ok(w) if w > 0.0 => Ok(w),
@@ -248,6 +240,19 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
     };
     let engine = engine_request(args, mode)?;
     refuse_unused(args, mode, &engine)?;
+    let engine = match engine {
+        // the kinematic baseline's overdamped speed law takes the design's magnet drag
+        EngineRequest::Kinematic {
+            speed: SpeedLaw::Overdamped { .. },
+            start,
+        } => EngineRequest::Kinematic {
+            speed: SpeedLaw::Overdamped {
+                drag: kinematic_drag(args)?,
+            },
+            start,
+        },
+        other => other,
+    };
     if args.model == ReferenceModel::FreeBody {
         if mode == RunMode::Engine {
             bail!("--model free-body: the reference's model; give --reference or --compare");
@@ -285,6 +290,8 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         designs = designs.with_s(SValue::parse(s)?);
         designs.check_ranges("--s")?;
     }
+    designs = args.physics.apply(designs);
+    designs.check_ranges("command line")?;
     let force_law =
         ForceLaw::named(&args.force_law, &designs.global_design()).with_context(|| {
             format!(
@@ -295,7 +302,6 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         })?;
     let mut model = ModelOptions::default()
         .with_force_law(force_law)
-        .with_drag(args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG))
         .with_dynamics(
             args.dynamics
                 .unwrap_or(DynamicsChoice::Inertial)
@@ -373,9 +379,8 @@ fn engine_request(args: &Args, mode: RunMode) -> anyhow::Result<EngineRequest> {
     let kinematic = || EngineRequest::Kinematic {
         speed: match args.speed.unwrap_or(SpeedChoice::Overdamped) {
             SpeedChoice::Unit => SpeedLaw::Unit,
-            SpeedChoice::Overdamped => SpeedLaw::Overdamped {
-                drag: args.drag.unwrap_or(ModelOptions::DEFAULT_DRAG),
-            },
+            // the drag is set from the design once it is read ([`kinematic_drag`])
+            SpeedChoice::Overdamped => SpeedLaw::Overdamped { drag: f64::NAN },
         },
         start: match args.start_rule.unwrap_or(StartRuleChoice::Distance) {
             StartRuleChoice::Force => StartRule::Force {
@@ -408,21 +413,39 @@ fn refuse_unused(args: &Args, mode: RunMode, engine: &EngineRequest) -> anyhow::
     if mode == RunMode::Engine && args.distance_cutoff.is_some() {
         bail!("--distance-cutoff applies to the reference: add --reference or --compare, or leave it out");
     }
-    let inertial = args.dynamics.unwrap_or(DynamicsChoice::Inertial) == DynamicsChoice::Inertial;
-    let drag_used_by_kinematic = matches!(
-        engine,
-        EngineRequest::Kinematic {
-            speed: SpeedLaw::Overdamped { .. },
-            ..
-        }
-    ) && mode != RunMode::Reference;
-    if args.drag.is_some() && inertial && !drag_used_by_kinematic {
-        bail!("--drag is the overdamped law's drag; the inertial dynamics (the default) take theirs from the physics (docs/physics.md): add --dynamics overdamped, or leave --drag out");
+    if args.physics.drag.is_some()
+        && args.speed == Some(SpeedChoice::Unit)
+        && mode == RunMode::Engine
+    {
+        bail!("--drag is a magnet's drag in its channel; --speed unit moves every magnet at 1 mm/s: leave one of them out");
     }
-    if args.drag.is_some() && args.speed == Some(SpeedChoice::Unit) && mode == RunMode::Engine {
-        bail!("--drag is the overdamped law's drag; --speed unit moves every magnet at 1 mm/s: leave one of them out");
+    if kinematic_only {
+        // the kinematic baseline moves magnets at the overdamped speed law's pace: it uses the
+        // magnet drag alone
+        let unused: Vec<&str> = args
+            .physics
+            .given()
+            .into_iter()
+            .filter(|f| *f != "--drag")
+            .collect();
+        if let Some(first) = unused.first() {
+            bail!("{first}: the kinematic engine moves magnets at a speed law and uses no masses, friction, restitution or water ({}): leave {} out, or use --engine local", unused.join(", "), if unused.len() == 1 { "it" } else { "them" });
+        }
     }
     Ok(())
+}
+
+/// The kinematic baseline's overdamped drag: the design file's or `--drag`, else the
+/// overdamped model's default (5 N s/m).
+fn kinematic_drag(args: &Args) -> anyhow::Result<f64> {
+    let designs = match &args.design {
+        Some(p) => TileDesigns::from_file(p)?,
+        None => TileDesigns::default(),
+    };
+    Ok(magnet_drag(
+        &args.physics.apply(designs).global_design(),
+        false,
+    ))
 }
 
 /// `--transition A..B`.
@@ -509,6 +532,17 @@ fn summary_line(name: &str, s: &Summary, dir: &Path) {
     );
     if let Some(r) = &s.reason {
         outln!("  {r}");
+    }
+    if let Some(f) = &s.free_motion {
+        if let (Some(tile), Some(at)) = (f.fastest_tile, f.fastest_at_s) {
+            outln!(
+                "  on the water: fastest tile {tile} at {:.3} m/s ({:.4} s); the first tile turned {:.1} degrees, the last {:.1}",
+                f.max_tile_speed_m_s,
+                at,
+                f.first_tile_turn_deg,
+                f.last_tile_turn_deg
+            );
+        }
     }
     // a near miss, a touch, a graze or an overlap (summary.json always has it)
     if let Some(c) = s.clearance.filter(|c| c.mm < NEAR_MISS_MM) {

@@ -218,6 +218,16 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
         designs = designs.with_s(SValue::parse(s)?);
         designs.check_ranges("--s")?;
     }
+    let dynamic = designs.global_design().dynamic_fields_set();
+    if let Some(field) = dynamic.first() {
+        bail!(
+            "{}: design parameter `{field}` is set, but the tolerance study is quasi-static (the margins of the forces at rest) and uses no masses, drags, friction, restitution or water: leave {} out here, or run fold-run, whose dynamics use them",
+            args.design
+                .as_deref()
+                .map_or("design".to_string(), |p| p.display().to_string()),
+            dynamic.join(", ")
+        );
+    }
     let (list, index) = designs.resolve(chain.len());
     let nominal: Vec<Design> = if index.is_empty() {
         vec![list[0]]

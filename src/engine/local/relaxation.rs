@@ -303,7 +303,7 @@ mod tests {
     fn one_thread_or_two_give_the_same_solution_bit_for_bit() {
         // two sweeps at once, the later trailing the earlier: every event time, every track
         // and the work done the same as one sweep after the other
-        let inertial = Dynamics::Inertial(Default::default());
+        let inertial = Dynamics::Inertial;
         for (word, d) in [
             ("S*30 LL S*30 RR S*30 LL S*30", inertial),
             ("S*14 LL S*14 RR S*6", Dynamics::Overdamped),
@@ -364,14 +364,18 @@ mod tests {
             "{shapes_short} {shapes_long}"
         );
         assert!(long.len() <= 5, "{long:?}");
+        // a U-turn's two sides differ from one U-turn to the next (its inertia and drag are
+        // those of the whole chain either side), so each U-turn is solved: twice the U-turns
+        // cost at most twice the solves a sweep, the straight runs between them nothing more
         let row = "S*40 LL S*40 RR";
-        let (two, shapes_two, events_two) = counts(&format!("{row} S*40"));
-        let (four, shapes_four, events_four) = counts(&format!("{row} {row} S*40"));
+        let (two, _, events_two) = counts(&format!("{row} S*40"));
+        let (four, _, events_four) = counts(&format!("{row} {row} S*40"));
         assert!(events_four > 1.6 * events_two, "{events_two} {events_four}");
-        same_cost(&two, &four);
-        assert!(shapes_four <= shapes_two + 30, "{shapes_two} {shapes_four}");
+        assert!(four.len() <= two.len() + 1, "{two:?} {four:?}");
+        let most = two.iter().copied().max().unwrap();
+        assert!(four.iter().all(|&n| n <= 2 * most), "{two:?} {four:?}");
         // the inertial local solves (fold-run's default) as well
-        let inertial = Dynamics::Inertial(Default::default());
+        let inertial = Dynamics::Inertial;
         let (short, _, _) = counts_with("S*60", inertial);
         let (long, _, _) = counts_with("S*240", inertial);
         same_cost(&short, &long);
@@ -379,10 +383,11 @@ mod tests {
 
     #[test]
     fn rodas4_where_stiff_saves_work_and_keeps_the_events() {
-        // a U-turn swinging a 20,000-tile tail turns slowly while its pair's nearly closed
-        // magnets follow it: a stiff stretch (measured: 12% fewer right-hand sides)
-        let word = "S*4 LL S*20000";
-        let inertial = Dynamics::Inertial(Default::default());
+        // a U-turn between two 300-tile runs turns slowly (each side's drag about the hinge
+        // grows as its length cubed) while its pair's nearly closed magnets follow it: a stiff
+        // stretch. (A short head against a long tail turns fast: it is the head that turns.)
+        let word = "S*300 LL S*300";
+        let inertial = Dynamics::Inertial;
         let with = solve_word_with(word, 0.1, inertial, true, true);
         let without = solve_word_with(word, 0.1, inertial, true, false);
         assert_same_events(&with, &without);

@@ -18,7 +18,7 @@ use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
-use crate::model::{Dynamics, Model};
+use crate::model::Model;
 
 /// A unit's time origin is when the magnet before it has travelled this fraction of its
 /// path: 0.5.
@@ -544,11 +544,12 @@ fn window_key(w: &UnitForces, tracks: &[Track], t_ref: f64, quantum: f64, key: &
     key.push(a - w.lo as i64);
     key.push(w.hi as i64 - a);
     key.push(w.vars.len() as i64);
-    if let Dynamics::Inertial(_) = w.model.options().dynamics {
-        // an inertial joint's inertia grows with the tiles it swings: its place matters
-        for v in &w.vars {
-            if let Var::Joint(jj) = v {
-                key.push((g.tiles() - 1 - jj) as i64);
+    // a joint's inertia and drag are its two sides': its place in the chain matters unless
+    // another joint has the same sides to the last bit
+    for v in &w.vars {
+        if let Var::Joint(jj) = v {
+            if let Some(bits) = w.model.joint_key(*jj) {
+                key.extend(bits.iter().map(|b| *b as i64));
             }
         }
     }

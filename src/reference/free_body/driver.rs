@@ -18,7 +18,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::model::REST_HEIGHT;
 use crate::model::{
-    at_wall, undecided_margin, Dynamics, Forces, InertialModel, Mode, Model, RestState, Unknown,
+    at_wall, undecided_margin, Allow, Dynamics, Forces, InertialModel, Mode, Model, RestState,
+    Unknown,
 };
 use crate::ode::{integral, Method, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
@@ -49,9 +50,10 @@ pub fn run_free_body(
         return Err(ReferenceError::BadTolerance(ro.tolerance));
     }
     opts.validate()?;
-    let model = Model::new(chain, designs, &ro.model).map_err(ReferenceError::from)?;
-    let (Dynamics::Inertial(inertia), Some(im)) =
-        (model.options().dynamics, InertialModel::new(&model))
+    // the free-body reference integrates the water's form drag too
+    let model = Model::build(chain, designs, &ro.model, Allow { form_drag: true })
+        .map_err(ReferenceError::from)?;
+    let (Dynamics::Inertial, Some(im)) = (model.options().dynamics, InertialModel::new(&model))
     else {
         return Err(ReferenceError::FreeBodyUnsupported {
             what: "overdamped dynamics",
@@ -59,12 +61,7 @@ pub fn run_free_body(
         });
     };
     let geometry = &model.geometry;
-    let bodies = TileBodies::new(
-        geometry,
-        opts.tile_mass_g,
-        |t| inertia.magnet_mass_kg(geometry.design(t)),
-        &opts.water,
-    );
+    let bodies = TileBodies::new(geometry, |t| geometry.design(t).magnet_mass * 1e-3);
     let oct = Octagon::new(geometry.w);
     let hinges = [oct.hinge(true).into(), oct.hinge(false).into()];
     let moments = (0..geometry.magnets())
@@ -81,7 +78,7 @@ pub fn run_free_body(
         moments,
         hinges,
         folding,
-        restitution: inertia.restitution,
+        restitution: geometry.design(0).restitution,
         model,
     };
     Ok(Driver::new(setup, opts).run())
@@ -575,9 +572,9 @@ impl Driver {
             }
             let t = self.t;
             let free = self.packed.len();
-            let quiet = (0..free).all(|p| {
+            let quiet = self.packed.iter().enumerate().all(|(p, &i)| {
                 let v = BASE + 2 * p + 1;
-                self.setup.im.quiet(self.zp[v], f[v])
+                self.setup.im.quiet(i, self.zp[v], f[v])
             });
             if quiet && t > self.log.last_event + scale {
                 break;
@@ -725,6 +722,7 @@ impl Driver {
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
         FreeBodyRun {
             run: ReferenceRun {
+                made_by: "free-body reference",
                 end_time: self.t,
                 final_state: y,
                 states,

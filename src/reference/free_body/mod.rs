@@ -1,6 +1,6 @@
 //! The free-body reference: every tile a rigid body in the plane, floating, nothing
 //! anchored (issue 27). Each tile has its mass and moment of inertia and the water's drag on
-//! it (linear film drag, optionally quadratic form drag: [`FreeBodyOptions`]); the magnets slide on
+//! it (the design's water: linear film drag, optionally quadratic form drag); the magnets slide on
 //! their paths under the pair forces of [`crate::physics`] as in the model
 //! ([`crate::model`]); the RI rides on tile 0. A joint that is not turning holds its two
 //! tiles together, so the chain is a few rigid groups joined by the turning joints, each a

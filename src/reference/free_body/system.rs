@@ -458,7 +458,8 @@ impl FreeBody<'_> {
             let v = z[Setup::at(i) + 1];
             out[BASE + 2 * p] = v;
             out[BASE + 2 * p + 1] = match model.unknowns[i] {
-                Unknown::Magnet(_) => self.setup.im.acceleration(i, w.drive[p], v),
+                // (a magnet's acceleration does not depend on its place on its path)
+                Unknown::Magnet(_) => self.setup.im.acceleration(i, 0.0, w.drive[p], v),
                 Unknown::Joint(j) => {
                     let g = self.groups.of_tile[j + 1];
                     model.joint_sign(j) * w.qdd[g] / FRAC_PI_2

@@ -155,7 +155,7 @@ impl Solver<'_> {
         let model = self.w.model;
         let g = self.globals[i];
         let before = self.modes[i];
-        let rate_before = model.rate(g, d[i], before);
+        let rate_before = model.rate(g, z[i], d[i], before);
         let Some(next) = condition(model, g, before, z[i], d[i]) else {
             return;
         };
@@ -164,7 +164,7 @@ impl Solver<'_> {
             Mode::AtStart => z[i] = 0.0,
             Mode::Free => {}
         }
-        let rate_after = model.rate(g, d[i], next);
+        let rate_after = model.rate(g, z[i], d[i], next);
         let rb = if before == Mode::AtStart {
             0.0
         } else {

@@ -1,7 +1,7 @@
 //! One unit's local solve: its unknowns integrated in time with every other magnet and
 //! joint on its track (upstream: solved; downstream: at rest, or the previous sweep's),
 //! by Dormand-Prince 5(4) with adaptive steps ([`step`]), or by RODAS4 ([`rosenbrock`])
-//! while an inertial unit is stiff (Hairer's test on the Dormand-Prince stages); the
+//! while a unit is stiff (Hairer's test on the Dormand-Prince stages); the
 //! error is measured on the positions, a velocity's as the position error it makes in the
 //! unit's inertial time (the magnets' fast relaxation is no reason for small steps once it
 //! has died out). The rates and the switches
@@ -25,7 +25,7 @@ mod step;
 pub(crate) use crate::model::InertialModel;
 
 use crate::engine::local::trajectory::Shape;
-use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces};
+use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
 use crate::ode::locate::bisect;
 use crate::ode::{hermite, integral};
@@ -38,11 +38,15 @@ const MAX_SKIP: usize = 8;
 /// ... while its release margin, rising this many times faster than over its last rest
 /// step, would stay short of a release: 4.
 const SKIP_SAFETY: f64 = 4.0;
-/// A unit whose inputs are still and whose free unknowns go this many of its time scales
-/// (or of its time since its origin, if longer) without an event is creeping towards a
-/// balance it neither passes nor settles on: the solve stops, undecided. The reference's
+/// A unit whose inputs are still and whose free unknowns go this many of its slowest time
+/// scales (or of its time since its origin, if longer) without an event is creeping towards
+/// a balance it neither passes nor settles on: the solve stops, undecided. The reference's
 /// limit ([`crate::reference::ReferenceOptions`]); 1e4: a magnet or fold that moves at all
-/// does so within a few hundred time scales.
+/// does so within a few hundred time scales. A unit's slowest time scale is its magnets'
+/// or, if longer, its joint's fold time against both sides' drag
+/// ([`Model::fold_time`](crate::model::Model)), as the reference's is its chain's slowest:
+/// the fold of a U-turn in the middle of a long serpentine turns a raft metres across and
+/// takes days, its pair's magnets creeping to their ends with it.
 const CREEP_SCALES: f64 = 1e4;
 
 /// Most unknowns of a unit.
@@ -189,14 +193,17 @@ impl Solver<'_> {
         match self.opts.inertial {
             None => {
                 for i in 0..m {
-                    f[i] = self.w.model.rate(self.globals[i], drive[i], self.modes[i]);
+                    f[i] = self
+                        .w
+                        .model
+                        .rate(self.globals[i], z[i], drive[i], self.modes[i]);
                 }
             }
             Some(im) => {
                 for i in 0..m {
                     if self.modes[i] == Mode::Free {
                         f[i] = z[m + i];
-                        f[m + i] = im.acceleration(self.globals[i], drive[i], z[m + i]);
+                        f[m + i] = im.acceleration(self.globals[i], z[i], drive[i], z[m + i]);
                     } else {
                         f[i] = 0.0;
                         f[m + i] = 0.0;
@@ -272,6 +279,16 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
             model.time_scale * 1e-3 * opts.tol.powf(0.2),
         ),
     };
+    // the unit's slowest time scale: its magnets', or its joint's fold against both sides'
+    // drag (the creep limit's unit)
+    let slowest = w
+        .vars
+        .iter()
+        .filter_map(|v| match *v {
+            Var::Joint(jj) => Some(model.fold_time(jj)),
+            Var::Magnet(_) => None,
+        })
+        .fold(scale, f64::max);
     let mut steps = 0usize;
     // the last time and release margin met while nothing of the unit moved
     let mut rest_prev: Option<(f64, f64)> = None;
@@ -329,11 +346,11 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         let free: Vec<usize> = (0..m).filter(|&i| s.modes[i] == Mode::Free).collect();
         steps += 1;
         // the work budget: a step limit, and a creep limit once the inputs are still (no
-        // event for CREEP_SCALES times the unit's time scale or its time, as the
+        // event for CREEP_SCALES times the unit's slowest time scale or its time, as the
         // reference's): a balance the solve cannot decide within it is said, with its margin
         let creeping = !free.is_empty()
             && tau >= t_last
-            && tau - s.last_event > CREEP_SCALES * scale.max(s.last_event);
+            && tau - s.last_event > CREEP_SCALES * slowest.max(s.last_event);
         if steps > opts.max_steps || creeping {
             let budget = if creeping {
                 format!(
@@ -360,8 +377,8 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
                 break;
             };
             let margin = s.release_margin(&d);
-            // (inertial units: the overdamped rows of fold-validate stay as they were)
-            let skip = opts.rest_skip && opts.inertial.is_some() && margin < 0.0;
+            // (overdamped units too: a neighbour of a slow fold waits through its long track)
+            let skip = opts.rest_skip && margin < 0.0;
             if let Some((tp, mp)) = rest_prev.filter(|&(tp, _)| skip && tp < tau) {
                 let rate = ((margin - mp) / (tau - tp)).abs();
                 for _ in 1..MAX_SKIP {
@@ -401,7 +418,10 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
                     }
                 }
                 Some(im) => {
-                    if free.iter().all(|&i| im.quiet(z[m + i], f[m + i])) {
+                    if free
+                        .iter()
+                        .all(|&i| im.quiet(s.globals[i], z[m + i], f[m + i]))
+                    {
                         break;
                     }
                 }
@@ -419,12 +439,13 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         // the method: Dormand-Prince until its step is bounded by stability (Hairer's test,
         // h |lambda| > 3.25, three attempts in a row), RODAS4 until the step it takes is
         // one Dormand-Prince could take stably (h |J| < 1, three steps in a row)
-        // (inertial units only: an overdamped unit's stiff stretches are short, and
-        // Dormand-Prince, more accurate at the same tolerance, keeps its events closer)
+        // (overdamped units too: with both free sides a fold's drag grows as the sum of r^2
+        // over the chain either side, so a U-turn in a long serpentine turns for days while
+        // its pair's magnets relax in tenths of a second)
         let other = if stiff {
             st.stiffness < 1.0 && err <= 1.0
         } else {
-            opts.rosenbrock && opts.inertial.is_some() && st.stiffness > 3.25
+            opts.rosenbrock && st.stiffness > 3.25
         };
         streak = if other { streak + 1 } else { 0 };
         if streak >= 3 {
@@ -522,7 +543,7 @@ mod tests {
     fn solved(word: &str, rest_skip: bool) -> ChainSolution {
         let o = crate::engine::local::test_support::Options {
             s: 0.1,
-            dynamics: Dynamics::Inertial(Default::default()),
+            dynamics: Dynamics::Inertial,
             reuse: true,
             rosenbrock: true,
             rest_skip,
