@@ -3,8 +3,13 @@
 //!
 //! ```text
 //! cargo bench -p foldchain-planner --bench corpus -- [--tiles 100,300,1000,3000]
-//!     [--timeout 30] [--filter TEXT] [--markdown FILE] [--json FILE]
+//!     [--ladder N] [--timeout 30] [--filter TEXT] [--markdown FILE] [--json FILE]
 //! ```
+//!
+//! `--ladder N` asks N, 1.5 N, 2 N, 3 N, 5 N and 10 N tiles (at most [`LADDER_CAP`]) instead
+//! of `--tiles`: issue 26's "if a drawing plans at N tiles, it plans at every count from N to
+//! 10 N", sampled. Whatever the counts, the report lists every case of a one-piece drawing
+//! refused (or timed out) at a count above one at which the same drawing planned.
 //!
 //! Each plan runs in its own process (this binary again, with `--one FILE TILES`), which
 //! calls [`foldchain_planner::plan_svg_file`] with `PlanOptions::default().with_tiles(n)` and
@@ -32,6 +37,10 @@ use nix::sys::resource::{getrusage, UsageWho};
 
 /// Tile counts asked by default.
 const TILES: [usize; 4] = [100, 300, 1000, 3000];
+/// The ladder's shares of N (`--ladder N`).
+const LADDER: [f64; 6] = [1.0, 1.5, 2.0, 3.0, 5.0, 10.0];
+/// The ladder's largest count.
+const LADDER_CAP: usize = 3000;
 /// Per-plan time limit by default, seconds of CPU time (and twenty times that of wall-clock
 /// time).
 const TIMEOUT_S: f64 = 30.0;
@@ -267,6 +276,40 @@ fn median(v: &mut [f64]) -> f64 {
     }
 }
 
+/// The ladder's counts from `n`: its shares, at most [`LADDER_CAP`], each once.
+fn ladder(n: usize) -> Vec<usize> {
+    let mut v: Vec<usize> = LADDER
+        .iter()
+        .map(|f| ((n as f64 * f).round() as usize).min(LADDER_CAP))
+        .collect();
+    v.dedup();
+    v
+}
+
+/// The cases of one-piece drawings refused or timed out at a count above one at which the
+/// drawing planned: `drawing at M (exit E; planned at K)`. (A drawing not in one piece may
+/// rightly plan at a count where its gaps are narrower than a tile and be refused at
+/// larger counts.)
+fn ladder_breaks(cases: &[Case]) -> Vec<String> {
+    cases
+        .iter()
+        .filter(|c| c.connected && c.exit != "0")
+        .filter_map(|c| {
+            let below = cases
+                .iter()
+                .filter(|o| {
+                    o.drawing == c.drawing && o.exit == "0" && o.tiles_asked < c.tiles_asked
+                })
+                .map(|o| o.tiles_asked)
+                .max()?;
+            Some(format!(
+                "{} at {} (exit {}; planned at {below})",
+                c.drawing, c.tiles_asked, c.exit
+            ))
+        })
+        .collect()
+}
+
 /// The summary line (over the connected drawings' cases).
 fn summary(cases: &[Case], timeout: f64) -> String {
     let conn: Vec<&Case> = cases.iter().filter(|c| c.connected).collect();
@@ -292,10 +335,17 @@ fn summary(cases: &[Case], timeout: f64) -> String {
         .iter()
         .filter(|c| !c.connected && c.exit != "0")
         .count();
+    let breaks = ladder_breaks(cases);
     format!(
-        "Summary: {planned} of {} connected cases planned ({timeouts} timeouts at {timeout:.0} s of CPU); CPU per case median {med:.2} s, max {max:.2} s; {empty} plans with an empty region > {EMPTY_LIMIT} tile areas; {off} plans with the tile count outside {:.0}% of the request; {others_refused} of {others} cases of drawings not in one piece refused",
+        "Summary: {planned} of {} connected cases planned ({timeouts} timeouts at {timeout:.0} s of CPU); CPU per case median {med:.2} s, max {max:.2} s; {empty} plans with an empty region > {EMPTY_LIMIT} tile areas; {off} plans with the tile count outside {:.0}% of the request; {others_refused} of {others} cases of drawings not in one piece refused; {} cases refused at a count above one that planned{}",
         conn.len(),
-        100.0 * COUNT_TOLERANCE
+        100.0 * COUNT_TOLERANCE,
+        breaks.len(),
+        if breaks.is_empty() {
+            String::new()
+        } else {
+            format!(": {}", breaks.join(", "))
+        }
     )
 }
 
@@ -352,6 +402,13 @@ fn main() -> ExitCode {
                     .filter_map(|t| t.trim().parse().ok())
                     .collect()
             }
+            "--ladder" => match value().trim().parse::<usize>() {
+                Ok(n) if n > 0 => tiles = ladder(n),
+                _ => {
+                    eprintln!("corpus: --ladder takes a tile count");
+                    return ExitCode::from(2);
+                }
+            },
             "--timeout" => timeout = value().parse().unwrap_or(TIMEOUT_S),
             "--filter" => filter = Some(value()),
             "--markdown" => md_out = Some(value()),
@@ -406,7 +463,12 @@ fn main() -> ExitCode {
         }
     }
     if let Some(p) = json_out {
-        let json = serde_json::json!({ "timeout_s": timeout, "cases": cases, "summary": line });
+        let json = serde_json::json!({
+            "timeout_s": timeout,
+            "cases": cases,
+            "more_tiles_refused": ladder_breaks(&cases),
+            "summary": line
+        });
         if let Err(e) = std::fs::write(&p, serde_json::to_string_pretty(&json).unwrap_or_default())
         {
             eprintln!("corpus: cannot write {p}: {e}");
