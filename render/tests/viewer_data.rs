@@ -64,12 +64,15 @@ fn travel_laws_sampled_once_give_the_page_every_magnets_track() {
         )
         .unwrap();
         let magnets = tl.geometry.magnets();
-        // the sharing is real: a serpentine's magnets travel by a few laws
+        // the sharing is real: a serpentine's magnets travel by a few laws. Since both sides
+        // of a turning joint turn (8a098cf), the magnets near each fold, whose sides differ,
+        // travel by laws of their own: S*40 LL S*40 RR S*40 has 63 laws for 250 magnets (it
+        // had fewer than a quarter before), so the bound is a third
         let keys: HashSet<_> = (0..magnets)
             .filter_map(|k| tl.magnet_travel_key(k).map(|(key, _)| key))
             .collect();
         assert!(
-            !keys.is_empty() && 4 * keys.len() < magnets,
+            !keys.is_empty() && 3 * keys.len() < magnets,
             "{word}: {} keys for {magnets} magnets",
             keys.len()
         );
