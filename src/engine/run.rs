@@ -472,31 +472,18 @@ impl Runner {
 /// closed-form motion does not use: it moves every magnet at the overdamped speed law's pace).
 fn kinematic_parameters(geometry: &Geometry, opts: &EngineOptions) -> Parameters {
     let d = geometry.design(0);
-    let tile = crate::physics::TileBody::of(d);
+    let drag = match opts.speed {
+        SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => drag,
+        SpeedLaw::Unit => 0.0,
+    };
     Parameters {
-        model: "kinematic baseline",
         dynamics: "kinematic",
-        force_law: opts.model.force_law.name(),
         cutoff: match opts.start {
             StartRule::Force { cutoff } => cutoff,
             StartRule::Distance => 1,
         },
         distance_cutoff_mm: None,
-        magnet_mass_g: d.magnet_mass,
-        tile_mass_g: d.tile_mass,
-        tile_inertia_kg_m2: tile.inertia,
-        magnet_drag_n_s_per_m: match opts.speed {
-            SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => drag,
-            SpeedLaw::Unit => 0.0,
-        },
-        friction_n: d.friction,
-        restitution: d.restitution,
-        water_viscosity_pa_s: d.water_viscosity,
-        water_film_mm: d.water_film,
-        water_density_kg_m3: d.water_density,
-        form_drag_cd: d.form_drag,
-        tile_drag_n_s_per_m: tile.drag,
-        tile_rotational_drag_n_m_s: tile.rotational_drag,
+        ..crate::model::parameters(d, &opts.model, "kinematic baseline", drag, d.friction)
     }
 }
 
