@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
+use foldchain::engine::{SValue, TileDesigns};
 use foldchain::Chain;
 use foldchain_planner::{plan_svg_file_reporting, Plan, PlanOptions, Shape, Turns};
 
@@ -159,6 +160,43 @@ pub fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f6
             .map(|r| r.points.iter().map(|p| to_chain((p.x, p.y))).collect())
             .collect(),
     )
+}
+
+/// The arguments naming a chain and its designs that `fold-run` and `fold-print` share
+/// (`#[command(flatten)]`): `CHAIN`, `--plan`, `--design`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct ChainInput {
+    /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
+    /// target shape `SHAPE.svg` to plan first.
+    pub chain: Option<String>,
+    /// Read the chain from fold-plan's JSON.
+    #[arg(long, value_name = "PLAN.json")]
+    pub plan: Option<PathBuf>,
+    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
+    /// thesis design.
+    #[arg(long, value_name = "DESIGN.json")]
+    pub design: Option<PathBuf>,
+}
+
+impl ChainInput {
+    /// The designs `--design` names (the thesis design without it).
+    pub fn designs(&self) -> anyhow::Result<TileDesigns> {
+        read_designs(self.design.as_deref(), None)
+    }
+}
+
+/// The tile designs of a design file (the thesis design without one), with `--s` (a
+/// distance or a fraction of e, [`SValue::parse`]) for every tile when given, checked.
+pub fn read_designs(design: Option<&Path>, s: Option<&str>) -> anyhow::Result<TileDesigns> {
+    let mut designs = match design {
+        Some(p) => TileDesigns::from_file(p)?,
+        None => TileDesigns::default(),
+    };
+    if let Some(s) = s {
+        designs = designs.with_s(SValue::parse(s)?);
+        designs.check_ranges("--s")?;
+    }
+    Ok(designs)
 }
 
 /// A chain as a tool's arguments name it: `CHAIN` (a fold word, a tile list, a file holding

@@ -8,7 +8,7 @@ use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::timeline::TileDesigns;
 use foldchain_cli::choices::{FormatChoice, PrinterChoice};
-use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
+use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, ChainInput};
 use foldchain_cli::numbers::{count_in, number_in};
 use foldchain_cli::output::{create_dir_all, OutputDir};
 use foldchain_cli::progress::{Progress, ProgressMode};
@@ -42,15 +42,8 @@ tolerance plus the magnet's, 0.25 mm FDM, 0.15 mm resin). See docs/printing.md.
 Exit codes: 0 written, 1 the shape cannot be planned, 2 bad input."
 )]
 struct Args {
-    /// The chain: a tile list, a fold word, a file holding one, or a target shape SHAPE.svg.
-    chain: Option<String>,
-    /// Read the chain from fold-plan's JSON.
-    #[arg(long, value_name = "PLAN.json")]
-    plan: Option<PathBuf>,
-    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
-    /// thesis design.
-    #[arg(long, value_name = "DESIGN.json")]
-    design: Option<PathBuf>,
+    #[command(flatten)]
+    input: ChainInput,
     /// The printer: its tolerance sets the default clearance.
     #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
     printer: PrinterChoice,
@@ -138,7 +131,7 @@ fn bed_size(text: &str) -> anyhow::Result<(f64, f64)> {
 fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Vec<PathBuf>)> {
     let mut inputs: Vec<PathBuf> = Vec::new();
     let shape_opts = args.tiles.is_some() || args.turns.is_some();
-    let source = match (&args.chain, &args.plan) {
+    let source = match (&args.input.chain, &args.input.plan) {
         (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
         (None, None) => bail!(
             "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
@@ -182,13 +175,8 @@ fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Ve
             Source::Chain { chain, name }
         }
     };
-    let designs = match &args.design {
-        Some(p) => {
-            inputs.push(p.clone());
-            TileDesigns::from_file(p)?
-        }
-        None => TileDesigns::default(),
-    };
+    let designs = args.input.designs()?;
+    inputs.extend(args.input.design.clone());
     let mut part = PartOptions::for_printer(args.printer.to_printer());
     if let Some(c) = args.clearance {
         part = part.with_clearance(c);
