@@ -394,23 +394,45 @@ impl<'a> PairWalk<'a> {
         }
     }
 
+    /// The stretches of pair `(i, j)` between its `moving` joints (ascending, between `i`
+    /// and `j`): `moving.len() + 1` motions, the product of the turns of the joints that never
+    /// turn before the first moving joint, between two, and after the last. They hold over
+    /// the whole schedule (a joint without a track stays at angle 0), so a pose costs a
+    /// product per moving joint rather than per joint between the tiles; the products are
+    /// grouped differently than joint by joint, which moves a pose by a few roundings (about
+    /// 1e-16 of the chain between the tiles), far below the walk's `precision`.
+    fn stretches(&mut self, i: usize, j: usize, moving: &[usize]) -> Vec<Rigid> {
+        let mut out = Vec::with_capacity(moving.len() + 1);
+        let mut at = Rigid::IDENTITY;
+        let mut next = moving.iter().peekable();
+        for k in i..j {
+            if next.next_if_eq(&&k).is_some() {
+                out.push(at);
+                at = Rigid::IDENTITY;
+                continue;
+            }
+            at = at.then(&self.turn(k, 0.0));
+        }
+        out.push(at);
+        out
+    }
+
     /// Tile `j`'s pose in tile `i`'s frame at `t`, and in `centres` the centre of tile `k`
-    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`).
+    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`), from
+    /// the pair's [`PairWalk::stretches`].
     fn pose(
         &mut self,
-        (i, j, t): (usize, usize, f64),
+        t: f64,
         moving: &[usize],
+        stretches: &[Rigid],
         centres: &mut Vec<Point>,
     ) -> Rigid {
         centres.clear();
-        let mut next = moving.iter().peekable();
-        let mut at = Rigid::IDENTITY;
-        for k in i..j {
-            if next.next_if_eq(&&k).is_some() {
-                centres.push(at.apply(Point::ORIGIN));
-            }
+        let mut at = stretches[0];
+        for (q, &k) in moving.iter().enumerate() {
+            centres.push(at.apply(Point::ORIGIN));
             let a = self.angle(k, t);
-            at = at.then(&self.turn(k, a));
+            at = at.then(&self.turn(k, a)).then(&stretches[q + 1]);
         }
         at
     }
@@ -421,9 +443,10 @@ impl<'a> PairWalk<'a> {
         &mut self,
         (i, j, t): (usize, usize, f64),
         moving: &[usize],
+        stretches: &[Rigid],
         centres: &mut Vec<Point>,
     ) -> (f64, Point) {
-        let pose = self.pose((i, j, t), moving, centres);
+        let pose = self.pose(t, moving, stretches, centres);
         let d = self.outline.signed_distance(&pose);
         self.record(i, j, t, d);
         (d, pose.apply(Point::ORIGIN))
@@ -486,8 +509,9 @@ impl<'a> PairWalk<'a> {
         let moving: Vec<usize> = (i..j).filter(|&k| self.track_of[k].is_some()).collect();
         let (t0, t_end) = (self.rates.t0, self.rates.t0 + self.rates.span);
         let mut centres: Vec<Point> = Vec::with_capacity(moving.len());
+        let stretches = self.stretches(i, j, &moving);
         if moving.is_empty() {
-            self.evaluate((i, j, t0), &moving, &mut centres);
+            self.evaluate((i, j, t0), &moving, &stretches, &mut centres);
             return true;
         }
         // each moving joint's lever: 2 R (j - k)
@@ -501,7 +525,7 @@ impl<'a> PairWalk<'a> {
             if self.work > self.budget {
                 return false;
             }
-            let (d, cj) = self.evaluate((i, j, t), &moving, &mut centres);
+            let (d, cj) = self.evaluate((i, j, t), &moving, &stretches, &mut centres);
             if t >= t_end {
                 return true;
             }
