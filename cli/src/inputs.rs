@@ -199,6 +199,26 @@ pub fn read_designs(design: Option<&Path>, s: Option<&str>) -> anyhow::Result<Ti
     Ok(designs)
 }
 
+/// The planner's options with `--tiles`, `--tile-size` and `--turns` where given (the
+/// planner's defaults elsewhere).
+pub fn plan_options(
+    tiles: Option<usize>,
+    tile_size: Option<f64>,
+    turns: Option<Turns>,
+) -> PlanOptions {
+    let mut po = PlanOptions::default();
+    if let Some(n) = tiles {
+        po = po.with_tiles(n);
+    }
+    if let Some(w) = tile_size {
+        po = po.with_tile_size(w);
+    }
+    if let Some(t) = turns {
+        po = po.with_turns(t);
+    }
+    po
+}
+
 /// A chain as a tool's arguments name it: `CHAIN` (a fold word, a tile list, a file holding
 /// one, or a `SHAPE.svg` to plan), or `--plan PLAN.json`, with the planner's options for a
 /// shape.
@@ -262,16 +282,7 @@ pub fn resolve_chain(args: &ChainArgs<'_>, progress: &Progress) -> anyhow::Resul
         }
         (Some(arg), None) if is_svg(arg) => {
             let path = Path::new(arg);
-            let mut po = PlanOptions::default();
-            if let Some(n) = args.tiles {
-                po = po.with_tiles(n);
-            }
-            if let Some(w) = args.tile_size {
-                po = po.with_tile_size(w);
-            }
-            if let Some(t) = args.turns {
-                po = po.with_turns(t);
-            }
+            let po = plan_options(args.tiles, args.tile_size, args.turns);
             progress.stage("planning the shape");
             let report = |stage: &str, done: u64, total: u64| {
                 progress.update_in(&format!("planning: {stage}"), "steps", done, total)

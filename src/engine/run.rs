@@ -67,9 +67,11 @@ pub struct EngineOptions {
     /// goes 1e4 of its time scales without an event once its inputs are still, has not
     /// decided (a magnet creeping towards a balance on a knife edge): the run is then
     /// `undecided`, its reason the balance and its margin, as a reference run that runs out
-    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 100,000:
-    /// a unit of the tests and benchmarks takes a few thousand (a serpentine's inertial
-    /// U-turn, the costliest, about 0.05 s).
+    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 20,000:
+    /// the costliest unit measured takes under 1,000 (954: a U-turn of the inertial
+    /// 5,100-tile serpentine `(S*50 LL S*50 RR)*50` at s = 0.1; 613 for `S*160 L S*160`, 610
+    /// in the key plan, 300-450 for the thesis words), so the budget is 20 times what any
+    /// decided solve needs, and a knife edge stops within about a second of CPU.
     pub max_steps: usize,
 }
 
@@ -82,7 +84,7 @@ impl Default for EngineOptions {
             speed: SpeedLaw::default(),
             start: StartRule::default(),
             threads: 0,
-            max_steps: 100_000,
+            max_steps: 20_000,
         }
     }
 }

@@ -123,6 +123,22 @@ pub enum ModelError {
     },
 }
 
+#[cfg(test)]
+impl Model {
+    /// The model of the chain `word` with the thesis design at `s` (mm) and the default
+    /// options: the unit tests' model.
+    #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+    pub(crate) fn thesis(word: &str, s: f64) -> Model {
+        let designs = TileDesigns::global(crate::Design::thesis().with_s(s));
+        Model::new(
+            &Chain::parse(word).unwrap(),
+            &designs,
+            &ModelOptions::default(),
+        )
+        .unwrap()
+    }
+}
+
 impl Model {
     /// The model of `chain` with `designs`.
     pub fn new(

@@ -8,14 +8,16 @@ use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::timeline::TileDesigns;
 use foldchain_cli::choices::{FormatChoice, PrinterChoice};
-use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in, ChainInput};
-use foldchain_cli::numbers::{count_in, number_in};
+use foldchain_cli::inputs::{
+    plan_options, read_chain, read_plan_file, refuse_overwrite_in, ChainInput,
+};
+use foldchain_cli::numbers::{count_in, in_range};
 use foldchain_cli::output::{create_dir_all, OutputDir};
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_cli::{errln, outln};
-use foldchain_planner::{PlanOptions, Turns};
+use foldchain_planner::Turns;
 use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
 
 /// Printable tiles, plates and an assembly sheet for a chain, a plan or a shape.
@@ -48,13 +50,13 @@ struct Args {
     #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
     printer: PrinterChoice,
     /// Channel width minus magnet diameter, 0 to 2 mm (default from --printer).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = clearance_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.0, 2.0, "mm", ""))]
     clearance: Option<f64>,
     /// Tile height, 0.5 to 1000 mm (the thesis' 7.5 by default).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = height_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.5, 1000.0, "mm", ""))]
     height: Option<f64>,
     /// Floor under the channels, 0.1 to 1000 mm, less than the height (default 1.2).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = floor_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.1, 1000.0, "mm", ""))]
     floor: Option<f64>,
     /// The output directory (created if needed).
     #[arg(long, value_name = "DIR")]
@@ -66,7 +68,7 @@ struct Args {
     #[arg(long, value_name = "W,H", default_value = "250,210")]
     bed: String,
     /// Gap between neighbouring tiles on a plate, 0 to 1000 mm.
-    #[arg(long, value_name = "MM", default_value = "5", allow_hyphen_values = true, value_parser = spacing_arg)]
+    #[arg(long, value_name = "MM", default_value = "5", allow_hyphen_values = true, value_parser = in_range(0.0, 1000.0, "mm", ""))]
     spacing: f64,
     /// Print parts.json on stdout instead of the summary.
     #[arg(long)]
@@ -88,22 +90,6 @@ fn main() -> ExitCode {
         Ok(args) => finish("fold-print", run(&args).map(|()| 0)),
         Err(code) => code,
     }
-}
-
-fn clearance_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 2.0, "mm", "")
-}
-
-fn height_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.5, 1000.0, "mm", "")
-}
-
-fn floor_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.1, 1000.0, "mm", "")
-}
-
-fn spacing_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 1000.0, "mm", "")
 }
 
 fn tiles_arg(s: &str) -> Result<usize, String> {
@@ -148,13 +134,7 @@ fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Ve
             }
         }
         (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
-            let mut po = PlanOptions::default();
-            if let Some(n) = args.tiles {
-                po = po.with_tiles(n);
-            }
-            if let Some(t) = args.turns {
-                po = po.with_turns(t);
-            }
+            let po = plan_options(args.tiles, None, args.turns);
             inputs.push(PathBuf::from(arg));
             Source::Shape {
                 path: PathBuf::from(arg),

@@ -26,7 +26,7 @@ use foldchain_cli::fold_run::{run, EngineRequest, ReferenceModel, RunMode, RunRe
 use foldchain_cli::inputs::{
     read_designs, refuse_overwrite_in, resolve_chain, ChainArgs, ChainInput,
 };
-use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::numbers::{count_in, in_range, number_in, thousands};
 use foldchain_cli::physics_args::PhysicsArgs;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -123,7 +123,7 @@ struct Args {
     /// The reference's distance cutoff, mm (0.001 to 10000): pairs nearer than this interact
     /// too, however far apart in chain index (a ring's first and last tiles); default: none,
     /// pairs up to 3 apart in chain index only. With --reference or --compare.
-    #[arg(long, value_name = "MM", value_parser = cutoff_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", value_parser = in_range(1e-3, 1e4, "mm", ""), allow_hyphen_values = true)]
     distance_cutoff: Option<f64>,
     /// The physical parameters (each overrides the design file's, for every model the run
     /// uses).
@@ -158,7 +158,7 @@ struct Args {
     /// The deepest overlap of two tiles, mm (0 to 1), that counts as touching: a graze,
     /// reported with its clearance ("closest approach") instead of a collision. Default 0.01
     /// (the runs' numerical resolution of a contact: docs/clearances.md).
-    #[arg(long, value_name = "MM", value_parser = overlap_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", value_parser = in_range(0.0, 1.0, "mm", ""), allow_hyphen_values = true)]
     overlap_tolerance: Option<f64>,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
@@ -195,14 +195,6 @@ fn tiles_arg(s: &str) -> Result<usize, String> {
 
 fn threads_arg(s: &str) -> Result<usize, String> {
     count_in(s, 1, 256, "threads").map(|n| n as usize)
-}
-
-fn cutoff_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 1e-3, 1e4, "mm", "")
-}
-
-fn overlap_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 1.0, "mm", "")
 }
 
 fn tile_size_arg(s: &str) -> Result<f64, String> {
