@@ -351,6 +351,19 @@ impl Design {
         Design::default()
     }
 
+    /// The drag of a magnet in its channel, N s/m: `magnet_drag` when the design sets it,
+    /// else the dynamics' default (0.05 when `inertial`, else 5; `physics.md` gives the
+    /// estimates behind both).
+    ///
+    /// ```
+    /// use foldchain::Design;
+    /// assert_eq!(Design::thesis().channel_drag(false), 5.0);
+    /// assert_eq!(Design::thesis().channel_drag(true), 0.05);
+    /// ```
+    pub fn channel_drag(&self, inertial: bool) -> f64 {
+        crate::physics::magnet_drag(self, inertial)
+    }
+
     /// The same design with another `s`, mm.
     pub fn with_s(mut self, s: f64) -> Design {
         self.s = s;

@@ -301,7 +301,7 @@ fn engine_options(req: &RunRequest, notes: &mut Vec<String>) -> EngineOptions {
             .with_start_rule(start),
         _ => EngineOptions::default()
             .with_speed(SpeedLaw::Overdamped {
-                drag: foldchain::physics::magnet_drag(&req.designs.global_design(), false),
+                drag: req.designs.global_design().channel_drag(false),
             })
             .with_force_law(req.force_law),
     }

@@ -18,11 +18,12 @@ use crate::engine::speed::{Motion, MotionTable};
 use crate::engine::start_rule::{ForceCache, ForceRule, ForceStart, StartRule};
 use crate::engine::trigger::{ri_starts_first_magnet, Trigger, Triggers};
 use crate::engine::DEFAULT_LOCAL_TOLERANCE;
+use crate::magnet_path::PathError;
 use crate::model::{Dynamics, Model, ModelError, ModelOptions};
 use crate::physics::ForceLaw;
 use crate::timeline::{
-    joint_of_magnet, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome, Parameters,
-    SpeedLaw, TileDesigns,
+    joint_of_magnet, DesignsError, Event, EventKind, FoldRecord, Geometry, GeometryError, Outcome,
+    Parameters, SpeedLaw, TileDesigns,
 };
 use crate::{Chain, Fold};
 
@@ -62,16 +63,18 @@ pub struct EngineOptions {
     /// than 500 tiles or when the engine runs on a rayon
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
-    /// Most steps of one local solve (one joint's unit over one window): the work budget,
-    /// one per joint, so the run's is proportional to the chain. A solve that reaches it, or
-    /// goes 1e4 of its time scales without an event once its inputs are still, has not
-    /// decided (a magnet creeping towards a balance on a knife edge): the run is then
-    /// `undecided`, its reason the balance and its margin, as a reference run that runs out
-    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 20,000:
-    /// the costliest unit measured takes under 1,000 (954: a U-turn of the inertial
-    /// 5,100-tile serpentine `(S*50 LL S*50 RR)*50` at s = 0.1; 613 for `S*160 L S*160`, 610
-    /// in the key plan, 300-450 for the thesis words), so the budget is 20 times what any
-    /// decided solve needs, and a knife edge stops within about a second of CPU.
+    /// Most steps of one local solve (one joint's unit over one window), or
+    /// [`EngineOptions::STEPS_PER_TILE`] per tile of the chain if that is more: the work
+    /// budget, one per joint, so the run's is bounded in proportion to the chain. A solve
+    /// that reaches it, or goes 1e4 of its time scales without an event once its inputs are
+    /// still, has not decided (a magnet creeping towards a balance on a knife edge): the run
+    /// is then `undecided`, its reason the balance and its margin, as a reference run that
+    /// runs out of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default
+    /// 20,000: units of short and serpentine chains take under 1,000 (954: a U-turn of the
+    /// inertial 5,100-tile serpentine `(S*50 LL S*50 RR)*50` at s = 0.1; 613 for
+    /// `S*160 L S*160`, 610 in the key plan, 300-450 for the thesis words), so a knife edge
+    /// of a short chain stops within about a second of CPU; a U-turn between two long sides
+    /// takes more (`S*3000 LL S*3000`: over 20,000), hence the share per tile.
     pub max_steps: usize,
 }
 
@@ -90,6 +93,10 @@ impl Default for EngineOptions {
 }
 
 impl EngineOptions {
+    /// The local solves' work budget per tile of the chain, steps: 20 (a 6,003-tile chain's
+    /// solves may take 120,060; see [`EngineOptions::max_steps`]).
+    pub const STEPS_PER_TILE: usize = 20;
+
     /// The kinematic baseline with another start rule.
     pub fn with_start_rule(mut self, start: StartRule) -> EngineOptions {
         self.start = start;
@@ -145,9 +152,12 @@ impl EngineOptions {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum EngineError {
-    /// A design parameter out of range, or a curved path that cannot be built.
+    /// A design parameter out of range.
+    #[error("design: {0}")]
+    Design(#[from] DesignsError),
+    /// A curved path that cannot be built.
     #[error(transparent)]
-    Geometry(#[from] GeometryError),
+    Path(#[from] PathError),
     /// A drag coefficient that is not a finite positive number.
     #[error("drag coefficient {0} N s/m: expected a finite number > 0")]
     BadDrag(f64),
@@ -170,6 +180,15 @@ pub enum EngineError {
     /// reported rather than hidden): what was wrong with it.
     #[error("fold schedule: {0}")]
     Schedule(String),
+}
+
+impl From<GeometryError> for EngineError {
+    fn from(e: GeometryError) -> EngineError {
+        match e {
+            GeometryError::Design(e) => EngineError::Design(e),
+            GeometryError::Path(e) => EngineError::Path(e),
+        }
+    }
 }
 
 /// Runs the event engine on `chain` with `designs`.
@@ -213,10 +232,14 @@ fn run_local_engine(
     }
     let model = match Model::new(chain, designs, &opts.model) {
         Ok(m) => m,
-        Err(ModelError::Geometry(g)) => return Err(EngineError::Geometry(g)),
+        Err(ModelError::Design(e)) => return Err(EngineError::Design(e)),
+        Err(ModelError::Path(e)) => return Err(EngineError::Path(e)),
         Err(e) => return Err(EngineError::Model(Box::new(e))),
     };
-    let local = run_local(&model, opts.tolerance, opts.threads, opts.max_steps);
+    let budget = opts
+        .max_steps
+        .max(EngineOptions::STEPS_PER_TILE.saturating_mul(chain.len()));
+    let local = run_local(&model, opts.tolerance, opts.threads, budget);
     let speed = SpeedLaw::Overdamped { drag: model.drag };
     let motions = MotionTable::new(&model.geometry, speed);
     // the law the times are in, as summary.json and timeline.json report it
@@ -562,10 +585,7 @@ mod tests {
         assert!(e.to_string().contains("drag coefficient -1"), "{e}");
         let bad = TileDesigns::global(Design::thesis().with_s(-0.5));
         let e = run(&chain, &bad, &EngineOptions::default()).unwrap_err();
-        assert!(
-            matches!(e, EngineError::Geometry(GeometryError::Design(_))),
-            "{e:?}"
-        );
+        assert!(matches!(e, EngineError::Design(_)), "{e:?}");
         assert!(e.to_string().starts_with("design: "), "{e}");
     }
 }

@@ -28,13 +28,13 @@ use std::f64::consts::FRAC_PI_2;
 
 use kurbo::Point;
 
-use crate::magnet_path::MagnetPath;
+use crate::magnet_path::{MagnetPath, PathError};
 use crate::model::mode::Mode;
 use crate::model::sides::{joint_sides, Sides};
 use crate::model::ModelOptions;
 use crate::physics::ReactionInitiator;
 use crate::physics::{magnet_drag, TileBody};
-use crate::timeline::{Geometry, GeometryError, Parameters, TileDesigns};
+use crate::timeline::{DesignsError, Geometry, GeometryError, Parameters, TileDesigns};
 use crate::{Chain, Design, Octagon, Pose};
 
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
@@ -98,9 +98,12 @@ pub struct Model {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ModelError {
-    /// A design parameter out of range, or a curved path that cannot be built.
+    /// A design parameter out of range.
+    #[error("design: {0}")]
+    Design(#[from] DesignsError),
+    /// A curved path that cannot be built.
     #[error(transparent)]
-    Geometry(#[from] GeometryError),
+    Path(#[from] PathError),
     /// A physical parameter this model cannot use.
     #[error("design parameter `{name}` = {value}: not usable here: {why}")]
     Unsupported {
@@ -121,6 +124,15 @@ pub enum ModelError {
         /// What was expected.
         expected: &'static str,
     },
+}
+
+impl From<GeometryError> for ModelError {
+    fn from(e: GeometryError) -> ModelError {
+        match e {
+            GeometryError::Design(e) => ModelError::Design(e),
+            GeometryError::Path(e) => ModelError::Path(e),
+        }
+    }
 }
 
 /// The physical parameters of a run by `model` (the name a summary gives the integrator)

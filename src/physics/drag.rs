@@ -20,8 +20,8 @@ pub(crate) const DEFAULT_DRAG: f64 = 5.0;
 pub(crate) const DEFAULT_INERTIAL_DRAG: f64 = 0.05;
 
 /// The drag of a magnet in its channel, N s/m: the design's, or the dynamics' default
-/// ([`DEFAULT_INERTIAL_DRAG`] when `inertial`, else [`DEFAULT_DRAG`]).
-pub fn magnet_drag(design: &Design, inertial: bool) -> f64 {
+/// (`DEFAULT_INERTIAL_DRAG` when `inertial`, else `DEFAULT_DRAG`).
+pub(crate) fn magnet_drag(design: &Design, inertial: bool) -> f64 {
     design.magnet_drag.unwrap_or(if inertial {
         DEFAULT_INERTIAL_DRAG
     } else {

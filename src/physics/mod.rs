@@ -35,7 +35,7 @@ mod poles;
 mod ri;
 mod tile_body;
 
-pub use drag::magnet_drag;
+pub(crate) use drag::magnet_drag;
 pub(crate) use drag::DEFAULT_DRAG;
 #[cfg(test)]
 pub(crate) use drag::DEFAULT_INERTIAL_DRAG;

@@ -24,7 +24,7 @@ pub(crate) const LENGTH_TOLERANCE: f64 = 1e-9;
 /// Why the geometry of a chain cannot be built.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum GeometryError {
+pub(crate) enum GeometryError {
     /// A design parameter out of range.
     #[error("design: {0}")]
     Design(#[from] DesignsError),

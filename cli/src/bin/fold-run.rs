@@ -16,7 +16,7 @@ use clap::Parser;
 use foldchain::collision::CheckOptions;
 use foldchain::engine::{StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
-use foldchain::physics::{magnet_drag, ForceLaw};
+use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
 use foldchain::timeline::SpeedLaw;
 use foldchain_cli::choices::{
@@ -433,10 +433,11 @@ fn refuse_unused(args: &Args, mode: RunMode, engine: &EngineRequest) -> anyhow::
 /// overdamped model's default (5 N s/m).
 fn kinematic_drag(args: &Args) -> anyhow::Result<f64> {
     let designs = args.input.designs()?;
-    Ok(magnet_drag(
-        &args.physics.apply(designs).global_design(),
-        false,
-    ))
+    Ok(args
+        .physics
+        .apply(designs)
+        .global_design()
+        .channel_drag(false))
 }
 
 /// `--transition A..B`.
