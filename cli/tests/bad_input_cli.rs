@@ -209,3 +209,32 @@ fn fold_print_refuses_a_chain_too_long_to_print() {
     assert!(!d.join("out").exists(), "nothing written");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A path with NaN or 1e400 among its coordinates is refused naming the element and the
+/// value (usvg cut the path there and the planner answered "no filled area", or planned the
+/// drawing without the element).
+#[test]
+fn fold_plan_names_a_non_finite_coordinate() {
+    let d = scratch("nan-path");
+    for (body, words) in [
+        (
+            r#"<path id="leaf" d="M 0 0 L 100 0 L NaN 100 L 0 100 Z"/>"#,
+            ["id=\"leaf\"", "NaN"],
+        ),
+        (
+            r#"<rect width="50" height="50"/><path d="M 0 0 L 100 0 L 1e400 100 L 0 100 Z"/>"#,
+            ["<path> #1", "1e400"],
+        ),
+    ] {
+        let svg = d.join("bad.svg");
+        std::fs::write(
+            &svg,
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">{body}</svg>"#
+            ),
+        )
+        .unwrap();
+        let o = run("fold-plan", &[svg.to_str().unwrap(), "--tiles", "100"]);
+        refused(&o, &["bad.svg", words[0], words[1], "not a finite number"]);
+    }
+}

@@ -51,6 +51,14 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 reason: e.to_string(),
             }
         })?;
+        if let Some(bad) = bad_number(data) {
+            return Err(PlanError::BadNumber {
+                name: name.to_string(),
+                element: bad.element,
+                attribute: bad.attribute,
+                value: bad.value,
+            });
+        }
         let mut elements: Vec<Element> = Vec::new();
         let to_user = user_units_transform(data, &tree);
         collect_elements(tree.root(), &mut elements, to_user, &mut Vec::new());
@@ -140,6 +148,141 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         }
         Ok((shape, crate::units::mm_per_unit(data, &tree)))
     }
+}
+
+/// A number in the drawing's geometry that is not a finite number usvg can hold.
+#[derive(Debug, PartialEq)]
+struct BadNumber {
+    element: String,
+    attribute: String,
+    value: String,
+}
+
+/// The geometry attributes whose numbers are checked by [`bad_number`].
+const GEOMETRY_ATTRIBUTES: &[&str] = &[
+    "d",
+    "points",
+    "x",
+    "y",
+    "width",
+    "height",
+    "cx",
+    "cy",
+    "r",
+    "rx",
+    "ry",
+    "x1",
+    "y1",
+    "x2",
+    "y2",
+    "transform",
+    "viewBox",
+];
+
+/// The first number in an SVG element's geometry (path data, points, positions, sizes,
+/// transforms, viewBox) that is not finite: `NaN`, `inf`, or a value beyond `f32::MAX`
+/// (about 3.4e38, usvg's arithmetic), e.g. `1e400`. usvg silently cuts a path at such a
+/// value or drops the element, which would plan a different shape than the one drawn (or
+/// report no filled area); the planner names the element and the value instead. `None` for
+/// a document that is not XML (usvg's parser reports that).
+fn bad_number(data: &[u8]) -> Option<BadNumber> {
+    let text = std::str::from_utf8(data).ok()?;
+    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+    let mut seen: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for node in doc.descendants().filter(|n| n.is_element()) {
+        let tag = node.tag_name();
+        if tag.namespace() != Some("http://www.w3.org/2000/svg") {
+            continue;
+        }
+        let count = seen.entry(tag.name()).or_insert(0);
+        *count += 1;
+        let index = *count;
+        for attr in node.attributes() {
+            if attr.namespace().is_some() || !GEOMETRY_ATTRIBUTES.contains(&attr.name()) {
+                continue;
+            }
+            if let Some(value) = non_finite_token(attr.value()) {
+                let element = match node.attribute("id") {
+                    Some(id) => format!("<{}> id=\"{id}\"", tag.name()),
+                    None => format!("<{}> #{index}", tag.name()),
+                };
+                return Some(BadNumber {
+                    element,
+                    attribute: attr.name().to_string(),
+                    value,
+                });
+            }
+        }
+    }
+    None
+}
+
+/// The first token of an attribute value that is `NaN` or an infinity (any case), or a
+/// number that overflows `f32`.
+fn non_finite_token(value: &str) -> Option<String> {
+    let b = value.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c.is_ascii_alphabetic() {
+            let start = i;
+            while i < b.len() && b[i].is_ascii_alphabetic() {
+                i += 1;
+            }
+            let word = value[start..i].to_ascii_lowercase();
+            if word.contains("nan") || word.contains("inf") {
+                // with its sign, if it has one
+                let from = if start > 0 && matches!(b[start - 1], b'+' | b'-') {
+                    start - 1
+                } else {
+                    start
+                };
+                return Some(value[from..i].to_string());
+            }
+            continue;
+        }
+        let digit_at = |k: usize| k < b.len() && b[k].is_ascii_digit();
+        let number_starts = c.is_ascii_digit()
+            || (c == b'.' && digit_at(i + 1))
+            || (matches!(c, b'+' | b'-')
+                && (digit_at(i + 1) || (i + 2 < b.len() && b[i + 1] == b'.' && digit_at(i + 2))));
+        if !number_starts {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        if matches!(c, b'+' | b'-') {
+            i += 1;
+        }
+        while digit_at(i) {
+            i += 1;
+        }
+        if i < b.len() && b[i] == b'.' {
+            i += 1;
+            while digit_at(i) {
+                i += 1;
+            }
+        }
+        if i < b.len() && matches!(b[i], b'e' | b'E') {
+            let mut k = i + 1;
+            if k < b.len() && matches!(b[k], b'+' | b'-') {
+                k += 1;
+            }
+            if digit_at(k) {
+                i = k;
+                while digit_at(i) {
+                    i += 1;
+                }
+            }
+        }
+        let token = &value[start..i];
+        if let Ok(v) = token.parse::<f64>() {
+            if !v.is_finite() || v.abs() > f32::MAX as f64 {
+                return Some(token.to_string());
+            }
+        }
+    }
+    None
 }
 
 /// The control points of a segment (its hull holds the curve).
@@ -404,6 +547,65 @@ mod tests {
             "{m}"
         );
         assert!(e.is_bad_input());
+    }
+
+    /// NaN, infinities and numbers beyond f32 in path data, points, positions and
+    /// transforms are refused naming the element, the attribute and the value (usvg cut the
+    /// path at them, or dropped the element: "no filled area" or a different shape).
+    #[test]
+    fn non_finite_numbers_are_named() {
+        let cases = [
+            (
+                r#"<path id="p1" d="M 0 0 L 100 0 L NaN 100 L 0 100 Z"/>"#,
+                "p1",
+                "d",
+                "NaN",
+            ),
+            (
+                r#"<path d="M0,0 L100,0 L1e400,100 L0,100Z"/>"#,
+                "<path> #1",
+                "d",
+                "1e400",
+            ),
+            (
+                r#"<rect width="5" height="5"/><path d="M0 0h10v-1e39z"/>"#,
+                "<path> #1",
+                "d",
+                "-1e39",
+            ),
+            (
+                r#"<polygon points="0,0 10,0 -inf,10"/>"#,
+                "<polygon> #1",
+                "points",
+                "-inf",
+            ),
+            (
+                r#"<rect id="r" width="Infinity" height="5"/>"#,
+                "r",
+                "width",
+                "Infinity",
+            ),
+            (
+                r#"<rect width="5" height="5" transform="translate(1e300 0) scale(1e300)"/>"#,
+                "<rect> #1",
+                "transform",
+                "1e300",
+            ),
+        ];
+        for (body, element, attr, value) in cases {
+            let e = Shape::from_svg_data(svg(body).as_bytes(), "n.svg").unwrap_err();
+            let text = e.to_string();
+            assert!(matches!(e, PlanError::BadNumber { .. }), "{body}: {text}");
+            assert!(e.is_bad_input());
+            for part in ["n.svg", element, attr, value] {
+                assert!(text.contains(part), "{body}: {text} lacks {part}");
+            }
+        }
+        // finite numbers with exponents, units and transforms read as before
+        let ok = svg(
+            r#"<rect x="1e1" y=".5e-1" width="50px" height="4.5E1" transform="rotate(-5) translate(+.5,-2e0)"/>"#,
+        );
+        assert!(Shape::from_svg_data(ok.as_bytes(), "ok.svg").is_ok());
     }
 
     #[test]

@@ -48,6 +48,19 @@ pub enum PlanError {
         /// Where, in user units.
         y: f64,
     },
+    /// A number in the drawing's geometry is not finite (NaN, an infinity, or beyond the
+    /// about 3.4e38 that SVG renderers hold).
+    #[error("{name}: {element} has {attribute}=\"...{value}...\": {value} is not a finite number; give the element's coordinates as ordinary numbers")]
+    BadNumber {
+        /// The file name (or `<string>`).
+        name: String,
+        /// The element (its tag and id, or its tag and index among elements of that tag).
+        element: String,
+        /// The attribute holding the value.
+        attribute: String,
+        /// The value as written.
+        value: String,
+    },
     /// The drawing holds more outline points than the planner reads.
     #[error("{name}: the outlines have {points} points, more than the {limit} the planner reads; simplify the drawing (e.g. Inkscape: Path > Simplify)")]
     TooManyPoints {

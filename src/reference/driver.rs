@@ -301,12 +301,7 @@ impl Driver {
 
     /// The recorder of the states the options ask for (`None`: none recorded).
     fn recorder(&self, scale: f64) -> Option<Recorder> {
-        match self.opts.record {
-            Recording::Off => None,
-            Recording::Grid { max_states } => {
-                Some(Recorder::new(max_states, scale * 1e-3, &self.y))
-            }
-        }
+        Recorder::of(self.opts.record, scale * 1e-3, &self.y)
     }
 
     /// Whether the free unknowns `free` (rates `f`) have come to rest: none has moved by a

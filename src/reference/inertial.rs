@@ -16,11 +16,14 @@
 //! free. When states are recorded, so is every wall contact ([`ReferenceRun::walls`]).
 
 use crate::model::{at_wall, undecided_margin, Forces, InertialModel, Mode, Model, RestState};
-use crate::ode::{integral, StepStats, Stepper, System};
+use crate::ode::{StepStats, Stepper, System};
 use crate::reference::event_log::EventLog;
-use crate::reference::options::{Recording, ReferenceOptions};
+use crate::reference::options::ReferenceOptions;
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
+use crate::reference::stepping::{
+    exhausted, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
+};
 
 /// Scratch of one evaluation: the positions and the drives there.
 #[derive(Debug, Default)]
@@ -65,68 +68,186 @@ impl System for Inertial<'_> {
     }
 }
 
-/// Starts the clamped unknowns that their drive pulls off their wall (by more than the
-/// static threshold and the Coulomb friction), at rest; notes them at time `t`.
-fn release(
-    model: &Model,
-    im: &InertialModel,
-    modes: &mut [Mode],
-    z: &mut [f64],
+/// The values of the state `z = [x_0, v_0, x_1, v_1, ...]`.
+fn positions(z: &[f64]) -> Vec<f64> {
+    z.iter().step_by(2).copied().collect()
+}
+
+/// The rates of the state `z = [x_0, v_0, x_1, v_1, ...]`.
+fn velocities(z: &[f64]) -> Vec<f64> {
+    z.iter().skip(1).step_by(2).copied().collect()
+}
+
+/// An inertial run between steps: the modes, the state, the time, the events so far and
+/// the scratch of the forces.
+struct State {
+    modes: Vec<Mode>,
+    z: Vec<f64>,
     t: f64,
-    log: &mut EventLog,
-    work: &mut Forces,
-) {
-    let n = model.len();
-    let y: Vec<f64> = (0..n).map(|i| z[2 * i]).collect();
-    model.forces(&y, work);
-    for i in 0..n {
-        if im.released(model, i, modes[i], work.drive[i]) {
-            let prev = std::mem::replace(&mut modes[i], Mode::Free);
-            z[2 * i + 1] = 0.0;
-            log.note(model, i, prev, Mode::Free, t, modes, &y);
-        }
-    }
-    log.close(t);
+    log: EventLog,
+    work: Forces,
+    stats: StepStats,
+    /// The recorded states, when recording, and the wall contacts of
+    /// [`ReferenceRun::walls`].
+    rec: Option<Recorder>,
+    walls: Vec<(f64, usize, f64)>,
 }
 
-/// A release found within the last this fraction of a step is taken at the step's end.
-const RELEASE_SLACK: f64 = 1e-3;
-
-/// Steps cut for a release since the last event after which the start has not come, past
-/// which a clamped unknown's pull is taken to sit on its threshold within the rounding (a
-/// design on a knife edge): the run is undecided. A start is found in a few cuts, but at
-/// s = 0 (magnets starting at their rest points) some 7-tile words need more than 2,000
-/// (LRRLLLS and five others were undecided at 0.0056 s); 50,000 keeps the knife edge of
-/// three tiles under half a second.
-const MAX_FUTILE_CUTS: usize = 50_000;
-
-/// The steps cut for a release that did not come, since the last event.
-#[derive(Debug, Default)]
-pub(crate) struct ReleaseCuts {
-    since: f64,
-    count: usize,
-}
-
-impl ReleaseCuts {
-    /// A step cut for a release, the last event at `last_event`.
-    pub(crate) fn note(&mut self, last_event: f64) {
-        if last_event != self.since {
-            (self.since, self.count) = (last_event, 0);
+impl State {
+    /// Every unknown of `model` at the start of its range, at rest, at time 0.
+    fn new(model: &Model) -> State {
+        let n = model.len();
+        State {
+            modes: vec![Mode::AtStart; n],
+            z: vec![0.0; 2 * n],
+            t: 0.0,
+            log: EventLog::new(
+                model.geometry.tiles().saturating_sub(1),
+                model.geometry.magnets(),
+                crate::timeline::start_fraction(&model.geometry),
+            ),
+            work: Forces::default(),
+            stats: StepStats::default(),
+            rec: None,
+            walls: Vec::new(),
         }
-        self.count += 1;
     }
 
-    /// Whether the cuts since the last event are past [`MAX_FUTILE_CUTS`].
-    pub(crate) fn futile(&self) -> bool {
-        self.count > MAX_FUTILE_CUTS
+    /// Starts the clamped unknowns that their drive pulls off their wall (by more than the
+    /// static threshold and the Coulomb friction), at rest; notes them. Leaves the drives
+    /// in `work`.
+    fn release(&mut self, model: &Model, im: &InertialModel) {
+        let y = positions(&self.z);
+        model.forces(&y, &mut self.work);
+        for i in 0..model.len() {
+            if im.released(model, i, self.modes[i], self.work.drive[i]) {
+                let prev = std::mem::replace(&mut self.modes[i], Mode::Free);
+                self.z[2 * i + 1] = 0.0;
+                self.log
+                    .note(model, i, prev, Mode::Free, self.t, &self.modes, &y);
+            }
+        }
+        self.log.close(self.t);
     }
 
-    /// What the work budget ran out on.
-    pub(crate) fn reason(&self) -> String {
-        format!(
-            "{} steps cut for a start that did not come: a pull on its threshold within the rounding",
-            self.count
-        )
+    /// The unknowns `free` at or past a wall: put on it, then bounce or stay (a rest noted
+    /// as a mode switch); the contacts noted in `walls` when recording. Whether any mode
+    /// changed. Leaves the drives before the rests in `work`.
+    fn settle_at_walls(&mut self, model: &Model, im: &InertialModel, free: &[usize]) -> bool {
+        let y_now = positions(&self.z);
+        model.forces(&y_now, &mut self.work);
+        let mut switched = false;
+        for &i in free {
+            let x = self.z[2 * i];
+            let Some(wall) = wall_reached(x) else {
+                continue;
+            };
+            let v = self.z[2 * i + 1];
+            self.z[2 * i] = wall;
+            if !at_wall(wall, v) {
+                continue;
+            }
+            if self.rec.is_some() {
+                self.walls.push((self.t, i, wall));
+            }
+            if let Some(rebound) = im.bounce(i, wall, v, self.work.drive[i]) {
+                self.z[2 * i + 1] = rebound;
+            } else {
+                let next = rest_mode(wall);
+                let prev = std::mem::replace(&mut self.modes[i], next);
+                self.z[2 * i + 1] = 0.0;
+                let y = positions(&self.z);
+                self.log.note(model, i, prev, next, self.t, &self.modes, &y);
+                switched = true;
+            }
+        }
+        if switched {
+            self.log.close(self.t);
+        }
+        switched
+    }
+
+    /// Takes the accepted step of size `h` whose start `z1` keeps (the state has moved to
+    /// its end): the crossings of start fractions, the walls, the releases (the drives
+    /// after them into `drive0`), the recorded states inside the step. Whether the modes
+    /// changed.
+    fn advance(
+        &mut self,
+        model: &Model,
+        im: &InertialModel,
+        h: f64,
+        z1: &[f64],
+        free: &[usize],
+        drive0: &mut Vec<f64>,
+    ) -> bool {
+        let (t0, z0) = (self.t, z1);
+        self.t += h;
+        if self.log.reports_crossings() {
+            // starts at a fraction of the path: positions and velocities are the step's
+            // Hermite data
+            self.log.cross(
+                model,
+                t0,
+                &positions(z0),
+                Some(&velocities(z0)),
+                self.t,
+                &positions(&self.z),
+                Some(&velocities(&self.z)),
+            );
+        }
+        // the step's own end rates, for the recorded states inside it (a bounce below
+        // reverses the velocity at its end)
+        let v_end = velocities(&self.z);
+        let switched = self.settle_at_walls(model, im, free);
+        let before = self.modes.clone();
+        self.release(model, im);
+        drive0.clone_from(&self.work.drive);
+        let t = self.t;
+        if let Some(r) = self.rec.as_mut().filter(|r| r.next_time() <= t) {
+            let (y0, v0, y1) = (positions(z0), velocities(z0), positions(&self.z));
+            r.cover(t0, &y0, &v0, t, &y1, Some(&v_end));
+        }
+        before != self.modes || switched
+    }
+
+    /// The run at its end on `model` with `opts`: the outcome at rest, why it stopped
+    /// (`stopped`, `undecided` on the work budget), the recorded states.
+    fn finish(
+        mut self,
+        model: Model,
+        opts: &ReferenceOptions,
+        stopped: Option<String>,
+        undecided: bool,
+    ) -> ReferenceRun {
+        let y = positions(&self.z);
+        let time = self.log.last_event;
+        model.forces(&y, &mut self.work);
+        let outcome = RestState {
+            model: &model,
+            modes: &self.modes,
+            y: &y,
+            drive: &self.work.drive,
+        }
+        .outcome(time);
+        let mut events = self.log.events;
+        events.extend(outcome.stop_event(time));
+        let states = self.rec.map(|r| r.finish(self.t, &y)).unwrap_or_default();
+        ReferenceRun {
+            made_by: "joint-angle reference",
+            end_time: self.t,
+            final_state: y,
+            states,
+            walls: self.walls,
+            model,
+            options: *opts,
+            events,
+            folds: self.log.folds,
+            outcome,
+            stopped,
+            undecided,
+            max_moving: self.log.max_moving,
+            stats: self.stats,
+        }
     }
 }
 
@@ -169,252 +290,84 @@ pub(crate) fn run_inertial(
     opts: &ReferenceOptions,
 ) -> ReferenceRun {
     let n = model.len();
-    let joints = model.geometry.tiles().saturating_sub(1);
-    let mut log = EventLog::new(
-        joints,
-        model.geometry.magnets(),
-        crate::timeline::start_fraction(&model.geometry),
-    );
-    let mut stats = StepStats::default();
-    let mut modes = vec![Mode::AtStart; n];
-    let mut z = vec![0.0; 2 * n];
-    let mut work = Forces::default();
+    let mut s = State::new(&model);
     let tol = opts.tolerance;
     let (_, move_time, drag_time) = im.c.times(&model);
     let scale = im.scale;
     let mut stepper: Stepper<Work> = Stepper::new(opts.method, 2 * n, 2 * model.bandwidth() + 1);
-    let expo = 1.0 / (opts.method.error_order() as f64 + 1.0);
-    let mut t = 0.0;
-    let mut h = im.first_step * 1e-3;
+    let mut step = StepSize::new(im.first_step * 1e-3, opts.method, scale);
     let mut stopped = None;
     let mut undecided = false;
     let mut cuts = ReleaseCuts::default();
-    let positions = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i]).collect() };
-    let velocities = |z: &[f64]| -> Vec<f64> { (0..n).map(|i| z[2 * i + 1]).collect() };
-    let mut rec = match opts.record {
-        Recording::Off => None,
-        Recording::Grid { max_states } => Some(Recorder::new(
-            max_states,
-            move_time.min(drag_time) * 1e-2,
-            &positions(&z),
-        )),
-    };
-    // the wall contacts of ReferenceRun::walls, when recording
-    let mut walls = Vec::new();
+    s.rec = Recorder::of(
+        opts.record,
+        move_time.min(drag_time) * 1e-2,
+        &positions(&s.z),
+    );
     let mut f = vec![0.0; 2 * n];
     let mut z1 = vec![0.0; 2 * n];
-    release(&model, &im, &mut modes, &mut z, t, &mut log, &mut work);
+    s.release(&model, &im);
     // the drives at the step's start (the clamped unknowns' pulls off their walls)
-    let mut drive0 = work.drive.clone();
+    let mut drive0 = s.work.drive.clone();
     loop {
-        let free: Vec<usize> = (0..n).filter(|&i| modes[i] == Mode::Free).collect();
+        let free: Vec<usize> = (0..n).filter(|&i| s.modes[i] == Mode::Free).collect();
         if free.is_empty() {
             break;
         }
-        {
-            let sys = Inertial {
-                model: &model,
-                modes: &modes,
-                im: &im,
-            };
-            stepper.rhs(&sys, &z, &mut f, &mut stats);
-        }
+        let (t, z, stats) = (s.t, &s.z, &mut s.stats);
+        let sys = Inertial {
+            model: &model,
+            modes: &s.modes,
+            im: &im,
+        };
+        stepper.rhs(&sys, z, &mut f, stats);
         let quiet = free
             .iter()
             .all(|&i| im.quiet(i, z[2 * i + 1], f[2 * i + 1]));
-        if quiet && t > log.last_event + scale {
+        if quiet && t > s.log.last_event + scale {
             break;
         }
         // the work budget (ReferenceOptions): a balance not decided within it is said, with
         // its margin, and the run is undecided
         let budget = opts.step_budget(model.geometry.tiles());
-        let exhausted = if stats.accepted + stats.rejected >= budget {
-            Some(format!("{budget} steps"))
-        } else if cuts.futile() {
-            Some(cuts.reason())
-        } else if t - log.last_event > 1e4 * scale.max(log.last_event) {
-            Some(format!(
-                "no event for {:.3e} s after the last at {:.6e} s",
-                t - log.last_event,
-                log.last_event
-            ))
-        } else {
-            None
-        };
-        if let Some(budget) = exhausted {
-            model.forces(&positions(&z), &mut work);
-            let margin =
-                undecided_margin(&model, free.iter().map(|&i| (i, z[2 * i], work.drive[i])));
+        if let Some(budget) = exhausted(budget, stats, &cuts, t, s.log.last_event, scale) {
+            model.forces(&positions(z), &mut s.work);
+            let drive = &s.work.drive;
+            let margin = undecided_margin(&model, free.iter().map(|&i| (i, z[2 * i], drive[i])));
             stopped = Some(format!(
                 "undecided at t = {t:.6e} s within the work budget ({budget}): {margin}"
             ));
             undecided = true;
             break;
         }
-        let sys = Inertial {
-            model: &model,
-            modes: &modes,
-            im: &im,
-        };
-        let err = match stepper.attempt(&sys, &z, &f, h, tol, &mut stats, &mut z1) {
-            Ok(a) => a,
-            Err(_) => {
-                h *= 0.5;
-                continue;
-            }
-        };
-        let finite = err.is_finite() && z1.iter().all(|v| v.is_finite());
-        if !finite || err > 1.0 {
-            stats.rejected += 1;
-            h *= if finite {
-                integral(err, expo, false)
-            } else {
-                0.1
-            };
-            if h < 1e-14 * t.max(scale) {
-                stopped = Some(format!(
-                    "step size underflow at t = {t:.6e} s (h = {h:.3e} s)"
-                ));
+        let attempt = stepper.attempt(&sys, z, &f, step.h, tol, stats, &mut z1);
+        let err = match step.judge(attempt, &z1, t, stats) {
+            Verdict::Taken(err) => err,
+            Verdict::Retry => continue,
+            Verdict::Underflow(why) => {
+                stopped = Some(why);
                 break;
             }
-            continue;
-        }
+        };
         // a wall crossed: cut the step to end just past the first crossing
-        let mut theta: f64 = 1.0;
-        for &i in &free {
-            let (a, b) = (z[2 * i], z1[2 * i]);
-            for wall in [0.0, 1.0] {
-                let past = if wall == 0.0 { b < 0.0 } else { b > 1.0 };
-                if past && (b - wall).abs() > 1e-9 {
-                    theta = theta.min(((wall - a) / (b - a)).clamp(0.0, 1.0));
-                }
-            }
-        }
-        if theta < 1.0 {
-            let cut = h * (theta + 1e-9 * (1.0 - theta)).max(1e-6);
-            if cut < h * 0.999_999 && cut > 1e-14 * t.max(scale) {
-                h = cut;
-                continue;
-            }
+        if step.cut_at_walls(t, free.iter().map(|&i| (z[2 * i], z1[2 * i]))) {
+            continue;
         }
         // a clamped unknown pulled off its wall inside the step: cut the step to end at
         // that moment (the pull taken linear over the step), so that it starts there and
         // not up to a step late
-        let theta = release_within(&model, &im, &modes, &drive0, &positions(&z1), &mut work);
-        if theta < 1.0 - RELEASE_SLACK {
-            let cut = h * theta.max(1e-6);
-            if cut > 1e-14 * t.max(scale) {
-                h = cut;
-                cuts.note(log.last_event);
-                continue;
-            }
+        let y1 = positions(&z1);
+        let theta = release_within(&model, &im, &s.modes, &drive0, &y1, &mut s.work);
+        if step.cut_at_release(t, theta, &mut cuts, s.log.last_event) {
+            continue;
         }
-        stats.accepted += 1;
-        let grow = integral(err, expo, true);
-        std::mem::swap(&mut z, &mut z1);
+        let grow = step.accept(err, stats);
         // z1 keeps the step's start
-        let (t0, z0) = (t, &z1);
-        t += h;
-        if log.reports_crossings() {
-            // starts at a fraction of the path: positions and velocities are the step's
-            // Hermite data
-            log.cross(
-                &model,
-                t0,
-                &positions(z0),
-                Some(&velocities(z0)),
-                t,
-                &positions(&z),
-                Some(&velocities(&z)),
-            );
-        }
-        // the step's own end rates, for the recorded states inside it (a bounce below
-        // reverses the velocity at its end)
-        let v_end = velocities(&z);
-        // walls: bounce or stay
-        let y_now = positions(&z);
-        model.forces(&y_now, &mut work);
-        let mut switched = false;
-        for &i in &free {
-            let x = z[2 * i];
-            let wall = if x >= 1.0 {
-                1.0
-            } else if x <= 0.0 {
-                0.0
-            } else {
-                continue;
-            };
-            let v = z[2 * i + 1];
-            z[2 * i] = wall;
-            if !at_wall(wall, v) {
-                continue;
-            }
-            if rec.is_some() {
-                walls.push((t, i, wall));
-            }
-            if let Some(rebound) = im.bounce(i, wall, v, work.drive[i]) {
-                z[2 * i + 1] = rebound;
-            } else {
-                let next = if wall == 1.0 {
-                    Mode::AtEnd
-                } else {
-                    Mode::AtStart
-                };
-                let prev = std::mem::replace(&mut modes[i], next);
-                z[2 * i + 1] = 0.0;
-                let y = positions(&z);
-                log.note(&model, i, prev, next, t, &modes, &y);
-                switched = true;
-            }
-        }
-        if switched {
-            log.close(t);
-        }
-        let before = modes.clone();
-        release(&model, &im, &mut modes, &mut z, t, &mut log, &mut work);
-        drive0.clone_from(&work.drive);
-        if before != modes || switched {
+        std::mem::swap(&mut s.z, &mut z1);
+        if s.advance(&model, &im, step.h, &z1, &free, &mut drive0) {
             stepper.invalidate();
         }
-        if let Some(r) = rec.as_mut().filter(|r| r.next_time() <= t) {
-            r.cover(
-                t0,
-                &positions(z0),
-                &velocities(z0),
-                t,
-                &positions(&z),
-                Some(&v_end),
-            );
-        }
-        h *= grow;
+        step.h *= grow;
     }
-    let y = positions(&z);
-    let time = log.last_event;
-    model.forces(&y, &mut work);
-    let outcome = RestState {
-        model: &model,
-        modes: &modes,
-        y: &y,
-        drive: &work.drive,
-    }
-    .outcome(time);
-    let mut events = log.events;
-    events.extend(outcome.stop_event(time));
-    let states = rec.map(|r| r.finish(t, &y)).unwrap_or_default();
-    ReferenceRun {
-        made_by: "joint-angle reference",
-        end_time: t,
-        final_state: y,
-        states,
-        walls,
-        model,
-        options: *opts,
-        events,
-        folds: log.folds,
-        outcome,
-        stopped,
-        undecided,
-        max_moving: log.max_moving,
-        stats,
-    }
+    s.finish(model, opts, stopped, undecided)
 }

@@ -38,6 +38,7 @@ mod pictures;
 mod recorder;
 mod run_result;
 mod run_source;
+mod stepping;
 
 pub use crate::ode::{Method, StepStats};
 pub use driver::run_reference;

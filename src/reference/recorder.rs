@@ -4,7 +4,6 @@
 //! rate), clamped to `[0, 1]`. When the states would exceed the budget, the spacing doubles
 //! and every other state is dropped, so the grid stays even and the memory bounded.
 
-#[cfg(doc)]
 use crate::reference::options::Recording;
 
 /// The states of [`Recording::Grid`]: grid index `i` is time `i * dt`.
@@ -28,6 +27,15 @@ impl Recorder {
             next: 1,
             index: vec![0],
             states: vec![(0.0, y0.to_vec())],
+        }
+    }
+
+    /// The recorder `record` asks for (none for [`Recording::Off`]), spaced `dt` to begin
+    /// with, the first state `y0` at time 0.
+    pub(crate) fn of(record: Recording, dt: f64, y0: &[f64]) -> Option<Recorder> {
+        match record {
+            Recording::Off => None,
+            Recording::Grid { max_states } => Some(Recorder::new(max_states, dt, y0)),
         }
     }
 

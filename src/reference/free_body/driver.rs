@@ -21,7 +21,7 @@ use crate::model::{
     at_wall, undecided_margin, Allow, Dynamics, Forces, InertialModel, Mode, Model, RestState,
     Unknown,
 };
-use crate::ode::{integral, Method, StepStats, Stepper};
+use crate::ode::{Method, StepStats, Stepper};
 use crate::reference::event_log::EventLog;
 use crate::reference::free_body::groups::Groups;
 use crate::reference::free_body::options::FreeBodyOptions;
@@ -29,15 +29,27 @@ use crate::reference::free_body::run::FreeBodyRun;
 use crate::reference::free_body::spatial::solve;
 use crate::reference::free_body::system::{FreeBody, Momentum, Setup, Work, BASE};
 use crate::reference::free_body::tile_body::TileBodies;
-use crate::reference::inertial::ReleaseCuts;
-use crate::reference::options::{Recording, ReferenceError};
+use crate::reference::options::ReferenceError;
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
+use crate::reference::stepping::{
+    exhausted, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
+};
 use crate::timeline::{start_fraction, TileDesigns};
 use crate::{Chain, Octagon};
 
-/// A release found within the last this fraction of a step is taken at the step's end.
-const RELEASE_SLACK: f64 = 1e-3;
+/// The system of the driver's modes, groups and free unknowns (a macro, not a method, so
+/// that it borrows only those fields and the driver's scratch stays free to borrow).
+macro_rules! free_body {
+    ($driver:expr) => {
+        FreeBody {
+            setup: &$driver.setup,
+            groups: &$driver.groups,
+            modes: &$driver.modes,
+            packed: &$driver.packed,
+        }
+    };
+}
 
 /// Runs the free-body reference on `chain` with `designs`.
 pub fn run_free_body(
@@ -201,12 +213,7 @@ impl Driver {
     /// Drives of the held unknowns of `near` and of the held joints at state `z` into
     /// `out` (by model unknown); returns nothing, leaves the evaluation in `work`.
     fn held_drives(&mut self, z: &[f64], out: &mut [f64]) {
-        let sys = FreeBody {
-            setup: &self.setup,
-            groups: &self.groups,
-            modes: &self.modes,
-            packed: &self.packed,
-        };
+        let sys = free_body!(self);
         sys.evaluate(z, &mut self.work);
         for &k in &self.near {
             out[self.setup.model.magnet_var(k)] = sys.magnet_drive(k, &mut self.work);
@@ -317,23 +324,14 @@ impl Driver {
             .iter()
             .any(|&i| !(0.0..=1.0).contains(&self.z[Setup::at(i)]));
         let before = past.then(|| {
-            let sys = FreeBody {
-                setup: &self.setup,
-                groups: &self.groups,
-                modes: &self.modes,
-                packed: &self.packed,
-            };
+            let sys = free_body!(self);
             sys.evaluate(&self.z, &mut self.work);
             sys.base_momentum(&self.work).0
         });
         for &i in &self.packed {
             let at = Setup::at(i);
             let x = self.z[at];
-            let wall = if x >= 1.0 {
-                1.0
-            } else if x <= 0.0 {
-                0.0
-            } else {
+            let Some(wall) = wall_reached(x) else {
                 continue;
             };
             self.z[at] = wall;
@@ -345,12 +343,7 @@ impl Driver {
             // putting a joint on its wall moved it (by at most a step's overshoot) at the
             // same rates: the base takes up the momentum that changed, so that the chain's
             // stays what it was
-            let sys = FreeBody {
-                setup: &self.setup,
-                groups: &self.groups,
-                modes: &self.modes,
-                packed: &self.packed,
-            };
+            let sys = free_body!(self);
             sys.evaluate(&self.z, &mut self.work);
             let (after, composite) = sys.base_momentum(&self.work);
             let dh = [
@@ -373,29 +366,13 @@ impl Driver {
         }
         let mut switched = false;
         // magnets first (their bounces move nothing else), on one evaluation
-        {
-            let sys = FreeBody {
-                setup: &self.setup,
-                groups: &self.groups,
-                modes: &self.modes,
-                packed: &self.packed,
-            };
-            sys.evaluate(&self.z, &mut self.work);
-        }
+        free_body!(self).evaluate(&self.z, &mut self.work);
         let mut rests = Vec::new();
         for &(i, wall) in &hits {
             let Unknown::Magnet(k) = self.setup.model.unknowns[i] else {
                 continue;
             };
-            let drive = {
-                let sys = FreeBody {
-                    setup: &self.setup,
-                    groups: &self.groups,
-                    modes: &self.modes,
-                    packed: &self.packed,
-                };
-                sys.magnet_drive(k, &mut self.work)
-            };
+            let drive = free_body!(self).magnet_drive(k, &mut self.work);
             let at = Setup::at(i);
             match self.setup.im.bounce(i, wall, self.z[at + 1], drive) {
                 Some(rebound) => self.z[at + 1] = rebound,
@@ -410,11 +387,7 @@ impl Driver {
             }
         }
         for (i, wall) in rests {
-            let next = if wall == 1.0 {
-                Mode::AtEnd
-            } else {
-                Mode::AtStart
-            };
+            let next = rest_mode(wall);
             let prev = std::mem::replace(&mut self.modes[i], next);
             self.z[Setup::at(i) + 1] = 0.0;
             let y = self.setup.values(&self.z);
@@ -433,12 +406,7 @@ impl Driver {
     /// Joint `j` (model unknown `i`) meeting wall `wall` while turning: the impulse that
     /// reverses its rate times the restitution, or stops it; whether it stays (stopped).
     fn joint_impact(&mut self, i: usize, j: usize, wall: f64) -> bool {
-        let sys = FreeBody {
-            setup: &self.setup,
-            groups: &self.groups,
-            modes: &self.modes,
-            packed: &self.packed,
-        };
+        let sys = free_body!(self);
         sys.evaluate(&self.z, &mut self.work);
         let g = self.groups.of_tile[j + 1];
         let sign = self.setup.model.joint_sign(j);
@@ -527,23 +495,18 @@ impl Driver {
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
     }
 
+    /// Steps until every free unknown has come to rest, nothing is free, or the work
+    /// budget runs out.
     fn run(mut self) -> FreeBodyRun {
         let opts = self.opts.reference;
         let tol = opts.tolerance;
         let (_, move_time, drag_time) = self.setup.im.c.times(&self.setup.model);
         let scale = self.setup.im.scale;
-        let expo = 1.0 / (Method::Dopri5.error_order() as f64 + 1.0);
-        let mut h = self.setup.im.first_step * 1e-3;
+        let mut step = StepSize::new(self.setup.im.first_step * 1e-3, Method::Dopri5, scale);
         let mut stopped = None;
         let mut cuts = ReleaseCuts::default();
-        let mut rec = match opts.record {
-            Recording::Off => None,
-            Recording::Grid { max_states } => Some(Recorder::new(
-                max_states,
-                move_time.min(drag_time) * 1e-2,
-                &self.setup.values(&self.z),
-            )),
-        };
+        let y0 = self.setup.values(&self.z);
+        let mut rec = Recorder::of(opts.record, move_time.min(drag_time) * 1e-2, &y0);
         let mut walls = Vec::new();
         let mut f = Vec::new();
         let mut z1 = Vec::new();
@@ -557,141 +520,100 @@ impl Driver {
             let len = self.zp.len();
             f.resize(len, 0.0);
             z1.resize(len, 0.0);
-            {
-                let sys = FreeBody {
-                    setup: &self.setup,
-                    groups: &self.groups,
-                    modes: &self.modes,
-                    packed: &self.packed,
-                };
-                self.stepper.rhs(&sys, &self.zp, &mut f, &mut self.stats);
-                if self.opts.track_momentum {
-                    let m = sys.momentum(self.t, &self.zp, self.stepper.work());
-                    self.momentum.push(m);
-                }
+            let sys = free_body!(self);
+            self.stepper.rhs(&sys, &self.zp, &mut f, &mut self.stats);
+            if self.opts.track_momentum {
+                let m = sys.momentum(self.t, &self.zp, self.stepper.work());
+                self.momentum.push(m);
             }
             let t = self.t;
-            let free = self.packed.len();
+            let last_event = self.log.last_event;
             let quiet = self.packed.iter().enumerate().all(|(p, &i)| {
                 let v = BASE + 2 * p + 1;
                 self.setup.im.quiet(i, self.zp[v], f[v])
             });
-            if quiet && t > self.log.last_event + scale {
+            if quiet && t > last_event + scale {
                 break;
             }
             // the work budget (ReferenceOptions): undecided, its margin said at the end
             let budget = opts.step_budget(self.setup.model.geometry.tiles());
-            if self.stats.accepted + self.stats.rejected >= budget {
+            if let Some(budget) = exhausted(budget, &self.stats, &cuts, t, last_event, scale) {
                 stopped = Some(format!(
-                    "undecided at t = {t:.6e} s within the work budget ({budget} steps)"
+                    "undecided at t = {t:.6e} s within the work budget ({budget})"
                 ));
                 break;
             }
-            if cuts.futile() {
-                stopped = Some(format!(
-                    "undecided at t = {t:.6e} s within the work budget ({})",
-                    cuts.reason()
-                ));
-                break;
-            }
-            if t - self.log.last_event > 1e4 * scale.max(self.log.last_event) {
-                stopped = Some(format!(
-                    "undecided at t = {t:.6e} s within the work budget (no event for {:.3e} s after the last at {:.6e} s)",
-                    t - self.log.last_event,
-                    self.log.last_event,
-                ));
-                break;
-            }
-            let err = {
-                let sys = FreeBody {
-                    setup: &self.setup,
-                    groups: &self.groups,
-                    modes: &self.modes,
-                    packed: &self.packed,
-                };
-                match self
-                    .stepper
-                    .attempt(&sys, &self.zp, &f, h, tol, &mut self.stats, &mut z1)
-                {
-                    Ok(e) => e,
-                    Err(_) => {
-                        h *= 0.5;
-                        continue;
-                    }
-                }
-            };
-            let finite = err.is_finite() && z1.iter().all(|v| v.is_finite());
-            if !finite || err > 1.0 {
-                self.stats.rejected += 1;
-                h *= if finite {
-                    integral(err, expo, false)
-                } else {
-                    0.1
-                };
-                if h < 1e-14 * t.max(scale) {
-                    stopped = Some(format!(
-                        "step size underflow at t = {t:.6e} s (h = {h:.3e} s)"
-                    ));
+            let attempt =
+                self.stepper
+                    .attempt(&sys, &self.zp, &f, step.h, tol, &mut self.stats, &mut z1);
+            let err = match step.judge(attempt, &z1, t, &mut self.stats) {
+                Verdict::Taken(err) => err,
+                Verdict::Retry => continue,
+                Verdict::Underflow(why) => {
+                    stopped = Some(why);
                     break;
                 }
-                continue;
-            }
+            };
             // a wall crossed: cut the step to end just past the first crossing
-            let mut theta: f64 = 1.0;
-            for p in 0..free {
-                let at = BASE + 2 * p;
-                let (a, b) = (self.zp[at], z1[at]);
-                for wall in [0.0, 1.0] {
-                    let past = if wall == 0.0 { b < 0.0 } else { b > 1.0 };
-                    if past && (b - wall).abs() > 1e-9 {
-                        theta = theta.min(((wall - a) / (b - a)).clamp(0.0, 1.0));
-                    }
-                }
-            }
-            if theta < 1.0 {
-                let cut = h * (theta + 1e-9 * (1.0 - theta)).max(1e-6);
-                if cut < h * 0.999_999 && cut > 1e-14 * t.max(scale) {
-                    h = cut;
-                    continue;
-                }
+            let ends = (0..self.packed.len()).map(|p| (self.zp[BASE + 2 * p], z1[BASE + 2 * p]));
+            if step.cut_at_walls(t, ends) {
+                continue;
             }
             // a held unknown pulled off its wall inside the step: cut the step to end there
             let theta = self.release_within(&z1);
-            if theta < 1.0 - RELEASE_SLACK {
-                let cut = h * theta.max(1e-6);
-                if cut > 1e-14 * t.max(scale) {
-                    h = cut;
-                    cuts.note(self.log.last_event);
-                    continue;
-                }
+            if step.cut_at_release(t, theta, &mut cuts, last_event) {
+                continue;
             }
-            self.stats.accepted += 1;
-            let grow = integral(err, expo, true);
-            // the step's start, for the recorded states and the start crossings
-            let t0 = t;
-            let start = (rec.as_ref().is_some_and(|r| r.next_time() <= t + h)
-                || self.log.reports_crossings())
-            .then(|| (self.setup.values(&self.z), self.setup.rates(&self.z)));
-            std::mem::swap(&mut self.zp, &mut z1);
-            self.unpack();
-            self.t = t + h;
-            let v_end = start.as_ref().map(|_| self.setup.rates(&self.z));
-            if let (true, Some((y0, v0))) = (self.log.reports_crossings(), &start) {
-                let (y1, v1) = (self.setup.values(&self.z), self.setup.rates(&self.z));
-                self.log
-                    .cross(&self.setup.model, t0, y0, Some(v0), self.t, &y1, Some(&v1));
-            }
-            let switched = self.walls(rec.is_some().then_some(&mut walls));
-            self.release(switched);
-            self.sync_packed();
-            if let (Some(r), Some((y0, v0)), Some(v_end)) = (rec.as_mut(), &start, &v_end) {
-                if r.next_time() <= self.t {
-                    r.cover(t0, y0, v0, self.t, &self.setup.values(&self.z), Some(v_end));
-                }
-            }
-            self.note_base();
-            h *= grow;
+            let grow = step.accept(err, &mut self.stats);
+            self.advance(step.h, &mut z1, &mut rec, &mut walls);
+            step.h *= grow;
         }
+        self.finish(stopped, rec, walls)
+    }
+
+    /// Takes the accepted step of size `h` to the packed state `z1` (which then keeps the
+    /// step's start): the crossings of start fractions, the walls, the releases, the
+    /// recorded states (and wall contacts, into `walls`) inside the step.
+    fn advance(
+        &mut self,
+        h: f64,
+        z1: &mut Vec<f64>,
+        rec: &mut Option<Recorder>,
+        walls: &mut Vec<(f64, usize, f64)>,
+    ) {
+        // the step's start, for the recorded states and the start crossings
+        let t0 = self.t;
+        let start = (rec.as_ref().is_some_and(|r| r.next_time() <= t0 + h)
+            || self.log.reports_crossings())
+        .then(|| (self.setup.values(&self.z), self.setup.rates(&self.z)));
+        std::mem::swap(&mut self.zp, z1);
+        self.unpack();
+        self.t = t0 + h;
+        let v_end = start.as_ref().map(|_| self.setup.rates(&self.z));
+        if let (true, Some((y0, v0))) = (self.log.reports_crossings(), &start) {
+            let (y1, v1) = (self.setup.values(&self.z), self.setup.rates(&self.z));
+            self.log
+                .cross(&self.setup.model, t0, y0, Some(v0), self.t, &y1, Some(&v1));
+        }
+        let switched = self.walls(rec.is_some().then_some(walls));
+        self.release(switched);
+        self.sync_packed();
+        if let (Some(r), Some((y0, v0)), Some(v_end)) = (rec.as_mut(), &start, &v_end) {
+            if r.next_time() <= self.t {
+                r.cover(t0, y0, v0, self.t, &self.setup.values(&self.z), Some(v_end));
+            }
+        }
+        self.note_base();
+    }
+
+    /// The run at its end: the outcome at rest, why it stopped (`stopped`; a stop on the
+    /// work budget with the balance nearest), the recorded states and wall contacts.
+    fn finish(
+        mut self,
+        stopped: Option<String>,
+        rec: Option<Recorder>,
+        walls: Vec<(f64, usize, f64)>,
+    ) -> FreeBodyRun {
         let y = self.setup.values(&self.z);
         let time = self.log.last_event;
         let mut forces = Forces::default();
@@ -728,7 +650,7 @@ impl Driver {
                 states,
                 walls,
                 model: self.setup.model,
-                options: opts,
+                options: self.opts.reference,
                 events,
                 folds: self.log.folds,
                 outcome,
