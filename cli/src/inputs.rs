@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context};
+use foldchain::engine::{SValue, TileDesigns};
 use foldchain::Chain;
 use foldchain_planner::{plan_svg_file_reporting, Plan, PlanOptions, Shape, Turns};
 
@@ -161,6 +162,63 @@ pub fn target_outline(plan: &Plan, shape_path: &Path) -> Option<Vec<Vec<(f64, f6
     )
 }
 
+/// The arguments naming a chain and its designs that `fold-run` and `fold-print` share
+/// (`#[command(flatten)]`): `CHAIN`, `--plan`, `--design`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct ChainInput {
+    /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
+    /// target shape `SHAPE.svg` to plan first.
+    pub chain: Option<String>,
+    /// Read the chain from fold-plan's JSON.
+    #[arg(long, value_name = "PLAN.json")]
+    pub plan: Option<PathBuf>,
+    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
+    /// thesis design.
+    #[arg(long, value_name = "DESIGN.json")]
+    pub design: Option<PathBuf>,
+}
+
+impl ChainInput {
+    /// The designs `--design` names (the thesis design without it).
+    pub fn designs(&self) -> anyhow::Result<TileDesigns> {
+        read_designs(self.design.as_deref(), None)
+    }
+}
+
+/// The tile designs of a design file (the thesis design without one), with `--s` (a
+/// distance or a fraction of e, [`SValue::parse`]) for every tile when given, checked.
+pub fn read_designs(design: Option<&Path>, s: Option<&str>) -> anyhow::Result<TileDesigns> {
+    let mut designs = match design {
+        Some(p) => TileDesigns::from_file(p)?,
+        None => TileDesigns::default(),
+    };
+    if let Some(s) = s {
+        designs = designs.with_s(SValue::parse(s)?);
+        designs.check_ranges("--s")?;
+    }
+    Ok(designs)
+}
+
+/// The planner's options with `--tiles`, `--tile-size` and `--turns` where given (the
+/// planner's defaults elsewhere).
+pub fn plan_options(
+    tiles: Option<usize>,
+    tile_size: Option<f64>,
+    turns: Option<Turns>,
+) -> PlanOptions {
+    let mut po = PlanOptions::default();
+    if let Some(n) = tiles {
+        po = po.with_tiles(n);
+    }
+    if let Some(w) = tile_size {
+        po = po.with_tile_size(w);
+    }
+    if let Some(t) = turns {
+        po = po.with_turns(t);
+    }
+    po
+}
+
 /// A chain as a tool's arguments name it: `CHAIN` (a fold word, a tile list, a file holding
 /// one, or a `SHAPE.svg` to plan), or `--plan PLAN.json`, with the planner's options for a
 /// shape.
@@ -224,16 +282,7 @@ pub fn resolve_chain(args: &ChainArgs<'_>, progress: &Progress) -> anyhow::Resul
         }
         (Some(arg), None) if is_svg(arg) => {
             let path = Path::new(arg);
-            let mut po = PlanOptions::default();
-            if let Some(n) = args.tiles {
-                po = po.with_tiles(n);
-            }
-            if let Some(w) = args.tile_size {
-                po = po.with_tile_size(w);
-            }
-            if let Some(t) = args.turns {
-                po = po.with_turns(t);
-            }
+            let po = plan_options(args.tiles, args.tile_size, args.turns);
             progress.stage("planning the shape");
             let report = |stage: &str, done: u64, total: u64| {
                 progress.update_in(&format!("planning: {stage}"), "steps", done, total)

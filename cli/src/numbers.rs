@@ -51,6 +51,17 @@ pub fn number_in(text: &str, min: f64, max: f64, unit: &str, why: &str) -> Resul
     }
 }
 
+/// A clap value parser of [`number_in`]'s numbers from `min` to `max` in `unit` (`why`
+/// after the range when not empty): `#[arg(value_parser = in_range(0.0, 2.0, "mm", ""))]`.
+pub fn in_range(
+    min: f64,
+    max: f64,
+    unit: &'static str,
+    why: &'static str,
+) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |text| number_in(text, min, max, unit, why)
+}
+
 /// A number that [`number_in`] read (`parsed`), kept when `keep` holds for it, else the
 /// message `expected {expected}`: for a range open at one end (`above 0`, `below 0.01`).
 pub fn open_range(

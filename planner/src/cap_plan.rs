@@ -11,8 +11,7 @@ use rayon::prelude::*;
 use crate::caps::{cap_plans, CapPlan};
 use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
 use crate::check::CheckMemo;
-use crate::empty::{empty_cost, empty_key};
-use crate::fit::plan_score;
+use crate::empty::{empty_cost, rank_key};
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -222,8 +221,8 @@ fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
     inside as f64 / p.poses.len().max(1) as f64
 }
 
-/// Plans ranked: a count within the tolerance first, then the largest part left empty
-/// (least first, in whole tile areas: [`empty_key`]), then the fit.
+/// Plans ranked: a count within the tolerance first, then the outside tier and the cost of
+/// fit, turns and part left empty ([`rank_key`]).
 fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tol = (opts.tiles_tolerance * target as f64) as usize;
@@ -231,11 +230,9 @@ fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
         Some(_) => 0,
         None => p.tiles.abs_diff(target).saturating_sub(tol),
     };
-    let empty = |p: &Plan| empty_key(p);
     miss(x)
         .cmp(&miss(y))
-        .then(empty(x).cmp(&empty(y)))
-        .then(plan_score(x, opts.turn_cost).total_cmp(&plan_score(y, opts.turn_cost)))
+        .then(rank_key(x, opts.turn_cost).cmp(&rank_key(y, opts.turn_cost)))
 }
 
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
@@ -331,8 +328,8 @@ fn size_group(
         if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
             return Attempt::Nothing;
         }
-        // a count within the tolerance first, then the least part left empty, then the
-        // fit; the search's cost is the part left empty ([`empty_key`]), so that among
+        // a count within the tolerance first, then fit, turns and part left empty priced
+        // together; the search's cost is the part left empty ([`empty_cost`]), so that among
         // widths whose plans all leave one, the least empty wins, and the retries go on
         // while the best leaves one
         match plans.into_iter().min_by(by_rank) {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
-use crate::empty::{empty_rank, note_empty};
+use crate::empty::{excess_empty, note_empty, EMPTY_PRICE};
 use crate::error::Rejected;
 use crate::frame::Orientation;
 use crate::plan::Plan;
@@ -138,15 +138,16 @@ pub(crate) fn checked_plans(
         };
         plans.push((plan, r, *a));
     }
-    let key = |p: &Plan| (miss(p.tiles), p.metrics.largest_empty_tiles > 0.0);
-    let Some(top) = plans.iter().map(|(p, ..)| key(p)).min() else {
+    let Some(top) = plans.iter().map(|(p, ..)| miss(p.tiles)).min() else {
         return Vec::new();
     };
-    plans.retain(|(p, ..)| key(p) == top);
-    // a part left empty ranks by its size: the plans that leave the least first, in whole
-    // tile areas ([`empty_rank`]; route order among equals); the caller ranks the measured
-    // plans by [`crate::empty::empty_key`], which also weighs the chain outside
-    plans.sort_by_key(|(p, ..)| empty_rank(p.metrics.largest_empty_tiles));
+    plans.retain(|(p, ..)| miss(p.tiles) == top);
+    // a part left empty is priced with the route's cost (its fit and turns, tile areas) at
+    // [`EMPTY_PRICE`] a tile area beyond the allowance, the rule the caller ranks the
+    // measured plans by ([`crate::empty::plan_cost`]); route order among equals
+    let cost =
+        |p: &Plan, r: &Routed| r.cost + EMPTY_PRICE * excess_empty(p.metrics.largest_empty_tiles);
+    plans.sort_by(|(p, r, _), (q, s, _)| cost(p, r).total_cmp(&cost(q, s)));
     plans
         .into_iter()
         .take(MEASURED)

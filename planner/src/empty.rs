@@ -38,49 +38,76 @@ pub(crate) const MIN_EMPTY_TILES: f64 = 2.0;
 /// that leaves a smaller part (but more than [`MIN_EMPTY_TILES`]) is returned only when no
 /// plan leaves none, with a warning saying where.
 pub(crate) const REFUSE_EMPTY_TILES: f64 = 20.0;
-/// The rank of a plan's largest empty part (`largest_empty_tiles`, tile areas) among
-/// plans: its size rounded up to whole tile areas (0 for none larger than
-/// [`MIN_EMPTY_TILES`]). Plans rank by it before their fit, so that of plans that all leave a
-/// part empty, one that leaves less wins; parts within the same tile area rank alike, so
-/// that a few samples of the measure's grid (a 64th of a tile width squared each) do not
-/// buy a plan with twice the turns (the key at 171 tiles: 2.1 tile areas in one serpentine
-/// of 22 U-turns against 2.4 in four cells with 9).
-pub(crate) fn empty_rank(tiles: f64) -> u64 {
-    if tiles > 0.0 {
-        tiles.ceil() as u64
-    } else {
-        0
-    }
+/// The price of one tile area of a part left empty beyond the [`MIN_EMPTY_TILES`]
+/// allowance, in tile areas of misfit: ten turns at the default turn cost
+/// ([`crate::options::DEFAULT_TURN_COST`], one tile area a turn). The one rule by which plans
+/// trade empty area against turns and fit ([`plan_cost`]), in the cell router, the caps' width
+/// search and the top level: a plan that fills the shape with a few more turns wins over one
+/// that leaves a part half a tile area over the allowance, and one with a few tenths of a
+/// tile area more empty and half the turns wins over a plan with twice its turns (the key at
+/// 171 tiles: 2.4 tile areas empty in four cells with 12 turns rank before 2.1 in one
+/// serpentine with 22 turns: 4 + 12 against 1 + 22). An estimate, like the turn cost: a
+/// part left empty is what issue 26 measures a plan by, a turn what folding time and risk
+/// grow with.
+pub(crate) const EMPTY_PRICE: f64 = 10.0;
+
+/// The tile areas of a largest empty part `tiles` beyond the [`MIN_EMPTY_TILES`] allowance
+/// (0 for none: parts up to the allowance are not counted, so the price has no step there).
+pub(crate) fn excess_empty(tiles: f64) -> f64 {
+    (tiles - MIN_EMPTY_TILES).max(0.0)
 }
 
-/// A plan with more than this share of its chain outside the shape ranks after those with
-/// less when all leave a part empty (see [`empty_key`]): the area-true fit keeps plans
-/// within it (`plan_cells`' limit), and a smaller empty part bought with much of the chain
-/// outside does not draw the shape better (the dog at 150 tiles: 13.9% outside).
+/// The share of a plan's chain that may lie outside the shape before each tile beyond it
+/// is priced like a tile area left empty ([`EMPTY_PRICE`], see [`plan_cost`]): the
+/// area-true fit keeps plans within it (`plan_cells`' limit), and a smaller empty part
+/// bought with much of the chain outside does not draw the shape better (the dog at 150
+/// tiles: 13.9% outside). A price, not a tier: the frog at 300 tiles, one serpentine with
+/// 9.6% outside and 4.5 tile areas empty, ranked after cells with 8.9% outside and 19.2
+/// empty while plans over 9% outside ranked last.
 pub(crate) const MAX_OUTSIDE_RANKED: f64 = 0.09;
 
-/// The key by which plans rank for the part they leave empty, before their fit (least
-/// first): none left empty first; of plans that leave one, those with at most
-/// [`MAX_OUTSIDE_RANKED`] of their chain outside, then the least part ([`empty_rank`]).
-pub(crate) fn empty_key(p: &Plan) -> (bool, u8, u64) {
-    let empty = p.metrics.largest_empty_tiles > 0.0;
-    let o = p.metrics.outside_share;
-    let tier = if !empty || o <= 0.05 {
-        0
-    } else if o <= MAX_OUTSIDE_RANKED {
-        1
-    } else {
-        2
-    };
-    (empty, tier, empty_rank(p.metrics.largest_empty_tiles))
+/// The outside tier of a plan: 0 for a plan that leaves no part empty or has at most 5% of
+/// its chain outside, 1 for one that leaves a part empty with more outside (a smaller empty
+/// part is not bought with much of the chain outside: the ring at 200 tiles). Plans rank
+/// by it first (after the count).
+fn outside_tier(p: &Plan) -> u8 {
+    u8::from(p.metrics.largest_empty_tiles > 0.0 && p.metrics.outside_share > 0.05)
 }
 
-/// [`empty_key`] as a cost (0 for none left empty), for the tile-width search.
+/// A plan's cost, as a share of the shape's area: its fit and turns
+/// ([`crate::fit::plan_score`]) plus [`EMPTY_PRICE`] tile areas per tile area of its largest
+/// empty part beyond the allowance and per tile of its chain outside the shape beyond
+/// [`MAX_OUTSIDE_RANKED`] of it. Lower is better.
+pub(crate) fn plan_cost(p: &Plan, turn_cost: f64) -> f64 {
+    let area_tiles = p.metrics.shape_area / (p.tile_size * p.tile_size);
+    let outside = (p.metrics.outside_share - MAX_OUTSIDE_RANKED).max(0.0) * p.tiles as f64;
+    let priced = if area_tiles > 0.0 {
+        EMPTY_PRICE * (excess_empty(p.metrics.largest_empty_tiles) + outside) / area_tiles
+    } else {
+        0.0
+    };
+    crate::fit::plan_score(p, turn_cost) + priced
+}
+
+/// The key by which measured plans rank (least first), after the count: the outside tier
+/// ([`outside_tier`]), then [`plan_cost`].
+pub(crate) fn rank_key(p: &Plan, turn_cost: f64) -> (u8, crate::plan_shape::OrdF64) {
+    (
+        outside_tier(p),
+        crate::plan_shape::OrdF64(plan_cost(p, turn_cost)),
+    )
+}
+
+/// The cost of a plan in the tile-width search (0 for one that leaves nothing empty, so
+/// that the retries go on while the best plan leaves a part empty): the outside tier, then
+/// the tile areas beyond the allowance. Among widths whose plans all leave a part empty the
+/// least empty wins; a width's own plans were ranked by [`rank_key`].
 pub(crate) fn empty_cost(p: &Plan) -> f64 {
-    match empty_key(p) {
-        (false, ..) => 0.0,
-        (true, tier, rank) => rank as f64 + 1e6 * f64::from(tier),
+    if p.metrics.largest_empty_tiles <= 0.0 {
+        return 0.0;
     }
+    // a part just over the allowance still costs something (the retries go on)
+    1e-3 + excess_empty(p.metrics.largest_empty_tiles) + 1e6 * f64::from(outside_tier(p))
 }
 
 /// The sample spacing, tile widths: an eighth, as the corpus report measures (a coarser
@@ -333,14 +360,17 @@ mod tests {
         assert!(largest_empty_part(&shape, &rows(20), NEAR).is_none());
     }
 
-    /// Plans rank by the empty part in whole tile areas: none ranks first, a smaller part
-    /// before a larger, parts within the same tile area alike.
+    /// Parts up to the allowance cost nothing, parts beyond it their excess, with no
+    /// step at the allowance.
     #[test]
-    fn empty_parts_rank_by_whole_tile_areas() {
-        assert_eq!(empty_rank(0.0), 0);
-        assert!(empty_rank(0.0) < empty_rank(2.1));
-        assert_eq!(empty_rank(2.1), empty_rank(2.4));
-        assert!(empty_rank(4.7) < empty_rank(5.4));
-        assert!(empty_rank(19.7) < empty_rank(27.6));
+    fn empty_parts_cost_their_excess_over_the_allowance() {
+        assert_eq!(excess_empty(0.0), 0.0);
+        assert_eq!(excess_empty(MIN_EMPTY_TILES), 0.0);
+        assert!((excess_empty(2.4) - 0.4).abs() < 1e-12);
+        assert!(excess_empty(4.7) < excess_empty(5.4));
+        // the key at 171 tiles: 2.4 tile areas in 12 turns before 2.1 in 22
+        assert!(EMPTY_PRICE * excess_empty(2.4) + 12.0 < EMPTY_PRICE * excess_empty(2.1) + 22.0);
+        // a fill with four more turns before half a tile area over the allowance
+        assert!(16.0 < EMPTY_PRICE * excess_empty(2.5) + 12.0);
     }
 }

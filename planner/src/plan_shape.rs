@@ -8,9 +8,8 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
-use crate::empty::{empty_key, note_empty};
+use crate::empty::{note_empty, rank_key};
 use crate::error::{PlanError, Rejected};
-use crate::fit::plan_score;
 use crate::narrow;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
 use crate::plan::Plan;
@@ -209,10 +208,10 @@ fn plan_styles(
     found: &mut Found,
     miss: &dyn Fn(&Plan) -> usize,
 ) {
-    // the empty part is ranked by its size, not only by whether there is one: among plans
-    // that all leave a part empty, the one that leaves the least (issue 26's measure, in
-    // whole tile areas, with little of its chain outside: [`empty_key`]) wins before the fit
-    let rank = |q: &Plan| (miss(q), empty_key(q), OrdF64(plan_score(q, opts.turn_cost)));
+    // a part left empty is priced with the turns and the fit ([`crate::empty::plan_cost`]):
+    // a fill with a few more turns wins, and so does a few tenths of a tile area more
+    // empty with half the turns
+    let rank = |q: &Plan| (miss(q), rank_key(q, opts.turn_cost));
     let offer = |found: &mut Found, p: Plan| {
         if found.best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
             found.best = Some(p);
@@ -347,7 +346,7 @@ fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
 
 /// An f64 ordered by `total_cmp`, for ranking keys.
 #[derive(Clone, Copy, PartialEq)]
-struct OrdF64(f64);
+pub(crate) struct OrdF64(pub(crate) f64);
 
 impl Eq for OrdF64 {}
 

@@ -4,8 +4,8 @@
 //!
 //! Each pair of tiles `i < j - 1` is followed on its own clock in the frame of tile `i`, where
 //! tile `j` moves by the turns of the joints between them. Within a window of time every
-//! joint turns no faster than its fastest chord there (the schedule's time is cut into
-//! buckets, each joint's fastest chord noted per bucket), and a point of tile `j` lies at
+//! joint turns no faster than its fastest chord there (a track is piecewise linear, so over
+//! one of its chords a joint turns at exactly the chord's rate), and a point of tile `j` lies at
 //! most `2 R (j - k)` from the hinge of joint `k` (`R` the circumradius: a hinge is a vertex
 //! of both its tiles, and consecutive centres are at most `2 R` apart), so the pair's
 //! distance changes no faster than `V = sum_k |rate_k| 2 R (j - k)`. From a moment where the
@@ -39,9 +39,6 @@ pub(crate) const MAX_WORK: usize = 30_000_000;
 /// Pair evaluations a measurement may take per tile, for chains of more than a thousand
 /// tiles (where [`MAX_WORK`] is less).
 const WORK_PER_TILE: usize = 30_000;
-
-/// Buckets the schedule's time is cut into for the joints' rate bounds.
-const BUCKETS: usize = 4096;
 
 /// The closest approach of two tiles that are not neighbours, tile widths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -243,16 +240,10 @@ fn sample_times(rates: &Rates, tiles: usize) -> Vec<f64> {
         .collect()
 }
 
-/// Each joint's fastest turn per bucket of time, and the moments a track jumps.
+/// The schedule's span and the moments a track jumps.
 struct Rates {
     t0: f64,
     span: f64,
-    width: f64,
-    /// `fastest[k][b]`: joint `k`'s largest `|rate|` over the chords meeting bucket `b`.
-    fastest: Vec<Vec<f64>>,
-    /// `active[k][b]`: the first bucket from `b` on in which joint `k` turns (`BUCKETS`
-    /// when none does), so a step passes a stretch of rest in one look.
-    active: Vec<Vec<u32>>,
     /// Each joint's jumps (a repeated time with another angle), sorted.
     jumps: Vec<Vec<f64>>,
 }
@@ -267,74 +258,39 @@ impl Rates {
         if !t0.is_finite() {
             (t0, t1) = (0.0, 0.0);
         }
-        let span = t1 - t0;
-        let width = span / BUCKETS as f64;
-        let mut fastest = vec![Vec::new(); track_of.len()];
-        let mut active = vec![Vec::new(); track_of.len()];
         let mut jumps = vec![Vec::new(); track_of.len()];
         for (k, tr) in track_of.iter().enumerate() {
             let Some(tr) = tr else { continue };
-            let mut f = vec![0.0f64; BUCKETS];
             for w in 0..tr.times.len().saturating_sub(1) {
                 let (ta, tb) = (tr.times[w], tr.times[w + 1]);
-                let da = (tr.angles[w + 1] - tr.angles[w]).abs();
-                if da == 0.0 {
-                    continue;
-                }
-                if tb <= ta {
+                if tr.angles[w + 1] != tr.angles[w] && tb <= ta {
                     jumps[k].push(ta);
-                    continue;
-                }
-                let rate = da / (tb - ta);
-                let (ba, bb) = (bucket(t0, width, ta), bucket(t0, width, tb));
-                for v in &mut f[ba..=bb] {
-                    *v = v.max(rate);
                 }
             }
-            let mut next = vec![BUCKETS as u32; BUCKETS];
-            for b in (0..BUCKETS).rev() {
-                next[b] = if f[b] > 0.0 {
-                    b as u32
-                } else if b + 1 < BUCKETS {
-                    next[b + 1]
-                } else {
-                    BUCKETS as u32
-                };
-            }
-            fastest[k] = f;
-            active[k] = next;
             jumps[k].dedup();
         }
         Rates {
             t0,
-            span,
-            width,
-            fastest,
-            active,
+            span: t1 - t0,
             jumps,
-        }
-    }
-
-    /// The bucket holding `t`.
-    fn bucket(&self, t: f64) -> usize {
-        bucket(self.t0, self.width, t)
-    }
-
-    /// When bucket `b` ends.
-    fn bucket_end(&self, b: usize) -> f64 {
-        if b + 1 >= BUCKETS {
-            f64::INFINITY
-        } else {
-            self.t0 + self.width * (b + 1) as f64
         }
     }
 }
 
-fn bucket(t0: f64, width: f64, t: f64) -> usize {
-    if width.is_nan() || width <= 0.0 || t <= t0 {
-        return 0;
+/// The `|rate|` of the chord of `tr` that ends at its node `i` (0 before the track, after it
+/// and over a jump) and when that chord ends (never, past the track's last node).
+fn chord_from(tr: &JointTrack, i: usize) -> (f64, f64) {
+    let (ts, a) = (&tr.times, &tr.angles);
+    let n = ts.len();
+    if i >= n {
+        return (0.0, f64::INFINITY);
     }
-    (((t - t0) / width) as usize).min(BUCKETS - 1)
+    let rate = if i > 0 && ts[i] > ts[i - 1] {
+        ((a[i] - a[i - 1]) / (ts[i] - ts[i - 1])).abs()
+    } else {
+        0.0
+    };
+    (rate, ts[i])
 }
 
 /// The pairs' walk: the schedule, its rate bounds, and the smallest clearance so far.
@@ -394,23 +350,45 @@ impl<'a> PairWalk<'a> {
         }
     }
 
+    /// The stretches of pair `(i, j)` between its `moving` joints (ascending, between `i`
+    /// and `j`): `moving.len() + 1` motions, the product of the turns of the joints that never
+    /// turn before the first moving joint, between two, and after the last. They hold over
+    /// the whole schedule (a joint without a track stays at angle 0), so a pose costs a
+    /// product per moving joint rather than per joint between the tiles; the products are
+    /// grouped differently than joint by joint, which moves a pose by a few roundings (about
+    /// 1e-16 of the chain between the tiles), far below the walk's `precision`.
+    fn stretches(&mut self, i: usize, j: usize, moving: &[usize]) -> Vec<Rigid> {
+        let mut out = Vec::with_capacity(moving.len() + 1);
+        let mut at = Rigid::IDENTITY;
+        let mut next = moving.iter().peekable();
+        for k in i..j {
+            if next.next_if_eq(&&k).is_some() {
+                out.push(at);
+                at = Rigid::IDENTITY;
+                continue;
+            }
+            at = at.then(&self.turn(k, 0.0));
+        }
+        out.push(at);
+        out
+    }
+
     /// Tile `j`'s pose in tile `i`'s frame at `t`, and in `centres` the centre of tile `k`
-    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`).
+    /// in that frame for each joint `k` of `moving` (ascending, between `i` and `j`), from
+    /// the pair's [`PairWalk::stretches`].
     fn pose(
         &mut self,
-        (i, j, t): (usize, usize, f64),
+        t: f64,
         moving: &[usize],
+        stretches: &[Rigid],
         centres: &mut Vec<Point>,
     ) -> Rigid {
         centres.clear();
-        let mut next = moving.iter().peekable();
-        let mut at = Rigid::IDENTITY;
-        for k in i..j {
-            if next.next_if_eq(&&k).is_some() {
-                centres.push(at.apply(Point::ORIGIN));
-            }
+        let mut at = stretches[0];
+        for (q, &k) in moving.iter().enumerate() {
+            centres.push(at.apply(Point::ORIGIN));
             let a = self.angle(k, t);
-            at = at.then(&self.turn(k, a));
+            at = at.then(&self.turn(k, a)).then(&stretches[q + 1]);
         }
         at
     }
@@ -421,9 +399,10 @@ impl<'a> PairWalk<'a> {
         &mut self,
         (i, j, t): (usize, usize, f64),
         moving: &[usize],
+        stretches: &[Rigid],
         centres: &mut Vec<Point>,
     ) -> (f64, Point) {
-        let pose = self.pose((i, j, t), moving, centres);
+        let pose = self.pose(t, moving, stretches, centres);
         let d = self.outline.signed_distance(&pose);
         self.record(i, j, t, d);
         (d, pose.apply(Point::ORIGIN))
@@ -486,8 +465,9 @@ impl<'a> PairWalk<'a> {
         let moving: Vec<usize> = (i..j).filter(|&k| self.track_of[k].is_some()).collect();
         let (t0, t_end) = (self.rates.t0, self.rates.t0 + self.rates.span);
         let mut centres: Vec<Point> = Vec::with_capacity(moving.len());
+        let stretches = self.stretches(i, j, &moving);
         if moving.is_empty() {
-            self.evaluate((i, j, t0), &moving, &mut centres);
+            self.evaluate((i, j, t0), &moving, &stretches, &mut centres);
             return true;
         }
         // each moving joint's lever: 2 R (j - k)
@@ -496,12 +476,14 @@ impl<'a> PairWalk<'a> {
             .map(|&k| 2.0 * self.outline.circumradius * (j - k) as f64)
             .collect();
         let mut fastest = vec![0.0f64; moving.len()];
+        let mut ends = vec![f64::INFINITY; moving.len()];
+        let mut cursor = vec![0usize; moving.len()];
         let mut t = t0;
         loop {
             if self.work > self.budget {
                 return false;
             }
-            let (d, cj) = self.evaluate((i, j, t), &moving, &mut centres);
+            let (d, cj) = self.evaluate((i, j, t), &moving, &stretches, &mut centres);
             if t >= t_end {
                 return true;
             }
@@ -524,42 +506,49 @@ impl<'a> PairWalk<'a> {
                     jump = jump.min(x);
                 }
             }
-            // the rate bound over buckets b..=bb, widened while the step it allows reaches
-            // past them (at most MAX_WIDEN buckets a step)
-            let b = self.rates.bucket(t);
-            fastest.iter_mut().for_each(|f| *f = 0.0);
-            let mut bb = b;
+            // the rate bound over each moving joint's chords from t on (its chord at t, the
+            // node count its hint holds after the evaluation at t), widened chord by chord
+            // while the step it allows reaches past them (at most MAX_WIDEN widenings a step)
+            for (q, &k) in moving.iter().enumerate() {
+                if let Some(tr) = self.track_of[k] {
+                    let at = tr.times.partition_point(|&x| x <= t);
+                    cursor[q] = at;
+                    (fastest[q], ends[q]) = chord_from(tr, at);
+                }
+            }
+            let mut widened = 0;
             let next = loop {
                 self.work += 1;
                 let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
-                for (q, &k) in moving.iter().enumerate().rev() {
-                    fastest[q] = fastest[q].max(self.rates.fastest[k][bb]);
+                for q in (0..moving.len()).rev() {
                     speed += fastest[q] * lever[q];
                     linear += fastest[q] * rho[q];
                     growth += fastest[q] * beyond;
                     beyond += fastest[q] * lever[q];
                 }
-                let limit = self.rates.bucket_end(bb).min(jump);
+                let limit = ends.iter().copied().fold(jump, f64::min);
                 let step = step_within(room, speed, linear, growth);
                 let reach = t + step;
-                let settled =
-                    reach < limit || limit >= jump || bb + 1 >= BUCKETS || bb - b >= MAX_WIDEN;
-                // (a bucket that ends at t by rounding is passed)
+                let settled = reach < limit || limit >= jump || widened >= MAX_WIDEN;
                 if settled && limit > t {
                     break reach.min(limit);
                 }
-                // the buckets up to the next in which a joint between the tiles turns add
-                // nothing to the bound: pass them at once
-                let idle = moving
-                    .iter()
-                    .map(|&k| {
-                        self.rates.active[k]
-                            .get(bb + 1)
-                            .map_or(BUCKETS, |&a| a as usize)
-                    })
-                    .min()
-                    .unwrap_or(BUCKETS);
-                bb = (bb + 1).max(idle.saturating_sub(1)).min(BUCKETS - 1);
+                if settled {
+                    // (no chord ends after t: rounding; progress below)
+                    break t;
+                }
+                // every joint whose chord ends first takes its next chord too
+                for (q, &k) in moving.iter().enumerate() {
+                    if ends[q] <= limit {
+                        if let Some(tr) = self.track_of[k] {
+                            cursor[q] += 1;
+                            let (rate, end) = chord_from(tr, cursor[q]);
+                            fastest[q] = fastest[q].max(rate);
+                            ends[q] = end;
+                        }
+                    }
+                }
+                widened += 1;
             };
             // progress whatever the rounding
             t = if next > t {
@@ -592,7 +581,7 @@ fn step_within(room: f64, speed: f64, linear: f64, growth: f64) -> f64 {
 /// The precision of an overlap's depth, besides the absolute one: a hundredth of it.
 const OVERLAP_PRECISION: f64 = 0.01;
 
-/// The most buckets one step of a pair may span.
+/// The most chords past the first one step of a pair may span, per joint that ends first.
 const MAX_WIDEN: usize = 256;
 
 /// The unit octagon at the origin: its vertices and circumradius, computed once.

@@ -67,9 +67,11 @@ pub struct EngineOptions {
     /// goes 1e4 of its time scales without an event once its inputs are still, has not
     /// decided (a magnet creeping towards a balance on a knife edge): the run is then
     /// `undecided`, its reason the balance and its margin, as a reference run that runs out
-    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 100,000:
-    /// a unit of the tests and benchmarks takes a few thousand (a serpentine's inertial
-    /// U-turn, the costliest, about 0.05 s).
+    /// of its budget ([`crate::reference::ReferenceOptions::step_budget`]). Default 20,000:
+    /// the costliest unit measured takes under 1,000 (954: a U-turn of the inertial
+    /// 5,100-tile serpentine `(S*50 LL S*50 RR)*50` at s = 0.1; 613 for `S*160 L S*160`, 610
+    /// in the key plan, 300-450 for the thesis words), so the budget is 20 times what any
+    /// decided solve needs, and a knife edge stops within about a second of CPU.
     pub max_steps: usize,
 }
 
@@ -82,7 +84,7 @@ impl Default for EngineOptions {
             speed: SpeedLaw::default(),
             start: StartRule::default(),
             threads: 0,
-            max_steps: 100_000,
+            max_steps: 20_000,
         }
     }
 }
@@ -472,31 +474,18 @@ impl Runner {
 /// closed-form motion does not use: it moves every magnet at the overdamped speed law's pace).
 fn kinematic_parameters(geometry: &Geometry, opts: &EngineOptions) -> Parameters {
     let d = geometry.design(0);
-    let tile = crate::physics::TileBody::of(d);
+    let drag = match opts.speed {
+        SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => drag,
+        SpeedLaw::Unit => 0.0,
+    };
     Parameters {
-        model: "kinematic baseline",
         dynamics: "kinematic",
-        force_law: opts.model.force_law.name(),
         cutoff: match opts.start {
             StartRule::Force { cutoff } => cutoff,
             StartRule::Distance => 1,
         },
         distance_cutoff_mm: None,
-        magnet_mass_g: d.magnet_mass,
-        tile_mass_g: d.tile_mass,
-        tile_inertia_kg_m2: tile.inertia,
-        magnet_drag_n_s_per_m: match opts.speed {
-            SpeedLaw::Overdamped { drag } | SpeedLaw::Inertial { drag } => drag,
-            SpeedLaw::Unit => 0.0,
-        },
-        friction_n: d.friction,
-        restitution: d.restitution,
-        water_viscosity_pa_s: d.water_viscosity,
-        water_film_mm: d.water_film,
-        water_density_kg_m3: d.water_density,
-        form_drag_cd: d.form_drag,
-        tile_drag_n_s_per_m: tile.drag,
-        tile_rotational_drag_n_m_s: tile.rotational_drag,
+        ..crate::model::parameters(d, &opts.model, "kinematic baseline", drag, d.friction)
     }
 }
 

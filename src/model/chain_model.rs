@@ -35,7 +35,7 @@ use crate::model::ModelOptions;
 use crate::physics::ReactionInitiator;
 use crate::physics::{magnet_drag, TileBody};
 use crate::timeline::{Geometry, GeometryError, Parameters, TileDesigns};
-use crate::{Chain, Octagon, Pose};
+use crate::{Chain, Design, Octagon, Pose};
 
 /// A drive (N for magnets, N m for joints) smaller than this fraction of the bonded rest
 /// force (or torque) counts as zero, so that exact balances (`s = 0`) do not start a magnet
@@ -121,6 +121,56 @@ pub enum ModelError {
         /// What was expected.
         expected: &'static str,
     },
+}
+
+/// The physical parameters of a run by `model` (the name a summary gives the integrator)
+/// with `opts`, a magnet drag `drag` (N s/m) and friction `friction` (N): the masses, the
+/// restitution, the water and the tile's body from the design `d`. The one place both
+/// simulations (a model's run, [`Model::parameters`], and the event engine's kinematic
+/// baseline) make their summary's parameters.
+pub(crate) fn parameters(
+    d: &Design,
+    opts: &ModelOptions,
+    model: &'static str,
+    drag: f64,
+    friction: f64,
+) -> Parameters {
+    let tile = TileBody::of(d);
+    Parameters {
+        model,
+        dynamics: opts.dynamics.name(),
+        force_law: opts.force_law.name(),
+        cutoff: opts.cutoff,
+        distance_cutoff_mm: opts.distance_cutoff,
+        magnet_mass_g: d.magnet_mass,
+        tile_mass_g: d.tile_mass,
+        tile_inertia_kg_m2: tile.inertia,
+        magnet_drag_n_s_per_m: drag,
+        friction_n: friction,
+        restitution: d.restitution,
+        water_viscosity_pa_s: d.water_viscosity,
+        water_film_mm: d.water_film,
+        water_density_kg_m3: d.water_density,
+        form_drag_cd: d.form_drag,
+        tile_drag_n_s_per_m: tile.drag,
+        tile_rotational_drag_n_m_s: tile.rotational_drag,
+    }
+}
+
+#[cfg(test)]
+impl Model {
+    /// The model of the chain `word` with the thesis design at `s` (mm) and the default
+    /// options: the unit tests' model.
+    #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+    pub(crate) fn thesis(word: &str, s: f64) -> Model {
+        let designs = TileDesigns::global(crate::Design::thesis().with_s(s));
+        Model::new(
+            &Chain::parse(word).unwrap(),
+            &designs,
+            &ModelOptions::default(),
+        )
+        .unwrap()
+    }
 }
 
 impl Model {
@@ -361,26 +411,7 @@ impl Model {
     /// summary gives the integrator).
     pub fn parameters(&self, model: &'static str) -> Parameters {
         let d = self.geometry.design(0);
-        let tile = TileBody::of(d);
-        Parameters {
-            model,
-            dynamics: self.opts.dynamics.name(),
-            force_law: self.opts.force_law.name(),
-            cutoff: self.opts.cutoff,
-            distance_cutoff_mm: self.opts.distance_cutoff,
-            magnet_mass_g: d.magnet_mass,
-            tile_mass_g: d.tile_mass,
-            tile_inertia_kg_m2: tile.inertia,
-            magnet_drag_n_s_per_m: self.drag,
-            friction_n: self.friction,
-            restitution: d.restitution,
-            water_viscosity_pa_s: d.water_viscosity,
-            water_film_mm: d.water_film,
-            water_density_kg_m3: d.water_density,
-            form_drag_cd: d.form_drag,
-            tile_drag_n_s_per_m: tile.drag,
-            tile_rotational_drag_n_m_s: tile.rotational_drag,
-        }
+        parameters(d, &self.opts, model, self.drag, self.friction)
     }
 
     /// The signed angle (radians) of joint `j` at fold fraction `psi`.

@@ -354,29 +354,12 @@ impl Model {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::model::ModelOptions;
-    use crate::timeline::TileDesigns;
-    use crate::{Chain, Design};
-
-    fn model(word: &str, s: f64) -> Model {
-        Model::new(
-            &Chain::parse(word).unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default(),
-        )
-        .unwrap()
-    }
 
     #[test]
     fn frames_are_the_kinematic_poses() {
         // every joint kind, half folded, a fold past a half turn of heading: the cached
         // frames are the poses of kinematics::poses_at_angles, bit for bit
-        let m = Model::new(
-            &Chain::parse("SLLSRRSLLLLSRS").unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(0.3)),
-            &ModelOptions::default(),
-        )
-        .unwrap();
+        let m = Model::thesis("SLLSRRSLLLLSRS", 0.3);
         let y: Vec<f64> = (0..m.len()).map(|i| (i as f64 * 0.37).fract()).collect();
         let mut frames = Vec::new();
         m.frames(&y, &mut frames);
@@ -393,12 +376,7 @@ mod tests {
     fn drives_near_the_free_unknowns_only_are_the_full_drives() {
         // a base state, then the free unknowns moved (magnets and joints, one near the RI):
         // the drives computed again near them, the others kept, are the full evaluation's
-        let m = Model::new(
-            &Chain::parse("SLLSRRSSLS").unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(0.3)),
-            &ModelOptions::default(),
-        )
-        .unwrap();
+        let m = Model::thesis("SLLSRRSSLS", 0.3);
         let n = m.len();
         let mut modes = vec![Mode::AtStart; n];
         let mut y: Vec<f64> = vec![0.0; n];
@@ -452,12 +430,17 @@ mod tests {
         assert_eq!(moving.drive, full.drive);
     }
 
+    /// The thesis model of `word` at s = 0.3 mm and its forces with every unknown at 0.
+    fn at_start(word: &str) -> (Model, Forces) {
+        let m = Model::thesis(word, 0.3);
+        let mut f = Forces::default();
+        m.forces(&vec![0.0; m.len()], &mut f);
+        (m, f)
+    }
+
     #[test]
     fn rest_state_holds_but_magnet_0_is_pulled_by_the_ri() {
-        let m = model("SSSS", 0.3);
-        let y = vec![0.0; m.len()];
-        let mut f = Forces::default();
-        m.forces(&y, &mut f);
+        let (m, f) = at_start("SSSS");
         assert!(f.drive[m.magnet_var(0)] > 0.0);
         for k in 1..m.geometry.magnets() {
             assert!(f.drive[m.magnet_var(k)] < 0.0, "{k}: {}", f.drive[k]);
@@ -466,10 +449,7 @@ mod tests {
 
     #[test]
     fn straight_joint_held_by_the_face_and_banded() {
-        let m = model("SLLS", 0.3);
-        let y = vec![0.0; m.len()];
-        let mut f = Forces::default();
-        m.forces(&y, &mut f);
+        let (m, f) = at_start("SLLS");
         for j in [1, 2] {
             let v = m.joint_var(j).unwrap();
             assert!(f.drive[v] < 0.0, "joint {j}: {}", f.drive[v]);
@@ -480,7 +460,7 @@ mod tests {
 
     #[test]
     fn cutoff_error_is_small_at_rest() {
-        let m = model("S*19", 0.3);
+        let m = Model::thesis("S*19", 0.3);
         let e = m.cutoff_error(&vec![0.0; m.len()]);
         assert!(e < 0.01, "{e}");
     }

@@ -36,7 +36,7 @@ mod verdict;
 
 pub use chain_model::Model;
 pub use chain_model::ModelError;
-pub(crate) use chain_model::{Allow, Unknown};
+pub(crate) use chain_model::{parameters, Allow, Unknown};
 pub(crate) use coefficients::{at_wall, InertialModel, REST_HEIGHT};
 pub use dynamics::Dynamics;
 pub(crate) use forces::Forces;

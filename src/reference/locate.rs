@@ -123,11 +123,8 @@ impl StepEvents<'_> {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
-    use crate::model::ModelOptions;
     use crate::ode::{Method, StepControl, Stepper};
     use crate::reference::driver::Moving;
-    use crate::timeline::TileDesigns;
-    use crate::{Chain, Design};
 
     /// Whether an event holds at the end of a full step of `h` from `y0` (rates `f0`).
     fn event_after(
@@ -154,12 +151,7 @@ mod tests {
         // start, then an arrival), then locate each both ways: on the step's dense output,
         // and by bisection on the step's length, each trial a full step from the same start
         // (the old location, to 1e-12 of the step)
-        let model = Model::new(
-            &Chain::parse("SL").unwrap(),
-            &TileDesigns::global(Design::thesis().with_s(0.3)),
-            &ModelOptions::default(),
-        )
-        .unwrap();
+        let model = Model::thesis("SL", 0.3);
         let n = model.len();
         let tol = 1e-8;
         let mut modes = vec![Mode::AtStart; n];

@@ -8,14 +8,16 @@ use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::timeline::TileDesigns;
 use foldchain_cli::choices::{FormatChoice, PrinterChoice};
-use foldchain_cli::inputs::{read_chain, read_plan_file, refuse_overwrite_in};
-use foldchain_cli::numbers::{count_in, number_in};
+use foldchain_cli::inputs::{
+    plan_options, read_chain, read_plan_file, refuse_overwrite_in, ChainInput,
+};
+use foldchain_cli::numbers::{count_in, in_range};
 use foldchain_cli::output::{create_dir_all, OutputDir};
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_cli::{errln, outln};
-use foldchain_planner::{PlanOptions, Turns};
+use foldchain_planner::Turns;
 use foldchain_print::{is_job_file, print_job, Bed, PartOptions, PrintError, PrintOptions, Source};
 
 /// Printable tiles, plates and an assembly sheet for a chain, a plan or a shape.
@@ -42,26 +44,19 @@ tolerance plus the magnet's, 0.25 mm FDM, 0.15 mm resin). See docs/printing.md.
 Exit codes: 0 written, 1 the shape cannot be planned, 2 bad input."
 )]
 struct Args {
-    /// The chain: a tile list, a fold word, a file holding one, or a target shape SHAPE.svg.
-    chain: Option<String>,
-    /// Read the chain from fold-plan's JSON.
-    #[arg(long, value_name = "PLAN.json")]
-    plan: Option<PathBuf>,
-    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
-    /// thesis design.
-    #[arg(long, value_name = "DESIGN.json")]
-    design: Option<PathBuf>,
+    #[command(flatten)]
+    input: ChainInput,
     /// The printer: its tolerance sets the default clearance.
     #[arg(long, value_enum, default_value_t = PrinterChoice::Fdm)]
     printer: PrinterChoice,
     /// Channel width minus magnet diameter, 0 to 2 mm (default from --printer).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = clearance_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.0, 2.0, "mm", ""))]
     clearance: Option<f64>,
     /// Tile height, 0.5 to 1000 mm (the thesis' 7.5 by default).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = height_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.5, 1000.0, "mm", ""))]
     height: Option<f64>,
     /// Floor under the channels, 0.1 to 1000 mm, less than the height (default 1.2).
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = floor_arg)]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = in_range(0.1, 1000.0, "mm", ""))]
     floor: Option<f64>,
     /// The output directory (created if needed).
     #[arg(long, value_name = "DIR")]
@@ -73,7 +68,7 @@ struct Args {
     #[arg(long, value_name = "W,H", default_value = "250,210")]
     bed: String,
     /// Gap between neighbouring tiles on a plate, 0 to 1000 mm.
-    #[arg(long, value_name = "MM", default_value = "5", allow_hyphen_values = true, value_parser = spacing_arg)]
+    #[arg(long, value_name = "MM", default_value = "5", allow_hyphen_values = true, value_parser = in_range(0.0, 1000.0, "mm", ""))]
     spacing: f64,
     /// Print parts.json on stdout instead of the summary.
     #[arg(long)]
@@ -95,22 +90,6 @@ fn main() -> ExitCode {
         Ok(args) => finish("fold-print", run(&args).map(|()| 0)),
         Err(code) => code,
     }
-}
-
-fn clearance_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 2.0, "mm", "")
-}
-
-fn height_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.5, 1000.0, "mm", "")
-}
-
-fn floor_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.1, 1000.0, "mm", "")
-}
-
-fn spacing_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 1000.0, "mm", "")
 }
 
 fn tiles_arg(s: &str) -> Result<usize, String> {
@@ -138,7 +117,7 @@ fn bed_size(text: &str) -> anyhow::Result<(f64, f64)> {
 fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Vec<PathBuf>)> {
     let mut inputs: Vec<PathBuf> = Vec::new();
     let shape_opts = args.tiles.is_some() || args.turns.is_some();
-    let source = match (&args.chain, &args.plan) {
+    let source = match (&args.input.chain, &args.input.plan) {
         (Some(_), Some(_)) => bail!("give either CHAIN or --plan, not both"),
         (None, None) => bail!(
             "no chain: give CHAIN (a tile list, fold word, file or SHAPE.svg) or --plan PLAN.json"
@@ -155,13 +134,7 @@ fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Ve
             }
         }
         (Some(arg), None) if arg.to_ascii_lowercase().ends_with(".svg") => {
-            let mut po = PlanOptions::default();
-            if let Some(n) = args.tiles {
-                po = po.with_tiles(n);
-            }
-            if let Some(t) = args.turns {
-                po = po.with_turns(t);
-            }
+            let po = plan_options(args.tiles, None, args.turns);
             inputs.push(PathBuf::from(arg));
             Source::Shape {
                 path: PathBuf::from(arg),
@@ -182,13 +155,8 @@ fn options(args: &Args) -> anyhow::Result<(Source, TileDesigns, PrintOptions, Ve
             Source::Chain { chain, name }
         }
     };
-    let designs = match &args.design {
-        Some(p) => {
-            inputs.push(p.clone());
-            TileDesigns::from_file(p)?
-        }
-        None => TileDesigns::default(),
-    };
+    let designs = args.input.designs()?;
+    inputs.extend(args.input.design.clone());
     let mut part = PartOptions::for_printer(args.printer.to_printer());
     if let Some(c) = args.clearance {
         part = part.with_clearance(c);

@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::engine::{SValue, StartRule, Summary, TileDesigns};
+use foldchain::engine::{StartRule, Summary, TileDesigns};
 use foldchain::model::ModelOptions;
 use foldchain::physics::{magnet_drag, ForceLaw};
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
@@ -23,8 +23,10 @@ use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
 };
 use foldchain_cli::fold_run::{run, EngineRequest, ReferenceModel, RunMode, RunReport, RunRequest};
-use foldchain_cli::inputs::{refuse_overwrite_in, resolve_chain, ChainArgs};
-use foldchain_cli::numbers::{count_in, number_in, thousands};
+use foldchain_cli::inputs::{
+    read_designs, refuse_overwrite_in, resolve_chain, ChainArgs, ChainInput,
+};
+use foldchain_cli::numbers::{count_in, in_range, number_in, thousands};
 use foldchain_cli::physics_args::PhysicsArgs;
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -62,16 +64,8 @@ Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or u
 2 bad input, 3 the disk is full (DIR left as it was)."
 )]
 struct Args {
-    /// The chain: a tile list (`SS SL LS`), a fold word (`SLLS`), a file holding one, or a
-    /// target shape `SHAPE.svg` to plan and fold in one go.
-    chain: Option<String>,
-    /// Read the chain from fold-plan's JSON.
-    #[arg(long, value_name = "PLAN.json")]
-    plan: Option<PathBuf>,
-    /// Tile design JSON (a design object, or {"global": ..., "tiles": [...]}); default: the
-    /// thesis design.
-    #[arg(long, value_name = "DESIGN.json")]
-    design: Option<PathBuf>,
+    #[command(flatten)]
+    input: ChainInput,
     /// s for every tile: millimetres (0.3, 0.3mm) or a fraction of e (e/3, 0.25e); from 0 to
     /// the design's largest (4.7 mm for the thesis design).
     #[arg(long, value_name = "MM")]
@@ -129,7 +123,7 @@ struct Args {
     /// The reference's distance cutoff, mm (0.001 to 10000): pairs nearer than this interact
     /// too, however far apart in chain index (a ring's first and last tiles); default: none,
     /// pairs up to 3 apart in chain index only. With --reference or --compare.
-    #[arg(long, value_name = "MM", value_parser = cutoff_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", value_parser = in_range(1e-3, 1e4, "mm", ""), allow_hyphen_values = true)]
     distance_cutoff: Option<f64>,
     /// The physical parameters (each overrides the design file's, for every model the run
     /// uses).
@@ -164,7 +158,7 @@ struct Args {
     /// The deepest overlap of two tiles, mm (0 to 1), that counts as touching: a graze,
     /// reported with its clearance ("closest approach") instead of a collision. Default 0.01
     /// (the runs' numerical resolution of a contact: docs/clearances.md).
-    #[arg(long, value_name = "MM", value_parser = overlap_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "MM", value_parser = in_range(0.0, 1.0, "mm", ""), allow_hyphen_values = true)]
     overlap_tolerance: Option<f64>,
     /// SHAPE.svg only: about this many tiles.
     #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true)]
@@ -203,14 +197,6 @@ fn threads_arg(s: &str) -> Result<usize, String> {
     count_in(s, 1, 256, "threads").map(|n| n as usize)
 }
 
-fn cutoff_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 1e-3, 1e4, "mm", "")
-}
-
-fn overlap_arg(s: &str) -> Result<f64, String> {
-    number_in(s, 0.0, 1.0, "mm", "")
-}
-
 fn tile_size_arg(s: &str) -> Result<f64, String> {
     match number_in(s, 0.0, 1e9, "SVG user units", "") {
         Ok(w) if w > 0.0 => Ok(w),
@@ -227,6 +213,46 @@ fn main_run(args: &Args) -> anyhow::Result<u8> {
     let report = report?;
     print_report(&report, args.json)?;
     Ok(report.exit_code())
+}
+
+/// `--model free-body` refused where it does not apply (the engine, the overdamped
+/// dynamics, a distance cutoff).
+fn refuse_free_body_misuse(args: &Args, mode: RunMode) -> anyhow::Result<()> {
+    if args.model != ReferenceModel::FreeBody {
+        return Ok(());
+    }
+    if mode == RunMode::Engine {
+        bail!("--model free-body: the reference's model; give --reference or --compare");
+    }
+    if args.dynamics == Some(DynamicsChoice::Overdamped) {
+        bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
+    }
+    if args.distance_cutoff.is_some() {
+        bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
+    }
+    Ok(())
+}
+
+/// The pair law `--force-law` names for `designs`, and the model's options with it
+/// (`--dynamics`, `--distance-cutoff`).
+fn model_options(args: &Args, designs: &TileDesigns) -> anyhow::Result<(ForceLaw, ModelOptions)> {
+    let force_law =
+        ForceLaw::named(&args.force_law, &designs.global_design()).with_context(|| {
+            format!(
+                "--force-law {}: expected one of {}",
+                args.force_law,
+                FORCE_LAW_NAMES.join(", ")
+            )
+        })?;
+    let mut model = ModelOptions::default()
+        .with_force_law(force_law)
+        .with_dynamics(
+            args.dynamics
+                .unwrap_or(DynamicsChoice::Inertial)
+                .to_dynamics(),
+        );
+    model.distance_cutoff = args.distance_cutoff;
+    Ok((force_law, model))
 }
 
 /// The arguments, checked and converted once.
@@ -253,21 +279,11 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         },
         other => other,
     };
-    if args.model == ReferenceModel::FreeBody {
-        if mode == RunMode::Engine {
-            bail!("--model free-body: the reference's model; give --reference or --compare");
-        }
-        if args.dynamics == Some(DynamicsChoice::Overdamped) {
-            bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
-        }
-        if args.distance_cutoff.is_some() {
-            bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
-        }
-    }
+    refuse_free_body_misuse(args, mode)?;
     let input = resolve_chain(
         &ChainArgs {
-            chain: args.chain.as_deref(),
-            plan: args.plan.as_deref(),
+            chain: args.input.chain.as_deref(),
+            plan: args.input.plan.as_deref(),
             tiles: args.tiles,
             tile_size: args.tile_size,
             turns: args.turns,
@@ -282,32 +298,10 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
             thousands(MAX_RUN_TILES as u64)
         );
     }
-    let mut designs = match &args.design {
-        Some(p) => TileDesigns::from_file(p)?,
-        None => TileDesigns::default(),
-    };
-    if let Some(s) = &args.s {
-        designs = designs.with_s(SValue::parse(s)?);
-        designs.check_ranges("--s")?;
-    }
+    let mut designs = read_designs(args.input.design.as_deref(), args.s.as_deref())?;
     designs = args.physics.apply(designs);
     designs.check_ranges("command line")?;
-    let force_law =
-        ForceLaw::named(&args.force_law, &designs.global_design()).with_context(|| {
-            format!(
-                "--force-law {}: expected one of {}",
-                args.force_law,
-                FORCE_LAW_NAMES.join(", ")
-            )
-        })?;
-    let mut model = ModelOptions::default()
-        .with_force_law(force_law)
-        .with_dynamics(
-            args.dynamics
-                .unwrap_or(DynamicsChoice::Inertial)
-                .to_dynamics(),
-        );
-    model.distance_cutoff = args.distance_cutoff;
+    let (force_law, model) = model_options(args, &designs)?;
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("out").join(match mode {
             RunMode::Engine => name.clone(),
@@ -319,7 +313,7 @@ fn request(args: &Args, progress: &Progress) -> anyhow::Result<RunRequest> {
         })
     });
     let mut inputs: Vec<&Path> = input.files.iter().map(PathBuf::as_path).collect();
-    inputs.extend(args.design.as_deref());
+    inputs.extend(args.input.design.as_deref());
     refuse_overwrite_in(&inputs, &out_dir, &is_run_file, "--out")?;
     if mode == RunMode::Compare {
         for sub in ["engine", "reference"] {
@@ -438,10 +432,7 @@ fn refuse_unused(args: &Args, mode: RunMode, engine: &EngineRequest) -> anyhow::
 /// The kinematic baseline's overdamped drag: the design file's or `--drag`, else the
 /// overdamped model's default (5 N s/m).
 fn kinematic_drag(args: &Args) -> anyhow::Result<f64> {
-    let designs = match &args.design {
-        Some(p) => TileDesigns::from_file(p)?,
-        None => TileDesigns::default(),
-    };
+    let designs = args.input.designs()?;
     Ok(magnet_drag(
         &args.physics.apply(designs).global_design(),
         false,

@@ -17,13 +17,12 @@ use foldchain::engine::EngineOptions;
 use foldchain::margins::{MarginOptions, Margins};
 use foldchain::physics::ForceLaw;
 const FORCE_LAW_NAMES: [&str; 2] = ForceLaw::NAMES;
-use foldchain::timeline::{SValue, TileDesigns};
 use foldchain::tolerance::{
     Candidate, Parameter, Search, SearchOptions, Sensitivity, Study, StudyOptions, Tolerances,
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
-use foldchain_cli::inputs::{refuse_overwrite, resolve_chain, ChainArgs};
+use foldchain_cli::inputs::{read_designs, refuse_overwrite, resolve_chain, ChainArgs};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::outln;
 use foldchain_cli::output::{create_dir_all, write_atomic};
@@ -210,14 +209,7 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
             }
         }
     }
-    let mut designs = match &args.design {
-        Some(p) => TileDesigns::from_file(p)?,
-        None => TileDesigns::default(),
-    };
-    if let Some(s) = &args.s {
-        designs = designs.with_s(SValue::parse(s)?);
-        designs.check_ranges("--s")?;
-    }
+    let designs = read_designs(args.design.as_deref(), args.s.as_deref())?;
     let dynamic = designs.global_design().dynamic_fields_set();
     if let Some(field) = dynamic.first() {
         bail!(
