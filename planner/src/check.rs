@@ -1,12 +1,12 @@
 //! The collision check every plan passes before it is returned: sequential folding from
-//! tile 0 with every fold sweep checked (`foldchain::collision::check_word`), and a memo of
-//! verdicts for the cell router, which checks the same prefixes again and again (routes of
-//! different decompositions share their first cells and joins).
+//! tile 0 with every fold sweep checked (`foldchain::collision::check_word`), and the memos
+//! of the cell router, which checks its routes as they grow
+//! (`foldchain::collision::PrefixCheck`) and meets the same tile offsets again and again.
 
-use std::collections::HashMap;
 use std::sync::Mutex;
 
-use foldchain::{Fold, FoldWord};
+use foldchain::collision::PrefixMemo;
+use foldchain::FoldWord;
 
 /// Checks that the chain folds without self-intersection; the error says where it does not.
 pub(crate) fn check_folds(word: &FoldWord) -> Result<(), String> {
@@ -14,28 +14,28 @@ pub(crate) fn check_folds(word: &FoldWord) -> Result<(), String> {
         .map_err(|c| c.to_string())
 }
 
-/// Verdicts of [`check_folds`] by fold word (the check depends on the word only), shared
-/// between threads.
+/// Memos of the growing fold check ([`PrefixMemo`]: first hits by lattice offset), kept
+/// between the router's calls and threads: a call takes one and gives it back. A memo only
+/// saves work; it never changes a verdict.
 #[derive(Default)]
 pub(crate) struct CheckMemo {
-    verdicts: Mutex<HashMap<Vec<Fold>, bool>>,
+    free: Mutex<Vec<PrefixMemo>>,
 }
 
 impl CheckMemo {
-    /// True if the chain of `folds` folds without self-intersection.
-    pub(crate) fn folds_cleanly(&self, folds: &[Fold]) -> bool {
-        let known = self
-            .verdicts
+    /// A memo for one thread's use (a new one when none is free).
+    pub(crate) fn take(&self) -> PrefixMemo {
+        self.free
             .lock()
             .ok()
-            .and_then(|m| m.get(folds).copied());
-        if let Some(v) = known {
-            return v;
+            .and_then(|mut f| f.pop())
+            .unwrap_or_default()
+    }
+
+    /// Gives a memo back for the next call.
+    pub(crate) fn give(&self, memo: PrefixMemo) {
+        if let Ok(mut f) = self.free.lock() {
+            f.push(memo);
         }
-        let ok = check_folds(&FoldWord::from_folds(folds.to_vec())).is_ok();
-        if let Ok(mut m) = self.verdicts.lock() {
-            m.insert(folds.to_vec(), ok);
-        }
-        ok
     }
 }

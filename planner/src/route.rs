@@ -23,6 +23,7 @@ use std::collections::HashSet;
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
+use foldchain::collision::{PrefixCheck, PrefixMemo};
 use foldchain::{Fold, FoldWord};
 use kurbo::{Affine, Point, Rect, Vec2};
 
@@ -117,6 +118,8 @@ pub(crate) struct Route {
     legs: Vec<Arc<Leg>>,
     /// Tile centres so far, in pieces (shared between routes).
     centres: Vec<Arc<Vec<Point>>>,
+    /// The sequential fold check of the route so far (its tiles shared between routes).
+    check: PrefixCheck,
 }
 
 /// A complete route made concrete: the fold word and where its first tile lies.
@@ -437,18 +440,36 @@ pub(crate) fn route_sequence(
     memo: &CheckMemo,
     spread: bool,
 ) -> Vec<Route> {
-    let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
     let Some(&(first, need0)) = seq.first() else {
         return Vec::new();
     };
+    let mut prefix = memo.take();
+    let beam = route_beam(seq, first, need0, style, &mut prefix, spread);
+    memo.give(prefix);
+    beam
+}
+
+/// [`route_sequence`] with a memo of the growing fold check.
+fn route_beam(
+    seq: &[(&Shape, Need)],
+    first: &Shape,
+    need0: Need,
+    style: Style,
+    prefix: &mut PrefixMemo,
+    spread: bool,
+) -> Vec<Route> {
+    let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
     let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0, spread)
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
+            let mut check = PrefixCheck::new();
+            check.push(&leg_folds(&leg, style));
             Route {
                 cost,
                 legs: vec![Arc::new(leg)],
                 centres: vec![Arc::new(c)],
+                check,
             }
         })
         .collect();
@@ -481,19 +502,25 @@ pub(crate) fn route_sequence(
             if seen.contains(&key) {
                 continue;
             }
-            let r = &beam[i];
+            let r = &mut beam[i];
             let mut c = join_tiles;
             c.extend(leg.centres(style));
             if overlaps(&r.centres, &c) {
                 continue;
             }
-            let mut legs = r.legs.clone();
-            legs.push(Arc::new(leg));
             // folding is sequential from tile 0: a prefix that collides stays colliding,
-            // so routes are checked as they grow, not only when complete
-            if !memo.folds_cleanly(&route_folds(&legs, style)) {
+            // so routes are checked as they grow, not only when complete; the check of the
+            // route so far is kept, and only what the leg changes is checked (the parent's
+            // joints are cleared for the longer chain first, once for all its extensions)
+            let folds = leg_folds(&leg, style);
+            r.check.clear_to(r.check.tiles() + folds.len(), prefix);
+            let mut check = r.check.clone();
+            check.push(&folds);
+            if !check.folds_cleanly(prefix) {
                 continue;
             }
+            let mut legs = r.legs.clone();
+            legs.push(Arc::new(leg));
             seen.insert(key);
             let mut centres = r.centres.clone();
             centres.push(Arc::new(c));
@@ -501,6 +528,7 @@ pub(crate) fn route_sequence(
                 cost,
                 legs,
                 centres,
+                check,
             });
         }
         beam = next;
@@ -511,12 +539,18 @@ pub(crate) fn route_sequence(
     beam
 }
 
+/// The folds of a leg, its join included.
+fn leg_folds(leg: &Leg, style: Style) -> Vec<Fold> {
+    let mut folds = leg.join.clone();
+    leg.serp.folds(style, leg.frame.ccw(), &mut folds);
+    folds
+}
+
 /// The folds of a route's legs, joins included.
 fn route_folds(legs: &[Arc<Leg>], style: Style) -> Vec<Fold> {
     let mut folds = Vec::new();
     for leg in legs {
-        folds.extend(leg.join.iter().copied());
-        leg.serp.folds(style, leg.frame.ccw(), &mut folds);
+        folds.extend(leg_folds(leg, style));
     }
     folds
 }

@@ -37,6 +37,7 @@ pub(crate) use first_hit::{unit_tail_frame, TailHits, NEVER as NO_TAIL_HIT};
 mod index_boxes;
 mod lattice;
 mod pieces;
+mod prefix;
 mod schedule;
 mod sequential;
 mod sweep;
@@ -44,6 +45,7 @@ mod windows;
 
 pub(crate) use advancement::check_schedule;
 pub(crate) use lattice::final_overlap;
+pub use prefix::{PrefixCheck, PrefixMemo};
 pub(crate) use schedule::{FoldSchedule, JointTrack, ScheduleError};
 pub use sequential::{check_chain, check_word, Verdict};
 

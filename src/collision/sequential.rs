@@ -65,18 +65,18 @@ pub fn check_word(word: &FoldWord, opts: &CheckOptions) -> Result<(), Collision>
 
 /// The tile of width 1 as the sweeps see it: its inset outline and the measures that bound
 /// which tiles can meet.
-struct UnitTile {
+pub(super) struct UnitTile {
     /// Inset outline, as offsets from the centre (the octagon is symmetric under quarter
     /// turns, so the heading does not change it).
     outline: [Vec2; 8],
     /// Circumradius of the full outline.
-    radius: f64,
+    pub(super) radius: f64,
     /// Half the side, the hinge's offset across the chain.
     half_side: f64,
 }
 
 impl UnitTile {
-    fn new(tolerance: f64) -> UnitTile {
+    pub(super) fn new(tolerance: f64) -> UnitTile {
         let o = Octagon::new(1.0);
         UnitTile {
             outline: o.inset_vertices(tolerance).map(Vec2::from),
@@ -89,7 +89,7 @@ impl UnitTile {
     /// about `pivot` (the way `theta`'s sign says), can meet at all: the moving centre stays
     /// in the quadrant spanned by its start direction and that direction turned, so the fixed
     /// centre must be within two circumradii of that quadrant.
-    fn may_meet(&self, moving: Point, fixed: Point, pivot: Point, theta: f64) -> bool {
+    pub(super) fn may_meet(&self, moving: Point, fixed: Point, pivot: Point, theta: f64) -> bool {
         let m = moving - pivot;
         let rr = m.hypot2().sqrt();
         if rr == 0.0 {
@@ -107,14 +107,14 @@ impl UnitTile {
     }
 
     /// The outline placed with its centre at `c`.
-    fn at(&self, c: Point) -> [Point; 8] {
+    pub(super) fn at(&self, c: Point) -> [Point; 8] {
         self.outline.map(|v| c + v)
     }
 
     /// Range of tail offsets `t` (tile `k + 1 + t`) whose centres pass within `2 r` of the
     /// distance `d` from the hinge; the tail centre `t` is at distance
     /// `sqrt((1/2 + t)^2 + (half_side)^2)`.
-    fn tail_range(&self, d: f64, tail_len: usize) -> Option<(usize, usize)> {
+    pub(super) fn tail_range(&self, d: f64, tail_len: usize) -> Option<(usize, usize)> {
         if tail_len == 0 {
             return None;
         }
