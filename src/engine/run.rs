@@ -64,7 +64,7 @@ pub struct EngineOptions {
     /// pool's thread. The events are the same, bit for bit, whatever the number.
     pub threads: usize,
     /// Most steps of one local solve (one joint's unit over one window), or
-    /// [`EngineOptions::STEPS_PER_TILE`] per tile of the chain if that is more: the work
+    /// [`EngineOptions::steps_per_tile`] per tile of the chain if that is more: the work
     /// budget, one per joint, so the run's is bounded in proportion to the chain. A solve
     /// that reaches it, or goes 1e4 of its time scales without an event once its inputs are
     /// still, has not decided (a magnet creeping towards a balance on a knife edge): the run
@@ -76,6 +76,10 @@ pub struct EngineOptions {
     /// of a short chain stops within about a second of CPU; a U-turn between two long sides
     /// takes more (`S*3000 LL S*3000`: over 20,000), hence the share per tile.
     pub max_steps: usize,
+    /// The local solves' work budget per tile of the chain, steps, where that is more than
+    /// `max_steps`. Default [`EngineOptions::STEPS_PER_TILE`]; 0 after
+    /// [`EngineOptions::with_max_steps`].
+    pub steps_per_tile: usize,
 }
 
 impl Default for EngineOptions {
@@ -88,13 +92,14 @@ impl Default for EngineOptions {
             start: StartRule::default(),
             threads: 0,
             max_steps: 20_000,
+            steps_per_tile: EngineOptions::STEPS_PER_TILE,
         }
     }
 }
 
 impl EngineOptions {
-    /// The local solves' work budget per tile of the chain, steps: 20 (a 6,003-tile chain's
-    /// solves may take 120,060; see [`EngineOptions::max_steps`]).
+    /// The default of [`EngineOptions::steps_per_tile`]: 20 (a 6,003-tile chain's solves may
+    /// take 120,060 steps; see [`EngineOptions::max_steps`]).
     pub const STEPS_PER_TILE: usize = 20;
 
     /// The kinematic baseline with another start rule.
@@ -135,9 +140,11 @@ impl EngineOptions {
         self
     }
 
-    /// Another step limit for each local solve.
+    /// A fixed step limit for each local solve, whatever the chain's length (no share per
+    /// tile: `steps_per_tile` 0).
     pub fn with_max_steps(mut self, max_steps: usize) -> EngineOptions {
         self.max_steps = max_steps;
+        self.steps_per_tile = 0;
         self
     }
 
@@ -238,7 +245,7 @@ fn run_local_engine(
     };
     let budget = opts
         .max_steps
-        .max(EngineOptions::STEPS_PER_TILE.saturating_mul(chain.len()));
+        .max(opts.steps_per_tile.saturating_mul(chain.len()));
     let local = run_local(&model, opts.tolerance, opts.threads, budget);
     let speed = SpeedLaw::Overdamped { drag: model.drag };
     let motions = MotionTable::new(&model.geometry, speed);
