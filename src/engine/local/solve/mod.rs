@@ -534,7 +534,7 @@ impl<'a> Walk<'a> {
         let mut d1 = [0.0; M];
         self.s.drives(t1, &z1, &mut d1);
         if self.s.any_switch(&z1, &d1) {
-            self.to_switch((tau, t1), (&st.f0, &z1, &f1), free);
+            self.go_to_switch((tau, t1), (&st.f0, &z1, &f1), free);
             return;
         }
         for &i in free {
@@ -547,7 +547,7 @@ impl<'a> Walk<'a> {
 
     /// The step over `(t0, t1)` from the current state (its derivative `f0`) to `z1` (its
     /// derivative `f1`) meets a switch: the walk goes to it.
-    fn to_switch(
+    fn go_to_switch(
         &mut self,
         (t0, t1): (f64, f64),
         (f0, z1, f1): (&[f64; Z], &[f64; Z], &[f64; Z]),
