@@ -357,24 +357,6 @@ fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
         .collect()
 }
 
-/// An f64 ordered by `total_cmp`, for ranking keys.
-#[derive(Clone, Copy, PartialEq)]
-pub(crate) struct OrdF64(pub(crate) f64);
-
-impl Eq for OrdF64 {}
-
-impl PartialOrd for OrdF64 {
-    fn partial_cmp(&self, other: &OrdF64) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for OrdF64 {
-    fn cmp(&self, other: &OrdF64) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
-    }
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
