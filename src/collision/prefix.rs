@@ -201,7 +201,8 @@ pub struct PrefixCheck {
 /// A memo, locked (a memo left by a panicking thread is still consistent: an entry is stored
 /// only once computed).
 fn lock(memo: &Mutex<Memo>) -> MutexGuard<'_, Memo> {
-    memo.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    memo.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 impl std::fmt::Debug for PrefixCheck {
