@@ -10,11 +10,7 @@ use kurbo::{Point, Rect, Vec2};
 use crate::plan::Plan;
 use crate::shape::Shape;
 
-/// Sample points farther than this (tile widths) from every tile centre are empty: tight
-/// rows sqrt2 apart leave no point of the band between them farther than 0.71 from a
-/// centre, and a row of tiles 1 apart none farther than 0.5 along it, so 0.95 flags only
-/// what no row reaches (issue 26's measure).
-pub(crate) const NEAR: f64 = 0.95;
+pub(crate) use crate::centre_grid::NEAR;
 
 /// [`NEAR`] for plans of the asked turn style `turns`: loose rows lie `1 + sqrt2` apart, a
 /// tile width farther than tight ones, so when the user asks for loose turns their bands
@@ -91,11 +87,8 @@ pub(crate) fn plan_cost(p: &Plan, turn_cost: f64) -> f64 {
 
 /// The key by which measured plans rank (least first), after the count: the outside tier
 /// ([`outside_tier`]), then [`plan_cost`].
-pub(crate) fn rank_key(p: &Plan, turn_cost: f64) -> (u8, crate::plan_shape::OrdF64) {
-    (
-        outside_tier(p),
-        crate::plan_shape::OrdF64(plan_cost(p, turn_cost)),
-    )
+pub(crate) fn rank_key(p: &Plan, turn_cost: f64) -> (u8, OrdF64) {
+    (outside_tier(p), OrdF64(plan_cost(p, turn_cost)))
 }
 
 /// The cost of a plan in the tile-width search (0 for one that leaves nothing empty, so
@@ -252,24 +245,12 @@ pub(crate) fn largest_empty_part(
             );
             sum += p.to_vec2();
             bb = bb.union_pt(p);
-            let mut visit = |n: usize| {
+            four_neighbours(c, nx, ny, |n| {
                 if empty[n] && !seen[n] {
                     seen[n] = true;
                     stack.push(n);
                 }
-            };
-            if j > 0 {
-                visit(c - 1);
-            }
-            if j + 1 < nx {
-                visit(c + 1);
-            }
-            if i > 0 {
-                visit(c - nx);
-            }
-            if i + 1 < ny {
-                visit(c + nx);
-            }
+            });
         }
         let area = count as f64 * step * step / tile_area_exact();
         if area > MIN_EMPTY_TILES && best.is_none_or(|(a, _, _)| area > a) {
@@ -277,6 +258,24 @@ pub(crate) fn largest_empty_part(
         }
     }
     best
+}
+
+/// Calls `visit` on the four neighbours of cell `c` of a grid `nx` cells wide and `ny`
+/// high, stored row by row: left, right, below, above.
+pub(crate) fn four_neighbours(c: usize, nx: usize, ny: usize, mut visit: impl FnMut(usize)) {
+    let (i, j) = (c % nx, c / nx);
+    if i > 0 {
+        visit(c - 1);
+    }
+    if i + 1 < nx {
+        visit(c + 1);
+    }
+    if j > 0 {
+        visit(c - nx);
+    }
+    if j + 1 < ny {
+        visit(c + nx);
+    }
 }
 
 /// The exact area of a tile of width 1, `2 (sqrt2 - 1)`.
@@ -329,6 +328,24 @@ pub(crate) fn note_empty(
             plan.warnings.push(format!("the plan {part}"));
             Ok(plan)
         }
+    }
+}
+
+/// An f64 ordered by `total_cmp`, for ranking keys.
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) struct OrdF64(pub(crate) f64);
+
+impl Eq for OrdF64 {}
+
+impl PartialOrd for OrdF64 {
+    fn partial_cmp(&self, other: &OrdF64) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for OrdF64 {
+    fn cmp(&self, other: &OrdF64) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
     }
 }
 

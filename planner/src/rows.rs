@@ -251,7 +251,7 @@ fn tile_cover(
 /// `sqrt(near^2 - (pitch / 2)^2)` beyond the end tile's centre. 1.134 for tight rows, 1.30
 /// for loose.
 fn gap_ok(pitch: f64) -> f64 {
-    let near = crate::empty::NEAR + (pitch - SQRT_2).max(0.0) / 2.0;
+    let near = crate::centre_grid::NEAR + (pitch - SQRT_2).max(0.0) / 2.0;
     0.5 + (near * near - pitch * pitch / 4.0).max(0.0).sqrt()
 }
 
