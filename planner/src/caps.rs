@@ -167,25 +167,12 @@ fn drop_slivers(shape: &Shape, inside: &mut [bool], nx: usize, ny: usize, o: (f6
         let mut size = 0;
         while let Some(c) = stack.pop() {
             size += 1;
-            let (i, j) = (c % nx, c / nx);
-            let mut visit = |k: usize| {
+            crate::empty::four_neighbours(c, nx, ny, |k| {
                 if label[k] == u32::MAX && inside[k] {
                     label[k] = l;
                     stack.push(k);
                 }
-            };
-            if i > 0 {
-                visit(c - 1);
-            }
-            if i + 1 < nx {
-                visit(c + 1);
-            }
-            if j > 0 {
-                visit(c - nx);
-            }
-            if j + 1 < ny {
-                visit(c + nx);
-            }
+            });
         }
         sizes.push(size);
     }
@@ -576,48 +563,19 @@ impl<'a> Search<'a> {
 
     /// The cap of `b` towards `d` holding the first `depth` lines, and the rest.
     fn split(b: PBox, d: Dir, depth: usize) -> (PBox, PBox) {
-        match d {
-            Dir::PosY => (
-                PBox {
-                    y0: b.y1 - depth,
-                    ..b
-                },
-                PBox {
-                    y1: b.y1 - depth,
-                    ..b
-                },
-            ),
-            Dir::NegY => (
-                PBox {
-                    y1: b.y0 + depth,
-                    ..b
-                },
-                PBox {
-                    y0: b.y0 + depth,
-                    ..b
-                },
-            ),
-            Dir::PosX => (
-                PBox {
-                    x0: b.x1 - depth,
-                    ..b
-                },
-                PBox {
-                    x1: b.x1 - depth,
-                    ..b
-                },
-            ),
-            Dir::NegX => (
-                PBox {
-                    x1: b.x0 + depth,
-                    ..b
-                },
-                PBox {
-                    x0: b.x0 + depth,
-                    ..b
-                },
-            ),
-        }
+        let (mut cap, mut rest) = (b, b);
+        let (lo, hi) = if d.is_y() { (b.y0, b.y1) } else { (b.x0, b.x1) };
+        let at = if d.positive() { hi - depth } else { lo + depth };
+        // the cap's inner edge and the rest's outer edge, both at `at`
+        let (cap_edge, rest_edge) = match d {
+            Dir::PosY => (&mut cap.y0, &mut rest.y1),
+            Dir::NegY => (&mut cap.y1, &mut rest.y0),
+            Dir::PosX => (&mut cap.x0, &mut rest.x1),
+            Dir::NegX => (&mut cap.x1, &mut rest.x0),
+        };
+        *cap_edge = at;
+        *rest_edge = at;
+        (cap, rest)
     }
 
     /// The depths (lines) at which a cap towards `d` may be cut off `b`: every line of the
@@ -775,31 +733,7 @@ impl<'a> Search<'a> {
             return v.clone();
         }
         self.visited += 1;
-        let mut out: Vec<(CapPlan, PBox)> = Vec::new();
-        // one serpentine over the whole box: rows along x are stacked along y
-        for stack_y in [true, false] {
-            if rows_along_y.is_some_and(|ry| ry == stack_y) {
-                continue;
-            }
-            if self.monotone(b, stack_y, cut) {
-                let extent = if stack_y { b.y1 - b.y0 } else { b.x1 - b.x0 };
-                let n = if stack_y { Dir::PosY } else { Dir::PosX };
-                out.push((
-                    CapPlan {
-                        cells: vec![CapCell {
-                            rect: self.rect(b),
-                            n,
-                            either_sign: true,
-                        }],
-                        cost: self.rows(extent) - 1.0
-                            + self.steps(b, stack_y)
-                            + self.dropped(b, stack_y, cut),
-                        slabs: false,
-                    },
-                    b,
-                ));
-            }
-        }
+        let mut out = self.one_serpentine(b, rows_along_y, cut);
         if depth < MAX_CELLS && self.visited < MAX_BOXES {
             for d in Dir::ALL {
                 // the cap is the last cell: its rows run across d
@@ -807,67 +741,121 @@ impl<'a> Search<'a> {
                     continue;
                 }
                 for depth_px in self.cuts(b, d, cut) {
-                    let (cap, rest) = Self::split(b, d, depth_px);
-                    let (Some(cap), Some(rest)) = (self.tight(cap), self.tight(rest)) else {
-                        continue;
-                    };
-                    // the cell before the cap has its rows along d
-                    let before = self.best(rest, Some(d.is_y()), Some(d), depth + 1);
-                    let extent = if d.is_y() {
-                        cap.y1 - cap.y0
-                    } else {
-                        cap.x1 - cap.x0
-                    };
-                    let cap_cost = self.rows(extent) - 1.0
-                        + 1.0
-                        + self.steps(cap, d.is_y())
-                        + self.dropped(cap, d.is_y(), cut);
-                    for p in before.iter() {
-                        let Some(last) = p.cells.last() else { continue };
-                        let lb = self.pbox(last.rect);
-                        let (price, sign) = self.join(last, lb, cap, d);
-                        if price >= NO_JOIN {
-                            continue;
-                        }
-                        // the cap's first row leaves the side of the cell before it (its
-                        // stacking side `sign`), its last row must run towards the next cap
-                        // (side `cut`): an odd number of rows if those sides differ
-                        let parity = match cut {
-                            Some(c) if ((self.rows(extent) as usize) % 2 == 1) == (c == sign) => {
-                                let len = if d.is_y() {
-                                    cap.x1 - cap.x0
-                                } else {
-                                    cap.y1 - cap.y0
-                                };
-                                PARITY_PRICE * len as f64 / self.r.per_tile()
-                            }
-                            _ => 0.0,
-                        };
-                        let mut cells = p.cells.clone();
-                        if let Some(l) = cells.last_mut() {
-                            l.n = sign;
-                            l.either_sign = false;
-                        }
-                        cells.push(CapCell {
-                            rect: self.rect(cap),
-                            n: d,
-                            either_sign: false,
-                        });
-                        out.push((
-                            CapPlan {
-                                cells,
-                                cost: p.cost + cap_cost + price + parity,
-                                slabs: false,
-                            },
-                            b,
-                        ));
-                    }
+                    self.capped(b, d, depth_px, cut, depth, &mut out);
                 }
             }
         }
-        out.sort_by(|a, b| a.0.cost.total_cmp(&b.0.cost));
+        let v = Rc::new(Self::keep(out));
+        self.memo.insert(key, v.clone());
+        v
+    }
+
+    /// The plans of `b` as one serpentine over the whole box (rows along x are stacked
+    /// along y), for the stacking directions `rows_along_y` allows.
+    fn one_serpentine(
+        &self,
+        b: PBox,
+        rows_along_y: Option<bool>,
+        cut: Option<Dir>,
+    ) -> Vec<CapPlan> {
+        let mut out = Vec::new();
+        for stack_y in [true, false] {
+            if rows_along_y.is_some_and(|ry| ry == stack_y) {
+                continue;
+            }
+            if self.monotone(b, stack_y, cut) {
+                let extent = if stack_y { b.y1 - b.y0 } else { b.x1 - b.x0 };
+                let n = if stack_y { Dir::PosY } else { Dir::PosX };
+                out.push(CapPlan {
+                    cells: vec![CapCell {
+                        rect: self.rect(b),
+                        n,
+                        either_sign: true,
+                    }],
+                    cost: self.rows(extent) - 1.0
+                        + self.steps(b, stack_y)
+                        + self.dropped(b, stack_y, cut),
+                    slabs: false,
+                });
+            }
+        }
+        out
+    }
+
+    /// Adds to `out` the plans of `b` whose last cell is the cap towards `d` holding its
+    /// first `depth_px` lines, after the cheapest plans of the rest.
+    fn capped(
+        &mut self,
+        b: PBox,
+        d: Dir,
+        depth_px: usize,
+        cut: Option<Dir>,
+        depth: usize,
+        out: &mut Vec<CapPlan>,
+    ) {
+        let (cap, rest) = Self::split(b, d, depth_px);
+        let (Some(cap), Some(rest)) = (self.tight(cap), self.tight(rest)) else {
+            return;
+        };
+        // the cell before the cap has its rows along d
+        let before = self.best(rest, Some(d.is_y()), Some(d), depth + 1);
+        let extent = if d.is_y() {
+            cap.y1 - cap.y0
+        } else {
+            cap.x1 - cap.x0
+        };
+        let cap_cost = self.rows(extent) - 1.0
+            + 1.0
+            + self.steps(cap, d.is_y())
+            + self.dropped(cap, d.is_y(), cut);
+        for p in before.iter() {
+            let Some(last) = p.cells.last() else { continue };
+            let lb = self.pbox(last.rect);
+            let (price, sign) = self.join(last, lb, cap, d);
+            if price >= NO_JOIN {
+                continue;
+            }
+            let parity = self.parity(cap, d, extent, cut, sign);
+            let mut cells = p.cells.clone();
+            if let Some(l) = cells.last_mut() {
+                l.n = sign;
+                l.either_sign = false;
+            }
+            cells.push(CapCell {
+                rect: self.rect(cap),
+                n: d,
+                either_sign: false,
+            });
+            out.push(CapPlan {
+                cells,
+                cost: p.cost + cap_cost + price + parity,
+                slabs: false,
+            });
+        }
+    }
+
+    /// The price of a cap's row count: the cap's first row leaves the side of the cell
+    /// before it (its stacking side `sign`), its last row must run towards the next cap
+    /// (side `cut`): an odd number of rows if those sides differ.
+    fn parity(&self, cap: PBox, d: Dir, extent: usize, cut: Option<Dir>, sign: Dir) -> f64 {
+        match cut {
+            Some(c) if ((self.rows(extent) as usize) % 2 == 1) == (c == sign) => {
+                let len = if d.is_y() {
+                    cap.x1 - cap.x0
+                } else {
+                    cap.y1 - cap.y0
+                };
+                PARITY_PRICE * len as f64 / self.r.per_tile()
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// The cheapest of `out`, at most [`KEEP`], one per cell count and cost.
+    fn keep(mut out: Vec<CapPlan>) -> Vec<CapPlan> {
+        out.sort_by(|a, b| a.cost.total_cmp(&b.cost));
         let mut kept: Vec<CapPlan> = Vec::new();
-        for (p, _) in out {
+        for p in out {
             if kept.len() >= KEEP {
                 break;
             }
@@ -880,9 +868,7 @@ impl<'a> Search<'a> {
             }
             kept.push(p);
         }
-        let v = Rc::new(kept);
-        self.memo.insert(key, v.clone());
-        v
+        kept
     }
 
     /// The box in the axis frame (unit tiles).
@@ -939,24 +925,12 @@ pub(crate) fn parts(axis_shape: &Shape) -> Vec<Rect> {
             size += 1;
             let (i, j) = (c % w, c / w);
             (x0, x1, y0, y1) = (x0.min(i), x1.max(i + 1), y0.min(j), y1.max(j + 1));
-            let mut visit = |k: usize| {
+            crate::empty::four_neighbours(c, w, h, |k| {
                 if !seen[k] && r.inside[k] {
                     seen[k] = true;
                     stack.push(k);
                 }
-            };
-            if i > 0 {
-                visit(c - 1);
-            }
-            if i + 1 < w {
-                visit(c + 1);
-            }
-            if j > 0 {
-                visit(c - w);
-            }
-            if j + 1 < h {
-                visit(c + w);
-            }
+            });
         }
         if size >= min_px {
             let px = r.px;
@@ -1008,13 +982,7 @@ pub(crate) fn cap_plans(axis_shape: &Shape, pitch: f64) -> Vec<CapPlan> {
 mod tests {
     use super::*;
     use crate::shape::Ring;
-    use kurbo::Point;
-
-    fn poly(points: &[(f64, f64)]) -> Shape {
-        Shape::from_rings(vec![Ring {
-            points: points.iter().map(|&p| Point::from(p)).collect(),
-        }])
-    }
+    use crate::slabs::tests::poly;
 
     /// A U (two arms on a bar): the arms in columns along their length, the bar in rows,
     /// joined by two quarter turns, cheaper than columns across the whole U.
@@ -1108,26 +1076,12 @@ mod tests {
                 let mut size = 0;
                 while let Some(c) = stack.pop() {
                     size += 1;
-                    let (i, j) = (c % w, c / w);
-                    let mut next = Vec::new();
-                    if i > 0 {
-                        next.push(c - 1);
-                    }
-                    if i + 1 < w {
-                        next.push(c + 1);
-                    }
-                    if j > 0 {
-                        next.push(c - w);
-                    }
-                    if j + 1 < h {
-                        next.push(c + w);
-                    }
-                    for n in next {
+                    crate::empty::four_neighbours(c, w, h, |n| {
                         if !seen[n] && at(n) {
                             seen[n] = true;
                             stack.push(n);
                         }
-                    }
+                    });
                 }
                 if size >= min_px {
                     count += 1;

@@ -20,9 +20,32 @@ pub(crate) struct CentreGrid {
     ids: Vec<usize>,
 }
 
+/// `x.floor() as i64`, without a call into libm (the build's baseline x86-64 has no rounding
+/// instruction): the same value for every `x`, NaN and infinities included.
+#[inline]
+pub(crate) fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// `x.ceil() as i64`, as [`floor_i64`].
+#[inline]
+pub(crate) fn ceil_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
 /// The unit cell holding `p`.
 fn cell_of(p: Point) -> (i64, i64) {
-    (p.x.floor() as i64, p.y.floor() as i64)
+    (floor_i64(p.x), floor_i64(p.y))
 }
 
 impl CentreGrid {
@@ -83,6 +106,33 @@ impl CentreGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The integer floor and ceiling agree with libm's on values around integers, halves,
+    /// the ends of `i64` and the non-finite.
+    #[test]
+    fn integer_floor_and_ceiling_match_libm() {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            9.3e18,
+            -9.3e18,
+            i64::MAX as f64,
+            i64::MIN as f64,
+            f64::EPSILON,
+            -f64::EPSILON,
+        ];
+        for i in -40..40 {
+            let x = i as f64 * 0.25;
+            xs.extend([x, x.next_up(), x.next_down(), x * 1e15 + 0.5]);
+        }
+        for x in xs {
+            assert_eq!(floor_i64(x), x.floor() as i64, "{x}");
+            assert_eq!(ceil_i64(x), x.ceil() as i64, "{x}");
+        }
+    }
 
     #[test]
     fn finds_exactly_the_centres_within_a_unit() {

@@ -245,24 +245,12 @@ pub(crate) fn largest_empty_part(
             );
             sum += p.to_vec2();
             bb = bb.union_pt(p);
-            let mut visit = |n: usize| {
+            four_neighbours(c, nx, ny, |n| {
                 if empty[n] && !seen[n] {
                     seen[n] = true;
                     stack.push(n);
                 }
-            };
-            if j > 0 {
-                visit(c - 1);
-            }
-            if j + 1 < nx {
-                visit(c + 1);
-            }
-            if i > 0 {
-                visit(c - nx);
-            }
-            if i + 1 < ny {
-                visit(c + nx);
-            }
+            });
         }
         let area = count as f64 * step * step / tile_area_exact();
         if area > MIN_EMPTY_TILES && best.is_none_or(|(a, _, _)| area > a) {
@@ -270,6 +258,24 @@ pub(crate) fn largest_empty_part(
         }
     }
     best
+}
+
+/// Calls `visit` on the four neighbours of cell `c` of a grid `nx` cells wide and `ny`
+/// high, stored row by row: left, right, below, above.
+pub(crate) fn four_neighbours(c: usize, nx: usize, ny: usize, mut visit: impl FnMut(usize)) {
+    let (i, j) = (c % nx, c / nx);
+    if i > 0 {
+        visit(c - 1);
+    }
+    if i + 1 < nx {
+        visit(c + 1);
+    }
+    if j > 0 {
+        visit(c - nx);
+    }
+    if j + 1 < ny {
+        visit(c + nx);
+    }
 }
 
 /// The exact area of a tile of width 1, `2 (sqrt2 - 1)`.

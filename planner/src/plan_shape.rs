@@ -50,30 +50,7 @@ pub(crate) fn plan_shape(
     let tiles_est = opts
         .tile_size
         .map_or(target, |w| tiles_for(shape.area(), w, TIGHT.pitch));
-    // one chain cannot cross a gap: a drawing in separate parts is refused at once
-    let parts = separate_parts(shape, tiles_est);
-    if parts.len() > 1 {
-        return Err(refusal::separate_parts(name, &parts, mm_per_unit));
-    }
-    // the raster found no part that holds a tile: unless a finer look finds one, no chain
-    // can fill the drawing at this tile width, refused at once (searching widths at which
-    // every row sticks out of it took minutes)
-    if parts.is_empty() {
-        let w = opts
-            .tile_size
-            .unwrap_or_else(|| width_for(shape.area(), tiles_est.max(1), TIGHT.pitch));
-        if !narrow::fits_a_tile(&shape.scaled(1.0 / w)) {
-            let min_w = width_for(shape.area(), MAX_PLAN_TILES, TIGHT.pitch);
-            return Err(refusal::too_narrow(
-                name,
-                tiles_est,
-                w,
-                opts.tile_size.is_some(),
-                narrow::fitting_width(shape, w, min_w),
-                mm_per_unit,
-            ));
-        }
-    }
+    refuse_at_once(shape, opts, name, mm_per_unit, tiles_est)?;
     let monotone = shape.monotone_row_angles();
     let directions = pick_directions(shape, &monotone);
     // tiles by which a plan misses the asked count beyond the tolerance
@@ -152,6 +129,42 @@ pub(crate) fn plan_shape(
     };
     plan.warnings.extend(count_warning(opts, plan.tiles));
     Ok(plan)
+}
+
+/// The refusals made before any search: a drawing in separate parts (one chain cannot cross
+/// a gap), or one in which no tile fits at the width `tiles_est` tiles give.
+fn refuse_at_once(
+    shape: &Shape,
+    opts: &PlanOptions,
+    name: &str,
+    mm_per_unit: f64,
+    tiles_est: usize,
+) -> Result<(), PlanError> {
+    // one chain cannot cross a gap: a drawing in separate parts is refused at once
+    let parts = separate_parts(shape, tiles_est);
+    if parts.len() > 1 {
+        return Err(refusal::separate_parts(name, &parts, mm_per_unit));
+    }
+    // the raster found no part that holds a tile: unless a finer look finds one, no chain
+    // can fill the drawing at this tile width, refused at once (searching widths at which
+    // every row sticks out of it took minutes)
+    if parts.is_empty() {
+        let w = opts
+            .tile_size
+            .unwrap_or_else(|| width_for(shape.area(), tiles_est.max(1), TIGHT.pitch));
+        if !narrow::fits_a_tile(&shape.scaled(1.0 / w)) {
+            let min_w = width_for(shape.area(), MAX_PLAN_TILES, TIGHT.pitch);
+            return Err(refusal::too_narrow(
+                name,
+                tiles_est,
+                w,
+                opts.tile_size.is_some(),
+                narrow::fitting_width(shape, w, min_w),
+                mm_per_unit,
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The warning for a plan of `tiles` tiles whose count misses the asked count by more than

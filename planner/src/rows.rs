@@ -21,6 +21,7 @@ use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
 
 use kurbo::{Point, Rect};
 
+use crate::centre_grid::{ceil_i64, floor_i64};
 use crate::options::Turns;
 pub(crate) use crate::row_chain::Serpentine;
 use crate::shape::Shape;
@@ -196,11 +197,11 @@ fn add_tile_measures(
     let clamp = |j: i64| j.clamp(0, cols);
     for &(a, b) in iv {
         // columns whose whole span lies in [a, b]
-        let f0 = clamp(((a + hw) - x0).ceil() as i64);
-        let f1 = clamp(((b - hw) - x0).floor() as i64 + 1); // exclusive
-                                                            // columns that touch [a, b] at all
-        let t0 = clamp(((a - hw) - x0).floor() as i64);
-        let t1 = clamp(((b + hw) - x0).ceil() as i64 + 1);
+        let f0 = clamp(ceil_i64((a + hw) - x0));
+        let f1 = clamp(floor_i64((b - hw) - x0) + 1); // exclusive
+                                                      // columns that touch [a, b] at all
+        let t0 = clamp(floor_i64((a - hw) - x0));
+        let t1 = clamp(ceil_i64((b + hw) - x0) + 1);
         let overlap = |j: i64| {
             let x = x0 + j as f64;
             (b.min(x + hw) - a.max(x - hw)).max(0.0)
@@ -221,14 +222,20 @@ fn add_tile_measures(
 
 /// Sets `out[j]` to the area of the shape under the tile centred at `(x0 + j, y)`, for
 /// every column `j` (the quadrature of [`AREA_LINES`]); `diff` is scratch of
-/// `out.len() + 1`.
-fn tile_cover(work: &Shape, x0: f64, y: f64, out: &mut [f64], diff: &mut [f64]) {
+/// `out.len() + 1`, `iv` scratch for the intervals of a line.
+fn tile_cover(
+    work: &Shape,
+    (x0, y): (f64, f64),
+    out: &mut [f64],
+    diff: &mut [f64],
+    iv: &mut Vec<(f64, f64)>,
+) {
     out.iter_mut().for_each(|v| *v = 0.0);
     diff.iter_mut().for_each(|v| *v = 0.0);
     let weight = 1.0 / AREA_LINES.len() as f64;
     for dy in AREA_LINES {
-        let iv = work.intervals_at(y + dy);
-        add_tile_measures(&iv, x0, half_chord(dy), weight, out, diff);
+        work.intervals_into(y + dy, iv);
+        add_tile_measures(iv, x0, half_chord(dy), weight, out, diff);
     }
     let mut run = 0.0;
     for (o, d) in out.iter_mut().zip(diff.iter()) {
@@ -323,26 +330,23 @@ pub(crate) fn solve_rows(
     let mut gaps = vec![(0.0, 0.0); nrows * cols];
     let mut cover = vec![0.0; cols];
     let mut diff = vec![0.0; w1];
+    let mut iv = Vec::new();
     for k in 0..nrows {
         let y = y0 + k as f64 * p;
-        tile_cover(work, x0, y, &mut cover, &mut diff);
+        tile_cover(work, (x0, y), &mut cover, &mut diff, &mut iv);
         let pr = &mut pre[k * w1..(k + 1) * w1];
         for j in 0..cols {
             let taken = blocked.is_some_and(|b| b(Point::new(x0 + j as f64, y)));
             pr[j + 1] = pr[j] + if taken { BLOCKED } else { tile_cost(cover[j]) };
         }
-        edge_gaps(
-            &work.intervals_at(y),
-            x0,
-            p,
-            &mut gaps[k * cols..(k + 1) * cols],
-        );
+        work.intervals_into(y, &mut iv);
+        edge_gaps(&iv, x0, p, &mut gaps[k * cols..(k + 1) * cols]);
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
         for h in style.turn_heights {
             let xt = x0 + dir * FRAC_1_SQRT_2;
-            tile_cover(work, xt, y + h, &mut cover, &mut diff);
+            tile_cover(work, (xt, y + h), &mut cover, &mut diff, &mut iv);
             for (j, (tj, c)) in t.iter_mut().zip(&cover).enumerate() {
                 let taken = blocked.is_some_and(|b| b(Point::new(xt + j as f64, y + h)));
                 *tj += if taken { BLOCKED } else { tile_cost(*c) };

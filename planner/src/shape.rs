@@ -276,44 +276,60 @@ impl Shape {
     /// The intervals (sorted, disjoint) where the horizontal line at `y` lies inside the
     /// shape.
     pub fn intervals_at(&self, y: f64) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        self.intervals_into(y, &mut out);
+        out
+    }
+
+    /// [`Shape::intervals_at`] into `out` (cleared first), so that a caller asking many lines
+    /// reuses one buffer; the crossings are gathered in a buffer kept per thread.
+    pub(crate) fn intervals_into(&self, y: f64, out: &mut Vec<(f64, f64)>) {
+        thread_local! {
+            static CROSSINGS: std::cell::RefCell<Vec<(f64, i32)>> =
+                const { std::cell::RefCell::new(Vec::new()) };
+        }
+        out.clear();
         let index = self
             .index
             .get_or_init(|| EdgeIndex::new(&self.paths, self.bbox));
         let edges = index.near(y);
-        let mut all: Vec<(f64, f64)> = Vec::new();
-        let mut crossings: Vec<(f64, i32)> = Vec::new();
-        let mut at = 0;
-        while at < edges.len() {
-            // the edges of one filled path lie together in the bucket
-            let pi = edges[at].0;
-            let mut end = at;
-            crossings.clear();
-            while end < edges.len() && edges[end].0 == pi {
-                let (_, a, b) = edges[end];
-                // half-open rule: counts each vertex once
-                if (a.y <= y) != (b.y <= y) {
-                    let t = (y - a.y) / (b.y - a.y);
-                    crossings.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
-                }
-                end += 1;
-            }
-            at = end;
-            let even_odd = self.paths[pi].even_odd;
-            crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let mut wind = 0i32;
-            let mut start = 0.0;
-            for &(x, d) in &crossings {
-                let was = if even_odd { wind % 2 != 0 } else { wind != 0 };
-                wind += d;
-                let now = if even_odd { wind % 2 != 0 } else { wind != 0 };
-                if !was && now {
-                    start = x;
-                } else if was && !now && x > start {
-                    all.push((start, x));
-                }
-            }
+        if edges.is_empty() {
+            return;
         }
-        union_intervals(all)
+        CROSSINGS.with_borrow_mut(|crossings| {
+            let mut at = 0;
+            while at < edges.len() {
+                // the edges of one filled path lie together in the bucket
+                let pi = edges[at].0;
+                let mut end = at;
+                crossings.clear();
+                while end < edges.len() && edges[end].0 == pi {
+                    let (_, a, b) = edges[end];
+                    // half-open rule: counts each vertex once
+                    if (a.y <= y) != (b.y <= y) {
+                        let t = (y - a.y) / (b.y - a.y);
+                        crossings.push((a.x + t * (b.x - a.x), if b.y > a.y { 1 } else { -1 }));
+                    }
+                    end += 1;
+                }
+                at = end;
+                let even_odd = self.paths[pi].even_odd;
+                crossings.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let mut wind = 0i32;
+                let mut start = 0.0;
+                for &(x, d) in crossings.iter() {
+                    let was = if even_odd { wind % 2 != 0 } else { wind != 0 };
+                    wind += d;
+                    let now = if even_odd { wind % 2 != 0 } else { wind != 0 };
+                    if !was && now {
+                        start = x;
+                    } else if was && !now && x > start {
+                        out.push((start, x));
+                    }
+                }
+            }
+        });
+        union_in_place(out);
     }
 
     /// True if the point lies inside the shape.
@@ -438,17 +454,20 @@ fn edge_angle(a: Point, b: Point) -> f64 {
     (b.y - a.y).atan2(b.x - a.x).rem_euclid(PI)
 }
 
-/// Merges intervals into a sorted disjoint list.
-fn union_intervals(mut v: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+/// Merges intervals into a sorted disjoint list, in place.
+fn union_in_place(v: &mut Vec<(f64, f64)>) {
     v.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(v.len());
-    for (a, b) in v {
-        match out.last_mut() {
-            Some(last) if a <= last.1 => last.1 = last.1.max(b),
-            _ => out.push((a, b)),
+    let mut len = 0;
+    for i in 0..v.len() {
+        let (a, b) = v[i];
+        if len > 0 && a <= v[len - 1].1 {
+            v[len - 1].1 = v[len - 1].1.max(b);
+        } else {
+            v[len] = (a, b);
+            len += 1;
         }
     }
-    out
+    v.truncate(len);
 }
 
 #[cfg(test)]

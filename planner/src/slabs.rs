@@ -188,13 +188,14 @@ fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Opti
 
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::rows::TIGHT;
     use crate::shape::Ring;
     use kurbo::Point;
 
-    fn poly(points: &[(f64, f64)]) -> Shape {
+    /// A shape of one ring through `points`.
+    pub(crate) fn poly(points: &[(f64, f64)]) -> Shape {
         Shape::from_rings(vec![Ring {
             points: points.iter().map(|&p| Point::from(p)).collect(),
         }])
