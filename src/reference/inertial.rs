@@ -54,7 +54,9 @@ impl System for Inertial<'_> {
         let n = self.model.len();
         work.y.clear();
         work.y.extend((0..n).map(|i| z[2 * i]));
-        self.model.forces(&work.y, &mut work.forces);
+        // only where a free unknown reaches (the clamped ones' drives kept)
+        self.model
+            .forces_moving(&work.y, self.modes, &mut work.forces);
         for i in 0..n {
             if self.modes[i] != Mode::Free {
                 out[2 * i] = 0.0;
@@ -118,7 +120,7 @@ impl State {
     /// in `work`.
     fn release(&mut self, model: &Model, im: &InertialModel) {
         let y = positions(&self.z);
-        model.forces(&y, &mut self.work);
+        model.forces_moving(&y, &self.modes, &mut self.work);
         for i in 0..model.len() {
             if im.released(model, i, self.modes[i], self.work.drive[i]) {
                 let prev = std::mem::replace(&mut self.modes[i], Mode::Free);
@@ -135,7 +137,7 @@ impl State {
     /// changed. Leaves the drives before the rests in `work`.
     fn settle_at_walls(&mut self, model: &Model, im: &InertialModel, free: &[usize]) -> bool {
         let y_now = positions(&self.z);
-        model.forces(&y_now, &mut self.work);
+        model.forces_moving(&y_now, &self.modes, &mut self.work);
         let mut switched = false;
         for &i in free {
             let x = self.z[2 * i];
@@ -265,7 +267,7 @@ fn release_within(
     if modes.iter().all(|&m| m == Mode::Free) {
         return 1.0;
     }
-    model.forces(y1, work);
+    model.forces_moving(y1, modes, work);
     let mut theta: f64 = 1.0;
     for (i, &mode) in modes.iter().enumerate() {
         let th = im.threshold(model, i);
