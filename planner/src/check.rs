@@ -5,7 +5,7 @@
 
 use std::sync::Mutex;
 
-use foldchain::collision::PrefixMemo;
+use foldchain::collision::PrefixCheck;
 use foldchain::FoldWord;
 
 /// Checks that the chain folds without self-intersection; the error says where it does not.
@@ -14,17 +14,18 @@ pub(crate) fn check_folds(word: &FoldWord) -> Result<(), String> {
         .map_err(|c| c.to_string())
 }
 
-/// Memos of the growing fold check ([`PrefixMemo`]: first hits by lattice offset), kept
-/// between the router's calls and threads: a call takes one and gives it back. A memo only
-/// saves work; it never changes a verdict.
+/// Memos of the growing fold check (empty [`PrefixCheck`]s, each holding its memo of first
+/// hits by lattice offset), kept between the router's calls and threads: a call takes one,
+/// grows its routes from it ([`PrefixCheck::emptied`]) and gives it back. A memo only saves
+/// work; it never changes a verdict.
 #[derive(Default)]
 pub(crate) struct CheckMemo {
-    free: Mutex<Vec<PrefixMemo>>,
+    free: Mutex<Vec<PrefixCheck>>,
 }
 
 impl CheckMemo {
-    /// A memo for one thread's use (a new one when none is free).
-    pub(crate) fn take(&self) -> PrefixMemo {
+    /// An empty check with a memo for one thread's use (a new one when none is free).
+    pub(crate) fn take(&self) -> PrefixCheck {
         self.free
             .lock()
             .ok()
@@ -33,9 +34,9 @@ impl CheckMemo {
     }
 
     /// Gives a memo back for the next call.
-    pub(crate) fn give(&self, memo: PrefixMemo) {
+    pub(crate) fn give(&self, memo: PrefixCheck) {
         if let Ok(mut f) = self.free.lock() {
-            f.push(memo);
+            f.push(memo.emptied());
         }
     }
 }

@@ -23,7 +23,7 @@ use std::collections::HashSet;
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
-use foldchain::collision::{PrefixCheck, PrefixMemo};
+use foldchain::collision::PrefixCheck;
 use foldchain::{Fold, FoldWord};
 use kurbo::{Affine, Point, Rect, Vec2};
 
@@ -443,19 +443,19 @@ pub(crate) fn route_sequence(
     let Some(&(first, need0)) = seq.first() else {
         return Vec::new();
     };
-    let mut prefix = memo.take();
-    let beam = route_beam(seq, first, need0, style, &mut prefix, spread);
-    memo.give(prefix);
+    let root = memo.take();
+    let beam = route_beam(seq, first, need0, style, &root, spread);
+    memo.give(root);
     beam
 }
 
-/// [`route_sequence`] with a memo of the growing fold check.
+/// [`route_sequence`] with an empty fold check whose memo the routes share.
 fn route_beam(
     seq: &[(&Shape, Need)],
     first: &Shape,
     need0: Need,
     style: Style,
-    prefix: &mut PrefixMemo,
+    root: &PrefixCheck,
     spread: bool,
 ) -> Vec<Route> {
     let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
@@ -463,7 +463,7 @@ fn route_beam(
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
-            let mut check = PrefixCheck::new();
+            let mut check = root.emptied();
             check.push(&leg_folds(&leg, style));
             Route {
                 cost,
@@ -513,10 +513,10 @@ fn route_beam(
             // route so far is kept, and only what the leg changes is checked (the parent's
             // joints are cleared for the longer chain first, once for all its extensions)
             let folds = leg_folds(&leg, style);
-            r.check.clear_to(r.check.tiles() + folds.len(), prefix);
+            r.check.clear_to(r.check.tiles() + folds.len());
             let mut check = r.check.clone();
             check.push(&folds);
-            if !check.folds_cleanly(prefix) {
+            if !check.folds_cleanly() {
                 continue;
             }
             let mut legs = r.legs.clone();

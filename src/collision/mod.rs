@@ -45,7 +45,7 @@ mod windows;
 
 pub(crate) use advancement::check_schedule;
 pub(crate) use lattice::final_overlap;
-pub use prefix::{PrefixCheck, PrefixMemo};
+pub use prefix::PrefixCheck;
 pub(crate) use schedule::{FoldSchedule, JointTrack, ScheduleError};
 pub use sequential::{check_chain, check_word, Verdict};
 

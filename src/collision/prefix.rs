@@ -21,7 +21,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::f64::consts::FRAC_PI_2;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use kurbo::{Point, Rect};
 
@@ -40,25 +40,19 @@ const LEAF: usize = 8;
 const GROUP: usize = 8;
 
 /// The memos a growing check consults: first hits by lattice offset, and the tile the
-/// sweeps use. One per thread; it never changes a verdict, only saves work.
-pub struct PrefixMemo {
+/// sweeps use. Shared by a [`PrefixCheck`] and its clones; it never changes a verdict, only
+/// saves work.
+struct Memo {
     hits: TailHits,
     tile: UnitTile,
 }
 
-impl PrefixMemo {
-    /// An empty memo for the sequential check with `opts` (its touching tolerance).
-    pub fn new(opts: &CheckOptions) -> PrefixMemo {
-        PrefixMemo {
+impl Memo {
+    fn new(opts: &CheckOptions) -> Memo {
+        Memo {
             hits: TailHits::new(opts.tolerance),
             tile: UnitTile::new(opts.tolerance),
         }
-    }
-}
-
-impl Default for PrefixMemo {
-    fn default() -> PrefixMemo {
-        PrefixMemo::new(&CheckOptions::default())
     }
 }
 
@@ -172,8 +166,23 @@ impl Run {
 }
 
 /// The sequential fold check of a chain that grows at its free end (see the module
-/// documentation). Clone a state to try an extension; clones share the tiles.
-#[derive(Clone, Debug, Default)]
+/// documentation). Clone a state to try an extension; clones share the tiles and the memo of
+/// first hits, and [`PrefixCheck::emptied`] starts another chain with that memo (a planner
+/// keeps one per thread between calls).
+///
+/// ```
+/// use foldchain::collision::PrefixCheck;
+/// use foldchain::Fold::{L, S};
+///
+/// let mut chain = PrefixCheck::new();
+/// chain.push(&[S, L, L]); // four tiles, a U-turn
+/// assert!(chain.folds_cleanly());
+/// let mut longer = chain.clone();
+/// longer.push(&[L, L]); // the tail turns back into tile 0
+/// assert!(!longer.folds_cleanly());
+/// assert!(chain.folds_cleanly()); // the clone left it as it was
+/// ```
+#[derive(Clone)]
 pub struct PrefixCheck {
     runs: Vec<Arc<Run>>,
     tiles: usize,
@@ -185,12 +194,62 @@ pub struct PrefixCheck {
     clear: BinaryHeap<Reverse<(usize, usize)>>,
     /// Folding joints the memo says meet: `(n, k)`, from `n` tiles on.
     meets: Vec<(usize, usize)>,
+    /// The memo, shared with the clones (locked once per query).
+    memo: Arc<Mutex<Memo>>,
+}
+
+/// A memo, locked (a memo left by a panicking thread is still consistent: an entry is stored
+/// only once computed).
+fn lock(memo: &Mutex<Memo>) -> MutexGuard<'_, Memo> {
+    memo.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl std::fmt::Debug for PrefixCheck {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PrefixCheck")
+            .field("tiles", &self.tiles)
+            .field("collided", &self.collided)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Default for PrefixCheck {
+    fn default() -> PrefixCheck {
+        PrefixCheck::with_options(&CheckOptions::default())
+    }
 }
 
 impl PrefixCheck {
-    /// An empty chain (no tile yet).
+    /// An empty chain (no tile yet), checked as [`super::check_word`] with the default
+    /// options.
     pub fn new() -> PrefixCheck {
         PrefixCheck::default()
+    }
+
+    /// An empty chain checked as [`super::check_word`] with `opts` (its touching tolerance).
+    pub fn with_options(opts: &CheckOptions) -> PrefixCheck {
+        PrefixCheck {
+            runs: Vec::new(),
+            tiles: 0,
+            collided: false,
+            clear: BinaryHeap::new(),
+            meets: Vec::new(),
+            memo: Arc::new(Mutex::new(Memo::new(opts))),
+        }
+    }
+
+    /// An empty chain that shares this one's memo (what it learnt about other chains saves
+    /// work on the new one; it never changes a verdict).
+    pub fn emptied(&self) -> PrefixCheck {
+        PrefixCheck {
+            runs: Vec::new(),
+            tiles: 0,
+            collided: false,
+            clear: BinaryHeap::new(),
+            meets: Vec::new(),
+            memo: Arc::clone(&self.memo),
+        }
     }
 
     /// Tiles so far.
@@ -290,7 +349,14 @@ impl PrefixCheck {
     /// Extends the cleared tails of the joints so far to a chain of `tiles` tiles (each at
     /// least doubled), recording the joints the memo says meet. A state that will be cloned
     /// for several extensions does this once, for the longest, so that the clones share it.
-    pub fn clear_to(&mut self, tiles: usize, memo: &mut PrefixMemo) {
+    pub fn clear_to(&mut self, tiles: usize) {
+        let memo = Arc::clone(&self.memo);
+        let mut memo = lock(&memo);
+        self.clear_with(tiles, &mut memo);
+    }
+
+    /// [`PrefixCheck::clear_to`] with the memo locked.
+    fn clear_with(&mut self, tiles: usize, memo: &mut Memo) {
         while let Some(&Reverse((n, k))) = self.clear.peek() {
             if n >= tiles {
                 break;
@@ -309,7 +375,7 @@ impl PrefixCheck {
     /// The smallest tail index `m` (tile `k + m`) at which the memo says joint `k`'s tail
     /// meets a placed tile, among the placed tiles a tail of `tail_len` tiles can reach; the
     /// same lookups as the sequential check's `tail_meets_placed`.
-    fn first_hit(&self, k: usize, tail_len: usize, memo: &mut PrefixMemo) -> Option<usize> {
+    fn first_hit(&self, k: usize, tail_len: usize, memo: &mut Memo) -> Option<usize> {
         let (run, t) = self.locate(k + 1);
         let fold = run.into[t];
         let (run, t) = self.locate(k);
@@ -346,13 +412,15 @@ impl PrefixCheck {
     }
 
     /// Whether the chain so far folds cleanly: [`super::check_word`] of its word with the
-    /// default options is `Ok` (or, for a memo made with other options, with those).
-    pub fn folds_cleanly(&mut self, memo: &mut PrefixMemo) -> bool {
+    /// options it was made with ([`PrefixCheck::with_options`]) is `Ok`.
+    pub fn folds_cleanly(&mut self) -> bool {
         if self.collided {
             return false;
         }
         let n = self.tiles;
-        self.clear_to(n, memo);
+        let memo = Arc::clone(&self.memo);
+        let mut memo = lock(&memo);
+        self.clear_with(n, &mut memo);
         let flagged: Vec<usize> = self
             .meets
             .iter()
@@ -443,6 +511,7 @@ mod tests {
     fn every_prefix_agrees_with_the_whole_check() {
         let mut next = super::super::xorshift(0x9E37_79B9_7F4A_7C15);
         let (mut clean, mut collided) = (0, 0);
+        let memo = PrefixCheck::new();
         for round in 0..160 {
             let w: Vec<Fold> = if round % 2 == 0 {
                 (0..5 + next() % 80)
@@ -462,8 +531,8 @@ mod tests {
                 }
                 w
             };
-            let mut memo = PrefixMemo::default();
-            let mut state = PrefixCheck::new();
+            // one memo for every round, as a planner's thread keeps it
+            let mut state = memo.emptied();
             state.push(&[]);
             let mut at = 0;
             while at < w.len() {
@@ -472,11 +541,11 @@ mod tests {
                 // a sibling that is thrown away must not change the state it came from
                 let mut sibling = state.clone();
                 sibling.push(&w[at..end.min(at + 3)]);
-                let _ = sibling.folds_cleanly(&mut memo);
-                state.clear_to(end + 1, &mut memo);
+                let _ = sibling.folds_cleanly();
+                state.clear_to(end + 1);
                 let mut grown = state.clone();
                 grown.push(&w[at..end]);
-                let got = grown.folds_cleanly(&mut memo);
+                let got = grown.folds_cleanly();
                 assert_eq!(got, whole(&w[..end]), "round {round}, prefix {end}");
                 if got {
                     clean += 1;

@@ -230,7 +230,6 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
     let n = g.magnets();
     let tiles = g.tiles();
     let cutoff = model.options().cutoff;
-    let quantum = OFFSET_QUANTUM * model.time_scale;
     let mut magnets = vec![Track::REST; n];
     let mut joints = vec![Track::REST; tiles.saturating_sub(1)];
     let mut before = Before {
@@ -258,38 +257,12 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             complete = false;
             break;
         }
-        // the unit's time origin: when the magnet before it is half way (a crossing the
-        // step sizes hardly move), else when its inputs first move
-        let anchor = match w.vars.first() {
-            Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => {
-                anchors.crossing(&shapes, magnets[a - 1])
-            }
-            _ => None,
-        };
-        // the units after this one are placed against it as they were in the sweep
-        // before (their tracks moved by as much as its origin moved since)
-        let shift = match (anchor, before.units.get(u)) {
-            (Some(t), Some(&(_, old))) => t - old,
-            _ => 0.0,
-        };
-        shift_downstream(&w, &mut magnets, &mut joints, shift, &mut saved);
-        let inputs = Inputs {
-            shapes: &shapes,
-            magnets: &magnets,
-            joints: &joints,
-        };
-        let tracks = w.input_tracks(&inputs);
-        let first = tracks
-            .iter()
-            .filter_map(|&t| shapes.first_move(t))
-            .fold(f64::INFINITY, f64::min);
-        let t_start = if w.lo == 0 || !first.is_finite() {
-            0.0
-        } else {
-            first
-        };
-        let t_ref = anchor.unwrap_or(t_start);
-        window_key(&w, &tracks, t_ref, quantum, &mut key);
+        let old = before.units.get(u).map(|&(_, old)| old);
+        let (magnets_joints, keep) = (
+            (&mut magnets[..], &mut joints[..]),
+            (&mut anchors, &mut saved),
+        );
+        let (t_start, t_ref) = place_unit(&w, &shapes, magnets_joints, old, keep, &mut key);
         let hit = if ctx.reuse {
             ctx.cache.get(&key, (k, u))
         } else {
@@ -300,48 +273,25 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         let entry = match hit {
             Some(e) => e,
             None => {
-                let (t0, mut sol) = solve(&w, inputs, ctx.opts);
-                debug_assert_eq!(t0, t_start);
-                // local times from the unit's origin
-                let d = t0 - t_ref;
-                for e in &mut sol.events {
-                    e.time += d;
-                }
-                for (_, start) in sol.shapes.iter_mut().flatten() {
-                    *start += d;
-                }
-                solves += 1;
-                rhs += sol.rhs;
                 // the unit one back, if it is the same kind of unit: its time origin
                 let prev_ref = (u >= 1).then(|| units.get(u - 1).map(|p| p.1)).flatten();
-                let mut ids = Vec::with_capacity(sol.shapes.len());
-                for (i, sh) in sol.shapes.iter_mut().enumerate() {
-                    ids.push(sh.take().map(|(shape, start)| {
-                        let found = if ctx.reuse {
-                            shared_shape(
-                                &shapes, &library, &magnets, &joints, &w, i, &shape, start, t_ref,
-                                prev_ref, quantum,
-                            )
-                        } else {
-                            None
-                        };
-                        found.unwrap_or_else(|| {
-                            let end = shape.end();
-                            let shape = Arc::new(shape);
-                            let id = shapes.add(k, shape.clone());
-                            made.push(shape);
-                            library.add(kind(g, w.vars[i]), end, id);
-                            (id, start)
-                        })
-                    }));
-                }
-                let e = Arc::new(Entry {
-                    shapes: ids,
-                    solution: sol,
-                });
-                if ctx.reuse {
-                    ctx.cache.insert(&key, (k, u), e.clone());
-                }
+                let origin = (t_start, t_ref, prev_ref);
+                let mut store = Store {
+                    shapes: &mut shapes,
+                    library: &mut library,
+                    made: &mut made,
+                };
+                let (e, n) = solve_unit(
+                    ctx,
+                    (k, u),
+                    &w,
+                    origin,
+                    (&magnets, &joints),
+                    &key,
+                    &mut store,
+                );
+                solves += 1;
+                rhs += n;
                 e
             }
         };
@@ -379,6 +329,131 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         rhs,
         complete,
     }
+}
+
+/// Places unit `w` in time: its time origin, when the magnet before it is half way (a
+/// crossing the step sizes hardly move), else when its inputs first move; the units after
+/// it moved against it as they were in the sweep before (their tracks moved by as much as
+/// its origin moved since its origin there, `old`; what they were kept in `saved`); its
+/// window's cache key into `key`. Its inputs' first move and its origin.
+fn place_unit(
+    w: &UnitForces,
+    shapes: &Shapes,
+    (magnets, joints): (&mut [Track], &mut [Track]),
+    old: Option<f64>,
+    (anchors, saved): (&mut Anchors, &mut Saved),
+    key: &mut Vec<i64>,
+) -> (f64, f64) {
+    let anchor = match w.vars.first() {
+        Some(Var::Magnet(a)) if *a >= 1 && w.lo > 0 => anchors.crossing(shapes, magnets[a - 1]),
+        _ => None,
+    };
+    let shift = match (anchor, old) {
+        (Some(t), Some(old)) => t - old,
+        _ => 0.0,
+    };
+    shift_downstream(w, magnets, joints, shift, saved);
+    let inputs = Inputs {
+        shapes,
+        magnets,
+        joints,
+    };
+    let tracks = w.input_tracks(&inputs);
+    let first = tracks
+        .iter()
+        .filter_map(|&t| shapes.first_move(t))
+        .fold(f64::INFINITY, f64::min);
+    let t_start = if w.lo == 0 || !first.is_finite() {
+        0.0
+    } else {
+        first
+    };
+    let t_ref = anchor.unwrap_or(t_start);
+    let quantum = OFFSET_QUANTUM * w.model.time_scale;
+    window_key(w, &tracks, t_ref, quantum, key);
+    (t_start, t_ref)
+}
+
+/// Where a sweep keeps the shapes its local solves make.
+struct Store<'s> {
+    /// The shapes of this sweep and of every sweep before.
+    shapes: &'s mut Shapes,
+    /// This sweep's shapes by kind and end (the copies a new shape may be).
+    library: &'s mut Library,
+    /// The shapes this sweep made at the unit.
+    made: &'s mut Vec<Arc<Shape>>,
+}
+
+/// Solves unit `u` of sweep `k` (`w`) against `tracks` (the magnets' and the joints'),
+/// its origin being `(t_start, t_ref, prev_ref)` (its inputs' first move, its time origin,
+/// the unit one back's); stores its new shapes (or the stored ones they are copies of) and
+/// its entry under `key` in the cache. The entry and the right-hand sides evaluated.
+fn solve_unit(
+    ctx: Ctx,
+    (k, u): (usize, usize),
+    w: &UnitForces,
+    (t_start, t_ref, prev_ref): (f64, f64, Option<f64>),
+    (magnets, joints): (&[Track], &[Track]),
+    key: &[i64],
+    store: &mut Store,
+) -> (Arc<Entry>, u64) {
+    let quantum = OFFSET_QUANTUM * ctx.model.time_scale;
+    let inputs = Inputs {
+        shapes: store.shapes,
+        magnets,
+        joints,
+    };
+    let (t0, mut sol) = solve(w, inputs, ctx.opts);
+    debug_assert_eq!(t0, t_start);
+    // local times from the unit's origin
+    let d = t0 - t_ref;
+    for e in &mut sol.events {
+        e.time += d;
+    }
+    for (_, start) in sol.shapes.iter_mut().flatten() {
+        *start += d;
+    }
+    let rhs = sol.rhs;
+    let mut ids = Vec::with_capacity(sol.shapes.len());
+    for (i, sh) in sol.shapes.iter_mut().enumerate() {
+        ids.push(sh.take().map(|(shape, start)| {
+            let found = if ctx.reuse {
+                shared_shape(
+                    store.shapes,
+                    store.library,
+                    magnets,
+                    joints,
+                    w,
+                    i,
+                    &shape,
+                    start,
+                    t_ref,
+                    prev_ref,
+                    quantum,
+                )
+            } else {
+                None
+            };
+            found.unwrap_or_else(|| {
+                let end = shape.end();
+                let shape = Arc::new(shape);
+                let id = store.shapes.add(k, shape.clone());
+                store.made.push(shape);
+                store
+                    .library
+                    .add(kind(&ctx.model.geometry, w.vars[i]), end, id);
+                (id, start)
+            })
+        }));
+    }
+    let e = Arc::new(Entry {
+        shapes: ids,
+        solution: sol,
+    });
+    if ctx.reuse {
+        ctx.cache.insert(key, (k, u), e.clone());
+    }
+    (e, rhs)
 }
 
 /// Writes the tracks of a unit with unknowns `vars`, solution `entry` and origin `t_ref`.

@@ -24,7 +24,7 @@ mod step;
 
 pub(crate) use crate::model::InertialModel;
 
-use crate::engine::local::trajectory::Shape;
+use crate::engine::local::trajectory::{Shape, Track};
 use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
 use crate::ode::locate::bisect;
@@ -222,105 +222,47 @@ impl Solver<'_> {
     }
 }
 
-/// Solves unit `w` against `inputs`.
-pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
-    let tracks = w.input_tracks(&inputs);
-    let first = tracks
-        .iter()
-        .filter_map(|&t| inputs.shapes.first_move(t))
-        .fold(f64::INFINITY, f64::min);
-    let last = tracks
-        .iter()
-        .filter_map(|&t| inputs.shapes.last_move(t))
-        .fold(f64::NEG_INFINITY, f64::max);
-    // the RI pulls from t = 0
-    let t_ref = if w.lo == 0 || !first.is_finite() {
-        0.0
-    } else {
-        first
-    };
-    let t_last = last - t_ref;
-    let m = w.vars.len();
-    let mut globals = [0; M];
-    for (i, g) in globals.iter_mut().enumerate().take(m) {
-        *g = w.global(i);
-    }
-    let mut s = Solver {
-        w,
-        inputs,
-        opts,
-        t_ref,
-        m,
-        globals,
-        modes: [Mode::AtStart; M],
-        scratch: Scratch::default(),
-        rhs: 0,
-        reported: [false; M],
-        closed: [false; M],
-        nodes: vec![Shape::default(); m],
-        started: [f64::NAN; M],
-        sol: Solution {
-            shapes: vec![None; m],
-            ..Solution::default()
-        },
-        last_event: 0.0,
-        memo: None,
-    };
-    let model = w.model;
-    let dim = s.dim();
-    let mut z = [0.0; Z];
-    let mut d = [0.0; M];
-    let mut f = [0.0; Z];
-    let mut tau = 0.0;
-    let (scale, mut h) = match opts.inertial {
-        Some(im) => (im.scale, im.first_step * 1e-3 * opts.tol.powf(0.2)),
-        None => (
-            model.time_scale,
-            model.time_scale * 1e-3 * opts.tol.powf(0.2),
-        ),
-    };
-    // the unit's slowest time scale: its magnets', or its joint's fold against both sides'
-    // drag (the creep limit's unit)
-    let slowest = w
-        .vars
-        .iter()
-        .filter_map(|v| match *v {
-            Var::Joint(jj) => Some(model.fold_time(jj)),
-            Var::Magnet(_) => None,
-        })
-        .fold(scale, f64::max);
-    let mut steps = 0usize;
-    // the last time and release margin met while nothing of the unit moved
-    let mut rest_prev: Option<(f64, f64)> = None;
-    // RODAS4 instead of Dormand-Prince while the unit is stiff, and how many steps in a row
-    // asked for the other method
-    let (mut stiff, mut streak) = (false, 0usize);
-    // where each input's last node search ended
-    let mut node_hints = vec![0; tracks.len()];
-    let mut next_input_node = |tau: f64| -> Option<f64> {
+/// The inputs of a unit as its solve walks through them.
+struct InputWalk<'a> {
+    inputs: Inputs<'a>,
+    /// The inputs' tracks.
+    tracks: Vec<Track>,
+    /// Where each input's last node search ended.
+    hints: Vec<usize>,
+    /// The unit's time origin.
+    t_ref: f64,
+    /// The time scale steps are measured on.
+    scale: f64,
+}
+
+impl InputWalk<'_> {
+    /// The next input node strictly after `tau`, if any.
+    fn next_node(&mut self, tau: f64) -> Option<f64> {
         // strictly later than tau, whatever the rounding of the offsets
-        let t = t_ref + tau;
-        let t = t + 1e-13 * t.abs().max(scale);
-        tracks
+        let t = self.t_ref + tau;
+        let t = t + 1e-13 * t.abs().max(self.scale);
+        let shapes = self.inputs.shapes;
+        self.tracks
             .iter()
-            .zip(node_hints.iter_mut())
-            .filter_map(|(&tr, hint)| inputs.shapes.next_node_hinted(tr, t, hint))
+            .zip(self.hints.iter_mut())
+            .filter_map(|(&tr, hint)| shapes.next_node_hinted(tr, t, hint))
             .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.min(b))))
-            .map(|t| t - t_ref)
-    };
-    let input_span = |tau: f64| -> f64 {
-        // the widest interval of a moving input at tau (steps stay within two of them)
-        let t = t_ref + tau;
+            .map(|t| t - self.t_ref)
+    }
+
+    /// The widest interval of a moving input at `tau` (steps stay within two of them).
+    fn span(&self, tau: f64) -> f64 {
+        let t = self.t_ref + tau;
+        let shapes = self.inputs.shapes;
         let mut span = f64::INFINITY;
-        for &tr in &tracks {
-            if let (Some(a), Some(b)) = (inputs.shapes.first_move(tr), inputs.shapes.last_move(tr))
-            {
+        for &tr in &self.tracks {
+            if let (Some(a), Some(b)) = (shapes.first_move(tr), shapes.last_move(tr)) {
                 if t < a {
                     // (an input starting within a rounding of `t` must not make the step
                     // vanish: tau + h == tau would repeat it to the step limit)
                     span = span.min((a - t).max(1e-12 * t.abs().max(1.0)));
                 } else if t < b {
-                    let sh = inputs.shapes.get(tr.shape);
+                    let sh = shapes.get(tr.shape);
                     let i =
                         sh.t.partition_point(|&x| x <= t - tr.offset)
                             .clamp(1, sh.t.len() - 1);
@@ -329,111 +271,241 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
             }
         }
         span
-    };
-    loop {
-        // switches at tau
-        s.drives(tau, &z, &mut d);
-        for i in 0..m {
-            match opts.inertial {
-                None => s.switch_first_order(i, tau, &mut z, &d),
-                Some(im) => s.switch_second_order(im, i, tau, &mut z, &d),
-            }
-            if s.report_due(i, z[i]) {
-                s.reported[i] = true;
-                s.event(i, tau, EventKind::MagnetStarts, &z);
-            }
-        }
-        let free: Vec<usize> = (0..m).filter(|&i| s.modes[i] == Mode::Free).collect();
-        steps += 1;
-        // the work budget: a step limit, and a creep limit once the inputs are still (no
-        // event for CREEP_SCALES times the unit's slowest time scale or its time, as the
-        // reference's): a balance the solve cannot decide within it is said, with its margin
-        let creeping = !free.is_empty()
-            && tau >= t_last
-            && tau - s.last_event > CREEP_SCALES * slowest.max(s.last_event);
-        if steps > opts.max_steps || creeping {
-            let budget = if creeping {
-                format!(
-                    "no event for {:.3e} s after the last at {:.6e} s",
-                    tau - s.last_event,
-                    t_ref + s.last_event
-                )
-            } else {
-                format!("{} steps", opts.max_steps)
-            };
-            let margin = undecided_margin(model, free.iter().map(|&i| (s.globals[i], z[i], d[i])));
-            s.sol.stopped = Some(format!(
-                "local solve of joint {} undecided at t = {:.6e} s within its work budget ({budget}): {margin}",
-                w.j,
-                t_ref + tau
-            ));
-            break;
-        }
-        if free.is_empty() {
-            // nothing of the unit moves: step from input node to input node, past the nodes
-            // where the release margin, changing at SKIP_SAFETY times its last rate either way,
-            // stays short
-            let Some(mut tn) = next_input_node(tau) else {
-                break;
-            };
-            let margin = s.release_margin(&d);
-            // (overdamped units too: a neighbour of a slow fold waits through its long track)
-            let skip = opts.rest_skip && margin < 0.0;
-            if let Some((tp, mp)) = rest_prev.filter(|&(tp, _)| skip && tp < tau) {
-                let rate = ((margin - mp) / (tau - tp)).abs();
-                for _ in 1..MAX_SKIP {
-                    match next_input_node(tn) {
-                        Some(next) if margin + SKIP_SAFETY * rate * (next - tau) < 0.0 => tn = next,
-                        _ => break,
-                    }
-                }
-            }
-            rest_prev = Some((tau, margin));
-            let z0 = z;
-            let mut dn = [0.0; M];
-            s.drives(tn, &z0, &mut dn);
-            if s.any_switch(&z0, &dn) {
-                let (_, hi) = bisect((tau, tn), scale, |mid| {
-                    s.drives(mid, &z0, &mut dn);
-                    s.any_switch(&z0, &dn)
-                });
-                tau = hi;
-            } else {
-                tau = tn;
-            }
-            continue;
-        }
-        rest_prev = None;
-        // settled or at rest once the inputs are still
-        if tau >= t_last {
-            s.deriv(tau, &z, &mut d, &mut f);
-            match opts.inertial {
-                None => {
-                    let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
-                    let since = (tau - s.last_event).max(scale);
-                    if fastest * since < 1e-9
-                        || (fastest * since < 1e-2 && s.settled(tau, &z, &f, &free))
-                    {
-                        break;
-                    }
-                }
-                Some(im) => {
-                    if free
-                        .iter()
-                        .all(|&i| im.quiet(s.globals[i], z[m + i], f[m + i]))
-                    {
-                        break;
-                    }
-                }
-            }
-        }
-        // one Dormand-Prince step
-        let hmax = input_span(tau);
-        h = h.min(hmax);
-        let st = if stiff {
-            rodas(&mut s, tau, &z, h, &free)
+    }
+}
+
+/// A local solve's walk in time: the solver, its inputs, and where it stands.
+struct Walk<'a> {
+    s: Solver<'a>,
+    input: InputWalk<'a>,
+    /// The inputs' last move, local time.
+    t_last: f64,
+    /// The time scale steps are measured on.
+    scale: f64,
+    /// The unit's slowest time scale (the creep limit's unit).
+    slowest: f64,
+    /// Local time.
+    tau: f64,
+    /// The state.
+    z: [f64; Z],
+    /// The drives at `(tau, z)`.
+    d: [f64; M],
+    /// The state's time derivative.
+    f: [f64; Z],
+    /// The next step's size.
+    h: f64,
+    /// Steps so far (rest steps, switches and rejected attempts included).
+    steps: usize,
+    /// The last time and release margin met while nothing of the unit moved.
+    rest_prev: Option<(f64, f64)>,
+    /// RODAS4 instead of Dormand-Prince while the unit is stiff.
+    stiff: bool,
+    /// How many steps in a row asked for the other method.
+    streak: usize,
+}
+
+impl<'a> Walk<'a> {
+    /// The solve of unit `w` against `inputs` at its start.
+    fn new(w: &'a UnitForces<'a>, inputs: Inputs<'a>, opts: SolveOptions<'a>) -> Walk<'a> {
+        let tracks = w.input_tracks(&inputs);
+        let first = tracks
+            .iter()
+            .filter_map(|&t| inputs.shapes.first_move(t))
+            .fold(f64::INFINITY, f64::min);
+        let last = tracks
+            .iter()
+            .filter_map(|&t| inputs.shapes.last_move(t))
+            .fold(f64::NEG_INFINITY, f64::max);
+        // the RI pulls from t = 0
+        let t_ref = if w.lo == 0 || !first.is_finite() {
+            0.0
         } else {
-            dopri(&mut s, tau, &z, h, &free)
+            first
+        };
+        let m = w.vars.len();
+        let mut globals = [0; M];
+        for (i, g) in globals.iter_mut().enumerate().take(m) {
+            *g = w.global(i);
+        }
+        let s = Solver {
+            w,
+            inputs,
+            opts,
+            t_ref,
+            m,
+            globals,
+            modes: [Mode::AtStart; M],
+            scratch: Scratch::default(),
+            rhs: 0,
+            reported: [false; M],
+            closed: [false; M],
+            nodes: vec![Shape::default(); m],
+            started: [f64::NAN; M],
+            sol: Solution {
+                shapes: vec![None; m],
+                ..Solution::default()
+            },
+            last_event: 0.0,
+            memo: None,
+        };
+        let model = w.model;
+        let (scale, h) = match opts.inertial {
+            Some(im) => (im.scale, im.first_step * 1e-3 * opts.tol.powf(0.2)),
+            None => (
+                model.time_scale,
+                model.time_scale * 1e-3 * opts.tol.powf(0.2),
+            ),
+        };
+        // the unit's slowest time scale: its magnets', or its joint's fold against both
+        // sides' drag (the creep limit's unit)
+        let slowest = w
+            .vars
+            .iter()
+            .filter_map(|v| match *v {
+                Var::Joint(jj) => Some(model.fold_time(jj)),
+                Var::Magnet(_) => None,
+            })
+            .fold(scale, f64::max);
+        let hints = vec![0; tracks.len()];
+        Walk {
+            s,
+            input: InputWalk {
+                inputs,
+                tracks,
+                hints,
+                t_ref,
+                scale,
+            },
+            t_last: last - t_ref,
+            scale,
+            slowest,
+            tau: 0.0,
+            z: [0.0; Z],
+            d: [0.0; M],
+            f: [0.0; Z],
+            h,
+            steps: 0,
+            rest_prev: None,
+            stiff: false,
+            streak: 0,
+        }
+    }
+
+    /// The switches at `tau` (and the starts to report); the free unknowns.
+    fn switch(&mut self) -> Vec<usize> {
+        let (s, tau) = (&mut self.s, self.tau);
+        s.drives(tau, &self.z, &mut self.d);
+        for i in 0..s.m {
+            match s.opts.inertial {
+                None => s.switch_first_order(i, tau, &mut self.z, &self.d),
+                Some(im) => s.switch_second_order(im, i, tau, &mut self.z, &self.d),
+            }
+            if s.report_due(i, self.z[i]) {
+                s.reported[i] = true;
+                s.event(i, tau, EventKind::MagnetStarts, &self.z);
+            }
+        }
+        (0..s.m).filter(|&i| s.modes[i] == Mode::Free).collect()
+    }
+
+    /// Whether the work budget is spent: a step limit, and a creep limit once the inputs
+    /// are still (no event for CREEP_SCALES times the unit's slowest time scale or its
+    /// time, as the reference's): a balance the solve cannot decide within it is said, with
+    /// its margin.
+    fn out_of_budget(&mut self, free: &[usize]) -> bool {
+        let (s, tau) = (&mut self.s, self.tau);
+        let creeping = !free.is_empty()
+            && tau >= self.t_last
+            && tau - s.last_event > CREEP_SCALES * self.slowest.max(s.last_event);
+        if self.steps <= s.opts.max_steps && !creeping {
+            return false;
+        }
+        let budget = if creeping {
+            format!(
+                "no event for {:.3e} s after the last at {:.6e} s",
+                tau - s.last_event,
+                s.t_ref + s.last_event
+            )
+        } else {
+            format!("{} steps", s.opts.max_steps)
+        };
+        let (z, d) = (&self.z, &self.d);
+        let margin = undecided_margin(s.w.model, free.iter().map(|&i| (s.globals[i], z[i], d[i])));
+        s.sol.stopped = Some(format!(
+            "local solve of joint {} undecided at t = {:.6e} s within its work budget ({budget}): {margin}",
+            s.w.j,
+            s.t_ref + tau
+        ));
+        true
+    }
+
+    /// Nothing of the unit moves: a step from input node to input node, past the nodes
+    /// where the release margin, changing at SKIP_SAFETY times its last rate either way,
+    /// stays short; false when no input moves again.
+    fn rest_step(&mut self) -> bool {
+        let tau = self.tau;
+        let Some(mut tn) = self.input.next_node(tau) else {
+            return false;
+        };
+        let s = &mut self.s;
+        let margin = s.release_margin(&self.d);
+        // (overdamped units too: a neighbour of a slow fold waits through its long track)
+        let skip = s.opts.rest_skip && margin < 0.0;
+        if let Some((tp, mp)) = self.rest_prev.filter(|&(tp, _)| skip && tp < tau) {
+            let rate = ((margin - mp) / (tau - tp)).abs();
+            for _ in 1..MAX_SKIP {
+                match self.input.next_node(tn) {
+                    Some(next) if margin + SKIP_SAFETY * rate * (next - tau) < 0.0 => tn = next,
+                    _ => break,
+                }
+            }
+        }
+        self.rest_prev = Some((tau, margin));
+        let z0 = self.z;
+        let mut dn = [0.0; M];
+        s.drives(tn, &z0, &mut dn);
+        if s.any_switch(&z0, &dn) {
+            let (_, hi) = bisect((tau, tn), self.scale, |mid| {
+                s.drives(mid, &z0, &mut dn);
+                s.any_switch(&z0, &dn)
+            });
+            self.tau = hi;
+        } else {
+            self.tau = tn;
+        }
+        true
+    }
+
+    /// Whether the free unknowns have settled or come to rest once the inputs are still.
+    fn settled(&mut self, free: &[usize]) -> bool {
+        let (s, tau) = (&mut self.s, self.tau);
+        if tau < self.t_last {
+            return false;
+        }
+        s.deriv(tau, &self.z, &mut self.d, &mut self.f);
+        let (z, f) = (&self.z, &self.f);
+        match s.opts.inertial {
+            None => {
+                let fastest = free.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
+                let since = (tau - s.last_event).max(self.scale);
+                fastest * since < 1e-9 || (fastest * since < 1e-2 && s.settled(tau, z, f, free))
+            }
+            Some(im) => free
+                .iter()
+                .all(|&i| im.quiet(s.globals[i], z[s.m + i], f[s.m + i])),
+        }
+    }
+
+    /// One step of the free unknowns (Dormand-Prince, or RODAS4 while the unit is stiff),
+    /// to its end or to the first switch inside it.
+    fn step(&mut self, free: &[usize]) {
+        let hmax = self.input.span(self.tau);
+        self.h = self.h.min(hmax);
+        let (tau, h) = (self.tau, self.h);
+        let st = if self.stiff {
+            rodas(&mut self.s, tau, &self.z, h, free)
+        } else {
+            dopri(&mut self.s, tau, &self.z, h, free)
         };
         let err = st.err;
         // the method: Dormand-Prince until its step is bounded by stability (Hairer's test,
@@ -442,96 +514,139 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         // (overdamped units too: with both free sides a fold's drag grows as the sum of r^2
         // over the chain either side, so a U-turn in a long serpentine turns for days while
         // its pair's magnets relax in tenths of a second)
-        let other = if stiff {
+        let other = if self.stiff {
             st.stiffness < 1.0 && err <= 1.0
         } else {
-            opts.rosenbrock && st.stiffness > 3.25
+            self.s.opts.rosenbrock && st.stiffness > 3.25
         };
-        streak = if other { streak + 1 } else { 0 };
-        if streak >= 3 {
-            stiff = !stiff;
-            streak = 0;
+        self.streak = if other { self.streak + 1 } else { 0 };
+        if self.streak >= 3 {
+            self.stiff = !self.stiff;
+            self.streak = 0;
         }
         if !err.is_finite() || err > 1.0 {
-            h *= integral(err, st.exponent, false);
-            continue;
+            self.h *= integral(err, st.exponent, false);
+            return;
         }
         let grow = integral(err, st.exponent, true);
-        let (t0, z0, f0) = (tau, z, st.f0);
         let (t1, z1, f1) = (tau + h, st.z1, st.f1);
         // an event inside the step?
         let mut d1 = [0.0; M];
-        s.drives(t1, &z1, &mut d1);
-        if s.any_switch(&z1, &d1) {
-            let ends = (t0, t1);
-            let (start, end) = ((&z0, &f0), (&z1, &f1));
-            // a wall or a start to report while a clamped unknown waits: found without drives,
-            // then a release looked for where it is (none there: the same bisection, as a
-            // release that has not come by then has not come before)
-            let kinematic = match opts.inertial {
-                Some(im) if s.switches_need_drives() && s.any_kinematic_switch(&z1) => {
-                    let (lo, hi, zh) = s.bisect_switch(ends, start, end, scale, true);
-                    let mut dh = [0.0; M];
-                    s.drives(hi, &zh, &mut dh);
-                    (!s.any_release(im, &dh)).then_some((lo, hi, zh))
-                }
-                _ => None,
-            };
-            let (_, hi, z_hi) = match kinematic {
-                Some(found) => found,
-                None => s.bisect_switch(ends, start, end, scale, false),
-            };
-            for &i in &free {
-                let slope = if opts.inertial.is_some() {
-                    z_hi[m + i]
-                } else {
-                    // the rate at the event, from the interpolant's slope
-                    let dt = 1e-9 * (t1 - t0);
-                    (hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi)
-                        - hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi - dt))
-                        / dt
-                };
-                s.node(i, hi, z_hi[i].clamp(0.0, 1.0), slope);
+        self.s.drives(t1, &z1, &mut d1);
+        if self.s.any_switch(&z1, &d1) {
+            self.go_to_switch((tau, t1), (&st.f0, &z1, &f1), free);
+            return;
+        }
+        for &i in free {
+            self.s.node(i, t1, z1[i], f1[i]);
+        }
+        self.tau = t1;
+        self.z = z1;
+        self.h *= grow;
+    }
+
+    /// The step over `(t0, t1)` from the current state (its derivative `f0`) to `z1` (its
+    /// derivative `f1`) meets a switch: the walk goes to it.
+    fn go_to_switch(
+        &mut self,
+        (t0, t1): (f64, f64),
+        (f0, z1, f1): (&[f64; Z], &[f64; Z], &[f64; Z]),
+        free: &[usize],
+    ) {
+        let s = &mut self.s;
+        let (m, scale, z0) = (s.m, self.scale, self.z);
+        let ends = (t0, t1);
+        let (start, end) = ((&z0, f0), (z1, f1));
+        // a wall or a start to report while a clamped unknown waits: found without drives,
+        // then a release looked for where it is (none there: the same bisection, as a
+        // release that has not come by then has not come before)
+        let kinematic = match s.opts.inertial {
+            Some(im) if s.switches_need_drives() && s.any_kinematic_switch(z1) => {
+                let (lo, hi, zh) = s.bisect_switch(ends, start, end, scale, true);
+                let mut dh = [0.0; M];
+                s.drives(hi, &zh, &mut dh);
+                (!s.any_release(im, &dh)).then_some((lo, hi, zh))
             }
-            for &i in &free {
-                z[i] = z_hi[i].clamp(0.0, 1.0);
-                if dim > m {
-                    z[m + i] = z_hi[m + i];
-                }
+            _ => None,
+        };
+        let (_, hi, z_hi) = match kinematic {
+            Some(found) => found,
+            None => s.bisect_switch(ends, start, end, scale, false),
+        };
+        for &i in free {
+            let slope = if s.opts.inertial.is_some() {
+                z_hi[m + i]
+            } else {
+                // the rate at the event, from the interpolant's slope
+                let dt = 1e-9 * (t1 - t0);
+                (hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi)
+                    - hermite(t0, t1, (z0[i], f0[i]), (z1[i], f1[i]), hi - dt))
+                    / dt
+            };
+            s.node(i, hi, z_hi[i].clamp(0.0, 1.0), slope);
+        }
+        let dim = s.dim();
+        for &i in free {
+            self.z[i] = z_hi[i].clamp(0.0, 1.0);
+            if dim > m {
+                self.z[m + i] = z_hi[m + i];
             }
-            tau = hi;
-            h = h.max(1e-6 * scale);
+        }
+        self.tau = hi;
+        self.h = self.h.max(1e-6 * scale);
+    }
+
+    /// The solution, its time origin first.
+    fn finish(mut self) -> (f64, Solution) {
+        let s = &mut self.s;
+        let m = s.m;
+        s.drives(self.tau, &self.z, &mut self.d);
+        let mut sol = std::mem::take(&mut s.sol);
+        for i in 0..m {
+            if !s.started[i].is_nan() {
+                let mut sh = std::mem::take(&mut s.nodes[i]);
+                let origin = s.started[i];
+                for t in &mut sh.t {
+                    *t -= origin;
+                }
+                sol.shapes[i] = Some((sh, origin));
+            }
+        }
+        sol.modes = s.modes[..m].to_vec();
+        sol.y = self.z[..m].to_vec();
+        sol.drive = self.d[..m].to_vec();
+        sol.rhs = s.rhs;
+        sol.events.sort_by(|a, b| {
+            a.time
+                .total_cmp(&b.time)
+                .then((a.kind, a.rel).cmp(&(b.kind, b.rel)))
+        });
+        (s.t_ref, sol)
+    }
+}
+
+/// Solves unit `w` against `inputs`.
+pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64, Solution) {
+    let mut walk = Walk::new(w, inputs, opts);
+    loop {
+        let free = walk.switch();
+        walk.steps += 1;
+        if walk.out_of_budget(&free) {
+            break;
+        }
+        if free.is_empty() {
+            if !walk.rest_step() {
+                break;
+            }
             continue;
         }
-        for &i in &free {
-            s.node(i, t1, z1[i], f1[i]);
+        walk.rest_prev = None;
+        if walk.settled(&free) {
+            break;
         }
-        tau = t1;
-        z = z1;
-        h *= grow;
+        walk.step(&free);
     }
-    s.drives(tau, &z, &mut d);
-    let mut sol = std::mem::take(&mut s.sol);
-    for i in 0..m {
-        if !s.started[i].is_nan() {
-            let mut sh = std::mem::take(&mut s.nodes[i]);
-            let origin = s.started[i];
-            for t in &mut sh.t {
-                *t -= origin;
-            }
-            sol.shapes[i] = Some((sh, origin));
-        }
-    }
-    sol.modes = s.modes[..m].to_vec();
-    sol.y = z[..m].to_vec();
-    sol.drive = d[..m].to_vec();
-    sol.rhs = s.rhs;
-    sol.events.sort_by(|a, b| {
-        a.time
-            .total_cmp(&b.time)
-            .then((a.kind, a.rel).cmp(&(b.kind, b.rel)))
-    });
-    (t_ref, sol)
+    walk.finish()
 }
 
 #[cfg(test)]
