@@ -8,7 +8,7 @@
 
 use std::time::Instant;
 
-use foldchain::count::{count_valid, CountOptions};
+use foldchain::count::CountOptions;
 
 fn main() {
     let max_n: usize = std::env::args()
@@ -23,7 +23,9 @@ fn main() {
     );
     for n in 12..=max_n {
         let t = Instant::now();
-        let rows = count_valid(&CountOptions::default().with_tiles(1, n), &|_, _| {})
+        let rows = CountOptions::default()
+            .with_tiles(1, n)
+            .count_valid(&|_, _| {})
             .expect("valid options");
         let secs = t.elapsed().as_secs_f64();
         let nodes: u128 = rows.iter().map(|r| r.valid.div_ceil(2)).sum();

@@ -16,6 +16,7 @@ pub mod chain_arg;
 pub mod choices;
 pub mod experiments;
 pub mod fold_run;
+pub mod help;
 pub mod inputs;
 pub mod margins_file;
 pub mod numbers;

@@ -4,7 +4,7 @@
 use crate::collision::{check_word, CheckOptions};
 use crate::{Fold, FoldWord};
 
-use super::{count_valid, CountOptions};
+use super::CountOptions;
 
 /// Every word of `joints` letters.
 fn all_words(joints: usize) -> impl Iterator<Item = FoldWord> {
@@ -51,7 +51,7 @@ fn memoised_search_agrees_with_brute_force() {
                 .with_allow_opposite(allow)
                 .with_final_only(final_only)
                 .with_random(true);
-            let rows = count_valid(&opts, &|_, _| {}).unwrap();
+            let rows = opts.count_valid(&|_, _| {}).unwrap();
             assert_eq!(rows.len(), max);
             for row in rows {
                 let (valid, _) = brute_force(row.tiles, allow, final_only);
@@ -75,8 +75,8 @@ fn memoised_search_agrees_with_brute_force() {
 #[test]
 fn sweeps_cut_words_with_clean_final_shapes() {
     let opts = CountOptions::default().with_tiles(6, 9);
-    let swept = count_valid(&opts, &|_, _| {}).unwrap();
-    let shapes = count_valid(&opts.with_final_only(true), &|_, _| {}).unwrap();
+    let swept = opts.count_valid(&|_, _| {}).unwrap();
+    let shapes = opts.with_final_only(true).count_valid(&|_, _| {}).unwrap();
     assert_eq!(swept[0].valid, shapes[0].valid);
     for (a, b) in swept.iter().zip(&shapes).skip(1) {
         assert!(
@@ -95,10 +95,10 @@ fn sweeps_cut_words_with_clean_final_shapes() {
 fn counting_from_inside_the_thread_pool() {
     use rayon::prelude::*;
     let opts = CountOptions::default().with_tiles(2, 14);
-    let alone = count_valid(&opts, &|_, _| {}).unwrap();
+    let alone = opts.count_valid(&|_, _| {}).unwrap();
     let inside: Vec<_> = (0..2)
         .into_par_iter()
-        .map(|_| count_valid(&opts, &|_, _| {}).unwrap())
+        .map(|_| opts.count_valid(&|_, _| {}).unwrap())
         .collect();
     for rows in inside {
         assert_eq!(rows, alone);

@@ -181,10 +181,9 @@ pub(crate) fn merge_reports(files: &[(String, String)]) -> Result<CountReport, C
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::count::count_valid;
 
     fn report(opts: &CountOptions) -> String {
-        let rows = count_valid(opts, &|_, _| {}).unwrap();
+        let rows = opts.count_valid(&|_, _| {}).unwrap();
         let shard = opts.shard.map(|(k, m)| Shard::new(k, m).unwrap());
         let r = CountReport {
             rows,
@@ -204,7 +203,7 @@ mod tests {
     #[test]
     fn parts_add_up_to_the_whole() {
         let opts = CountOptions::default().with_tiles(2, 13);
-        let whole = count_valid(&opts, &|_, _| {}).unwrap();
+        let whole = opts.count_valid(&|_, _| {}).unwrap();
         // given in any order
         let merged = merge_reports(&parts(opts, &[3, 1, 4, 2], 4)).unwrap();
         assert_eq!(merged.rows, whole);

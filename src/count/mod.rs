@@ -223,76 +223,89 @@ pub struct CountRow {
     pub p_propagates: Option<f64>,
 }
 
-/// Counts valid fold words for every length in the options' range. `progress(done, total)`
-/// is called as parts of the search finish.
-pub fn count_valid(
-    opts: &CountOptions,
-    progress: &(dyn Fn(u64, u64) + Sync),
-) -> Result<Vec<CountRow>, CountError> {
-    if opts.min_tiles < 1 || opts.min_tiles > opts.max_tiles || opts.max_tiles > MAX_COUNT_TILES {
-        return Err(CountError::BadRange {
-            min: opts.min_tiles,
-            max: opts.max_tiles,
-            limit: MAX_COUNT_TILES,
-        });
-    }
-    let shard = match opts.shard {
-        Some((k, m)) => {
-            let s = Shard::new(k, m)?;
-            (s.k, s.m)
+impl CountOptions {
+    /// Counts valid fold words for every length in the options' range. `progress(done, total)`
+    /// is called as parts of the search finish.
+    ///
+    /// ```
+    /// use foldchain::count::CountOptions;
+    ///
+    /// // thesis Table 5.1: chains of 2, 3 and 4 tiles
+    /// let rows = CountOptions::default().with_tiles(2, 4).count_valid(&|_, _| {}).unwrap();
+    /// assert_eq!(rows.len(), 3);
+    /// assert_eq!(rows[0].valid, 3); // two tiles: S, L and R all fold
+    /// ```
+    pub fn count_valid(
+        &self,
+        progress: &(dyn Fn(u64, u64) + Sync),
+    ) -> Result<Vec<CountRow>, CountError> {
+        let opts = self;
+        if opts.min_tiles < 1 || opts.min_tiles > opts.max_tiles || opts.max_tiles > MAX_COUNT_TILES
+        {
+            return Err(CountError::BadRange {
+                min: opts.min_tiles,
+                max: opts.max_tiles,
+                limit: MAX_COUNT_TILES,
+            });
         }
-        None => (1, 1),
-    };
-    let n = opts.max_tiles;
-    let scope = Scope {
-        tiles: n,
-        allow_opposite: opts.allow_opposite,
-        final_only: opts.final_only,
-        weigh: opts.random && opts.allow_opposite,
-        tolerance: opts.tolerance,
-        shard,
-    };
-    let main = search(&scope, progress);
-    // the random chain's words may have adjacent opposite folds (they stop propagation)
-    let random = match (opts.random, opts.allow_opposite) {
-        (false, _) => None,
-        (true, true) => Some(main.weight.clone()),
-        (true, false) => {
-            let all = Scope {
-                allow_opposite: true,
-                weigh: true,
-                ..scope
+        let shard = match opts.shard {
+            Some((k, m)) => {
+                let s = Shard::new(k, m)?;
+                (s.k, s.m)
+            }
+            None => (1, 1),
+        };
+        let n = opts.max_tiles;
+        let scope = Scope {
+            tiles: n,
+            allow_opposite: opts.allow_opposite,
+            final_only: opts.final_only,
+            weigh: opts.random && opts.allow_opposite,
+            tolerance: opts.tolerance,
+            shard,
+        };
+        let main = search(&scope, progress);
+        // the random chain's words may have adjacent opposite folds (they stop propagation)
+        let random = match (opts.random, opts.allow_opposite) {
+            (false, _) => None,
+            (true, true) => Some(main.weight.clone()),
+            (true, false) => {
+                let all = Scope {
+                    allow_opposite: true,
+                    weigh: true,
+                    ..scope
+                };
+                Some(search(&all, progress).weight)
+            }
+        };
+        let mut rows = Vec::new();
+        for tiles in opts.min_tiles..=n {
+            let joints = (tiles - 1) as u32;
+            let candidates = 3u128.pow(joints);
+            let searched = if opts.allow_opposite {
+                candidates
+            } else {
+                words_without_opposite(tiles)
             };
-            Some(search(&all, progress).weight)
+            let mut row = CountRow {
+                tiles,
+                candidates,
+                searched,
+                valid: u128::from(main.valid[tiles]),
+                p_random: None,
+                p_random_exact: None,
+                p_propagates: None,
+            };
+            if let Some(weight) = &random {
+                let den = 9u128.pow(joints);
+                row.p_random = Some(weight[tiles] as f64 / den as f64);
+                row.p_random_exact = Some(format!("{}/{}", weight[tiles], den));
+                row.p_propagates = Some((7.0f64 / 9.0).powi(joints as i32));
+            }
+            rows.push(row);
         }
-    };
-    let mut rows = Vec::new();
-    for tiles in opts.min_tiles..=n {
-        let joints = (tiles - 1) as u32;
-        let candidates = 3u128.pow(joints);
-        let searched = if opts.allow_opposite {
-            candidates
-        } else {
-            words_without_opposite(tiles)
-        };
-        let mut row = CountRow {
-            tiles,
-            candidates,
-            searched,
-            valid: u128::from(main.valid[tiles]),
-            p_random: None,
-            p_random_exact: None,
-            p_propagates: None,
-        };
-        if let Some(weight) = &random {
-            let den = 9u128.pow(joints);
-            row.p_random = Some(weight[tiles] as f64 / den as f64);
-            row.p_random_exact = Some(format!("{}/{}", weight[tiles], den));
-            row.p_propagates = Some((7.0f64 / 9.0).powi(joints as i32));
-        }
-        rows.push(row);
+        Ok(rows)
     }
-    Ok(rows)
 }
 
 /// Words of `tiles - 1` letters with no L next to R.
@@ -319,7 +332,10 @@ mod tests {
     /// Thesis Table 5.1.
     #[test]
     fn table_5_1() {
-        let rows = count_valid(&CountOptions::default().with_tiles(2, 6), &none).unwrap();
+        let rows = CountOptions::default()
+            .with_tiles(2, 6)
+            .count_valid(&none)
+            .unwrap();
         let got: Vec<(usize, u128, u128)> = rows
             .iter()
             .map(|r| (r.tiles, r.candidates, r.valid))
@@ -335,10 +351,10 @@ mod tests {
         // 3 parts cut at 9 joints; 100 parts cut deeper (16 words a part)
         for (m, tiles) in [(3, 12), (100, 13)] {
             let opts = CountOptions::default().with_tiles(2, tiles);
-            let whole = count_valid(&opts, &none).unwrap();
+            let whole = opts.count_valid(&none).unwrap();
             let mut sum = vec![0u128; whole.len()];
             for k in 1..=m {
-                let part = count_valid(&opts.with_shard(k, m), &none).unwrap();
+                let part = opts.with_shard(k, m).count_valid(&none).unwrap();
                 for (s, r) in sum.iter_mut().zip(&part) {
                     *s += r.valid;
                 }
@@ -349,11 +365,11 @@ mod tests {
 
     #[test]
     fn random_probability_is_exact_and_below_propagation() {
-        let rows = count_valid(
-            &CountOptions::default().with_tiles(2, 6).with_random(true),
-            &none,
-        )
-        .unwrap();
+        let rows = CountOptions::default()
+            .with_tiles(2, 6)
+            .with_random(true)
+            .count_valid(&none)
+            .unwrap();
         // two tiles: never self-intersects, so it is the propagation probability 7/9
         assert_eq!(rows[0].p_random_exact.as_deref(), Some("7/9"));
         for r in &rows {
@@ -378,10 +394,22 @@ mod tests {
 
     #[test]
     fn bad_options_are_errors() {
-        assert!(count_valid(&CountOptions::default().with_tiles(5, 3), &none).is_err());
-        assert!(count_valid(&CountOptions::default().with_tiles(2, 99), &none).is_err());
-        assert!(count_valid(&CountOptions::default().with_shard(0, 3), &none).is_err());
-        assert!(count_valid(&CountOptions::default().with_shard(4, 3), &none).is_err());
+        assert!(CountOptions::default()
+            .with_tiles(5, 3)
+            .count_valid(&none)
+            .is_err());
+        assert!(CountOptions::default()
+            .with_tiles(2, 99)
+            .count_valid(&none)
+            .is_err());
+        assert!(CountOptions::default()
+            .with_shard(0, 3)
+            .count_valid(&none)
+            .is_err());
+        assert!(CountOptions::default()
+            .with_shard(4, 3)
+            .count_valid(&none)
+            .is_err());
     }
 
     #[test]

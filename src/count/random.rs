@@ -1,5 +1,5 @@
 //! The chance that a chain of random tiles folds cleanly, estimated by sampling: for lengths
-//! beyond the exact search's reach ([`super::count_valid`] with `random` gives it exactly).
+//! beyond the exact search's reach ([`super::CountOptions::count_valid`] with `random` gives it exactly).
 //!
 //! Each joint's two paths are drawn independently and uniformly from S, L and R (the nine
 //! tiles); a chain propagates through a joint unless its paths are opposite folds, and the

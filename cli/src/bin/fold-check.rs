@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use foldchain::collision::{check_chain, CheckOptions, Verdict};
+use foldchain_cli::help::{CHECK_ABOUT, CHECK_AFTER_HELP};
 use foldchain_cli::inputs::read_chain;
 use foldchain_cli::numbers::{number_in, open_range, thousands};
 use foldchain_cli::outln;
@@ -15,19 +16,7 @@ use foldchain_cli::report::{finish, parse_args};
 /// Checks that a chain of tiles folds sequentially from the reaction-initiator end without
 /// any two tiles overlapping, at every moment of every fold and in the final shape.
 #[derive(Parser, Debug)]
-#[command(
-    name = "fold-check",
-    version,
-    about = "Does a chain of tiles fold without hitting itself? Checks every fold sweep (sequential folding from the reaction-initiator end) and the final shape.",
-    after_help = "Examples:
-  fold-check SLLS                  a tight U-turn: valid
-  fold-check LSLLSR                collision: tiles 0 and 6 meet while joint 3 folds
-  fold-check --final-only LSLLSR   valid: the final shape is clean, the sweep is not
-  fold-check 'SS SL LL LS SS' --json
-  fold-check chain.txt             a file holding a word, a tile list or JSON
-
-Exit codes: 0 valid, 1 collides or propagation inhibited, 2 bad input."
-)]
+#[command(name = "fold-check", version, about = CHECK_ABOUT, after_help = CHECK_AFTER_HELP)]
 struct Args {
     /// The chain: a fold word (`SLLS`), a tile list (`SS SL LL LS SS`, `SS*12`), JSON, or a
     /// file holding one of them.

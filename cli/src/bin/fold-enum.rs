@@ -8,8 +8,9 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::Parser;
 use foldchain::collision::CheckOptions;
-use foldchain::count::{count_valid, CountOptions, CountReport, CountRow, RandomEstimate, Shard};
+use foldchain::count::{CountOptions, CountReport, CountRow, RandomEstimate, Shard};
 const MAX_COUNT_TILES: usize = CountOptions::MAX_TILES;
+use foldchain_cli::help::{ENUM_ABOUT, ENUM_AFTER_HELP};
 use foldchain_cli::numbers::count_in;
 use foldchain_cli::progress::{duration_words, Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -18,24 +19,7 @@ use foldchain_cli::{errln, outln};
 /// Counts, for each chain length, the candidate fold words (3^(n-1)) and those that fold
 /// sequentially without any two tiles overlapping, from the geometry and the sweep check.
 #[derive(Parser, Debug)]
-#[command(
-    name = "fold-enum",
-    version,
-    about = "Counts the fold words whose chains fold without self-intersection, for every chain length (thesis Table 5.1), from the geometry and the exact sweep check; optionally the chance that a chain of random tiles folds.",
-    after_help = "Examples:
-  fold-enum --max-tiles 6                 thesis Table 5.1: 3 7 17 35 79
-  fold-enum --max-tiles 20 --json
-  fold-enum --max-tiles 12 --random       with the probability for random tiles
-  fold-enum --max-tiles 26 --shard 3/8 --json > part-3.json
-                                          part 3 of 8 of the search (parts add up)
-  fold-enum --merge part-*.json           the whole count from all 8 parts
-
-The count grows about twice per tile: a run expected to take more than a few minutes says
-so before it starts. On a terminal a progress bar appears after a second; otherwise a
-progress line is printed every few seconds (--quiet silences both).
-
-Exit codes: 0 done, 2 bad input."
-)]
+#[command(name = "fold-enum", version, about = ENUM_ABOUT, after_help = ENUM_AFTER_HELP)]
 struct Args {
     /// Longest chain counted, in tiles (2 to 40).
     #[arg(long, value_parser = tiles_arg, allow_hyphen_values = true, required_unless_present = "merge")]
@@ -118,7 +102,7 @@ fn estimate_seconds(opts: &CountOptions, max: usize) -> anyhow::Result<Option<(f
         return Ok(None);
     }
     let start = Instant::now();
-    let rows = count_valid(&opts.with_tiles(2, CALIBRATE), &|_, _| {})?;
+    let rows = opts.with_tiles(2, CALIBRATE).count_valid(&|_, _| {})?;
     let secs = start.elapsed().as_secs_f64();
     let valid: Vec<f64> = rows.iter().map(|r| r.valid as f64).collect();
     let (last, before) = (valid[valid.len() - 1], valid[valid.len() - 2]);
@@ -206,14 +190,14 @@ fn run(args: &Args) -> anyhow::Result<()> {
     }
     let progress = Progress::new("fold-enum", "parts", mode);
     let start = Instant::now();
-    let mut rows = count_valid(&opts, &|d, t| progress.update("counting", d, t))?;
+    let mut rows = opts.count_valid(&|d, t| progress.update("counting", d, t))?;
     if args.random {
         let exact_max = args.random_exact_max.min(max_tiles);
         if exact_max >= args.min_tiles {
-            let exact = count_valid(
-                &opts.with_tiles(args.min_tiles, exact_max).with_random(true),
-                &|d, t| progress.update("random chains", d, t),
-            )?;
+            let exact = opts
+                .with_tiles(args.min_tiles, exact_max)
+                .with_random(true)
+                .count_valid(&|d, t| progress.update("random chains", d, t))?;
             for (row, e) in rows.iter_mut().zip(exact) {
                 row.p_random = e.p_random;
                 row.p_random_exact = e.p_random_exact;

@@ -8,6 +8,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::Parser;
+use foldchain_cli::help::{PLAN_ABOUT, PLAN_AFTER_HELP};
 use foldchain_cli::inputs::refuse_overwrite;
 use foldchain_cli::numbers::{count_in, number_in, open_range};
 use foldchain_cli::progress::{Progress, ProgressMode};
@@ -20,21 +21,7 @@ use foldchain_planner::{
 
 /// Plan a self-folding tile chain that fills the shape drawn in an SVG file.
 #[derive(Parser, Debug)]
-#[command(
-    name = "fold-plan",
-    version,
-    about = "Plans the chain of tiles that folds into a shape drawn in SVG: serpentine rows joined by U-turns, monotone cells joined by turns; every plan is checked to fold without self-intersection.",
-    after_help = "Examples:
-  fold-plan shapes/square.svg --tiles 107 --turns tight
-  fold-plan shapes/key.svg --tiles 171 --preview key-plan.svg --out key-plan.json
-  fold-plan shapes/ring.svg --tiles 300 --json
-  fold-run --plan key-plan.json     fold the planned chain
-
-Prints the run-length tile list and a summary line (or the plan JSON with --json).
-Progress goes to stderr (plain lines every few seconds when stderr is not a terminal;
---quiet silences). Limits: at most 2,000,000 tiles and 10,000,000 outline points; outlines of many points are simplified to 1/1000 of the drawing first.
-Exit codes: 0 planned, 1 the shape cannot be planned (the reason is given), 2 bad input."
-)]
+#[command(name = "fold-plan", version, about = PLAN_ABOUT, after_help = PLAN_AFTER_HELP)]
 struct Args {
     /// The target shape: an SVG file; its filled areas are the shape.
     shape: PathBuf,

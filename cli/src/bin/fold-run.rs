@@ -23,6 +23,7 @@ use foldchain_cli::choices::{
     DynamicsChoice, EngineChoice, FramesViewChoice, SpeedChoice, StartRuleChoice,
 };
 use foldchain_cli::fold_run::{run, EngineRequest, ReferenceModel, RunMode, RunReport, RunRequest};
+use foldchain_cli::help::{RUN_ABOUT, RUN_AFTER_HELP};
 use foldchain_cli::inputs::{
     read_designs, refuse_overwrite_in, resolve_chain, ChainArgs, ChainInput,
 };
@@ -37,32 +38,7 @@ use foldchain_planner::Turns;
 
 /// Simulate a self-folding tile chain: event timeline, collision check, SVG frames.
 #[derive(Parser, Debug)]
-#[command(
-    name = "fold-run",
-    version,
-    about = "Folds a chain of tiles: when every magnet moves and every joint folds (the event engine, or the force-integrated reference with --reference), whether two tiles collide on the way, and the pictures and JSON of the run.",
-    after_help = "Examples:
-  fold-run SLLS                         a straight tile, a tight U-turn, a straight tile
-  fold-run \"S*4 L L S*4 R R S*4\" --json
-  fold-run shapes/key.svg --tiles 171   plan the shape, then fold it
-  fold-run --plan key-plan.json --design my-design.json
-  fold-run LSLLSR --s e/3 --frames 60 --out out/lsllsr
-  fold-run SLLS --reference             the force-integrated reference (up to 2,000 tiles)
-  fold-run LSLLSR --compare             engine and reference side by side in one page
-
-Writes into --out DIR (default out/NAME/): step-NNNN.svg frames, final.svg, transition.svg,
-energy.svg, index.html (the animated viewer: open it in a browser; #t=SECONDS opens it at
-that time), timeline.json, margins.json (the margin of every start and fold, chains up to
-20,000 tiles) and summary.json. The run is written beside DIR and swapped into place at the
-end: DIR holds the earlier run or the new one, whole, whatever happens; a second run into
-DIR meanwhile is refused; files of yours in DIR are kept. Times are simulated seconds.
-The design JSON is described in docs/designing.md (see also docs/design-example.json).
-Limits: 2,000,000 tiles (the engine; about 1 GB of memory, BENCHMARKS.md), 2,000 (--reference,
---compare; 100,000 with --model free-body).
-
-Exit codes: 0 folded completely and cleanly, 1 collided, inhibited, stalled or undecided,
-2 bad input, 3 the disk is full (DIR left as it was)."
-)]
+#[command(name = "fold-run", version, about = RUN_ABOUT, after_help = RUN_AFTER_HELP)]
 struct Args {
     #[command(flatten)]
     input: ChainInput,
