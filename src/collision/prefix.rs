@@ -229,26 +229,24 @@ impl PrefixCheck {
 
     /// An empty chain checked as [`super::check_word`] with `opts` (its touching tolerance).
     pub fn with_options(opts: &CheckOptions) -> PrefixCheck {
-        PrefixCheck {
-            runs: Vec::new(),
-            tiles: 0,
-            collided: false,
-            clear: BinaryHeap::new(),
-            meets: Vec::new(),
-            memo: Arc::new(Mutex::new(Memo::new(opts))),
-        }
+        PrefixCheck::with_memo(Arc::new(Mutex::new(Memo::new(opts))))
     }
 
     /// An empty chain that shares this one's memo (what it learnt about other chains saves
     /// work on the new one; it never changes a verdict).
     pub fn emptied(&self) -> PrefixCheck {
+        PrefixCheck::with_memo(Arc::clone(&self.memo))
+    }
+
+    /// An empty chain with `memo`.
+    fn with_memo(memo: Arc<Mutex<Memo>>) -> PrefixCheck {
         PrefixCheck {
             runs: Vec::new(),
             tiles: 0,
             collided: false,
             clear: BinaryHeap::new(),
             meets: Vec::new(),
-            memo: Arc::clone(&self.memo),
+            memo,
         }
     }
 
