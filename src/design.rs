@@ -337,6 +337,21 @@ pub(crate) const RANGES: [FieldRange; 13] = [
 /// cases such as `s = 1e-12 d`; a fourth power of it, 1e-60, is still far from underflow).
 pub(crate) const NUMERIC_RANGE: (f64, f64) = (1e-15, 1e9);
 
+/// A parameter out of its range: `name`, its `value` in `unit`, and what was expected.
+fn bad(
+    name: &'static str,
+    value: f64,
+    unit: &'static str,
+    expected: String,
+) -> Result<(), DesignError> {
+    Err(DesignError::BadParameter {
+        name,
+        value,
+        unit,
+        expected,
+    })
+}
+
 fn short(v: f64) -> String {
     crate::short_number(v)
 }
@@ -436,14 +451,6 @@ impl Design {
     /// that the arithmetic overflows (1e-15 to 1e9 in the field's unit). A design file or command line is
     /// held to the narrower physical ranges of [`Design::check_ranges`] as well.
     pub fn validate(&self) -> Result<(), DesignError> {
-        let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
-            Err(DesignError::BadParameter {
-                name,
-                value,
-                unit,
-                expected,
-            })
-        };
         self.check_signs()?;
         if let Some(g) = self.magnet_drag.filter(|g| *g <= 0.0) {
             return bad("magnet_drag", g, "N s/m", "a finite number > 0".into());
@@ -503,14 +510,6 @@ impl Design {
 
     /// The lengths make a tile that can be built.
     fn check_geometry(&self) -> Result<(), DesignError> {
-        let bad = |name: &'static str, value: f64, unit: &'static str, expected: String| {
-            Err(DesignError::BadParameter {
-                name,
-                value,
-                unit,
-                expected,
-            })
-        };
         if 2.0 * self.d > self.tile_width * (1.0 + EQUALITY_TOLERANCE) {
             return bad(
                 "d",

@@ -394,22 +394,15 @@ mod tests {
 
     #[test]
     fn bad_options_are_errors() {
-        assert!(CountOptions::default()
-            .with_tiles(5, 3)
-            .count_valid(&none)
-            .is_err());
-        assert!(CountOptions::default()
-            .with_tiles(2, 99)
-            .count_valid(&none)
-            .is_err());
-        assert!(CountOptions::default()
-            .with_shard(0, 3)
-            .count_valid(&none)
-            .is_err());
-        assert!(CountOptions::default()
-            .with_shard(4, 3)
-            .count_valid(&none)
-            .is_err());
+        let d = CountOptions::default;
+        for opts in [
+            d().with_tiles(5, 3),
+            d().with_tiles(2, 99),
+            d().with_shard(0, 3),
+            d().with_shard(4, 3),
+        ] {
+            assert!(opts.count_valid(&none).is_err(), "{opts:?}");
+        }
     }
 
     #[test]
