@@ -21,6 +21,20 @@ use foldchain::reference::{run_reference, Recording, ReferenceOptions};
 use foldchain::timeline::{Summary, TileDesigns};
 use foldchain::{simulate, Chain, Design};
 
+/// The clearance `fold-run` reports for `chain` with its defaults (the thesis' design,
+/// inertial), which must be measured.
+fn inertial_clearance(chain: &Chain) -> foldchain::timeline::Clearance {
+    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
+    let (_, summary) = simulate(
+        chain,
+        &TileDesigns::global(Design::thesis()),
+        &EngineOptions::default().with_model(model),
+        &CheckOptions::default(),
+    )
+    .unwrap();
+    summary.clearance.expect("the clearance is measured")
+}
+
 /// The clearances of the two simulations agree within this, mm.
 const AGREE_MM: f64 = 0.005;
 
@@ -161,16 +175,7 @@ fn a_147_tile_serpentine_reports_its_clearance() {
     }
     let chain = Chain::parse(&word).unwrap();
     assert!((140..160).contains(&chain.len()), "{}", chain.len());
-    // fold-run's defaults: the thesis' design, inertial
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
-    let (_, summary) = simulate(
-        &chain,
-        &TileDesigns::global(Design::thesis()),
-        &EngineOptions::default().with_model(model),
-        &CheckOptions::default(),
-    )
-    .unwrap();
-    let c = summary.clearance.expect("the clearance is measured");
+    let c = inertial_clearance(&chain);
     // loose rows never come nearer than two tiles one apart along the chain
     assert!(c.mm > 0.0 && c.tiles.1 >= c.tiles.0 + 2, "{c:?}");
 }
@@ -193,15 +198,7 @@ fn a_1000_tile_serpentine_reports_its_clearance() {
     }
     let chain = Chain::parse(&word).unwrap();
     assert_eq!(chain.len(), 1000);
-    let model = ModelOptions::default().with_dynamics(Dynamics::Inertial);
-    let (_, summary) = simulate(
-        &chain,
-        &TileDesigns::global(Design::thesis()),
-        &EngineOptions::default().with_model(model),
-        &CheckOptions::default(),
-    )
-    .unwrap();
-    let c = summary.clearance.expect("the clearance is measured");
+    let c = inertial_clearance(&chain);
     // the U-turns' corners: tiles two apart, their 45-degree faces sqrt(2) - 1 widths apart
     let w = Design::thesis().tile_width;
     assert!((c.mm / w - (2f64.sqrt() - 1.0)).abs() < 1e-3, "{c:?}");
