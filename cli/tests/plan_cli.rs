@@ -7,7 +7,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
 mod common;
-use common::{absent, run, shape, stderr};
+use common::{absent, assert_exit_saying, assert_mentions, run, shape, stderr};
 
 /// Word and tile list agree and the chain folds without collision (sequential sweeps).
 fn assert_sound(p: &Plan) {
@@ -43,11 +43,7 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 2);
     assert!(lines[0].starts_with("SS"), "{}", lines[0]);
-    assert!(
-        lines[1].contains("tiles") && lines[1].contains("covered"),
-        "{}",
-        lines[1]
-    );
+    assert_mentions(lines[1], &["tiles", "covered"]);
     let p = Plan::from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_sound(&p);
     assert!(std::fs::read_to_string(&pv).unwrap().contains("<polygon"));
@@ -110,12 +106,7 @@ fn cli_exits_1_naming_why() {
         "fold-plan",
         &[f.to_str().unwrap(), "--out", out.to_str().unwrap()],
     );
-    assert_eq!(o.status.code(), Some(1));
-    let err = stderr(&o);
-    assert!(
-        err.contains("separate parts") && err.contains("cannot plan"),
-        "{err}"
-    );
+    assert_exit_saying(&o, 1, &["separate parts", "cannot plan"]);
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -47,6 +47,19 @@ pub fn assert_exit(o: &Output, code: i32) {
     assert_eq!(o.status.code(), Some(code), "{}", stderr(o));
 }
 
+/// Asserts that `text` holds every one of `words`, naming the first one missing.
+pub fn assert_mentions(text: &str, words: &[&str]) {
+    for w in words {
+        assert!(text.contains(w), "missing {w:?} in: {text}");
+    }
+}
+
+/// Asserts that a tool exited with `code` and said every one of `words` on standard error.
+pub fn assert_exit_saying(o: &Output, code: i32, words: &[&str]) {
+    assert_exit(o, code);
+    assert_mentions(&stderr(o), words);
+}
+
 /// The JSON a tool printed on standard output, after asserting that it exited with 0.
 pub fn stdout_json(o: &Output) -> serde_json::Value {
     assert_exit(o, 0);
