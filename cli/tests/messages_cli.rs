@@ -8,7 +8,10 @@
 use std::process::Output;
 
 mod common;
-use common::{assert_exit, assert_exit_saying, assert_mentions, run, scratch, shape, stderr, tool};
+use common::{
+    assert_exit, assert_exit_saying, assert_mentions, plan_sample, run, scratch, shape, stderr,
+    tool,
+};
 
 /// Asserts exit code 2 and a message holding every one of `words`.
 fn bad(o: &Output, words: &[&str]) {
@@ -194,16 +197,7 @@ fn the_validation_output_is_checked_before_the_work() {
 fn a_plan_whose_word_and_tile_list_disagree_is_refused() {
     let d = scratch("plan");
     let p = d.join("p.json");
-    let o = run(
-        "fold-plan",
-        &[
-            shape("square.svg").to_str().unwrap(),
-            "--tiles",
-            "30",
-            "--out",
-            p.to_str().unwrap(),
-        ],
-    );
+    let o = plan_sample("square.svg", 30, &["--out", p.to_str().unwrap()]);
     assert_exit(&o, 0);
     let mut plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();

@@ -76,6 +76,16 @@ pub fn shape(name: &str) -> PathBuf {
     root().join("shapes").join(name)
 }
 
+/// Runs `fold-plan` on sample shape `name` (in `shapes/`) for `tiles` tiles, with the
+/// further arguments `more`.
+pub fn plan_sample(name: &str, tiles: usize, more: &[&str]) -> Output {
+    let file = shape(name);
+    let tiles = tiles.to_string();
+    let mut args = vec![file.to_str().unwrap(), "--tiles", &tiles];
+    args.extend_from_slice(more);
+    run("fold-plan", &args)
+}
+
 /// A path for this test binary's `tag` in the temporary directory, with nothing there (what
 /// an earlier run left is removed).
 pub fn absent(tag: &str) -> PathBuf {
