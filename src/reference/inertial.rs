@@ -179,7 +179,7 @@ impl State {
         if self.work.evaluations() == self.synced {
             model.changed(&self.work).collect()
         } else {
-            vec![0..self.modes.len()]
+            std::iter::once(0..self.modes.len()).collect()
         }
     }
 
