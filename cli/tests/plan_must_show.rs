@@ -193,6 +193,27 @@ fn a_missed_count_is_said_on_stderr_and_in_the_json() {
     assert!(p.tiles > 0, "{}", p.summary());
 }
 
+/// The corpus' counts missed by more than 3% at main 668c427 (disc-several-holes 1000 ->
+/// 879, the gear 1000 -> 967, O 1000 -> 1056; at 3000: the frog 2838, the clipped logo
+/// 2876, C 2854, G 3128, the annulus 2822): each plan folds and is within the tolerance or
+/// carries the warning on stderr and in the JSON (`planned`). About 50 s of CPU.
+#[test]
+#[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
+fn large_counts_are_within_the_tolerance_or_warned() {
+    for (file, tiles) in [
+        ("shapes/disc-several-holes.svg", 1000),
+        ("icons/fa-gear.svg", 1000),
+        ("letters/O.svg", 1000),
+        ("icons/fa-frog.svg", 3000),
+        ("inkscape/ink-clip-logo.svg", 3000),
+        ("letters/C.svg", 3000),
+        ("letters/G.svg", 3000),
+        ("shapes/annulus.svg", 3000),
+    ] {
+        planned(&format!("planner/corpus/{file}"), tiles);
+    }
+}
+
 /// A drawing in two parts (`two-discs.svg`) is refused in at most three lines saying what
 /// (separate parts), where (drawing units and mm) and what to try; `--verbose` adds a line
 /// per part, and `--json` prints the reason and the same detail as JSON on stdout.
@@ -257,6 +278,50 @@ fn a_stroke_only_drawing_is_refused_with_the_reason() {
             "{e}"
         );
         assert!(e.trim_end().lines().count() <= 3, "{e}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// A square with a frame around the page that paints nothing (opacity 0, as drawing
+/// programs leave a page-sized helper) plans as the square alone; before, the frame was read
+/// as filled and the square refused as two parts, or planned with the frame.
+#[test]
+fn what_paints_nothing_is_not_planned() {
+    let d = scratch("invisible");
+    let write = |name: &str, body: &str| {
+        let f = d.join(name);
+        std::fs::write(
+            &f,
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#
+            ),
+        )
+        .unwrap();
+        f.to_str().unwrap().to_string()
+    };
+    let square = r#"<rect x="10" y="10" width="80" height="80"/>"#;
+    let plain = planned(&write("plain.svg", square), 100);
+    for (name, frame) in [
+        (
+            "opacity.svg",
+            r#"<rect width="100" height="100" opacity="0"/>"#,
+        ),
+        (
+            "fill-opacity.svg",
+            r#"<rect width="100" height="5" fill-opacity="0"/>"#,
+        ),
+        (
+            "transparent.svg",
+            r#"<rect width="100" height="5" fill="transparent"/>"#,
+        ),
+    ] {
+        let p = planned(&write(name, &format!("{frame}{square}")), 100);
+        assert_eq!(
+            (p.tiles, p.metrics.shape_area.round()),
+            (plain.tiles, plain.metrics.shape_area.round()),
+            "{name}: {}",
+            p.summary()
+        );
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
