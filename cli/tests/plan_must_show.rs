@@ -326,6 +326,41 @@ fn what_paints_nothing_is_not_planned() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
+/// Text, which the planner does not read (it loads no fonts), is refused as bad input in
+/// a short message naming the element and what to do; before, a square with a letter
+/// beside it was planned as the square alone, and a drawing of text alone was said to have
+/// no filled area.
+#[test]
+fn text_is_refused_saying_to_convert_it_to_paths() {
+    let d = scratch("text");
+    for (name, body) in [
+        ("word.svg", r#"<text x="5" y="60" font-size="40">Hi</text>"#),
+        (
+            "beside.svg",
+            r#"<rect x="10" y="10" width="40" height="80"/><text id="label" x="50" y="90" font-size="80">L</text>"#,
+        ),
+    ] {
+        let f = d.join(name);
+        std::fs::write(
+            &f,
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#
+            ),
+        )
+        .unwrap();
+        let o = fold_plan_json(f.to_str().unwrap(), 100, &[]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {e}");
+        assert!(o.stdout.is_empty(), "{name}");
+        assert!(
+            e.contains("holds text") && e.contains("Object to Path"),
+            "{e}"
+        );
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 /// Zero-width spikes (out and back along one line, outwards and inwards), a sliver a
 /// millionth of a unit wide and repeated points are dropped before the simplicity check:
 /// each such square plans as the plain square does (the same area read, count, turns and
