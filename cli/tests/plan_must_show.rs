@@ -214,6 +214,32 @@ fn large_counts_are_within_the_tolerance_or_warned() {
     }
 }
 
+/// The plan file `fold-plan --out` writes is a chain `fold-check` reads (before, it was
+/// refused: "bad chain JSON: unknown field `source`"), and its verdict is the word's.
+#[test]
+fn fold_check_reads_a_plan_file() {
+    let d = scratch("plan-file");
+    let out = d.join("key.json");
+    let o = tool("fold-plan")
+        .current_dir(root())
+        .args(["shapes/key.svg", "--tiles", "171", "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let check = |arg: &str| {
+        let o = tool("fold-check")
+            .args(["--quiet", "--json", arg])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{arg}: {}", stderr(&o));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let p = Plan::from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(check(out.to_str().unwrap()), check(&p.word));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 /// A drawing in two parts (`two-discs.svg`) is refused in at most three lines saying what
 /// (separate parts), where (drawing units and mm) and what to try; `--verbose` adds a line
 /// per part, and `--json` prints the reason and the same detail as JSON on stdout.
