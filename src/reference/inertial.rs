@@ -22,7 +22,7 @@ use crate::reference::options::ReferenceOptions;
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::stepping::{
-    exhausted, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
+    exhausted, packed_entries, repack, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
 };
 
 /// Scratch of one evaluation: the whole chain's positions (the free unknowns' scattered in
@@ -69,6 +69,11 @@ impl System for Inertial<'_> {
             out[2 * p + 1] = self.im.acceleration(i, z[2 * p], work.forces.drive[i], v);
         }
     }
+}
+
+/// Where unknown `i`'s value is in the whole state `z = [x_0, v_0, x_1, v_1, ...]`.
+fn value_at(i: usize) -> usize {
+    2 * i
 }
 
 /// The rates of the state `z = [x_0, v_0, x_1, v_1, ...]`.
@@ -139,18 +144,9 @@ impl State {
     /// The free unknowns after a change of modes: the packed state from the whole one, the
     /// stepper's storage for it, and the whole positions its evaluations start from.
     fn pack(&mut self, model: &Model) {
-        self.free.clear();
-        self.free
-            .extend((0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free));
-        let len = 2 * self.free.len();
-        if self.zp.len() != len {
-            let bandwidth = 2 * model.bandwidth() + 1;
-            let mut stepper = Stepper::new(self.stepper.method, len, bandwidth);
-            std::mem::swap(stepper.work_mut(), self.stepper.work_mut());
-            self.stepper = stepper;
-            self.zp = vec![0.0; len];
-        }
-        self.stepper.invalidate();
+        let bandwidth = 2 * model.bandwidth() + 1;
+        let (modes, stepper) = (&self.modes, &mut self.stepper);
+        repack(modes, &mut self.free, 0, &mut self.zp, stepper, bandwidth);
         self.stepper.work_mut().y.clone_from(&self.y);
         self.ys.clone_from(&self.y);
         self.sync_packed();
@@ -158,17 +154,17 @@ impl State {
 
     /// The packed state from the whole one.
     fn sync_packed(&mut self) {
-        for (p, &i) in self.free.iter().enumerate() {
-            self.zp[2 * p] = self.z[2 * i];
-            self.zp[2 * p + 1] = self.z[2 * i + 1];
+        for (w, q) in packed_entries(&self.free, 0, value_at) {
+            self.zp[q] = self.z[w];
         }
     }
 
-    /// The whole state's free entries from the packed one.
+    /// The whole state's free entries (and positions) from the packed one.
     fn unpack(&mut self) {
+        for (w, q) in packed_entries(&self.free, 0, value_at) {
+            self.z[w] = self.zp[q];
+        }
         for (p, &i) in self.free.iter().enumerate() {
-            self.z[2 * i] = self.zp[2 * p];
-            self.z[2 * i + 1] = self.zp[2 * p + 1];
             self.y[i] = self.zp[2 * p];
         }
     }

@@ -3,8 +3,10 @@
 //! the step size and its verdict on an attempted step, the cuts of a step at a wall and at a
 //! release, and the work budget that leaves a run undecided.
 
+use std::fmt::Debug;
+
 use crate::model::Mode;
-use crate::ode::{integral, Method, StepStats};
+use crate::ode::{integral, Method, StepStats, Stepper};
 
 /// A release found within the last this fraction of a step is taken at the step's end.
 pub(crate) const RELEASE_SLACK: f64 = 1e-3;
@@ -16,6 +18,48 @@ pub(crate) const RELEASE_SLACK: f64 = 1e-3;
 /// (LRRLLLS and five others were undecided at 0.0056 s); 50,000 keeps the knife edge of
 /// three tiles under half a second.
 const MAX_FUTILE_CUTS: usize = 50_000;
+
+/// The free unknowns of `modes` into `free` (in order), after a change of modes, and the
+/// storage of a packed state of them: `lead` leading entries (the free-body base), then each
+/// free unknown's value and rate. `zp` and `stepper` (`bandwidth` its Jacobian's
+/// half-bandwidth) are made anew when the length changed, the stepper keeping its scratch;
+/// the stepper's Jacobian is forgotten.
+pub(crate) fn repack<W: Default + Debug>(
+    modes: &[Mode],
+    free: &mut Vec<usize>,
+    lead: usize,
+    zp: &mut Vec<f64>,
+    stepper: &mut Stepper<W>,
+    bandwidth: usize,
+) {
+    free.clear();
+    free.extend((0..modes.len()).filter(|&i| modes[i] == Mode::Free));
+    let len = lead + 2 * free.len();
+    if zp.len() != len {
+        let mut fresh = Stepper::new(stepper.method, len, bandwidth);
+        std::mem::swap(fresh.work_mut(), stepper.work_mut());
+        *stepper = fresh;
+        *zp = vec![0.0; len];
+    }
+    stepper.invalidate();
+}
+
+/// The entries a packed state shares with the whole one, as `(whole index, packed index)`:
+/// the `lead` leading ones, then the value and rate of each free unknown of `free` (as
+/// [`repack`] lays them out), unknown `i`'s value at `at(i)` of the whole state and its rate
+/// next. The packed state from the whole one copies each pair one way, the whole state's
+/// free entries from the packed one the other.
+pub(crate) fn packed_entries(
+    free: &[usize],
+    lead: usize,
+    at: fn(usize) -> usize,
+) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let values = free.iter().enumerate().flat_map(move |(p, &i)| {
+        let (w, q) = (at(i), lead + 2 * p);
+        [(w, q), (w + 1, q + 1)]
+    });
+    (0..lead).map(|k| (k, k)).chain(values)
+}
 
 /// The steps cut for a release that did not come, since the last event.
 #[derive(Debug, Default)]

@@ -33,7 +33,7 @@ use crate::reference::options::ReferenceError;
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::stepping::{
-    exhausted, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
+    exhausted, packed_entries, repack, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
 };
 use crate::timeline::{start_fraction, TileDesigns};
 use crate::{Chain, Octagon};
@@ -445,17 +445,8 @@ impl Driver {
     /// The free unknowns after a change of modes: the packed state from the whole one, the
     /// stepper's storage for it, and the whole state its evaluations start from.
     fn pack(&mut self) {
-        self.packed.clear();
-        self.packed
-            .extend((0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free));
-        let len = BASE + 2 * self.packed.len();
-        if self.zp.len() != len {
-            let mut stepper = Stepper::new(Method::Dopri5, len, 0);
-            std::mem::swap(stepper.work_mut(), self.stepper.work_mut());
-            self.stepper = stepper;
-            self.zp = vec![0.0; len];
-        }
-        self.stepper.invalidate();
+        let (modes, stepper) = (&self.modes, &mut self.stepper);
+        repack(modes, &mut self.packed, BASE, &mut self.zp, stepper, 0);
         self.stepper.work_mut().full.clone_from(&self.z);
         self.zs.clone_from(&self.z);
         self.sync_packed();
@@ -463,19 +454,15 @@ impl Driver {
 
     /// The packed state from the whole one.
     fn sync_packed(&mut self) {
-        self.zp[..BASE].copy_from_slice(&self.z[..BASE]);
-        for (p, &i) in self.packed.iter().enumerate() {
-            self.zp[BASE + 2 * p] = self.z[Setup::at(i)];
-            self.zp[BASE + 2 * p + 1] = self.z[Setup::at(i) + 1];
+        for (w, q) in packed_entries(&self.packed, BASE, Setup::at) {
+            self.zp[q] = self.z[w];
         }
     }
 
     /// The whole state's free entries from the packed one.
     fn unpack(&mut self) {
-        self.z[..BASE].copy_from_slice(&self.zp[..BASE]);
-        for (p, &i) in self.packed.iter().enumerate() {
-            self.z[Setup::at(i)] = self.zp[BASE + 2 * p];
-            self.z[Setup::at(i) + 1] = self.zp[BASE + 2 * p + 1];
+        for (w, q) in packed_entries(&self.packed, BASE, Setup::at) {
+            self.z[w] = self.zp[q];
         }
     }
 
