@@ -73,7 +73,8 @@ impl Chain {
     /// Reads a chain in any of its forms: JSON (text starting with `{`), a tile list (items of
     /// two letters separated by white space or commas, e.g. `SS SL LS` or `SS*3`), or a fold
     /// word (`SLLS`). A prefix `tiles:` or `word:` forces the form; without one, a single item
-    /// of letters is read as a fold word, so one tile alone is written `tiles:SS`.
+    /// of letters is read as a fold word, so one tile alone is written `tiles:SS`, and a single
+    /// item is a tile list only as a name and a count (`SS*12`; `RS*7LLS*8` is a word).
     pub fn parse(text: &str) -> Result<Chain, ChainError> {
         let t = text.trim();
         if let Some(rest) = t.strip_prefix("tiles:") {
@@ -91,11 +92,9 @@ impl Chain {
                 .iter()
                 .all(|s| s.split('*').next().is_some_and(|p| p.chars().count() == 2))
             || items.len() == 1
-                && items[0].contains('*')
-                && items[0]
-                    .split('*')
-                    .next()
-                    .is_some_and(|p| p.chars().count() == 2);
+                && items[0].split_once('*').is_some_and(|(name, count)| {
+                    name.chars().count() == 2 && count.chars().all(|c| c.is_ascii_digit())
+                });
         if looks_like_tiles {
             Chain::parse_tile_list(t)
         } else {
@@ -255,6 +254,11 @@ mod tests {
         assert_eq!(Chain::parse("SS").unwrap().len(), 3);
         assert_eq!(Chain::parse("SS*12").unwrap().len(), 12);
         assert_eq!(Chain::parse("word:SS*12").unwrap().len(), 14); // S then S*12: 13 joints
+
+        // a word that opens with two letters and a repeat, as fold-plan writes them, is a
+        // word: a single tile-list item is a name and a count only
+        assert_eq!(Chain::parse("RS*7LLS*8").unwrap().len(), 19);
+        assert_eq!(Chain::parse("LS*3RRS*3").unwrap().len(), 10);
     }
 
     #[test]

@@ -6,7 +6,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain::{Fold, FoldWord};
 
 mod common;
-use common::{absent, assert_exit, run, stderr, stdout};
+use common::{absent, assert_exit, assert_mentions, run, stderr, stdout};
 
 fn check(args: &[&str]) -> Output {
     run("fold-check", args)
@@ -38,12 +38,8 @@ fn sweeps_reject_what_the_final_shape_allows() {
 #[test]
 fn inhibited_tile_list_exits_1() {
     let o = check(&["SS SL RS SS"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stdout(&o).contains("inhibited") && stdout(&o).contains("joint 1"),
-        "{}",
-        stdout(&o)
-    );
+    assert_exit(&o, 1);
+    assert_mentions(&stdout(&o), &["inhibited", "joint 1"]);
 }
 
 #[test]

@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
 mod common;
-use common::{absent, assert_exit, run, stderr};
+use common::{absent, assert_exit, assert_exit_saying, run};
 
 #[test]
 fn a_free_body_run_writes_the_run_files() {
@@ -63,11 +63,6 @@ fn overdamped_free_body_is_refused() {
             dir.to_str().unwrap(),
         ],
     );
-    assert_eq!(o.status.code(), Some(2));
-    let err = stderr(&o);
-    assert!(
-        err.contains("free-body") && err.contains("overdamped"),
-        "{err}"
-    );
+    assert_exit_saying(&o, 2, &["free-body", "overdamped"]);
     assert!(!dir.exists());
 }

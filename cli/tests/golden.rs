@@ -12,6 +12,8 @@ use std::process::Command;
 use serde_json::Value;
 
 mod common;
+#[path = "../../planner/tests/common/drawings.rs"]
+mod drawings;
 use common::{absent, root, THESIS_SQUARES};
 
 /// Relative tolerance on numbers: far above the rounding a reordered sum may change, far
@@ -156,13 +158,7 @@ fn plans_of_the_square_are_unchanged() {
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn plans_of_every_sample_are_unchanged() {
-    let mut stems: Vec<String> = std::fs::read_dir(root().join("shapes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "svg"))
-        .map(|p| p.file_stem().unwrap().to_str().unwrap().to_string())
-        .collect();
-    stems.sort();
+    let stems = drawings::svg_stems(&root().join("shapes"));
     let mut recorded: Vec<String> = std::fs::read_dir(root().join("tests/golden"))
         .unwrap()
         .map(|e| e.unwrap().file_name().to_str().unwrap().to_string())

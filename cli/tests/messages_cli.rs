@@ -8,15 +8,14 @@
 use std::process::Output;
 
 mod common;
-use common::{assert_exit, run, scratch, shape, stderr, tool};
+use common::{
+    assert_exit, assert_exit_saying, assert_mentions, plan_sample, run, scratch, shape, stderr,
+    tool,
+};
 
 /// Asserts exit code 2 and a message holding every one of `words`.
 fn bad(o: &Output, words: &[&str]) {
-    let e = stderr(o);
-    assert_eq!(o.status.code(), Some(2), "{e}");
-    for w in words {
-        assert!(e.contains(w), "missing {w:?} in: {e}");
-    }
+    assert_exit_saying(o, 2, words);
 }
 
 #[test]
@@ -198,16 +197,7 @@ fn the_validation_output_is_checked_before_the_work() {
 fn a_plan_whose_word_and_tile_list_disagree_is_refused() {
     let d = scratch("plan");
     let p = d.join("p.json");
-    let o = run(
-        "fold-plan",
-        &[
-            shape("square.svg").to_str().unwrap(),
-            "--tiles",
-            "30",
-            "--out",
-            p.to_str().unwrap(),
-        ],
-    );
+    let o = plan_sample("square.svg", 30, &["--out", p.to_str().unwrap()]);
     assert_exit(&o, 0);
     let mut plan: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
@@ -277,11 +267,7 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
     )
     .unwrap();
     let o = run_design();
-    assert!(
-        stderr(&o).contains("warning") && stderr(&o).contains("simulated time"),
-        "{}",
-        stderr(&o)
-    );
+    assert_mentions(&stderr(&o), &["warning", "simulated time"]);
 }
 
 #[test]
@@ -299,10 +285,7 @@ fn a_long_count_is_never_silent_off_a_terminal() {
         .lines()
         .find(|l| l.contains("counting:"))
         .unwrap_or_else(|| panic!("no progress line: {e}"));
-    assert!(
-        line.contains("parts") && line.contains("/s") && line.contains("left"),
-        "{line}"
-    );
+    assert_mentions(line, &["parts", "/s", "left"]);
     let o = tool("fold-enum")
         .env("FOLDCHAIN_PROGRESS_SECONDS", "0.05")
         .args(["--max-tiles", "22", "--quiet"])
@@ -324,10 +307,7 @@ fn a_long_count_is_never_silent_off_a_terminal() {
     }
     let _ = child.kill();
     let _ = child.wait();
-    assert!(
-        first.contains("valid words") && first.contains("roughly"),
-        "{first}"
-    );
+    assert_mentions(&first, &["valid words", "roughly"]);
 }
 
 #[test]

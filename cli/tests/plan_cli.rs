@@ -7,7 +7,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
 mod common;
-use common::{absent, run, shape, stderr};
+use common::{absent, assert_exit_saying, assert_mentions, plan_sample, run, stderr};
 
 /// Word and tile list agree and the chain folds without collision (sequential sweeps).
 fn assert_sound(p: &Plan) {
@@ -26,12 +26,10 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("plan.json");
     let pv = dir.join("preview.svg");
-    let o = run(
-        "fold-plan",
+    let o = plan_sample(
+        "key.svg",
+        171,
         &[
-            shape("key.svg").to_str().unwrap(),
-            "--tiles",
-            "171",
             "--out",
             out.to_str().unwrap(),
             "--preview",
@@ -43,23 +41,11 @@ fn cli_prints_tile_list_and_summary_and_writes_files() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 2);
     assert!(lines[0].starts_with("SS"), "{}", lines[0]);
-    assert!(
-        lines[1].contains("tiles") && lines[1].contains("covered"),
-        "{}",
-        lines[1]
-    );
+    assert_mentions(lines[1], &["tiles", "covered"]);
     let p = Plan::from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_sound(&p);
     assert!(std::fs::read_to_string(&pv).unwrap().contains("<polygon"));
-    let o = run(
-        "fold-plan",
-        &[
-            shape("disc.svg").to_str().unwrap(),
-            "--tiles",
-            "50",
-            "--json",
-        ],
-    );
+    let o = plan_sample("disc.svg", 50, &["--json"]);
     assert!(o.status.success());
     let p = Plan::from_json(std::str::from_utf8(&o.stdout).unwrap()).unwrap();
     assert_sound(&p);
@@ -110,12 +96,7 @@ fn cli_exits_1_naming_why() {
         "fold-plan",
         &[f.to_str().unwrap(), "--out", out.to_str().unwrap()],
     );
-    assert_eq!(o.status.code(), Some(1));
-    let err = stderr(&o);
-    assert!(
-        err.contains("separate parts") && err.contains("cannot plan"),
-        "{err}"
-    );
+    assert_exit_saying(&o, 1, &["separate parts", "cannot plan"]);
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

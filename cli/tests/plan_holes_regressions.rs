@@ -10,7 +10,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain_planner::Plan;
 
 mod common;
-use common::{run, shape, stderr};
+use common::{plan_sample, stderr};
 
 /// Plans `name` at `tiles` with the binary and reads the plan JSON it writes.
 fn plan(name: &str, tiles: usize) -> Plan {
@@ -20,17 +20,7 @@ fn plan(name: &str, tiles: usize) -> Plan {
     ));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("plan.json");
-    let o = run(
-        "fold-plan",
-        &[
-            shape(name).to_str().unwrap(),
-            "--tiles",
-            &tiles.to_string(),
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
+    let o = plan_sample(name, tiles, &["--quiet", "--out", out.to_str().unwrap()]);
     assert!(
         o.status.success(),
         "{name} at {tiles} tiles: exit {:?}: {}",

@@ -9,7 +9,9 @@
 use std::process::Output;
 
 mod common;
-use common::{root, scratch, stderr, tool};
+#[path = "../../planner/tests/common/drawings.rs"]
+mod drawings;
+use common::{assert_mentions, root, scratch, stderr, tool};
 
 /// Characters a refusal may take, its file's name left out: three lines of 100 columns.
 const MAX_CHARS: usize = 300;
@@ -162,7 +164,7 @@ fn drawings_in_separate_parts_are_refused_briefly() {
             }
             _ => {
                 let e = short_refusal(&o, file, 1);
-                assert!(e.contains("separate parts") && e.contains(" mm"), "{e}");
+                assert_mentions(&e, &["separate parts", " mm"]);
                 refused += 1;
                 let v = fold_plan(&[file, "--tiles", "300", "--verbose"]);
                 let ve = stderr(&v);
@@ -190,10 +192,7 @@ fn a_part_left_empty_is_refused_briefly_naming_where_and_what_to_try() {
             continue;
         }
         let e = short_refusal(&o, file, 1);
-        assert!(
-            e.contains("cannot plan") && e.contains(" mm") && e.contains("try "),
-            "{e}"
-        );
+        assert_mentions(&e, &["cannot plan", " mm", "try "]);
         // a count named as planning does plan
         if let Some(n) = e
             .split("try ")
@@ -297,22 +296,10 @@ fn a_missed_tile_count_is_warned_about() {
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn every_corpus_refusal_is_short_and_says_what_to_change() {
-    let corpus = root().join("planner/corpus");
-    let mut files: Vec<String> = Vec::new();
-    for dir in std::fs::read_dir(&corpus).unwrap() {
-        let dir = dir.unwrap().path();
-        if !dir.is_dir() || dir.ends_with("tools") {
-            continue;
-        }
-        for f in std::fs::read_dir(&dir).unwrap() {
-            let f = f.unwrap().path();
-            if f.extension().is_some_and(|e| e == "svg") {
-                let rel = f.strip_prefix(root()).unwrap().display().to_string();
-                files.push(rel);
-            }
-        }
-    }
-    files.sort();
+    let files: Vec<String> = drawings::corpus_files(&root().join("planner/corpus"))
+        .into_iter()
+        .map(|f| format!("planner/corpus/{f}"))
+        .collect();
     assert!(files.len() >= 40);
     let mut refusals = 0;
     for file in &files {

@@ -11,7 +11,7 @@ use foldchain_cli::run_dir::StagedDir;
 use foldchain_cli::run_files::owns_run_entry;
 
 mod common;
-use common::{assert_exit, names, scratch, stderr, text, tool};
+use common::{assert_exit, assert_mentions, names, scratch, stderr, text, tool};
 
 fn frames(dir: &Path) -> usize {
     names(dir).iter().filter(|n| n.starts_with("step-")).count()
@@ -143,10 +143,7 @@ fn a_full_disk_exits_3_and_leaves_the_earlier_run() {
     let read = |f: &str| text(&base.join(f));
     assert_eq!(read("code.txt").trim(), "3", "{}", read("err.txt"));
     let err = read("err.txt");
-    assert!(
-        err.contains("No space left") && err.contains("free some space"),
-        "{err}"
-    );
+    assert_mentions(&err, &["No space left", "free some space"]);
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     let left: Vec<String> = read("left.txt")
         .lines()

@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::Output;
 
 mod common;
-use common::{absent, assert_exit, names, read_json, stderr, tool};
+use common::{absent, assert_exit, assert_mentions, names, read_json, stderr, tool};
 
 fn fold_run(args: &[&str], out: &Path) -> Output {
     tool("fold-run")
@@ -89,13 +89,13 @@ fn reference_writes_the_engine_files_and_pictures() {
     assert_eq!(check_svgs(&eng), 5);
     assert_eq!(check_svgs(&refr), 5);
     let fin = std::fs::read_to_string(refr.join("final.svg")).unwrap();
-    assert!(fin.contains("SLLS (reference)") && fin.contains("completed"));
+    assert_mentions(&fin, &["SLLS (reference)", "completed"]);
     // the transition diagram covers the requested tiles
     let tr = std::fs::read_to_string(refr.join("transition.svg")).unwrap();
     assert!(tr.contains("tiles 1 to 3"));
     assert_eq!(tr.matches("<polyline").count(), 6);
     let en = std::fs::read_to_string(refr.join("energy.svg")).unwrap();
-    assert!(en.contains("total dipole energy") && en.contains("folds turning"));
+    assert_mentions(&en, &["total dipole energy", "folds turning"]);
     // no temporary directory left beside the output
     let parent = refr.parent().unwrap();
     let stem = refr.file_name().unwrap().to_string_lossy().into_owned();

@@ -64,7 +64,7 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         collect_elements(tree.root(), &mut elements, to_user, &mut Vec::new());
         if elements.is_empty() {
             return Err(no_area(
-                "no visible element with a fill (fill=\"none\" and strokes do not count)",
+                "no visible element with a fill (fill=\"none\", fully transparent fills and strokes do not count)",
             ));
         }
         let (mut lo, mut hi) = (
@@ -334,7 +334,7 @@ fn user_units_transform(data: &[u8], tree: &usvg::Tree) -> usvg::Transform {
     id
 }
 
-/// The visible filled paths below `group`, in document order, as kurbo segments in the
+/// The visible filled paths below `group` (not those of opacity 0), in document order, as kurbo segments in the
 /// physical frame, each with the clip paths and masks of the groups around it. usvg's
 /// transform is applied by usvg itself, in its own `f32` arithmetic (as the planner always
 /// has): mapping in `f64` would move every point in its eighth digit and with it the plans
@@ -347,6 +347,10 @@ fn collect_elements<'a>(
 ) {
     for node in group.children() {
         match node {
+            // a group of opacity 0 paints nothing (`opacity="0"` on an element is such a
+            // group), nor does a fill of opacity 0 (`fill-opacity="0"`, `transparent`,
+            // `rgba(..., 0)`): an invisible frame or helper is not part of the shape
+            usvg::Node::Group(g) if g.opacity().get() <= 0.0 => {}
             usvg::Node::Group(g) => {
                 let before = clips.len();
                 // a group's clip and mask are in its own user space, transform included
@@ -362,7 +366,7 @@ fn collect_elements<'a>(
             }
             usvg::Node::Path(p) => {
                 let Some(fill) = p.fill() else { continue };
-                if !p.is_visible() {
+                if !p.is_visible() || fill.opacity().get() <= 0.0 {
                     continue;
                 }
                 let ts = p.abs_transform().post_concat(to_user);
@@ -682,6 +686,39 @@ mod tests {
             "{}",
             s.area()
         );
+    }
+
+    /// What paints nothing is not read: a frame of opacity 0, fills of opacity 0 (by
+    /// `fill-opacity`, `transparent`, an rgba alpha of 0, a style) around a square read as
+    /// the square alone (each would join the frame's strip to the square's area); a faint
+    /// fill is drawn and read; a drawing of transparent fills only has no filled area.
+    #[test]
+    fn what_paints_nothing_is_not_read() {
+        let square = r#"<rect x="10" y="10" width="80" height="80"/>"#;
+        for invisible in [
+            r#"<rect width="100" height="5" opacity="0"/>"#,
+            r#"<g opacity="0"><rect width="100" height="5"/></g>"#,
+            r#"<rect width="100" height="5" fill-opacity="0"/>"#,
+            r#"<rect width="100" height="5" fill="transparent"/>"#,
+            r#"<rect width="100" height="5" fill="rgba(0,0,0,0)"/>"#,
+            r#"<rect width="100" height="5" style="fill-opacity:0"/>"#,
+        ] {
+            let t = svg(&format!("{square}{invisible}"));
+            let s = Shape::from_svg_data(t.as_bytes(), "t").unwrap();
+            assert!(
+                (s.area() - 6400.0).abs() < 1e-6,
+                "{invisible}: {}",
+                s.area()
+            );
+        }
+        let faint = svg(&format!(
+            r#"{square}<rect width="100" height="10" opacity="0.1"/>"#
+        ));
+        let s = Shape::from_svg_data(faint.as_bytes(), "t").unwrap();
+        assert!((s.area() - 7400.0).abs() < 1e-6, "{}", s.area());
+        let none = svg(r#"<rect width="100" height="100" fill-opacity="0"/>"#);
+        let e = Shape::from_svg_data(none.as_bytes(), "none.svg").unwrap_err();
+        assert!(e.to_string().contains("fully transparent"), "{e}");
     }
 
     /// Everything clipped away: no filled area, said so.

@@ -227,7 +227,9 @@ fn row_band_share(plan: &Plan) -> f64 {
 }
 
 /// The legend under the drawing, one item a line: what the colours and the line mean, and
-/// what rows of octagons can cover.
+/// what rows of octagons can cover (not a bound: a shape whose outline lies flush on the
+/// outer rows' faces lacks the half-pitch strips beyond them, and the thesis' square of 107
+/// tiles in 9 rows covers 58.9%).
 fn legend(mut doc: Document, x0: f64, y0: f64, size: f64) -> Document {
     let items = [
         ("#c8c8c8", "straight tile (SS)"),
@@ -270,8 +272,9 @@ fn legend(mut doc: Document, x0: f64, y0: f64, size: f64) -> Document {
             .set("fill", "#333"),
         );
     for (i, t) in [
-        "Rows of octagons sqrt2 w apart cover at most 58.6% of a band",
-        "((1 + sqrt2) w apart, loose turns: 34.3%); near that is a full plan.",
+        "Rows of octagons sqrt2 w apart cover 58.6% of a long band",
+        "((1 + sqrt2) w apart, loose turns: 34.3%); near that is a full plan",
+        "(a little more where the outline lies flush on the outer rows).",
     ]
     .iter()
     .enumerate()

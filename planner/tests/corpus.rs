@@ -6,6 +6,8 @@
 
 #![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 
+#[path = "common/drawings.rs"]
+mod drawings;
 #[path = "../benches/corpus/empty_region.rs"]
 #[allow(dead_code)]
 mod empty_region;
@@ -35,20 +37,7 @@ fn listed() -> Vec<(String, bool)> {
 
 /// Every SVG file under the corpus (but its tools).
 fn files() -> BTreeSet<String> {
-    let mut out = BTreeSet::new();
-    for dir in std::fs::read_dir(corpus()).unwrap() {
-        let dir = dir.unwrap().path();
-        if !dir.is_dir() || dir.ends_with("tools") {
-            continue;
-        }
-        for f in std::fs::read_dir(&dir).unwrap() {
-            let f = f.unwrap().path();
-            if f.extension().is_some_and(|e| e == "svg") {
-                out.insert(f.strip_prefix(corpus()).unwrap().display().to_string());
-            }
-        }
-    }
-    out
+    drawings::corpus_files(&corpus())
 }
 
 #[test]

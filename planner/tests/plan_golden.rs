@@ -8,6 +8,9 @@
 
 use std::path::{Path, PathBuf};
 
+#[path = "common/drawings.rs"]
+mod drawings;
+
 use foldchain_planner::{plan_svg_str, PlanOptions, Turns};
 use serde_json::Value;
 
@@ -124,13 +127,7 @@ fn the_square_plans_as_recorded() {
 #[test]
 #[ignore = "slow: .ci/run runs it (cargo test --workspace --release -- --include-ignored)"]
 fn every_sample_plans_as_recorded() {
-    let mut names: Vec<String> = std::fs::read_dir(root().join("shapes"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "svg"))
-        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = drawings::svg_stems(&root().join("shapes"));
     let squares = square_cases();
     let mut recorded: Vec<String> = std::fs::read_dir(root().join("tests/golden"))
         .unwrap()

@@ -160,6 +160,14 @@ fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     Some(&tag[start..start + end])
 }
 
+/// The mesh of the object read last, for `what` (a vertex, a triangle) read inside it.
+fn last_mesh<'a>(model: &'a mut Model, what: &str) -> Result<&'a mut Mesh, String> {
+    match model.objects.last_mut() {
+        Some((_, mesh)) => Ok(mesh),
+        None => Err(format!("{what} outside an object")),
+    }
+}
+
 /// Reads a 3MF file as this module writes it (one model part; objects with meshes; build
 /// items with transforms): for checking written files.
 pub fn read_3mf(bytes: &[u8]) -> Result<Model, String> {
@@ -189,18 +197,10 @@ pub fn read_3mf(bytes: &[u8]) -> Result<Model, String> {
             model.objects.push((name, Mesh::default()));
         } else if tag.starts_with("vertex ") {
             let v = [num(tag, "x")?, num(tag, "y")?, num(tag, "z")?];
-            let (_, m) = model
-                .objects
-                .last_mut()
-                .ok_or("a vertex outside an object")?;
-            m.vertices.push(v);
+            last_mesh(&mut model, "a vertex")?.vertices.push(v);
         } else if tag.starts_with("triangle ") {
             let t = [num(tag, "v1")?, num(tag, "v2")?, num(tag, "v3")?].map(|x| x as u32);
-            let (_, m) = model
-                .objects
-                .last_mut()
-                .ok_or("a triangle outside an object")?;
-            m.triangles.push(t);
+            last_mesh(&mut model, "a triangle")?.triangles.push(t);
         } else if tag.starts_with("item ") {
             let id = attr(tag, "objectid").unwrap_or("");
             let object = ids

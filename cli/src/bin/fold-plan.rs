@@ -15,8 +15,8 @@ use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::{errln, outln};
 use foldchain_planner::{
-    plan_svg_file_reporting, preview_svg_file, preview_svg_rejected, PlanError, PlanOptions, Turns,
-    DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
+    plan_svg_file_reporting, preview_svg_file, preview_svg_rejected, PlanError, PlanOptions,
+    Rejected, Turns, DEFAULT_TILES_TOLERANCE, DEFAULT_TURN_COST,
 };
 
 /// Plan a self-folding tile chain that fills the shape drawn in an SVG file.
@@ -51,7 +51,8 @@ struct Args {
     /// shape cannot be planned, the best rejected plan, marked as no plan, if there is one).
     #[arg(long)]
     preview: Option<PathBuf>,
-    /// Print the plan JSON instead of the tile list and summary.
+    /// Print the plan JSON instead of the tile list and summary (when the shape cannot be
+    /// planned: the reason, what each planner tried and the best rejected plan's figures).
     #[arg(long)]
     json: bool,
     /// No progress lines on stderr.
@@ -153,6 +154,12 @@ fn run(args: &Args) -> anyhow::Result<()> {
                     errln!("fold-plan: tried: {d}");
                 }
             }
+            if args.json {
+                outln!(
+                    "{}",
+                    refusal_json(&name, &reason, &detail, rejected.as_deref())
+                );
+            }
             // the best rejected plan still shows where it falls short
             let mut reason = reason;
             if let (Some(p), Some(r)) = (&args.preview, &rejected) {
@@ -189,4 +196,38 @@ fn run(args: &Args) -> anyhow::Result<()> {
         outln!("{}", plan.summary());
     }
     Ok(())
+}
+
+/// A refusal as JSON (`--json`): the short reason stderr shows, what each planner tried (the
+/// `--verbose` lines) and, when one folded but left a part empty, the best rejected plan's
+/// figures and that part (SVG user units, y down).
+fn refusal_json(
+    name: &str,
+    reason: &str,
+    detail: &[String],
+    rejected: Option<&Rejected>,
+) -> String {
+    let rejected = rejected.map(|r| {
+        let b = r.empty.bbox;
+        serde_json::json!({
+            "tiles": r.plan.tiles,
+            "word": r.plan.word,
+            "u_turns": r.plan.u_turns,
+            "quarter_turns": r.plan.quarter_turns,
+            "metrics": r.plan.metrics,
+            "empty": {
+                "tile_areas": r.empty.tiles,
+                "centre": [r.empty.centre.x, r.empty.centre.y],
+                "bbox": [b.x0, b.y0, b.x1, b.y1],
+            },
+        })
+    });
+    let v = serde_json::json!({
+        "source": name,
+        "planned": false,
+        "reason": reason,
+        "detail": detail,
+        "rejected": rejected,
+    });
+    serde_json::to_string_pretty(&v).unwrap_or_default()
 }

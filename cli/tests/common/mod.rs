@@ -47,6 +47,19 @@ pub fn assert_exit(o: &Output, code: i32) {
     assert_eq!(o.status.code(), Some(code), "{}", stderr(o));
 }
 
+/// Asserts that `text` holds every one of `words`, naming the first one missing.
+pub fn assert_mentions(text: &str, words: &[&str]) {
+    for w in words {
+        assert!(text.contains(w), "missing {w:?} in: {text}");
+    }
+}
+
+/// Asserts that a tool exited with `code` and said every one of `words` on standard error.
+pub fn assert_exit_saying(o: &Output, code: i32, words: &[&str]) {
+    assert_exit(o, code);
+    assert_mentions(&stderr(o), words);
+}
+
 /// The JSON a tool printed on standard output, after asserting that it exited with 0.
 pub fn stdout_json(o: &Output) -> serde_json::Value {
     assert_exit(o, 0);
@@ -61,6 +74,16 @@ pub fn root() -> PathBuf {
 /// The sample drawing `name` of `shapes/`.
 pub fn shape(name: &str) -> PathBuf {
     root().join("shapes").join(name)
+}
+
+/// Runs `fold-plan` on sample shape `name` (in `shapes/`) for `tiles` tiles, with the
+/// further arguments `more`.
+pub fn plan_sample(name: &str, tiles: usize, more: &[&str]) -> Output {
+    let file = shape(name);
+    let tiles = tiles.to_string();
+    let mut args = vec![file.to_str().unwrap(), "--tiles", &tiles];
+    args.extend_from_slice(more);
+    run("fold-plan", &args)
 }
 
 /// A path for this test binary's `tag` in the temporary directory, with nothing there (what
