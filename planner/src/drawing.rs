@@ -799,6 +799,56 @@ mod tests {
         }
     }
 
+    /// Opacities in a mask, against what a browser shows: a group of opacity 0 paints
+    /// nothing (its black square hides nothing), white under a group of opacity 0.2 does
+    /// not show, a black of opacity 0.3 over white still shows (0.7), and in an alpha mask
+    /// a faint square over an opaque one takes nothing away. (Before, the first and the last
+    /// two hid their area and the second showed it.)
+    #[test]
+    fn a_mask_paints_with_its_opacities() {
+        let area = |mask: &str, kind: &str| {
+            let t = svg(&format!(
+                r#"<defs><mask id="m" style="mask-type:{kind}">{mask}</mask></defs>
+                <rect x="10" y="10" width="80" height="80" mask="url(#m)"/>
+                <rect x="0" y="0" width="100" height="5"/>"#
+            ));
+            Shape::from_svg_data(t.as_bytes(), "t").unwrap().area()
+        };
+        let white = r##"<rect width="100" height="100" fill="#fff"/>"##;
+        let left = |attrs: &str| format!(r#"<rect width="50" height="100" {attrs}/>"#);
+        let cases = [
+            (
+                format!(r#"{white}<g opacity="0">{}</g>"#, left("")),
+                "luminance",
+                6900.0,
+            ),
+            (
+                format!(r#"<g opacity="0.2">{white}</g>"#),
+                "luminance",
+                500.0,
+            ),
+            (
+                format!("{white}{}", left(r#"fill-opacity="0.3""#)),
+                "luminance",
+                6900.0,
+            ),
+            (
+                format!("{white}{}", left(r#"fill-opacity="0.8""#)),
+                "luminance",
+                3700.0,
+            ),
+            (
+                format!("{white}{}", left(r#"opacity="0.3""#)),
+                "alpha",
+                6900.0,
+            ),
+        ];
+        for (mask, kind, want) in cases {
+            let a = area(&mask, kind);
+            assert!((a - want).abs() < 1e-6, "{kind} {mask}: {a}");
+        }
+    }
+
     /// Everything clipped away: no filled area, said so.
     #[test]
     fn a_clip_that_leaves_nothing_is_no_area() {
