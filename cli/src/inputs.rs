@@ -13,7 +13,8 @@ use foldchain_planner::{plan_svg_file_reporting, Plan, PlanOptions, Shape, Turns
 use crate::progress::Progress;
 use crate::run_name::{inline_name, stem};
 
-/// Reads a chain argument: a fold word, a tile list, JSON, or a file holding one. A name that
+/// Reads a chain argument: a fold word, a tile list, JSON, or a file holding one (or a plan
+/// that `fold-plan --out` wrote: its word, checked as [`read_plan_file`] does). A name that
 /// looks like a file (it has an extension or a directory) but is not there gets "no such
 /// file, and not a fold word", with a pointer to `fold-plan`/`fold-run` for SVG shapes.
 pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
@@ -21,6 +22,11 @@ pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
         Ok(chain) => Ok(chain),
         Err(e) => {
             let path = Path::new(arg.trim());
+            if path.is_file() {
+                if let Ok((chain, _)) = read_plan_file(path) {
+                    return Ok(chain);
+                }
+            }
             let looks_like_a_file = path.extension().is_some() || arg.contains(['/', '\\']);
             let svg = path
                 .extension()

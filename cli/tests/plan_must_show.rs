@@ -214,6 +214,32 @@ fn large_counts_are_within_the_tolerance_or_warned() {
     }
 }
 
+/// The plan file `fold-plan --out` writes is a chain `fold-check` reads (before, it was
+/// refused: "bad chain JSON: unknown field `source`"), and its verdict is the word's.
+#[test]
+fn fold_check_reads_a_plan_file() {
+    let d = scratch("plan-file");
+    let out = d.join("key.json");
+    let o = tool("fold-plan")
+        .current_dir(root())
+        .args(["shapes/key.svg", "--tiles", "171", "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let check = |arg: &str| {
+        let o = tool("fold-check")
+            .args(["--quiet", "--json", arg])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{arg}: {}", stderr(&o));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let p = Plan::from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(check(out.to_str().unwrap()), check(&p.word));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 /// A drawing in two parts (`two-discs.svg`) is refused in at most three lines saying what
 /// (separate parts), where (drawing units and mm) and what to try; `--verbose` adds a line
 /// per part, and `--json` prints the reason and the same detail as JSON on stdout.
@@ -257,19 +283,27 @@ fn a_refusal_is_short_and_its_detail_is_under_verbose_and_json() {
     assert_eq!(detail, tried);
 }
 
+/// Writes `dir/name`, a 100 x 100 drawing holding `body`, and returns its path.
+fn drawing(dir: &Path, name: &str, body: &str) -> String {
+    let f = dir.join(name);
+    let svg =
+        format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#);
+    std::fs::write(&f, svg).unwrap();
+    f.to_str().unwrap().to_string()
+}
+
 /// A drawing of strokes only is refused as bad input, saying why: the sample outline of a
 /// heart in the corpus and a stroked circle.
 #[test]
 fn a_stroke_only_drawing_is_refused_with_the_reason() {
     let d = scratch("stroke");
-    let circle = d.join("circle.svg");
-    std::fs::write(
-        &circle,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><circle cx="50" cy="50" r="30" fill="none" stroke="black" stroke-width="4"/></svg>"#,
-    )
-    .unwrap();
+    let circle = drawing(
+        &d,
+        "circle.svg",
+        r#"<circle cx="50" cy="50" r="30" fill="none" stroke="black" stroke-width="4"/>"#,
+    );
     let heart = root().join("planner/corpus/icons/ion-heart-outline.svg");
-    for f in [circle.to_str().unwrap(), heart.to_str().unwrap()] {
+    for f in [circle.as_str(), heart.to_str().unwrap()] {
         let o = fold_plan_json(f, 100, &[]);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{e}");
@@ -288,17 +322,7 @@ fn a_stroke_only_drawing_is_refused_with_the_reason() {
 #[test]
 fn what_paints_nothing_is_not_planned() {
     let d = scratch("invisible");
-    let write = |name: &str, body: &str| {
-        let f = d.join(name);
-        std::fs::write(
-            &f,
-            format!(
-                r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#
-            ),
-        )
-        .unwrap();
-        f.to_str().unwrap().to_string()
-    };
+    let write = |name: &str, body: &str| drawing(&d, name, body);
     let square = r#"<rect x="10" y="10" width="80" height="80"/>"#;
     let plain = planned(&write("plain.svg", square), 100);
     for (name, frame) in [
@@ -326,6 +350,33 @@ fn what_paints_nothing_is_not_planned() {
     std::fs::remove_dir_all(&d).unwrap();
 }
 
+/// Text, which the planner does not read (it loads no fonts), is refused as bad input in
+/// a short message naming the element and what to do; before, a square with a letter
+/// beside it was planned as the square alone, and a drawing of text alone was said to have
+/// no filled area.
+#[test]
+fn text_is_refused_saying_to_convert_it_to_paths() {
+    let d = scratch("text");
+    for (name, body) in [
+        ("word.svg", r#"<text x="5" y="60" font-size="40">Hi</text>"#),
+        (
+            "beside.svg",
+            r#"<rect x="10" y="10" width="40" height="80"/><text id="label" x="50" y="90" font-size="80">L</text>"#,
+        ),
+    ] {
+        let o = fold_plan_json(&drawing(&d, name, body), 100, &[]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {e}");
+        assert!(o.stdout.is_empty(), "{name}");
+        assert!(
+            e.contains("holds text") && e.contains("Object to Path"),
+            "{e}"
+        );
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 /// Zero-width spikes (out and back along one line, outwards and inwards), a sliver a
 /// millionth of a unit wide and repeated points are dropped before the simplicity check:
 /// each such square plans as the plain square does (the same area read, count, turns and
@@ -336,15 +387,7 @@ fn spikes_slivers_and_repeated_points_are_dropped() {
     let d = scratch("spikes");
     let square = "M10 10 L90 10 L90 90 L10 90 Z";
     let plan_of = |name: &str, path: &str| {
-        let f = d.join(name);
-        std::fs::write(
-            &f,
-            format!(
-                r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><path d="{path}"/></svg>"#
-            ),
-        )
-        .unwrap();
-        planned(f.to_str().unwrap(), 100)
+        planned(&drawing(&d, name, &format!(r#"<path d="{path}"/>"#)), 100)
     };
     let plain = plan_of("plain.svg", square);
     for (name, path) in [

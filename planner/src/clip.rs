@@ -11,11 +11,14 @@
 //! - A clip path's region is the union of its children's fills (each by its own rule,
 //!   which usvg takes from `clip-rule`), under the clip path's transform and the clipped
 //!   group's, and intersected with the clip path's own `clip-path`.
-//! - A mask shows where its content is at least half bright (luminance masks: the fill
-//!   colour's luminance, 0.2125 R + 0.7154 G + 0.0721 B, times its opacity; alpha masks:
-//!   the opacity): its children are painted in order, a bright one adding its area and a
-//!   dark one taking its area away, inside the mask's rectangle. This is exact for masks of
-//!   opaque black and white shapes, the way drawing programs make them; grey or
+//! - A mask shows where its content is at least half bright: its children are painted in
+//!   order inside the mask's rectangle, each with its alpha `a` (its fill opacity times the
+//!   opacities of the groups around it) and brightness `L` (luminance masks: the fill
+//!   colour's luminance, 0.2125 R + 0.7154 G + 0.0721 B; alpha masks: 1). Painted over a
+//!   place that shows (1) it leaves `1 - a + L a`, over one that does not (0) `L a`; so a
+//!   child adds its area where `L a >= 1/2`, takes it away where `1 - a + L a < 1/2`, and
+//!   otherwise changes nothing (a group of opacity 0 paints nothing). This is exact for
+//!   masks of opaque black and white shapes, the way drawing programs make them; grey or
 //!   half-transparent content is cut at one half, and gradients and patterns count as
 //!   bright.
 
@@ -139,27 +142,34 @@ fn clip_region(c: &usvg::ClipPath, ts: usvg::Transform, tol: f64, eps: f64) -> R
     }
 }
 
-/// How bright a mask's content paints where it is filled (see the module doc).
-fn brightness(p: &usvg::Path, kind: usvg::MaskType) -> f64 {
-    let Some(fill) = p.fill() else { return 0.0 };
-    let opacity = f64::from(fill.opacity().get());
-    match (kind, fill.paint()) {
-        (usvg::MaskType::Alpha, _) => opacity,
+/// What painting one of a mask's paths does to the region the mask shows (see the module
+/// doc): `Some(Union)` adds its area, `Some(Difference)` takes it away, `None` leaves the
+/// region as it is. `opacity` is the product of the opacities of the groups around it.
+fn mask_paint(p: &usvg::Path, kind: usvg::MaskType, opacity: f64) -> Option<OverlayRule> {
+    let fill = p.fill()?;
+    let alpha = opacity * f64::from(fill.opacity().get());
+    let bright = match (kind, fill.paint()) {
         (usvg::MaskType::Luminance, usvg::Paint::Color(c)) => {
-            let l = 0.2125 * f64::from(c.red)
-                + 0.7154 * f64::from(c.green)
-                + 0.0721 * f64::from(c.blue);
-            opacity * l / 255.0
+            (0.2125 * f64::from(c.red) + 0.7154 * f64::from(c.green) + 0.0721 * f64::from(c.blue))
+                / 255.0
         }
-        // gradients and patterns: taken as bright
-        (usvg::MaskType::Luminance, _) => opacity,
+        // alpha masks: the opacity alone; gradients and patterns: taken as bright
+        _ => 1.0,
+    };
+    if bright * alpha >= 0.5 {
+        Some(OverlayRule::Union)
+    } else if 1.0 - alpha + bright * alpha < 0.5 {
+        Some(OverlayRule::Difference)
+    } else {
+        None
     }
 }
 
-/// Paints the paths below `group` into `region` in document order (see the module doc).
+/// Paints the paths below `group` (inside groups of opacities whose product is `opacity`)
+/// into `region` in document order (see the module doc).
 fn paint_mask(
     group: &usvg::Group,
-    ts: usvg::Transform,
+    (ts, opacity): (usvg::Transform, f64),
     kind: usvg::MaskType,
     region: &mut Region,
     tol: f64,
@@ -168,9 +178,12 @@ fn paint_mask(
     for node in group.children() {
         match node {
             usvg::Node::Path(p) => {
-                if p.fill().is_none() || !p.is_visible() {
+                if !p.is_visible() {
                     continue;
                 }
+                let Some(rule) = mask_paint(p, kind, opacity) else {
+                    continue;
+                };
                 let even_odd = p
                     .fill()
                     .is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd);
@@ -178,14 +191,14 @@ fn paint_mask(
                     &path_rings(p, p.abs_transform().post_concat(ts), tol, eps),
                     even_odd,
                 );
-                let rule = if brightness(p, kind) >= 0.5 {
-                    OverlayRule::Union
-                } else {
-                    OverlayRule::Difference
-                };
                 *region = combine(region, &area, rule);
             }
-            usvg::Node::Group(g) => paint_mask(g, ts, kind, region, tol, eps),
+            usvg::Node::Group(g) => {
+                let opacity = opacity * f64::from(g.opacity().get());
+                if opacity > 0.0 {
+                    paint_mask(g, (ts, opacity), kind, region, tol, eps);
+                }
+            }
             _ => {}
         }
     }
@@ -194,7 +207,7 @@ fn paint_mask(
 /// The region a mask shows, for a group whose user units `ts` maps.
 fn mask_region(m: &usvg::Mask, ts: usvg::Transform, tol: f64, eps: f64) -> Region {
     let mut shown: Region = Vec::new();
-    paint_mask(m.root(), ts, m.kind(), &mut shown, tol, eps);
+    paint_mask(m.root(), (ts, 1.0), m.kind(), &mut shown, tol, eps);
     let r = m.rect();
     let corner = |x: f32, y: f32| {
         let mut q = usvg::tiny_skia_path::Point::from_xy(x, y);

@@ -59,6 +59,13 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 value: bad.value,
             });
         }
+        if let Some((element, content)) = unread_text(data) {
+            return Err(PlanError::Text {
+                name: name.to_string(),
+                element,
+                content,
+            });
+        }
         let mut elements: Vec<Element> = Vec::new();
         let to_user = user_units_transform(data, &tree);
         collect_elements(tree.root(), &mut elements, to_user, &mut Vec::new());
@@ -148,6 +155,46 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         }
         Ok((shape, crate::units::mm_per_unit(data, &tree)))
     }
+}
+
+/// The first `<text>` element with characters to draw (not under `display="none"`), as
+/// (the element, the start of its text): usvg, built without fonts, drops text, so a
+/// drawing that holds some would be planned without it (or refused as having no filled
+/// area, which it has). `None` for a document that is not XML.
+fn unread_text(data: &[u8]) -> Option<(String, String)> {
+    let text = std::str::from_utf8(data).ok()?;
+    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+    let hidden = |n: usvg::roxmltree::Node<'_, '_>| {
+        n.ancestors().any(|a| {
+            a.attribute("display") == Some("none")
+                || a.attribute("style").is_some_and(|s| {
+                    s.split(';')
+                        .any(|d| d.split_whitespace().collect::<String>() == "display:none")
+                })
+        })
+    };
+    doc.descendants()
+        .filter(|n| {
+            n.tag_name().name() == "text"
+                && n.tag_name().namespace() == Some("http://www.w3.org/2000/svg")
+        })
+        .enumerate()
+        .find_map(|(i, n)| {
+            let words: Vec<&str> = n
+                .descendants()
+                .filter(|d| d.is_text())
+                .filter_map(|d| d.text())
+                .flat_map(str::split_whitespace)
+                .collect();
+            if words.is_empty() || hidden(n) {
+                return None;
+            }
+            let element = match n.attribute("id") {
+                Some(id) => format!("<text id=\"{id}\">"),
+                None => format!("text element #{}", i + 1),
+            };
+            Some((element, words.join(" ").chars().take(24).collect()))
+        })
 }
 
 /// A number in the drawing's geometry that is not a finite number usvg can hold.
@@ -719,6 +766,87 @@ mod tests {
         let none = svg(r#"<rect width="100" height="100" fill-opacity="0"/>"#);
         let e = Shape::from_svg_data(none.as_bytes(), "none.svg").unwrap_err();
         assert!(e.to_string().contains("fully transparent"), "{e}");
+    }
+
+    /// Text is refused naming the element and what to do (the planner reads no text, and
+    /// a plan of the rest would fill another shape); empty or hidden text is no text.
+    #[test]
+    fn text_is_refused_with_what_to_do() {
+        let square = r#"<rect x="10" y="10" width="80" height="80"/>"#;
+        for (body, element) in [
+            (r#"<text x="10" y="50">Hello</text>"#, "text element #1"),
+            (
+                r#"<text/><g><text id="t" x="10" y="50"><tspan>Hel</tspan> lo</text></g>"#,
+                "<text id=\"t\">",
+            ),
+        ] {
+            let t = svg(&format!("{square}{body}"));
+            let e = Shape::from_svg_data(t.as_bytes(), "t.svg").unwrap_err();
+            let m = e.to_string();
+            assert!(matches!(e, PlanError::Text { .. }), "{m}");
+            assert!(m.contains(element) && m.contains("Object to Path"), "{m}");
+            assert!(m.contains("\"Hello\"") || m.contains("\"Hel lo\""), "{m}");
+            assert_eq!(e.exit_code(), 2);
+        }
+        for quiet in [
+            "<text> </text>",
+            r#"<text display="none">x</text>"#,
+            r#"<g style="fill:red; display : none"><text>x</text></g>"#,
+        ] {
+            let t = svg(&format!("{square}{quiet}"));
+            let s = Shape::from_svg_data(t.as_bytes(), "t.svg").unwrap();
+            assert!((s.area() - 6400.0).abs() < 1e-6, "{quiet}: {}", s.area());
+        }
+    }
+
+    /// Opacities in a mask, against what a browser shows: a group of opacity 0 paints
+    /// nothing (its black square hides nothing), white under a group of opacity 0.2 does
+    /// not show, a black of opacity 0.3 over white still shows (0.7), and in an alpha mask
+    /// a faint square over an opaque one takes nothing away. (Before, the first and the last
+    /// two hid their area and the second showed it.)
+    #[test]
+    fn a_mask_paints_with_its_opacities() {
+        let area = |mask: &str, kind: &str| {
+            let t = svg(&format!(
+                r#"<defs><mask id="m" style="mask-type:{kind}">{mask}</mask></defs>
+                <rect x="10" y="10" width="80" height="80" mask="url(#m)"/>
+                <rect x="0" y="0" width="100" height="5"/>"#
+            ));
+            Shape::from_svg_data(t.as_bytes(), "t").unwrap().area()
+        };
+        let white = r##"<rect width="100" height="100" fill="#fff"/>"##;
+        let left = |attrs: &str| format!(r#"<rect width="50" height="100" {attrs}/>"#);
+        let cases = [
+            (
+                format!(r#"{white}<g opacity="0">{}</g>"#, left("")),
+                "luminance",
+                6900.0,
+            ),
+            (
+                format!(r#"<g opacity="0.2">{white}</g>"#),
+                "luminance",
+                500.0,
+            ),
+            (
+                format!("{white}{}", left(r#"fill-opacity="0.3""#)),
+                "luminance",
+                6900.0,
+            ),
+            (
+                format!("{white}{}", left(r#"fill-opacity="0.8""#)),
+                "luminance",
+                3700.0,
+            ),
+            (
+                format!("{white}{}", left(r#"opacity="0.3""#)),
+                "alpha",
+                6900.0,
+            ),
+        ];
+        for (mask, kind, want) in cases {
+            let a = area(&mask, kind);
+            assert!((a - want).abs() < 1e-6, "{kind} {mask}: {a}");
+        }
     }
 
     /// Everything clipped away: no filled area, said so.

@@ -61,6 +61,17 @@ pub enum PlanError {
         /// The value as written.
         value: String,
     },
+    /// The drawing holds text, which the planner does not read (it loads no fonts): planned
+    /// without it, the chain would fill another shape than the one drawn.
+    #[error("{name}: {element} holds text (\"{content}\"), which the planner does not read; convert the text to paths (Inkscape: Path > Object to Path) and plan that file")]
+    Text {
+        /// The file name (or `<string>`).
+        name: String,
+        /// The element (its id, or its index among the text elements).
+        element: String,
+        /// The start of its text.
+        content: String,
+    },
     /// The drawing holds more outline points than the planner reads.
     #[error("{name}: the outlines have {points} points, more than the {limit} the planner reads; simplify the drawing (e.g. Inkscape: Path > Simplify)")]
     TooManyPoints {

@@ -34,8 +34,20 @@ pub(crate) struct Forces {
     /// modes: none since the last [`Model::forces_with_cutoff`]).
     base_y: Vec<f64>,
     base_modes: Vec<Mode>,
+    /// The epoch of the last full evaluation by [`Model::forces_free`] (0: none since the
+    /// last [`Model::forces_with_cutoff`]), and the full evaluations into this scratch.
+    base_epoch: u64,
+    evaluations: u64,
     /// Spans of magnets whose drives the free unknowns change.
     spans: Vec<(usize, usize)>,
+}
+
+impl Forces {
+    /// How many full evaluations went into this scratch: the drives a caller kept are the
+    /// same as these but where [`Model::changed`] says, as long as this count is the same.
+    pub(crate) fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
 }
 
 impl Model {
@@ -71,29 +83,68 @@ impl Model {
     /// A full evaluation when the modes or a clamped value changed, or with a distance
     /// cutoff (its pairs are not local in chain index).
     pub(crate) fn forces_moving(&self, y: &[f64], modes: &[Mode], out: &mut Forces) {
-        let n = self.geometry.magnets();
-        let c = self.opts.cutoff;
         let current = self.opts.distance_cutoff.is_none()
             && !out.base_modes.is_empty()
             && out.base_modes.as_slice() == modes
             && out.base_y.len() == y.len()
             && (0..y.len()).all(|i| modes[i] == Mode::Free || y[i] == out.base_y[i]);
         if !current {
-            self.forces_with_cutoff(y, c, out);
+            self.forces_with_cutoff(y, self.opts.cutoff, out);
             out.base_y.clear();
             out.base_y.extend_from_slice(y);
             out.base_modes.clear();
             out.base_modes.extend_from_slice(modes);
             return;
         }
+        let free = (0..modes.len()).filter(|&i| modes[i] == Mode::Free);
+        self.drives_near(y, free, out);
+    }
+
+    /// Drives at state `y` as [`Model::forces_moving`], for a caller that keeps the free
+    /// unknowns `free` (in order) and counts the changes of modes in `epoch` (from 1), and
+    /// changes a clamped value only with the modes: a full evaluation when `epoch` is not
+    /// that of the last full one into `out` (or with a distance cutoff), else the drives
+    /// near the free unknowns only, so that the cost is O(what moves) and not O(n).
+    /// Whether it was a full evaluation ([`Forces::evaluations`] counts them; after one that
+    /// was not, [`Model::changed`] gives the unknowns whose drives it computed again).
+    pub(crate) fn forces_free(
+        &self,
+        y: &[f64],
+        free: &[usize],
+        epoch: u64,
+        out: &mut Forces,
+    ) -> bool {
+        if self.opts.distance_cutoff.is_some() || epoch == 0 || out.base_epoch != epoch {
+            self.forces_with_cutoff(y, self.opts.cutoff, out);
+            out.base_epoch = epoch;
+            return true;
+        }
+        self.drives_near(y, free.iter().copied(), out);
+        false
+    }
+
+    /// The unknowns (state indices, in ranges in order) whose drives the last evaluation
+    /// into `out` computed again, when it was not a full one: the magnets within the cutoff
+    /// of a free unknown's reach and the joints between them.
+    pub(crate) fn changed<'a>(
+        &'a self,
+        out: &'a Forces,
+    ) -> impl Iterator<Item = std::ops::Range<usize>> + 'a {
+        out.spans
+            .iter()
+            .map(|&(lo, hi)| self.magnet_var[lo]..self.magnet_var[hi] + 1)
+    }
+
+    /// The drives near the free unknowns `free` (state indices, in order) at state `y`, the
+    /// others kept from the last full evaluation into `out` ([`Model::forces_moving`]).
+    fn drives_near(&self, y: &[f64], free: impl Iterator<Item = usize> + Clone, out: &mut Forces) {
+        let n = self.geometry.magnets();
+        let c = self.opts.cutoff;
         // the spans of magnets whose drives change, merged
         let mut spans = std::mem::take(&mut out.spans);
         spans.clear();
-        for (i, u) in self.unknowns.iter().enumerate() {
-            if modes[i] != Mode::Free {
-                continue;
-            }
-            let (lo, hi) = match *u {
+        for i in free.clone() {
+            let (lo, hi) = match self.unknowns[i] {
                 Unknown::Magnet(k) => (k.saturating_sub(c), k + c),
                 Unknown::Joint(j) => ((2 * j + 2).saturating_sub(c), 2 * j + 1 + c),
             };
@@ -111,14 +162,10 @@ impl Model {
         // joint (those before it are the full evaluation's) up to the last tile needed
         let last_tile = ((reach + c).min(n - 1)) / 2;
         let mut frames = std::mem::take(&mut out.frames);
-        let first_free_joint = self
-            .unknowns
-            .iter()
-            .zip(modes)
-            .find_map(|(u, &m)| match *u {
-                Unknown::Joint(j) if m == Mode::Free => Some(j),
-                _ => None,
-            });
+        let first_free_joint = free.clone().find_map(|i| match self.unknowns[i] {
+            Unknown::Joint(j) => Some(j),
+            Unknown::Magnet(_) => None,
+        });
         if let Some(j0) = first_free_joint.filter(|&j0| j0 < last_tile) {
             self.frames_from(y, j0, last_tile, &mut frames);
         }
@@ -223,6 +270,8 @@ impl Model {
     /// apart in chain index.
     pub(crate) fn forces_with_cutoff(&self, y: &[f64], cutoff: usize, out: &mut Forces) {
         out.base_modes.clear();
+        out.base_epoch = 0;
+        out.evaluations += 1;
         let n = self.geometry.magnets();
         let mut frames = std::mem::take(&mut out.frames);
         self.frames(y, &mut frames);
@@ -403,11 +452,30 @@ mod tests {
         }
         let mut moving = Forces::default();
         m.forces_moving(&y, &modes, &mut moving);
+        // the same through the packed drivers' entry: a full evaluation at a new epoch
+        let mut sorted = free.to_vec();
+        sorted.sort_unstable();
+        let mut packed = Forces::default();
+        assert!(m.forces_free(&y, &sorted, 1, &mut packed));
+        let base = packed.drive.clone();
         for (step, &i) in free.iter().enumerate() {
             y[i] = 0.9 - 0.2 * step as f64;
         }
         m.forces_moving(&y, &modes, &mut moving);
         assert!(!moving.base_modes.is_empty());
+        // the same epoch: near the free unknowns only, the very numbers of forces_moving,
+        // and the drives it did not compute again are the base's
+        assert!(!m.forces_free(&y, &sorted, 1, &mut packed));
+        assert_eq!(packed.drive, moving.drive);
+        assert_eq!(packed.evaluations(), 1);
+        let mut near = vec![false; n];
+        for r in m.changed(&packed) {
+            near[r].iter_mut().for_each(|b| *b = true);
+        }
+        assert!(near.iter().any(|&b| !b));
+        for i in 0..n {
+            assert!(near[i] || packed.drive[i] == base[i], "{i}");
+        }
         let mut full = Forces::default();
         m.forces_with_cutoff(&y, m.options().cutoff, &mut full);
         let mut changed = 0;
@@ -428,6 +496,10 @@ mod tests {
         m.forces_moving(&y, &modes, &mut moving);
         m.forces_with_cutoff(&y, m.options().cutoff, &mut full);
         assert_eq!(moving.drive, full.drive);
+        // a new epoch (the modes changed): a full evaluation again
+        assert!(m.forces_free(&y, &sorted, 2, &mut packed));
+        assert_eq!(packed.drive, full.drive);
+        assert_eq!(packed.evaluations(), 2);
     }
 
     /// The thesis model of `word` at s = 0.3 mm and its forces with every unknown at 0.

@@ -16,7 +16,7 @@
 //! free. When states are recorded, so is every wall contact ([`ReferenceRun::walls`]).
 
 use crate::model::{at_wall, undecided_margin, Forces, InertialModel, Mode, Model, RestState};
-use crate::ode::{StepStats, Stepper, System};
+use crate::ode::{Method, StepStats, Stepper, System};
 use crate::reference::event_log::EventLog;
 use crate::reference::options::ReferenceOptions;
 use crate::reference::recorder::Recorder;
@@ -25,18 +25,25 @@ use crate::reference::stepping::{
     exhausted, rest_mode, wall_reached, ReleaseCuts, StepSize, Verdict,
 };
 
-/// Scratch of one evaluation: the positions and the drives there.
+/// Scratch of one evaluation: the whole chain's positions (the free unknowns' scattered in
+/// from the packed state, the clamped ones' as the modes last changed) and the drives there.
 #[derive(Debug, Default)]
 pub(crate) struct Work {
     y: Vec<f64>,
     forces: Forces,
 }
 
-/// The inertial system with its modes: state `[x_0, v_0, x_1, v_1, ...]`.
+/// The inertial system of the free unknowns `free` (in order), the clamped ones held where
+/// they are: the packed state `[x_a, v_a, x_b, v_b, ...]` for `free = [a, b, ...]`. Packed,
+/// the stepper's stages, the error and the right-hand side's copies cost O(what moves); the
+/// forces are computed again near the free unknowns only ([`Model::forces_free`], at the
+/// modes' `epoch`). The band of the whole state bounds the packed one's (a packed index
+/// difference is at most the whole one's).
 struct Inertial<'a> {
     model: &'a Model,
-    modes: &'a [Mode],
     im: &'a InertialModel,
+    free: &'a [usize],
+    epoch: u64,
 }
 
 impl System for Inertial<'_> {
@@ -46,33 +53,22 @@ impl System for Inertial<'_> {
         2 * self.model.bandwidth() + 1
     }
 
-    fn counts(&self, i: usize) -> bool {
-        self.modes[i / 2] == Mode::Free
+    fn counts(&self, _: usize) -> bool {
+        true
     }
 
     fn rhs(&self, z: &[f64], work: &mut Work, out: &mut [f64]) {
-        let n = self.model.len();
-        work.y.clear();
-        work.y.extend((0..n).map(|i| z[2 * i]));
-        // only where a free unknown reaches (the clamped ones' drives kept)
+        for (p, &i) in self.free.iter().enumerate() {
+            work.y[i] = z[2 * p];
+        }
         self.model
-            .forces_moving(&work.y, self.modes, &mut work.forces);
-        for i in 0..n {
-            if self.modes[i] != Mode::Free {
-                out[2 * i] = 0.0;
-                out[2 * i + 1] = 0.0;
-                continue;
-            }
-            let v = z[2 * i + 1];
-            out[2 * i] = v;
-            out[2 * i + 1] = self.im.acceleration(i, z[2 * i], work.forces.drive[i], v);
+            .forces_free(&work.y, self.free, self.epoch, &mut work.forces);
+        for (p, &i) in self.free.iter().enumerate() {
+            let v = z[2 * p + 1];
+            out[2 * p] = v;
+            out[2 * p + 1] = self.im.acceleration(i, z[2 * p], work.forces.drive[i], v);
         }
     }
-}
-
-/// The values of the state `z = [x_0, v_0, x_1, v_1, ...]`.
-fn positions(z: &[f64]) -> Vec<f64> {
-    z.iter().step_by(2).copied().collect()
 }
 
 /// The rates of the state `z = [x_0, v_0, x_1, v_1, ...]`.
@@ -80,14 +76,30 @@ fn velocities(z: &[f64]) -> Vec<f64> {
     z.iter().skip(1).step_by(2).copied().collect()
 }
 
-/// An inertial run between steps: the modes, the state, the time, the events so far and
-/// the scratch of the forces.
+/// An inertial run between steps: the modes, the state (whole and packed), the time, the
+/// events so far and the scratch of the forces.
 struct State {
     modes: Vec<Mode>,
+    /// The whole state `[x_0, v_0, x_1, v_1, ...]` and its positions, current between steps.
     z: Vec<f64>,
+    y: Vec<f64>,
+    /// The free unknowns in order, and the stepper's packed state of them.
+    free: Vec<usize>,
+    zp: Vec<f64>,
+    /// Counts the changes of modes (from 1): the clamped values change only with them, so
+    /// the forces near the free unknowns hold between two ([`Model::forces_free`]).
+    epoch: u64,
+    /// The whole positions with a trial step's end scattered in.
+    ys: Vec<f64>,
+    stepper: Stepper<Work>,
     t: f64,
     log: EventLog,
     work: Forces,
+    /// The drives at the step's start (the clamped unknowns' pulls off their walls), the
+    /// same as `work`'s but where the forces changed since its full evaluation number
+    /// `synced`.
+    drive0: Vec<f64>,
+    synced: u64,
     stats: StepStats,
     /// The recorded states, when recording, and the wall contacts of
     /// [`ReferenceRun::walls`].
@@ -96,12 +108,19 @@ struct State {
 }
 
 impl State {
-    /// Every unknown of `model` at the start of its range, at rest, at time 0.
-    fn new(model: &Model) -> State {
+    /// Every unknown of `model` at the start of its range, at rest, at time 0, to be stepped
+    /// by `method`.
+    fn new(model: &Model, method: Method) -> State {
         let n = model.len();
         State {
             modes: vec![Mode::AtStart; n],
             z: vec![0.0; 2 * n],
+            y: vec![0.0; n],
+            free: Vec::new(),
+            zp: Vec::new(),
+            epoch: 1,
+            ys: vec![0.0; n],
+            stepper: Stepper::new(method, 0, 2 * model.bandwidth() + 1),
             t: 0.0,
             log: EventLog::new(
                 model.geometry.tiles().saturating_sub(1),
@@ -109,43 +128,106 @@ impl State {
                 crate::timeline::start_fraction(&model.geometry),
             ),
             work: Forces::default(),
+            drive0: vec![0.0; n],
+            synced: 0,
             stats: StepStats::default(),
             rec: None,
             walls: Vec::new(),
         }
     }
 
+    /// The free unknowns after a change of modes: the packed state from the whole one, the
+    /// stepper's storage for it, and the whole positions its evaluations start from.
+    fn pack(&mut self, model: &Model) {
+        self.free.clear();
+        self.free
+            .extend((0..self.modes.len()).filter(|&i| self.modes[i] == Mode::Free));
+        let len = 2 * self.free.len();
+        if self.zp.len() != len {
+            let bandwidth = 2 * model.bandwidth() + 1;
+            let mut stepper = Stepper::new(self.stepper.method, len, bandwidth);
+            std::mem::swap(stepper.work_mut(), self.stepper.work_mut());
+            self.stepper = stepper;
+            self.zp = vec![0.0; len];
+        }
+        self.stepper.invalidate();
+        self.stepper.work_mut().y.clone_from(&self.y);
+        self.ys.clone_from(&self.y);
+        self.sync_packed();
+    }
+
+    /// The packed state from the whole one.
+    fn sync_packed(&mut self) {
+        for (p, &i) in self.free.iter().enumerate() {
+            self.zp[2 * p] = self.z[2 * i];
+            self.zp[2 * p + 1] = self.z[2 * i + 1];
+        }
+    }
+
+    /// The whole state's free entries from the packed one.
+    fn unpack(&mut self) {
+        for (p, &i) in self.free.iter().enumerate() {
+            self.z[2 * i] = self.zp[2 * p];
+            self.z[2 * i + 1] = self.zp[2 * p + 1];
+            self.y[i] = self.zp[2 * p];
+        }
+    }
+
+    /// The unknowns whose drives in `work` may differ from `drive0`'s: every one after a
+    /// full evaluation since `drive0` was taken, else those near the free ones.
+    fn changed(&self, model: &Model) -> Vec<std::ops::Range<usize>> {
+        if self.work.evaluations() == self.synced {
+            model.changed(&self.work).collect()
+        } else {
+            std::iter::once(0..self.modes.len()).collect()
+        }
+    }
+
     /// Starts the clamped unknowns that their drive pulls off their wall (by more than the
     /// static threshold and the Coulomb friction), at rest; notes them. Leaves the drives
-    /// in `work`.
-    fn release(&mut self, model: &Model, im: &InertialModel) {
-        let y = positions(&self.z);
-        model.forces_moving(&y, &self.modes, &mut self.work);
-        for i in 0..model.len() {
+    /// before the starts in `work` and `drive0`. Whether any started.
+    fn release(&mut self, model: &Model, im: &InertialModel) -> bool {
+        model.forces_free(&self.y, &self.free, self.epoch, &mut self.work);
+        // a clamped unknown whose drive is what it was at the last release stays
+        let changed = self.changed(model);
+        let mut started = false;
+        for i in changed.iter().flat_map(|r| r.clone()) {
             if im.released(model, i, self.modes[i], self.work.drive[i]) {
                 let prev = std::mem::replace(&mut self.modes[i], Mode::Free);
                 self.z[2 * i + 1] = 0.0;
                 self.log
-                    .note(model, i, prev, Mode::Free, self.t, &self.modes, &y);
+                    .note(model, i, prev, Mode::Free, self.t, &self.modes, &self.y);
+                started = true;
             }
         }
         self.log.close(self.t);
+        for r in changed {
+            self.drive0[r.clone()].copy_from_slice(&self.work.drive[r]);
+        }
+        self.synced = self.work.evaluations();
+        if started {
+            self.epoch += 1;
+        }
+        started
     }
 
-    /// The unknowns `free` at or past a wall: put on it, then bounce or stay (a rest noted
+    /// The free unknowns at or past a wall: put on it, then bounce or stay (a rest noted
     /// as a mode switch); the contacts noted in `walls` when recording. Whether any mode
     /// changed. Leaves the drives before the rests in `work`.
-    fn settle_at_walls(&mut self, model: &Model, im: &InertialModel, free: &[usize]) -> bool {
-        let y_now = positions(&self.z);
-        model.forces_moving(&y_now, &self.modes, &mut self.work);
+    fn settle_at_walls(&mut self, model: &Model, im: &InertialModel) -> bool {
+        if !self.free.iter().any(|&i| wall_reached(self.y[i]).is_some()) {
+            return false;
+        }
+        model.forces_free(&self.y, &self.free, self.epoch, &mut self.work);
         let mut switched = false;
-        for &i in free {
-            let x = self.z[2 * i];
-            let Some(wall) = wall_reached(x) else {
+        for p in 0..self.free.len() {
+            let i = self.free[p];
+            let Some(wall) = wall_reached(self.z[2 * i]) else {
                 continue;
             };
             let v = self.z[2 * i + 1];
             self.z[2 * i] = wall;
+            self.y[i] = wall;
             if !at_wall(wall, v) {
                 continue;
             }
@@ -158,58 +240,80 @@ impl State {
                 let next = rest_mode(wall);
                 let prev = std::mem::replace(&mut self.modes[i], next);
                 self.z[2 * i + 1] = 0.0;
-                let y = positions(&self.z);
-                self.log.note(model, i, prev, next, self.t, &self.modes, &y);
+                self.log
+                    .note(model, i, prev, next, self.t, &self.modes, &self.y);
                 switched = true;
             }
         }
         if switched {
             self.log.close(self.t);
+            self.epoch += 1;
         }
         switched
     }
 
-    /// Takes the accepted step of size `h` whose start `z1` keeps (the state has moved to
-    /// its end): the crossings of start fractions, the walls, the releases (the drives
-    /// after them into `drive0`), the recorded states inside the step. Whether the modes
-    /// changed.
-    fn advance(
-        &mut self,
-        model: &Model,
-        im: &InertialModel,
-        h: f64,
-        z1: &[f64],
-        free: &[usize],
-        drive0: &mut Vec<f64>,
-    ) -> bool {
-        let (t0, z0) = (self.t, z1);
+    /// The fraction of the step to the packed state `z1` at which the first clamped unknown
+    /// is pulled off its wall by more than its threshold (as [`State::release`] asks), its
+    /// pull taken linear in between from `drive0`; 1 when none is. Leaves the drives at the
+    /// step's end in `work`.
+    fn release_within(&mut self, model: &Model, im: &InertialModel, z1: &[f64]) -> f64 {
+        if self.free.len() == self.modes.len() {
+            return 1.0;
+        }
+        for (p, &i) in self.free.iter().enumerate() {
+            self.ys[i] = z1[2 * p];
+        }
+        model.forces_free(&self.ys, &self.free, self.epoch, &mut self.work);
+        let mut theta: f64 = 1.0;
+        // a drive that did not change since `drive0` crosses nothing
+        for i in self.changed(model).into_iter().flatten() {
+            let th = im.threshold(model, i);
+            let pull = |d: f64| match self.modes[i] {
+                Mode::AtStart => d - th,
+                Mode::AtEnd => -d - th,
+                Mode::Free => f64::NAN,
+            };
+            let (p0, p1) = (pull(self.drive0[i]), pull(self.work.drive[i]));
+            if p1 > 0.0 && p0 <= 0.0 {
+                theta = theta.min(p0 / (p0 - p1));
+            }
+        }
+        theta
+    }
+
+    /// Takes the accepted step of size `h` whose end the packed state holds (the whole
+    /// state still holds its start): the crossings of start fractions, the walls, the
+    /// releases (the drives after them into `drive0`), the recorded states inside the step.
+    /// Whether the modes changed (then the state is packed again).
+    fn advance(&mut self, model: &Model, im: &InertialModel, h: f64) -> bool {
+        let t0 = self.t;
         self.t += h;
-        if self.log.reports_crossings() {
+        let t = self.t;
+        let crossings = self.log.reports_crossings();
+        let record = self.rec.as_ref().is_some_and(|r| r.next_time() <= t);
+        // the step's start, for the start crossings and the recorded states
+        let start = (crossings || record).then(|| (self.y.clone(), velocities(&self.z)));
+        self.unpack();
+        // the step's own end rates (a bounce below reverses the velocity at its end)
+        let v_end = start.as_ref().map(|_| velocities(&self.z));
+        if let (true, Some((y0, v0)), Some(v1)) = (crossings, &start, &v_end) {
             // starts at a fraction of the path: positions and velocities are the step's
             // Hermite data
-            self.log.cross(
-                model,
-                t0,
-                &positions(z0),
-                Some(&velocities(z0)),
-                self.t,
-                &positions(&self.z),
-                Some(&velocities(&self.z)),
-            );
+            self.log
+                .cross(model, t0, y0, Some(v0), t, &self.y, Some(v1));
         }
-        // the step's own end rates, for the recorded states inside it (a bounce below
-        // reverses the velocity at its end)
-        let v_end = velocities(&self.z);
-        let switched = self.settle_at_walls(model, im, free);
-        let before = self.modes.clone();
-        self.release(model, im);
-        drive0.clone_from(&self.work.drive);
-        let t = self.t;
-        if let Some(r) = self.rec.as_mut().filter(|r| r.next_time() <= t) {
-            let (y0, v0, y1) = (positions(z0), velocities(z0), positions(&self.z));
-            r.cover(t0, &y0, &v0, t, &y1, Some(&v_end));
+        let switched = self.settle_at_walls(model, im);
+        let started = self.release(model, im);
+        if let (Some(r), Some((y0, v0))) = (self.rec.as_mut().filter(|_| record), &start) {
+            r.cover(t0, y0, v0, t, &self.y, v_end.as_deref());
         }
-        before != self.modes || switched
+        let changed = switched || started;
+        if changed {
+            self.pack(model);
+        } else {
+            self.sync_packed();
+        }
+        changed
     }
 
     /// The run at its end on `model` with `opts`: the outcome at rest, why it stopped
@@ -221,7 +325,7 @@ impl State {
         stopped: Option<String>,
         undecided: bool,
     ) -> ReferenceRun {
-        let y = positions(&self.z);
+        let y = self.y;
         let time = self.log.last_event;
         model.forces(&y, &mut self.work);
         let outcome = RestState {
@@ -253,37 +357,6 @@ impl State {
     }
 }
 
-/// The fraction of a step from drives `drive0` to positions `y1` at which the first clamped
-/// unknown is pulled off its wall by more than its threshold (as [`release`] asks), its
-/// pull taken linear in between; 1 when none is. Leaves the drives at `y1` in `work`.
-fn release_within(
-    model: &Model,
-    im: &InertialModel,
-    modes: &[Mode],
-    drive0: &[f64],
-    y1: &[f64],
-    work: &mut Forces,
-) -> f64 {
-    if modes.iter().all(|&m| m == Mode::Free) {
-        return 1.0;
-    }
-    model.forces_moving(y1, modes, work);
-    let mut theta: f64 = 1.0;
-    for (i, &mode) in modes.iter().enumerate() {
-        let th = im.threshold(model, i);
-        let pull = |d: f64| match mode {
-            Mode::AtStart => d - th,
-            Mode::AtEnd => -d - th,
-            Mode::Free => f64::NAN,
-        };
-        let (p0, p1) = (pull(drive0[i]), pull(work.drive[i]));
-        if p1 > 0.0 && p0 <= 0.0 {
-            theta = theta.min(p0 / (p0 - p1));
-        }
-    }
-    theta
-}
-
 /// Runs the inertial model (the driver of [`crate::reference::run_reference`] for
 /// [`crate::model::Dynamics::Inertial`]).
 pub(crate) fn run_inertial(
@@ -291,59 +364,57 @@ pub(crate) fn run_inertial(
     im: InertialModel,
     opts: &ReferenceOptions,
 ) -> ReferenceRun {
-    let n = model.len();
-    let mut s = State::new(&model);
+    let mut s = State::new(&model, opts.method);
     let tol = opts.tolerance;
     let (_, move_time, drag_time) = im.c.times(&model);
     let scale = im.scale;
-    let mut stepper: Stepper<Work> = Stepper::new(opts.method, 2 * n, 2 * model.bandwidth() + 1);
     let mut step = StepSize::new(im.first_step * 1e-3, opts.method, scale);
     let mut stopped = None;
     let mut undecided = false;
     let mut cuts = ReleaseCuts::default();
-    s.rec = Recorder::of(
-        opts.record,
-        move_time.min(drag_time) * 1e-2,
-        &positions(&s.z),
-    );
-    let mut f = vec![0.0; 2 * n];
-    let mut z1 = vec![0.0; 2 * n];
+    s.rec = Recorder::of(opts.record, move_time.min(drag_time) * 1e-2, &s.y);
+    let (mut f, mut z1) = (Vec::new(), Vec::new());
     s.release(&model, &im);
-    // the drives at the step's start (the clamped unknowns' pulls off their walls)
-    let mut drive0 = s.work.drive.clone();
+    s.pack(&model);
     loop {
-        let free: Vec<usize> = (0..n).filter(|&i| s.modes[i] == Mode::Free).collect();
-        if free.is_empty() {
+        if s.free.is_empty() {
             break;
         }
-        let (t, z, stats) = (s.t, &s.z, &mut s.stats);
+        f.resize(s.zp.len(), 0.0);
+        z1.resize(s.zp.len(), 0.0);
+        let t = s.t;
         let sys = Inertial {
             model: &model,
-            modes: &s.modes,
             im: &im,
+            free: &s.free,
+            epoch: s.epoch,
         };
-        stepper.rhs(&sys, z, &mut f, stats);
-        let quiet = free
+        s.stepper.rhs(&sys, &s.zp, &mut f, &mut s.stats);
+        let quiet = s
+            .free
             .iter()
-            .all(|&i| im.quiet(i, z[2 * i + 1], f[2 * i + 1]));
+            .enumerate()
+            .all(|(p, &i)| im.quiet(i, s.zp[2 * p + 1], f[2 * p + 1]));
         if quiet && t > s.log.last_event + scale {
             break;
         }
         // the work budget (ReferenceOptions): a balance not decided within it is said, with
         // its margin, and the run is undecided
         let budget = opts.step_budget(model.geometry.tiles());
-        if let Some(budget) = exhausted(budget, stats, &cuts, t, s.log.last_event, scale) {
-            model.forces(&positions(z), &mut s.work);
+        if let Some(budget) = exhausted(budget, &s.stats, &cuts, t, s.log.last_event, scale) {
+            model.forces(&s.y, &mut s.work);
             let drive = &s.work.drive;
-            let margin = undecided_margin(&model, free.iter().map(|&i| (i, z[2 * i], drive[i])));
+            let margin = undecided_margin(&model, s.free.iter().map(|&i| (i, s.y[i], drive[i])));
             stopped = Some(format!(
                 "undecided at t = {t:.6e} s within the work budget ({budget}): {margin}"
             ));
             undecided = true;
             break;
         }
-        let attempt = stepper.attempt(&sys, z, &f, step.h, tol, stats, &mut z1);
-        let err = match step.judge(attempt, &z1, t, stats) {
+        let attempt = s
+            .stepper
+            .attempt(&sys, &s.zp, &f, step.h, tol, &mut s.stats, &mut z1);
+        let err = match step.judge(attempt, &z1, t, &mut s.stats) {
             Verdict::Taken(err) => err,
             Verdict::Retry => continue,
             Verdict::Underflow(why) => {
@@ -352,23 +423,20 @@ pub(crate) fn run_inertial(
             }
         };
         // a wall crossed: cut the step to end just past the first crossing
-        if step.cut_at_walls(t, free.iter().map(|&i| (z[2 * i], z1[2 * i]))) {
+        let ends = (0..s.free.len()).map(|p| (s.zp[2 * p], z1[2 * p]));
+        if step.cut_at_walls(t, ends) {
             continue;
         }
         // a clamped unknown pulled off its wall inside the step: cut the step to end at
         // that moment (the pull taken linear over the step), so that it starts there and
         // not up to a step late
-        let y1 = positions(&z1);
-        let theta = release_within(&model, &im, &s.modes, &drive0, &y1, &mut s.work);
+        let theta = s.release_within(&model, &im, &z1);
         if step.cut_at_release(t, theta, &mut cuts, s.log.last_event) {
             continue;
         }
-        let grow = step.accept(err, stats);
-        // z1 keeps the step's start
-        std::mem::swap(&mut s.z, &mut z1);
-        if s.advance(&model, &im, step.h, &z1, &free, &mut drive0) {
-            stepper.invalidate();
-        }
+        let grow = step.accept(err, &mut s.stats);
+        std::mem::swap(&mut s.zp, &mut z1);
+        s.advance(&model, &im, step.h);
         step.h *= grow;
     }
     s.finish(model, opts, stopped, undecided)
