@@ -28,6 +28,18 @@ const DECOMPOSITIONS: usize = 2;
 const AXES_ROUTED: usize = 2;
 /// Slab decompositions ([`crate::slabs`]) sized, the cheapest over all axes.
 const SLAB_GROUPS: usize = 2;
+/// Slab decompositions sized at most: the next cheapest after [`SLAB_GROUPS`], one at a
+/// time while every plan found so far leaves a part empty larger than [`MORE_SLABS_EMPTY`].
+/// A slab's price is its rows' misfit alone, blind to whether the route can enter it where
+/// its rows begin: a gear's cheapest slabs (its left part, and the rest round the hole) are
+/// entered halfway up and leave half the gear empty, its fifth (cut across the hole) goes
+/// round the hole.
+const MORE_SLAB_GROUPS: usize = 6;
+/// The share of the asked count (in tile areas) that a part left empty must exceed, in every
+/// plan found so far, for more slab decompositions than [`SLAB_GROUPS`] to be sized: a
+/// part that large is a whole arm of the shape left out, worth a few more width searches
+/// (each about as much work as one of the first); a smaller one is not.
+const MORE_SLABS_EMPTY: f64 = 0.05;
 /// A slab plan is kept only while at least this share of its tile centres lies inside the
 /// shape: a slab's rows may bridge a gap (a key's teeth), and the U-turns of rows across a
 /// round slab may fall outside it; issue 26 asks that a plan keep 97% of its tile centres on
@@ -149,13 +161,16 @@ pub(crate) fn start_width(shape: &Shape, opts: &PlanOptions, style: Style) -> f6
 
 /// Plans `shape` by caps with one turn style (see the module documentation), or says why
 /// no route was found, with the best route rejected for an empty part. `all_axes` is
-/// [`cap_axes`] at [`start_width`].
+/// [`cap_axes`] at [`start_width`]; `known_empty` is the least part left empty (tile areas)
+/// by the plans found before (one serpentine, kept or rejected; 0 when one fills the shape),
+/// which decides whether more slab decompositions are sized ([`MORE_SLABS_EMPTY`]).
 pub(crate) fn plan_by_caps(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     all_axes: &[(f64, Vec<CapPlan>, f64)],
+    known_empty: f64,
 ) -> Result<Plan, CellFailure> {
     // the caps of the cheapest axes, sized together as before; then every one of the
     // cheapest slab decompositions (both its orders) sized on its own, so that one that
@@ -177,15 +192,27 @@ pub(crate) fn plan_by_caps(
         })
         .collect();
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
-    slabs.truncate(SLAB_GROUPS);
+    slabs.truncate(MORE_SLAB_GROUPS);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
+    let first_slab = usize::from(!caps.is_empty());
     if !caps.is_empty() {
         groups.push(caps);
     }
     groups.extend(slabs.into_iter().map(|g| vec![g]));
     let mut failed = Failed::default();
     let mut best: Option<Plan> = None;
-    for axes in &groups {
+    let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
+    for (i, axes) in groups.iter().enumerate() {
+        if i >= first_slab + SLAB_GROUPS {
+            let least = best
+                .iter()
+                .map(|b| b.metrics.largest_empty_tiles)
+                .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
+                .fold(known_empty, f64::min);
+            if least <= large {
+                break;
+            }
+        }
         let slabs = axes
             .iter()
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
@@ -224,15 +251,20 @@ fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
 /// Plans ranked: a count within the tolerance first, then the outside tier and the cost of
 /// fit, turns and part left empty ([`rank_key`]).
 fn rank(opts: &PlanOptions, x: &Plan, y: &Plan) -> std::cmp::Ordering {
+    miss(opts, x)
+        .cmp(&miss(opts, y))
+        .then(rank_key(x, opts.turn_cost).cmp(&rank_key(y, opts.turn_cost)))
+}
+
+/// The tiles by which a plan's count misses the asked count beyond the tolerance (0 when a
+/// tile width was asked).
+fn miss(opts: &PlanOptions, p: &Plan) -> usize {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let tol = (opts.tiles_tolerance * target as f64) as usize;
-    let miss = |p: &Plan| match opts.tile_size {
+    match opts.tile_size {
         Some(_) => 0,
         None => p.tiles.abs_diff(target).saturating_sub(tol),
-    };
-    miss(x)
-        .cmp(&miss(y))
-        .then(rank_key(x, opts.turn_cost).cmp(&rank_key(y, opts.turn_cost)))
+    }
 }
 
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan

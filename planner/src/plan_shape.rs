@@ -289,10 +289,18 @@ fn plan_styles(
         return;
     }
     progress("planning by caps", 0, 1);
+    // the least part left empty by the plans found so far (more slab decompositions are
+    // sized only while it is large)
+    let known_empty = found
+        .best
+        .iter()
+        .map(|b| b.metrics.largest_empty_tiles)
+        .chain(found.rejected.iter().map(|r| r.empty.tiles))
+        .fold(f64::INFINITY, f64::min);
     let by_caps: Vec<Result<Plan, CellFailure>> = styles
         .par_iter()
         .zip(&by_axis)
-        .map(|(&style, axes)| plan_by_caps(shape, opts, style, name, axes))
+        .map(|(&style, axes)| plan_by_caps(shape, opts, style, name, axes, known_empty))
         .collect();
     progress("planning by caps", 1, 1);
     for r in by_caps {
