@@ -3,7 +3,7 @@
 //! own.
 //!
 //! - Neighbouring blocks turn about one hinge relative to each other: their first contact is
-//!   found exactly, as in sequential folding ([`super::sweep::first_contact_within`]), for the
+//!   found exactly, as in sequential folding ([`super::sweep::TurningPair::first_contact`]), for the
 //!   pairs of tiles that the descent through the two blocks' discs ([`ChainTree`]) cannot rule
 //!   out: a disc turning about the hinge stays in its annulus and sweeps a known range of
 //!   angles.
@@ -34,7 +34,7 @@ use crate::Octagon;
 
 use super::block_cover::BlockCover;
 use super::chain_tree::{turn_of, ChainTree, Rigid};
-use super::sweep::first_contact_within;
+use super::sweep::TurningPair;
 use super::{Collision, ScheduleError};
 
 /// Distance (tile widths, between inset outlines) at which two tiles count as in contact.
@@ -304,7 +304,8 @@ impl<'a> Segment<'a> {
             let (fixed, moving) = (self.outline_at(&p.pose), self.outline_at(&q.pose));
             let (cp, cq) = (p.pose.apply(Point::ORIGIN), q.pose.apply(Point::ORIGIN));
             let r = self.radius;
-            if let Some(phi) = first_contact_within(&moving, cq, &fixed, cp, r, pivot, turn) {
+            let pair = TurningPair::new(&moving, cq, &fixed, cp, r, pivot);
+            if let Some(phi) = pair.first_contact(turn) {
                 let c = Contact {
                     time: self.ta + span * phi / turn.abs(),
                     tiles: (i, j),

@@ -9,7 +9,7 @@
 //! whatever the fold and the heading. Whether tail tile `m` meets a placed tile is therefore a
 //! function of that tile's offset in this frame ([`canonical_offset`], an exact lattice point),
 //! and so is the first such `m`. [`TailHits`] computes it with the closed-form sweep test
-//! ([`super::sweep::quarter_contact_within`]: the first contact is a vertex's circular arc
+//! ([`super::sweep::TurningPair::quarter_contact`]: the first contact is a vertex's circular arc
 //! crossing an edge, no sampling) and remembers it, so that repeated shapes (every U-turn of a
 //! serpentine) cost one lookup.
 
@@ -19,7 +19,7 @@ use rustc_hash::FxHashMap;
 use crate::exact::{ExactPoint, ExactPose, QuarterTurns};
 use crate::{Fold, Octagon};
 
-use super::sweep::quarter_contact_within;
+use super::sweep::TurningPair;
 
 /// No tail tile meets the offset.
 pub(crate) const NEVER: u32 = u32::MAX;
@@ -151,7 +151,7 @@ impl TailHits {
                 continue;
             }
             let c = Point::new(f64::from(m), 0.0);
-            if quarter_contact_within(&self.at(c), c, &fixed, p, self.radius, h, true) {
+            if TurningPair::new(&self.at(c), c, &fixed, p, self.radius, h).quarter_contact(true) {
                 return m;
             }
         }
@@ -225,7 +225,8 @@ mod tests {
                 .find(|&m| {
                     let c = Point::new(f64::from(m), 0.0);
                     !(m == 1 && off == ExactPoint::ORIGIN)
-                        && quarter_contact_within(&h.at(c), c, &fixed, p, r, w.hinge, true)
+                        && TurningPair::new(&h.at(c), c, &fixed, p, r, w.hinge)
+                            .quarter_contact(true)
                 })
                 .unwrap_or(NEVER);
             let m = h.get(off);

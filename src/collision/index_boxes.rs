@@ -24,18 +24,20 @@ pub(super) struct RangeBoxes {
 }
 
 /// A box that contains nothing and meets nothing.
-const EMPTY: Rect = Rect::new(
+pub(crate) const EMPTY: Rect = Rect::new(
     f64::INFINITY,
     f64::INFINITY,
     f64::NEG_INFINITY,
     f64::NEG_INFINITY,
 );
 
-fn meets(a: &Rect, b: &Rect) -> bool {
+/// Do the closed boxes `a` and `b` meet (an empty box meets nothing)?
+pub(crate) fn meets(a: &Rect, b: &Rect) -> bool {
     a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
 }
 
-fn union(a: &Rect, b: &Rect) -> Rect {
+/// The smallest box holding `a` and `b` (either may be [`EMPTY`]).
+pub(crate) fn union(a: Rect, b: Rect) -> Rect {
     Rect::new(
         a.x0.min(b.x0),
         a.y0.min(b.y0),
@@ -44,18 +46,21 @@ fn union(a: &Rect, b: &Rect) -> Rect {
     )
 }
 
+/// The smallest box holding `b` (which may be [`EMPTY`]) and point `c`.
+pub(crate) fn union_pt(b: Rect, c: Point) -> Rect {
+    Rect::new(b.x0.min(c.x), b.y0.min(c.y), b.x1.max(c.x), b.y1.max(c.y))
+}
+
 impl RangeBoxes {
     /// The boxes of `centres`' runs.
     pub fn new(centres: &[Point]) -> RangeBoxes {
         let leaves = centres.len().div_ceil(LEAF).max(1).next_power_of_two();
         let mut boxes = vec![EMPTY; 2 * leaves];
         for (l, run) in centres.chunks(LEAF).enumerate() {
-            boxes[leaves + l] = run
-                .iter()
-                .fold(EMPTY, |b, &c| union(&b, &Rect::from_points(c, c)));
+            boxes[leaves + l] = run.iter().fold(EMPTY, |b, &c| union_pt(b, c));
         }
         for p in (1..leaves).rev() {
-            boxes[p] = union(&boxes[2 * p], &boxes[2 * p + 1]);
+            boxes[p] = union(boxes[2 * p], boxes[2 * p + 1]);
         }
         RangeBoxes { leaves, boxes }
     }

@@ -29,9 +29,10 @@ use crate::exact::ExactPose;
 use crate::{kinematics, Fold};
 
 use super::first_hit::{canonical_offset, TailHits};
+use super::index_boxes::{meets, union, union_pt, EMPTY};
 use super::lattice::lattice_overlap;
 use super::sequential::UnitTile;
-use super::sweep::{first_contact_within, quarter_contact_within, sector_box};
+use super::sweep::{swept_query, TurningPair};
 use super::CheckOptions;
 
 /// Tiles per leaf box of a run.
@@ -70,33 +71,8 @@ struct Run {
     bbox: Rect,
 }
 
-/// A box that contains nothing and meets nothing.
-const EMPTY: Rect = Rect::new(
-    f64::INFINITY,
-    f64::INFINITY,
-    f64::NEG_INFINITY,
-    f64::NEG_INFINITY,
-);
-
-fn meets(a: &Rect, b: &Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
-}
-
 fn closed_contains(r: &Rect, c: Point) -> bool {
     c.x >= r.x0 && c.x <= r.x1 && c.y >= r.y0 && c.y <= r.y1
-}
-
-fn union_pt(b: Rect, c: Point) -> Rect {
-    Rect::new(b.x0.min(c.x), b.y0.min(c.y), b.x1.max(c.x), b.y1.max(c.y))
-}
-
-fn union(a: Rect, b: Rect) -> Rect {
-    Rect::new(
-        a.x0.min(b.x0),
-        a.y0.min(b.y0),
-        a.x1.max(b.x1),
-        a.y1.max(b.y1),
-    )
 }
 
 impl Run {
@@ -447,25 +423,8 @@ impl PrefixCheck {
         let tail_len = self.tiles - k - 1;
         let u = at.heading.unit_vector();
         let tail_centre = |t: usize| -> Point { ck + (t + 1) as f64 * u };
-        let first = tail_centre(0);
-        let last = tail_centre(tail_len - 1);
-        let base = (last - pivot).atan2();
-        let mut a_first = (first - pivot).atan2();
-        while a_first - base > std::f64::consts::PI {
-            a_first -= std::f64::consts::TAU;
-        }
-        while base - a_first > std::f64::consts::PI {
-            a_first += std::f64::consts::TAU;
-        }
-        let (mut a0, mut a1) = (base.min(a_first), base.max(a_first));
-        if theta >= 0.0 {
-            a1 += theta;
-        } else {
-            a0 += theta;
-        }
-        let far = (last - pivot).hypot2().sqrt();
         let r = tile.radius;
-        let query = sector_box(pivot, far, a0, a1).inflate(2.0 * r, 2.0 * r);
+        let query = swept_query(pivot, tail_centre(0), tail_centre(tail_len - 1), theta, r);
         self.for_each_in(k, &query, |i, ci, _| {
             let d = (ci - pivot).hypot2().sqrt();
             let Some((t0, t1)) = tile.tail_range(d, tail_len) else {
@@ -482,8 +441,8 @@ impl PrefixCheck {
                     return false;
                 }
                 let moving = tile.at(c);
-                quarter_contact_within(&moving, c, &fixed, ci, r, pivot, theta > 0.0)
-                    && first_contact_within(&moving, c, &fixed, ci, r, pivot, theta).is_some()
+                let pair = TurningPair::new(&moving, c, &fixed, ci, r, pivot);
+                pair.quarter_contact(theta > 0.0) && pair.first_contact(theta).is_some()
             })
         })
     }

@@ -18,7 +18,7 @@ use crate::{kinematics, Chain, Fold, FoldWord, Octagon};
 
 use super::first_hit::{canonical_offset, TailHits};
 use super::index_boxes::RangeBoxes;
-use super::sweep::{first_contact_within, quarter_contact_within, sector_box};
+use super::sweep::{swept_query, TurningPair};
 use super::{final_overlap, CheckOptions, Collision};
 
 /// The outcome of checking a chain of tiles.
@@ -221,28 +221,8 @@ impl<'a> Sweeper<'a> {
         let ck = self.centres[k];
         let u = self.poses[k].heading.unit_vector();
         let tail_centre = |t: usize| -> Point { ck + (t + 1) as f64 * u };
-        // the sector the tail's centres sweep
-        let first = tail_centre(0);
-        let last = tail_centre(tail_len - 1);
-        let base = (last - pivot).atan2();
-        let mut a_first = (first - pivot).atan2();
-        // keep the two angles on the same branch
-        while a_first - base > std::f64::consts::PI {
-            a_first -= std::f64::consts::TAU;
-        }
-        while base - a_first > std::f64::consts::PI {
-            a_first += std::f64::consts::TAU;
-        }
-        let (mut a0, mut a1) = (base.min(a_first), base.max(a_first));
-        if theta >= 0.0 {
-            a1 += theta;
-        } else {
-            a0 += theta;
-        }
-        let far = (last - pivot).hypot2().sqrt();
         let r = self.tile.radius;
-        // placed centres within two circumradii of the swept sector's box
-        let query = sector_box(pivot, far, a0, a1).inflate(2.0 * r, 2.0 * r);
+        let query = swept_query(pivot, tail_centre(0), tail_centre(tail_len - 1), theta, r);
 
         let mut best: Option<(f64, usize, usize)> = None;
         self.boxes.for_each_in(&self.centres, k, &query, |i| {
@@ -262,10 +242,11 @@ impl<'a> Sweeper<'a> {
                     continue;
                 }
                 let moving = self.tile.at(c);
-                if !quarter_contact_within(&moving, c, &fixed, ci, r, pivot, theta > 0.0) {
+                let pair = TurningPair::new(&moving, c, &fixed, ci, r, pivot);
+                if !pair.quarter_contact(theta > 0.0) {
                     continue;
                 }
-                if let Some(phi) = first_contact_within(&moving, c, &fixed, ci, r, pivot, theta) {
+                if let Some(phi) = pair.first_contact(theta) {
                     if best.is_none_or(|(b, bi, bj)| (phi, i, j) < (b, bi, bj)) {
                         best = Some((phi, i, j));
                     }
@@ -350,7 +331,8 @@ mod tests {
                     }
                     let (moving, fixed) = (tile.at(c), tile.at(ci));
                     let r = tile.radius;
-                    if let Some(phi) = first_contact_within(&moving, c, &fixed, ci, r, pivot, theta)
+                    if let Some(phi) =
+                        TurningPair::new(&moving, c, &fixed, ci, r, pivot).first_contact(theta)
                     {
                         if best.is_none_or(|b| (phi, i, j) < b) {
                             best = Some((phi, i, j));

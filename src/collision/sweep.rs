@@ -81,106 +81,123 @@ fn quarter_arc_hits_segment(v: Point, pivot: Point, left: bool, a: Point, b: Poi
         })
 }
 
-/// Calls `hit(vertex, edge start, edge end, turns_forward)` for every (vertex, edge) pair of
-/// two octagons within `r` of their centres whose vertex arc can reach the other octagon's
-/// annulus about `pivot`; `turns_forward` is true for the moving octagon's vertices (the
-/// fixed octagon's turn the other way in the moving frame). Stops when `hit` returns true.
-fn for_each_reachable_pair(
-    moving: &[Point; 8],
+/// Two octagons (vertices counter-clockwise), each within `r` of its centre: `moving` turns
+/// about `pivot`, `fixed` stays. Its sweep tests skip the vertices whose arc stays outside
+/// the annulus about `pivot` that holds the other octagon, which leaves their results
+/// unchanged and saves most of the work.
+#[derive(Clone, Copy)]
+pub(crate) struct TurningPair<'a> {
+    moving: &'a [Point; 8],
     moving_centre: Point,
-    fixed: &[Point; 8],
+    fixed: &'a [Point; 8],
     fixed_centre: Point,
     r: f64,
     pivot: Point,
-    mut hit: impl FnMut(Point, Point, Point, bool) -> bool,
-) {
-    let ring = |c: Point| {
-        let d = (c - pivot).hypot2().sqrt();
-        let lo = (d - r).max(0.0);
-        (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
-    };
-    let sides = [
-        (moving, fixed, ring(fixed_centre), true),
-        (fixed, moving, ring(moving_centre), false),
-    ];
-    for (verts, edges, (lo, hi), forward) in sides {
-        for &v in verts {
-            let rho = (v - pivot).hypot2();
-            if rho < lo || rho > hi {
-                continue;
-            }
-            for e in 0..8 {
-                if hit(v, edges[e], edges[(e + 1) % 8], forward) {
-                    return;
+}
+
+impl<'a> TurningPair<'a> {
+    /// `moving` (centred at `moving_centre`) turning about `pivot` against `fixed` (centred
+    /// at `fixed_centre`), both within `r` of their centres.
+    pub(crate) fn new(
+        moving: &'a [Point; 8],
+        moving_centre: Point,
+        fixed: &'a [Point; 8],
+        fixed_centre: Point,
+        r: f64,
+        pivot: Point,
+    ) -> TurningPair<'a> {
+        TurningPair {
+            moving,
+            moving_centre,
+            fixed,
+            fixed_centre,
+            r,
+            pivot,
+        }
+    }
+
+    /// Calls `hit(vertex, edge start, edge end, turns_forward)` for every (vertex, edge)
+    /// pair whose vertex arc can reach the other octagon's annulus about the pivot;
+    /// `turns_forward` is true for the moving octagon's vertices (the fixed octagon's turn
+    /// the other way in the moving frame). Stops when `hit` returns true.
+    fn for_each_reachable(&self, mut hit: impl FnMut(Point, Point, Point, bool) -> bool) {
+        let (pivot, r) = (self.pivot, self.r);
+        let ring = |c: Point| {
+            let d = (c - pivot).hypot2().sqrt();
+            let lo = (d - r).max(0.0);
+            (lo * lo * (1.0 - 1e-12), (d + r) * (d + r) * (1.0 + 1e-12))
+        };
+        let sides = [
+            (self.moving, self.fixed, ring(self.fixed_centre), true),
+            (self.fixed, self.moving, ring(self.moving_centre), false),
+        ];
+        for (verts, edges, (lo, hi), forward) in sides {
+            for &v in verts {
+                let rho = (v - pivot).hypot2();
+                if rho < lo || rho > hi {
+                    continue;
+                }
+                for e in 0..8 {
+                    if hit(v, edges[e], edges[(e + 1) % 8], forward) {
+                        return;
+                    }
                 }
             }
         }
     }
-}
 
-/// Whether two octagons (vertices counter-clockwise) within `r` of their centres meet while
-/// `moving` turns a quarter turn about `pivot` (counter-clockwise when `left`), assuming they
-/// are apart at the start: the yes/no form of [`first_contact_within`] for full folds.
-pub(crate) fn quarter_contact_within(
-    moving: &[Point; 8],
-    moving_centre: Point,
-    fixed: &[Point; 8],
-    fixed_centre: Point,
-    r: f64,
-    pivot: Point,
-    left: bool,
-) -> bool {
-    let mut found = false;
-    for_each_reachable_pair(
-        moving,
-        moving_centre,
-        fixed,
-        fixed_centre,
-        r,
-        pivot,
-        |v, p, q, fwd| {
-            found = quarter_arc_hits_segment(v, pivot, left == fwd, p, q);
+    /// Whether the two meet while `moving` turns a quarter turn (counter-clockwise when
+    /// `left`), assuming they are apart at the start: the yes/no form of
+    /// [`TurningPair::first_contact`] for full folds.
+    pub(crate) fn quarter_contact(&self, left: bool) -> bool {
+        let mut found = false;
+        self.for_each_reachable(|v, p, q, fwd| {
+            found = quarter_arc_hits_segment(v, self.pivot, left == fwd, p, q);
             found
-        },
-    );
-    found
-}
+        });
+        found
+    }
 
-/// The first angle (absolute, radians) in `(0, |theta|]` at which the octagon `moving`,
-/// turned about `pivot` by up to `theta` (signed, positive = counter-clockwise), touches the
-/// octagon `fixed`, assuming the two are disjoint at the start; `None` when they never meet.
-/// Both lie within distance `r` of their centres `moving_centre` and `fixed_centre`:
-/// vertices whose arc stays outside the annulus that holds the other octagon are skipped,
-/// which leaves the result unchanged and saves most of the work.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn first_contact_within(
-    moving: &[Point; 8],
-    moving_centre: Point,
-    fixed: &[Point; 8],
-    fixed_centre: Point,
-    r: f64,
-    pivot: Point,
-    theta: f64,
-) -> Option<f64> {
-    let mut best: Option<f64> = None;
-    for_each_reachable_pair(
-        moving,
-        moving_centre,
-        fixed,
-        fixed_centre,
-        r,
-        pivot,
-        |v, p, q, fwd| {
+    /// The first angle (absolute, radians) in `(0, |theta|]` at which `moving`, turned by up
+    /// to `theta` (signed, positive = counter-clockwise), touches `fixed`, assuming the two
+    /// are disjoint at the start; `None` when they never meet.
+    pub(crate) fn first_contact(&self, theta: f64) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        self.for_each_reachable(|v, p, q, fwd| {
             let turn = if fwd { theta } else { -theta };
-            if let Some(phi) = arc_hits_segment(v, pivot, turn, p, q) {
+            if let Some(phi) = arc_hits_segment(v, self.pivot, turn, p, q) {
                 if best.is_none_or(|b| phi < b) {
                     best = Some(phi);
                 }
             }
             false
-        },
-    );
-    best
+        });
+        best
+    }
+}
+
+/// Where to look for the placed tiles a straight tail may meet while its joint turns by
+/// `theta` about `pivot`: the box of the sector its centres sweep (from `first`, the tail's
+/// first centre, to `last`, its last and farthest one), inflated by two circumradii `r`
+/// (a placed centre farther from every swept centre cannot touch).
+pub(crate) fn swept_query(pivot: Point, first: Point, last: Point, theta: f64, r: f64) -> Rect {
+    let base = (last - pivot).atan2();
+    let mut a_first = (first - pivot).atan2();
+    // keep the two angles on the same branch
+    while a_first - base > std::f64::consts::PI {
+        a_first -= std::f64::consts::TAU;
+    }
+    while base - a_first > std::f64::consts::PI {
+        a_first += std::f64::consts::TAU;
+    }
+    let (mut a0, mut a1) = (base.min(a_first), base.max(a_first));
+    if theta >= 0.0 {
+        a1 += theta;
+    } else {
+        a0 += theta;
+    }
+    let far = (last - pivot).hypot2().sqrt();
+    sector_box(pivot, far, a0, a1).inflate(2.0 * r, 2.0 * r)
 }
 
 /// The axis-aligned box of the sector swept by points within `radius` of `pivot` at angles
@@ -208,7 +225,7 @@ mod tests {
     use super::*;
 
     /// The first contact of two convex polygons of any size, every (vertex, edge) pair tried:
-    /// the plain form that [`first_contact_within`] must agree with.
+    /// the plain form that [`TurningPair::first_contact`] must agree with.
     fn first_contact(moving: &[Point], fixed: &[Point], pivot: Point, theta: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
         for (verts, edges, turn) in [(moving, fixed, theta), (fixed, moving, -theta)] {
@@ -325,7 +342,7 @@ mod tests {
     #[test]
     fn skipping_far_vertices_changes_nothing() {
         // octagons at random places, turning about random pivots: the annulus filter of
-        // first_contact_within and quarter_contact_within gives the plain answer
+        // TurningPair::first_contact and quarter_contact gives the plain answer
         let mut rnd = numbers(987_654_321);
         let r = crate::Octagon::new(1.0).circumradius();
         let mut met = 0;
@@ -338,12 +355,10 @@ mod tests {
             let theta = rnd();
             let (m, f) = (octagon(mc), octagon(fc));
             let plain = first_contact(&m, &f, pivot, theta);
-            assert_eq!(first_contact_within(&m, mc, &f, fc, r, pivot, theta), plain);
+            let pair = TurningPair::new(&m, mc, &f, fc, r, pivot);
+            assert_eq!(pair.first_contact(theta), plain);
             let quarter = first_contact(&m, &f, pivot, FRAC_PI_2);
-            assert_eq!(
-                quarter_contact_within(&m, mc, &f, fc, r, pivot, true),
-                quarter.is_some()
-            );
+            assert_eq!(pair.quarter_contact(true), quarter.is_some());
             met += usize::from(plain.is_some());
         }
         assert!(met > 100, "{met}");

@@ -8,7 +8,7 @@
 //! fold moves its tail the same way. Whether tail tile `k` meets a placed tile is therefore a
 //! function of that tile's offset alone ([`super::lattice::canonical_offset`], an exact
 //! lattice point), and so is the first `k` that meets it. [`FirstHits`] computes it with the
-//! collision module's tail test (the closed-form sweep `quarter_contact_within`, the one
+//! collision module's tail test (the closed-form sweep `TurningPair::quarter_contact`, the one
 //! [`crate::collision::check_word`] uses: the first contact is a vertex's circular arc crossing
 //! an edge, solved exactly, no sampling) and remembers it; a few thousand offsets serve a
 //! whole search.
