@@ -12,7 +12,9 @@ use crate::error::PlanError;
 use crate::flatten::{flatten, path_segments};
 use crate::options::MAX_OUTLINE_POINTS;
 use crate::shape::{FilledPath, Ring, Shape};
-use crate::simplify::{clean, simplify, SIMPLIFY_ABOVE, SLIVER};
+use crate::simplify::{
+    clean, thin_ring, thin_to_budget, OUTLINE_BUDGET, SIMPLIFY_ABOVE, SLIVER, THIN_AT_MOST,
+};
 
 /// Curve flattening tolerance, as a share of the larger side of the drawing's bounding box:
 /// every flattened curve lies within this distance of the true curve. 1e-3 of the drawing is
@@ -108,25 +110,32 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 if ring.points.len() < 3 {
                     continue;
                 }
-                if let Some((i, j, p)) = self_intersection(&ring) {
-                    return Err(PlanError::SelfIntersecting {
+                let crossing = |ring: &Ring| match self_intersection(ring) {
+                    Some((i, j, p)) => Err(PlanError::SelfIntersecting {
                         name: name.to_string(),
-                        element: element.name,
+                        element: element.name.clone(),
                         first: i,
                         second: j,
                         x: p.x,
                         y: -p.y,
-                    });
-                }
+                    }),
+                    None => Ok(()),
+                };
+                // a ring of many points is thinned first (one of more than the budget to a
+                // coarser tolerance, see `thin_ring`) and its crossings looked for on the
+                // thinned ring (a crossing of the drawing that thinning leaves is still
+                // one); only when the thinned ring crosses itself (thinning may bring two
+                // close edges across each other) is the full ring checked and kept
                 let ring = if ring.points.len() > SIMPLIFY_ABOVE {
-                    let thin = simplify(&ring, tol);
-                    // thinning may bring two close edges across each other: keep the ring
+                    let thin = thin_ring(&ring, tol, THIN_AT_MOST * size, OUTLINE_BUDGET);
                     if self_intersection(&thin).is_none() {
                         thin
                     } else {
+                        crossing(&ring)?;
                         ring
                     }
                 } else {
+                    crossing(&ring)?;
                     ring
                 };
                 if ring.signed_area().abs() > 1e-12 * size * size {
@@ -145,6 +154,18 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
             } else {
                 paths.extend(clip_element(path, &element.clips, tol, SLIVER * size));
             }
+        }
+        // a drawing of more detail than the planner can use in seconds is thinned further
+        let kept = thin_to_budget(&mut paths, tol, THIN_AT_MOST * size, OUTLINE_BUDGET, |r| {
+            self_intersection(r).is_some()
+        });
+        if kept > OUTLINE_BUDGET {
+            return Err(PlanError::TooDetailed {
+                name: name.to_string(),
+                points: kept,
+                limit: OUTLINE_BUDGET,
+                share: THIN_AT_MOST,
+            });
         }
         // the area as painted: the union of every filled element's area
         let shape = Shape::from_paths(union_paths(paths, SLIVER * size));

@@ -82,6 +82,19 @@ pub enum PlanError {
         /// The limit ([`crate::MAX_OUTLINE_POINTS`]).
         limit: usize,
     },
+    /// The outlines hold more detail than the planner plans from in seconds, even thinned
+    /// to a coarser tolerance.
+    #[error("{name}: the outlines keep {points} points when thinned to {pct}% of the drawing's size, more than the {limit} the planner plans from; simplify the drawing (e.g. Inkscape: Path > Simplify) or plan a smoother version of it", pct = share * 100.0)]
+    TooDetailed {
+        /// The file name (or `<string>`).
+        name: String,
+        /// Points left after thinning.
+        points: usize,
+        /// The most points planned from.
+        limit: usize,
+        /// The coarsest thinning tolerance, as a share of the drawing's larger side.
+        share: f64,
+    },
     /// An option value that cannot be used.
     #[error("bad {option} {value}: {reason}")]
     BadOption {

@@ -122,11 +122,24 @@ fn run(args: &Args) -> anyhow::Result<()> {
     if let Some(out) = &args.out {
         refuse_overwrite(&[&args.shape], out, "--out")?;
     }
+    if let Some(out) = &args.out {
+        refuse_foreign(out, "--out", "a plan JSON fold-plan wrote", |head, _| {
+            head.trim_start().starts_with('{') && head.contains("\"tile_list\"")
+        })?;
+    }
     if let Some(p) = &args.preview {
         refuse_overwrite(&[&args.shape], p, "--preview")?;
         if let Some(out) = &args.out {
-            refuse_overwrite(&[out], p, "--preview")?;
+            if resolved_eq(out, p) {
+                anyhow::bail!(
+                    "--preview {}: is also the --out file; give the preview and the plan different names",
+                    p.display()
+                );
+            }
         }
+        refuse_foreign(p, "--preview", "a preview fold-plan drew", |head, tail| {
+            head.trim_start().starts_with("<svg") && tail.contains(PREVIEW_MARK)
+        })?;
     }
     let opts = PlanOptions {
         tiles: args.tiles,
@@ -196,6 +209,50 @@ fn run(args: &Args) -> anyhow::Result<()> {
         outln!("{}", plan.summary());
     }
     Ok(())
+}
+
+/// Words every preview ends with (its legend's note on coverage): how an existing file is
+/// recognised as a preview this tool drew, which it may replace.
+const PREVIEW_MARK: &str = "near that is a full plan";
+
+/// Whether two paths name the same file (after resolving links; a file not yet made by
+/// its directory and name).
+fn resolved_eq(a: &std::path::Path, b: &std::path::Path) -> bool {
+    refuse_overwrite(&[a], b, "").is_err()
+}
+
+/// Refuses (before any work) to replace an existing file that this tool did not write:
+/// `ours(head, tail)` recognises its own output from the file's first and last 4 KiB. A
+/// missing or empty file, or one of ours, may be written; anything else (a user's notes, a
+/// drawing) is refused, naming the file and what to do.
+fn refuse_foreign(
+    path: &std::path::Path,
+    what: &str,
+    kind: &str,
+    ours: impl Fn(&str, &str) -> bool,
+) -> anyhow::Result<()> {
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    if !meta.is_file() || meta.len() == 0 {
+        return Ok(());
+    }
+    let mut f = std::fs::File::open(path)
+        .with_context(|| format!("{what} {}: cannot read the existing file", path.display()))?;
+    let mut head = vec![0u8; 4096];
+    let n = f.read(&mut head)?;
+    head.truncate(n);
+    let mut tail = Vec::new();
+    f.seek(SeekFrom::Start(meta.len().saturating_sub(4096)))?;
+    f.read_to_end(&mut tail)?;
+    if ours(&String::from_utf8_lossy(&head), &String::from_utf8_lossy(&tail)) {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{what} {}: the file exists and is not {kind}; refusing to overwrite it (remove it first, or choose another name)",
+        path.display()
+    )
 }
 
 /// A refusal as JSON (`--json`): the short reason stderr shows, what each planner tried (the

@@ -1,0 +1,89 @@
+//! `fold-plan` on hostile files and outputs (issue 26): huge, tiny and NaN numbers, a
+//! `<use>` cycle, deep nesting, files that are not SVG, a directory, a missing file, and
+//! outputs in a missing directory, on the --out file, or on a file the tool did not write.
+//! Each is exit 2 with a message naming the file, never a panic, and leaves what was there.
+
+#![allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
+
+mod common;
+use common::{assert_exit_saying, run, scratch, stderr};
+
+const SVG: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 100 100">"#;
+
+fn write(dir: &std::path::Path, name: &str, body: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, body).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+/// Every hostile drawing: exit 2, its name and the words that say what is wrong.
+#[test]
+fn hostile_drawings_are_bad_input_naming_the_file() {
+    let d = scratch("hostile");
+    let deep = format!(
+        "{SVG}{}<rect width=\"5\" height=\"5\"/>{}</svg>",
+        "<g>".repeat(100_000),
+        "</g>".repeat(100_000)
+    );
+    let cases: Vec<(&str, String, Vec<&str>)> = vec![
+        ("huge.svg", format!("{SVG}<path d=\"M0 0 L1e300 0 L1e300 1e300 Z\"/></svg>"), vec!["<path>", "1e300"]),
+        ("scale.svg", format!("{SVG}<rect width=\"5\" height=\"5\" transform=\"scale(1e300)\"/></svg>"), vec!["transform", "1e300"]),
+        ("nan.svg", format!("{SVG}<rect width=\"NaN\" height=\"5\"/></svg>"), vec!["width", "NaN"]),
+        ("tiny.svg", format!("{SVG}<path d=\"M0 0 L1e-300 0 L1e-300 1e-300 Z\"/></svg>"), vec!["no filled area"]),
+        ("cycle.svg", format!("{SVG}<defs><g id=\"a\"><use xlink:href=\"#b\"/></g><g id=\"b\"><use xlink:href=\"#a\"/></g></defs><use xlink:href=\"#a\"/></svg>"), vec!["not a readable SVG"]),
+        ("deep.svg", deep, vec!["not a readable SVG"]),
+        ("text.svg", "hello, not a drawing".into(), vec!["not a readable SVG"]),
+        ("empty.svg", String::new(), vec!["not a readable SVG"]),
+        ("open.svg", format!("{SVG}<rect width=\"5\" height=\"5\"/>"), vec!["not a readable SVG"]),
+    ];
+    for (name, body, words) in cases {
+        let f = write(&d, name, &body);
+        let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+        assert!(!stderr(&o).contains("panicked"), "{name}: {}", stderr(&o));
+        let mut w = words.clone();
+        w.push(name);
+        assert_exit_saying(&o, 2, &w);
+    }
+    let o = run("fold-plan", &[d.to_str().unwrap(), "--quiet"]);
+    assert_exit_saying(&o, 2, &["cannot read", "directory"]);
+    let missing = d.join("missing.svg");
+    let o = run("fold-plan", &[missing.to_str().unwrap(), "--quiet"]);
+    assert_exit_saying(&o, 2, &["cannot read", "missing.svg"]);
+}
+
+/// Outputs: a missing directory is exit 2 naming the path; --preview on the --out file says
+/// so (not that it is the input); a file the tool did not write is left as it was; a file
+/// it wrote (or an empty one) is replaced.
+#[test]
+fn outputs_never_replace_what_the_tool_did_not_write() {
+    let d = scratch("outputs");
+    let shape = write(&d, "square.svg", &format!("{SVG}<rect width=\"50\" height=\"50\"/></svg>"));
+    let plan = |more: &[&str]| {
+        let mut a = vec![shape.as_str(), "--tiles", "60", "--quiet"];
+        a.extend_from_slice(more);
+        run("fold-plan", &a)
+    };
+    let nodir = d.join("no-such-dir").join("plan.json");
+    assert_exit_saying(&plan(&["--out", nodir.to_str().unwrap()]), 2, &["plan.json", "No such file"]);
+    let same = d.join("same.out");
+    let o = plan(&["--out", same.to_str().unwrap(), "--preview", same.to_str().unwrap()]);
+    assert_exit_saying(&o, 2, &["same.out", "also the --out file"]);
+    assert!(!same.exists());
+    // a user's files under the output names: refused, left as they were
+    let notes = write(&d, "notes.json", "my notes");
+    let picture = write(&d, "picture.svg", &format!("{SVG}<circle r=\"3\"/></svg>"));
+    let o = plan(&["--out", &notes]);
+    assert_exit_saying(&o, 2, &["notes.json", "not a plan JSON", "refusing to overwrite"]);
+    let o = plan(&["--preview", &picture]);
+    assert_exit_saying(&o, 2, &["picture.svg", "not a preview", "refusing to overwrite"]);
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "my notes");
+    assert!(std::fs::read_to_string(&picture).unwrap().contains("<circle r=\"3\"/>"));
+    // the tool's own outputs (and empty files) are replaced, run after run
+    let out = write(&d, "plan.json", "");
+    let preview = d.join("preview.svg");
+    for _ in 0..2 {
+        let o = plan(&["--out", &out, "--preview", preview.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    }
+    assert!(std::fs::read_to_string(&out).unwrap().contains("\"tile_list\""));
+}
