@@ -57,27 +57,50 @@ fn hostile_drawings_are_bad_input_naming_the_file() {
 #[test]
 fn outputs_never_replace_what_the_tool_did_not_write() {
     let d = scratch("outputs");
-    let shape = write(&d, "square.svg", &format!("{SVG}<rect width=\"50\" height=\"50\"/></svg>"));
+    let shape = write(
+        &d,
+        "square.svg",
+        &format!("{SVG}<rect width=\"50\" height=\"50\"/></svg>"),
+    );
     let plan = |more: &[&str]| {
         let mut a = vec![shape.as_str(), "--tiles", "60", "--quiet"];
         a.extend_from_slice(more);
         run("fold-plan", &a)
     };
     let nodir = d.join("no-such-dir").join("plan.json");
-    assert_exit_saying(&plan(&["--out", nodir.to_str().unwrap()]), 2, &["plan.json", "No such file"]);
+    assert_exit_saying(
+        &plan(&["--out", nodir.to_str().unwrap()]),
+        2,
+        &["plan.json", "No such file"],
+    );
     let same = d.join("same.out");
-    let o = plan(&["--out", same.to_str().unwrap(), "--preview", same.to_str().unwrap()]);
+    let o = plan(&[
+        "--out",
+        same.to_str().unwrap(),
+        "--preview",
+        same.to_str().unwrap(),
+    ]);
     assert_exit_saying(&o, 2, &["same.out", "also the --out file"]);
     assert!(!same.exists());
     // a user's files under the output names: refused, left as they were
     let notes = write(&d, "notes.json", "my notes");
     let picture = write(&d, "picture.svg", &format!("{SVG}<circle r=\"3\"/></svg>"));
     let o = plan(&["--out", &notes]);
-    assert_exit_saying(&o, 2, &["notes.json", "not a plan JSON", "refusing to overwrite"]);
+    assert_exit_saying(
+        &o,
+        2,
+        &["notes.json", "not a plan JSON", "refusing to overwrite"],
+    );
     let o = plan(&["--preview", &picture]);
-    assert_exit_saying(&o, 2, &["picture.svg", "not a preview", "refusing to overwrite"]);
+    assert_exit_saying(
+        &o,
+        2,
+        &["picture.svg", "not a preview", "refusing to overwrite"],
+    );
     assert_eq!(std::fs::read_to_string(&notes).unwrap(), "my notes");
-    assert!(std::fs::read_to_string(&picture).unwrap().contains("<circle r=\"3\"/>"));
+    assert!(std::fs::read_to_string(&picture)
+        .unwrap()
+        .contains("<circle r=\"3\"/>"));
     // the tool's own outputs (and empty files) are replaced, run after run
     let out = write(&d, "plan.json", "");
     let preview = d.join("preview.svg");
@@ -85,5 +108,7 @@ fn outputs_never_replace_what_the_tool_did_not_write() {
         let o = plan(&["--out", &out, "--preview", preview.to_str().unwrap()]);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     }
-    assert!(std::fs::read_to_string(&out).unwrap().contains("\"tile_list\""));
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("\"tile_list\""));
 }

@@ -16,7 +16,11 @@ fn zigzag_disc(n: usize, amplitude: f64) -> String {
     for k in 1..n {
         let a = std::f64::consts::TAU * k as f64 / n as f64;
         let r = 40.0 + amplitude * (k % 2) as f64;
-        d.push_str(&format!(" L{:.7} {:.7}", 50.0 + r * a.cos(), 50.0 + r * a.sin()));
+        d.push_str(&format!(
+            " L{:.7} {:.7}",
+            50.0 + r * a.cos(),
+            50.0 + r * a.sin()
+        ));
     }
     format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><path d="{d} Z"/></svg>"#

@@ -246,7 +246,10 @@ fn refuse_foreign(
     let mut tail = Vec::new();
     f.seek(SeekFrom::Start(meta.len().saturating_sub(4096)))?;
     f.read_to_end(&mut tail)?;
-    if ours(&String::from_utf8_lossy(&head), &String::from_utf8_lossy(&tail)) {
+    if ours(
+        &String::from_utf8_lossy(&head),
+        &String::from_utf8_lossy(&tail),
+    ) {
         return Ok(());
     }
     anyhow::bail!(
