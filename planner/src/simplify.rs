@@ -157,6 +157,53 @@ pub(crate) fn simplify(ring: &Ring, tol: f64) -> Ring {
     Ring { points }
 }
 
+/// Thins the rings of `paths` while they hold more than `budget` points together: each
+/// round doubles the tolerance (from `tol` up to `max_tol`, drawing units) and simplifies
+/// every ring of more than [`SIMPLIFY_ABOVE`] points; a thinned ring that `crosses` itself
+/// (thinning may bring two close edges across each other) keeps its points. Returns the
+/// points left. Drawings within the budget are not touched.
+pub(crate) fn thin_to_budget(
+    paths: &mut [FilledPath],
+    tol: f64,
+    max_tol: f64,
+    budget: usize,
+    crosses: impl Fn(&Ring) -> bool,
+) -> usize {
+    let total = |paths: &[FilledPath]| -> usize {
+        paths
+            .iter()
+            .flat_map(|p| p.rings.iter())
+            .map(|r| r.points.len())
+            .sum()
+    };
+    let mut tol = tol;
+    while total(paths) > budget && tol < max_tol {
+        tol = (2.0 * tol).min(max_tol);
+        for ring in paths.iter_mut().flat_map(|p| p.rings.iter_mut()) {
+            if ring.points.len() > SIMPLIFY_ABOVE {
+                let thin = simplify(ring, tol);
+                if thin.points.len() >= 3 && !crosses(&thin) {
+                    *ring = thin;
+                }
+            }
+        }
+    }
+    total(paths)
+}
+
+/// The ring simplified to tolerance `tol`, and while it keeps more than `budget` points, to
+/// twice that tolerance, up to `max_tol` (each time from the full ring): a ring of more
+/// detail than the planner can use is thinned before anything else looks at its points.
+pub(crate) fn thin_ring(ring: &Ring, tol: f64, max_tol: f64, budget: usize) -> Ring {
+    let mut thin = simplify(ring, tol);
+    let mut tol = tol;
+    while thin.points.len() > budget && tol < max_tol {
+        tol = (2.0 * tol).min(max_tol);
+        thin = simplify(ring, tol);
+    }
+    thin
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -276,51 +323,4 @@ mod tests {
         let rel = (s.signed_area() - ring.signed_area()).abs() / ring.signed_area();
         assert!(rel < 5e-3, "{rel}");
     }
-}
-
-/// Thins the rings of `paths` while they hold more than `budget` points together: each
-/// round doubles the tolerance (from `tol` up to `max_tol`, drawing units) and simplifies
-/// every ring of more than [`SIMPLIFY_ABOVE`] points; a thinned ring that `crosses` itself
-/// (thinning may bring two close edges across each other) keeps its points. Returns the
-/// points left. Drawings within the budget are not touched.
-pub(crate) fn thin_to_budget(
-    paths: &mut [FilledPath],
-    tol: f64,
-    max_tol: f64,
-    budget: usize,
-    crosses: impl Fn(&Ring) -> bool,
-) -> usize {
-    let total = |paths: &[FilledPath]| -> usize {
-        paths
-            .iter()
-            .flat_map(|p| p.rings.iter())
-            .map(|r| r.points.len())
-            .sum()
-    };
-    let mut tol = tol;
-    while total(paths) > budget && tol < max_tol {
-        tol = (2.0 * tol).min(max_tol);
-        for ring in paths.iter_mut().flat_map(|p| p.rings.iter_mut()) {
-            if ring.points.len() > SIMPLIFY_ABOVE {
-                let thin = simplify(ring, tol);
-                if thin.points.len() >= 3 && !crosses(&thin) {
-                    *ring = thin;
-                }
-            }
-        }
-    }
-    total(paths)
-}
-
-/// The ring simplified to tolerance `tol`, and while it keeps more than `budget` points, to
-/// twice that tolerance, up to `max_tol` (each time from the full ring): a ring of more
-/// detail than the planner can use is thinned before anything else looks at its points.
-pub(crate) fn thin_ring(ring: &Ring, tol: f64, max_tol: f64, budget: usize) -> Ring {
-    let mut thin = simplify(ring, tol);
-    let mut tol = tol;
-    while thin.points.len() > budget && tol < max_tol {
-        tol = (2.0 * tol).min(max_tol);
-        thin = simplify(ring, tol);
-    }
-    thin
 }
