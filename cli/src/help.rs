@@ -11,6 +11,7 @@ pub const CHECK_AFTER_HELP: &str = "Examples:
   fold-check --final-only LSLLSR   valid: the final shape is clean, the sweep is not
   fold-check 'SS SL LL LS SS' --json
   fold-check chain.txt             a file holding a word, a tile list or JSON
+  fold-check key-plan.json         a plan written by fold-plan --out (its tiles)
 
 Exit codes: 0 valid, 1 collides or propagation inhibited, 2 bad input.";
 

@@ -19,7 +19,7 @@ use foldchain_cli::report::{finish, parse_args};
 #[command(name = "fold-check", version, about = CHECK_ABOUT, after_help = CHECK_AFTER_HELP)]
 struct Args {
     /// The chain: a fold word (`SLLS`), a tile list (`SS SL LL LS SS`, `SS*12`), JSON, or a
-    /// file holding one of them.
+    /// file holding one of them, or a plan written by `fold-plan --out`.
     chain: String,
     /// Check only the final shape, not the fold sweeps.
     #[arg(long)]
