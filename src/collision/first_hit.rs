@@ -125,6 +125,16 @@ impl TailHits {
         m
     }
 
+    /// A lower bound on [`TailHits::get`] for a placed centre at distance `d` from the hinge
+    /// (within `1e-6` of the exact distance): the first tail index the sweep test looks at for
+    /// such a centre (see [`TailHits::first_hit`]), less one for rounding.
+    pub(super) fn least_hit(&self, d: f64) -> usize {
+        let h = self.window.hinge;
+        let inner = (d - 2.0 * self.radius - SLACK - 1e-6).max(0.0);
+        let along = (inner * inner - h.y * h.y).max(0.0).sqrt();
+        ((h.x + along).floor() as usize).saturating_sub(2).max(1)
+    }
+
     fn at(&self, c: Point) -> [Point; 8] {
         self.outline.map(|v| v + c.to_vec2())
     }

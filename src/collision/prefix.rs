@@ -12,8 +12,11 @@
 //!   [`super::first_hit::TailHits`]). For each folding joint the state keeps the tail length up
 //!   to which that is known to be clear, or the length from which the memo says it meets; a
 //!   longer chain extends only the joints whose cleared length it passes, by at least doubling
-//!   it, so each joint is looked at a few times over the whole growth. A joint the memo says
-//!   meets is swept pair by pair in world coordinates, as [`super::check_word`] does.
+//!   it, so each joint is looked at a few times over the whole growth. The tiles a joint's tail
+//!   can meet (tiles `0..=k`) never change, so a joint keeps the least first hit among the
+//!   tiles its cleared tail can reach, and extending it looks up only the tiles the longer tail
+//!   reaches beyond them. A joint the memo says meets is swept pair by pair in world
+//!   coordinates, as [`super::check_word`] does.
 //!
 //! Tiles are kept in runs (one per [`PrefixCheck::push`]) shared between clones, so cloning a
 //! state to try an extension costs a few pointers per run and per joint, not the chain.
@@ -28,7 +31,7 @@ use kurbo::{Point, Rect};
 use crate::exact::ExactPose;
 use crate::{kinematics, Fold};
 
-use super::first_hit::{canonical_offset, TailHits};
+use super::first_hit::{canonical_offset, TailHits, NEVER};
 use super::index_boxes::{meets, union, union_pt, EMPTY};
 use super::lattice::lattice_overlap;
 use super::sequential::UnitTile;
@@ -165,9 +168,10 @@ pub struct PrefixCheck {
     /// A collision was found; every longer chain collides too (its tiles and tails contain
     /// this one's).
     collided: bool,
-    /// Folding joints not known to meet: `(n, k)`, joint `k`'s tail is clear while the chain
-    /// has at most `n` tiles; smallest `n` first.
-    clear: BinaryHeap<Reverse<(usize, usize)>>,
+    /// Folding joints not known to meet: `(n, k, m)`, joint `k`'s tail is clear while the
+    /// chain has at most `n` tiles, and `m` is the least first hit (tail index, or
+    /// [`NEVER`]) among the tiles that tail reaches; smallest `n` first.
+    clear: BinaryHeap<Reverse<(usize, usize, u32)>>,
     /// Folding joints the memo says meet: `(n, k)`, from `n` tiles on.
     meets: Vec<(usize, usize)>,
     /// The memo, shared with the clones (locked once per query).
@@ -239,16 +243,17 @@ impl PrefixCheck {
     }
 
     /// Calls `visit` for every tile `i <= last` whose centre lies in `query` (closed), until
-    /// it returns `true`; returns whether it did.
+    /// it returns `true`; returns whether it did. The latest runs come first (their tiles lie
+    /// nearest tile `last` along the chain, where a first hit is likeliest found early).
     fn for_each_in(
         &self,
         last: usize,
         query: &Rect,
         mut visit: impl FnMut(usize, Point, ExactPose) -> bool,
     ) -> bool {
-        for run in &self.runs {
+        for run in self.runs.iter().rev() {
             if run.first > last {
-                break;
+                continue;
             }
             if run.for_each_in(last, query, &mut visit) {
                 return true;
@@ -289,7 +294,7 @@ impl PrefixCheck {
             let k = j - 1;
             if run.into[t] != Fold::S {
                 // a tail of no tiles is clear
-                self.clear.push(Reverse((k + 1, k)));
+                self.clear.push(Reverse((k + 1, k, NEVER)));
             }
         }
         if !self.collided {
@@ -331,7 +336,7 @@ impl PrefixCheck {
 
     /// [`PrefixCheck::clear_to`] with the memo locked.
     fn clear_with(&mut self, tiles: usize, memo: &mut Memo) {
-        while let Some(&Reverse((n, k))) = self.clear.peek() {
+        while let Some(&Reverse((n, k, seen))) = self.clear.peek() {
             if n >= tiles {
                 break;
             }
@@ -339,17 +344,32 @@ impl PrefixCheck {
             let cleared = n - k - 1;
             let need = tiles - 1 - k;
             let to = need.max(2 * cleared).max(8);
-            match self.first_hit(k, to, memo) {
+            // a tail of no tiles reached none; a cleared one reached tiles whose least first
+            // hit is `seen`
+            let known = (cleared > 0).then_some((cleared, seen));
+            match self.first_hit(k, to, known, memo) {
                 Some(m) if m <= to => self.meets.push((k + 1 + m, k)),
-                _ => self.clear.push(Reverse((k + 1 + to, k))),
+                m => {
+                    let m = m.map_or(NEVER, |m| u32::try_from(m).unwrap_or(NEVER));
+                    self.clear.push(Reverse((k + 1 + to, k, m)));
+                }
             }
         }
     }
 
     /// The smallest tail index `m` (tile `k + m`) at which the memo says joint `k`'s tail
     /// meets a placed tile, among the placed tiles a tail of `tail_len` tiles can reach; the
-    /// same lookups as the sequential check's `tail_meets_placed`.
-    fn first_hit(&self, k: usize, tail_len: usize, memo: &mut Memo) -> Option<usize> {
+    /// same lookups as the sequential check's `tail_meets_placed`. With `known = Some((len,
+    /// m))`, `m` is that least index among the tiles a tail of `len` tiles reaches (the same
+    /// query and distance test, with that length), and only the tiles beyond them are looked
+    /// up: the tiles `0..=k` never change, so the answer is the same.
+    fn first_hit(
+        &self,
+        k: usize,
+        tail_len: usize,
+        known: Option<(usize, u32)>,
+        memo: &mut Memo,
+    ) -> Option<usize> {
         let (run, t) = self.locate(k + 1);
         let fold = run.into[t];
         let (run, t) = self.locate(k);
@@ -359,7 +379,6 @@ impl PrefixCheck {
         let pivot = Point::from(hinge.to_f64(1.0));
         let hits = &mut memo.hits;
         let window = hits.window();
-        let reach = hits.reach(tail_len);
         let u = at.heading.unit_vector();
         let v = if fold == Fold::R {
             -u.turn_90()
@@ -367,13 +386,27 @@ impl PrefixCheck {
             u.turn_90()
         };
         let h = window.hinge;
-        let (x0, x1) = (h.x + window.min_x, h.x + reach);
-        let (y0, y1) = (h.y + window.min_y, h.y + reach);
         let corner = |x: f64, y: f64| ck + x * u + y * v;
-        let query = Rect::from_points(corner(x0, y0), corner(x1, y1));
-        let mut best: Option<usize> = None;
+        let query_of = |reach: f64| {
+            let (x0, x1) = (h.x + window.min_x, h.x + reach);
+            let (y0, y1) = (h.y + window.min_y, h.y + reach);
+            Rect::from_points(corner(x0, y0), corner(x1, y1))
+        };
+        let reach = hits.reach(tail_len);
+        let query = query_of(reach);
+        // the tiles a shorter tail reached, exactly as that scan chose them
+        let scanned = known.map(|(len, _)| {
+            let r = hits.reach(len);
+            (query_of(r), r)
+        });
+        let mut best: Option<usize> = known.map(|(_, m)| m as usize);
         self.for_each_in(k, &query, |_, ci, pi| {
-            if (ci - pivot).hypot() > reach {
+            let d = (ci - pivot).hypot();
+            if d > reach || scanned.is_some_and(|(q, r)| d <= r && closed_contains(&q, ci)) {
+                return false;
+            }
+            // a tile this far from the hinge is met, if at all, no sooner than the best so far
+            if best.is_some_and(|b| hits.least_hit(d) >= b) {
                 return false;
             }
             let m = hits.get(canonical_offset(pi.centre, at, fold)) as usize;
