@@ -209,6 +209,12 @@ mod tests {
         let d = Point::from(off.to_f64(1.0)).distance(h.window().hinge);
         assert!(m != NEVER && (f64::from(m) - d).abs() < 2.0, "{m} {d}");
         assert!(d <= h.reach(m as usize) && d > h.reach(m as usize - 3));
+        // the lower bound by distance is below the first hit, and close to it
+        let least = h.least_hit(d);
+        assert!(
+            least <= m as usize && least + 4 >= m as usize,
+            "{m} {least}"
+        );
     }
 
     #[test]
@@ -248,6 +254,9 @@ mod tests {
                     "{off:?}"
                 );
                 assert!(p.distance(w.hinge) <= h.reach(m as usize), "{off:?} {m}");
+                // the bound the growing check skips lookups by never exceeds a first hit
+                let least = h.least_hit(p.distance(w.hinge));
+                assert!(least <= m as usize, "{off:?} {m} {least}");
             }
         }
         assert!(met > 500, "{met}");
