@@ -94,54 +94,7 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         let mut paths = Vec::new();
         let mut points = 0usize;
         for element in elements {
-            let mut rings = Vec::new();
-            for sp in &element.subpaths {
-                let ring = flatten(sp, tol);
-                points += ring.points.len();
-                // repeated points, zero-width spikes and slivers, invisible when drawn
-                let ring = clean(&ring, SLIVER * size);
-                if points > MAX_OUTLINE_POINTS {
-                    return Err(PlanError::TooManyPoints {
-                        name: name.to_string(),
-                        points,
-                        limit: MAX_OUTLINE_POINTS,
-                    });
-                }
-                if ring.points.len() < 3 {
-                    continue;
-                }
-                let crossing = |ring: &Ring| match self_intersection(ring) {
-                    Some((i, j, p)) => Err(PlanError::SelfIntersecting {
-                        name: name.to_string(),
-                        element: element.name.clone(),
-                        first: i,
-                        second: j,
-                        x: p.x,
-                        y: -p.y,
-                    }),
-                    None => Ok(()),
-                };
-                // a ring of many points is thinned first (one of more than the budget to a
-                // coarser tolerance, see `thin_ring`) and its crossings looked for on the
-                // thinned ring (a crossing of the drawing that thinning leaves is still
-                // one); only when the thinned ring crosses itself (thinning may bring two
-                // close edges across each other) is the full ring checked and kept
-                let ring = if ring.points.len() > SIMPLIFY_ABOVE {
-                    let thin = thin_ring(&ring, tol, THIN_AT_MOST * size, OUTLINE_BUDGET);
-                    if self_intersection(&thin).is_none() {
-                        thin
-                    } else {
-                        crossing(&ring)?;
-                        ring
-                    }
-                } else {
-                    crossing(&ring)?;
-                    ring
-                };
-                if ring.signed_area().abs() > 1e-12 * size * size {
-                    rings.push(ring);
-                }
-            }
+            let rings = element_rings(&element, name, tol, size, &mut points)?;
             if rings.is_empty() {
                 continue;
             }
@@ -176,6 +129,67 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         }
         Ok((shape, crate::units::mm_per_unit(data, &tree)))
     }
+}
+
+/// The rings of one filled element, flattened to `tol`, cleaned of repeated points, spikes
+/// and slivers, thinned when long, and checked for self-crossings; `points` counts the
+/// flattened points of the whole drawing against [`MAX_OUTLINE_POINTS`].
+fn element_rings(
+    element: &Element,
+    name: &str,
+    tol: f64,
+    size: f64,
+    points: &mut usize,
+) -> Result<Vec<Ring>, PlanError> {
+    let mut rings = Vec::new();
+    for sp in &element.subpaths {
+        let ring = flatten(sp, tol);
+        *points += ring.points.len();
+        // repeated points, zero-width spikes and slivers, invisible when drawn
+        let ring = clean(&ring, SLIVER * size);
+        if *points > MAX_OUTLINE_POINTS {
+            return Err(PlanError::TooManyPoints {
+                name: name.to_string(),
+                points: *points,
+                limit: MAX_OUTLINE_POINTS,
+            });
+        }
+        if ring.points.len() < 3 {
+            continue;
+        }
+        let crossing = |ring: &Ring| match self_intersection(ring) {
+            Some((i, j, p)) => Err(PlanError::SelfIntersecting {
+                name: name.to_string(),
+                element: element.name.clone(),
+                first: i,
+                second: j,
+                x: p.x,
+                y: -p.y,
+            }),
+            None => Ok(()),
+        };
+        // a ring of many points is thinned first (one of more than the budget to a
+        // coarser tolerance, see `thin_ring`) and its crossings looked for on the
+        // thinned ring (a crossing of the drawing that thinning leaves is still
+        // one); only when the thinned ring crosses itself (thinning may bring two
+        // close edges across each other) is the full ring checked and kept
+        let ring = if ring.points.len() > SIMPLIFY_ABOVE {
+            let thin = thin_ring(&ring, tol, THIN_AT_MOST * size, OUTLINE_BUDGET);
+            if self_intersection(&thin).is_none() {
+                thin
+            } else {
+                crossing(&ring)?;
+                ring
+            }
+        } else {
+            crossing(&ring)?;
+            ring
+        };
+        if ring.signed_area().abs() > 1e-12 * size * size {
+            rings.push(ring);
+        }
+    }
+    Ok(rings)
 }
 
 /// The first `<text>` element with characters to draw (not under `display="none"`), as
