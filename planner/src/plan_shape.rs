@@ -124,7 +124,10 @@ pub(crate) fn plan_shape(
             failures,
             rejected,
             mm_per_unit,
-            retry.then_some(&plans_at as &dyn Fn(usize) -> Option<usize>),
+            retry.then_some(refusal::Retry {
+                plans_at: &plans_at,
+                tolerance: opts.tiles_tolerance,
+            }),
         ));
     };
     plan.warnings.extend(count_warning(opts, plan.tiles));
@@ -250,8 +253,8 @@ fn plan_styles(
             Err(e) => {
                 let (part, p) = *e;
                 found.failures.push(format!("one serpentine {part}"));
-                let bridges = monotone.is_empty()
-                    && p.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE;
+                let bridges =
+                    monotone.is_empty() && p.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE;
                 let r = Box::new(Rejected {
                     plan: p,
                     empty: part,
