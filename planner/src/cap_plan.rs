@@ -232,8 +232,11 @@ pub(crate) fn plan_by_caps(
             .iter()
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
         let mut here = Failed::default();
-        let found = size_group(shape, opts, style, name, axes, slabs, &mut here);
+        let before = least();
+        let mut found = size_group(shape, opts, style, name, axes, slabs, &mut here);
         if joined_at == Some(i) {
+            // sized for the part left empty: its plan is offered only where it leaves less
+            found = found.filter(|p| p.metrics.largest_empty_tiles < before);
             // the added decomposition's route rejected for an empty part is kept only with
             // a count within the tolerance: rejected routes rank by their empty part alone,
             // and one that leaves less empty with a quarter of the chain missing is no
