@@ -91,21 +91,21 @@ pub(crate) fn plan_shape(
         best,
         failures,
         rejected,
+        bridging,
     } = found;
     // one chain can fill the shape, only not without leaving a part of it empty: the plan
     // that leaves the least empty, with a warning saying where, rather than no plan (issue
-    // 26: a drawing is refused only when one chain cannot do it), unless it bridges the gaps
-    // of a shape monotone in no direction with much of the chain outside
+    // 26: a drawing is refused only when one chain cannot do it); a serpentine bridging the
+    // gaps of a shape monotone in no direction with much of the chain outside is never
+    // returned (it only words the refusal), but a plan by caps is, whatever lies outside
     let (best, rejected) = match (best, rejected) {
-        (None, Some(r))
-            if !(monotone.is_empty()
-                && r.plan.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE) =>
-        {
+        (None, Some(r)) => {
             let Rejected { mut plan, empty } = *r;
             plan.metrics.largest_empty_tiles = empty.tiles;
             plan.warnings.push(format!("the plan {empty}"));
             (Some(plan), None)
         }
+        (best, None) => (best, bridging),
         other => other,
     };
     let Some(mut plan) = best else {
@@ -124,7 +124,10 @@ pub(crate) fn plan_shape(
             failures,
             rejected,
             mm_per_unit,
-            retry.then_some(&plans_at as &dyn Fn(usize) -> Option<usize>),
+            retry.then_some(refusal::Retry {
+                plans_at: &plans_at,
+                tolerance: opts.tiles_tolerance,
+            }),
         ));
     };
     plan.warnings.extend(count_warning(opts, plan.tiles));
@@ -183,25 +186,30 @@ fn count_warning(opts: &PlanOptions, tiles: usize) -> Option<String> {
     ))
 }
 
-/// What the planners found so far: the best plan, what each planner said when it failed, and
-/// the best plan rejected for an empty part (for a preview of where).
+/// What the planners found so far: the best plan, what each planner said when it failed, the
+/// best plan rejected for an empty part (returned with a warning when nothing else plans),
+/// and the best serpentine rejected for an empty part that also bridges the gaps of a shape
+/// monotone in no direction with more than [`MAX_OUTSIDE_NON_MONOTONE`] of the chain outside
+/// (never returned: it only words a refusal and its preview).
 #[derive(Default)]
 struct Found {
     best: Option<Plan>,
     failures: Vec<String>,
     rejected: Option<Box<Rejected>>,
+    bridging: Option<Box<Rejected>>,
 }
 
 impl Found {
     /// Keeps `r` if it leaves a smaller part empty than the one kept.
     fn reject(&mut self, r: Box<Rejected>) {
-        if self
-            .rejected
-            .as_ref()
-            .is_none_or(|b| r.empty.tiles < b.empty.tiles)
-        {
-            self.rejected = Some(r);
-        }
+        keep_least_empty(&mut self.rejected, r);
+    }
+}
+
+/// Puts `r` in `slot` if the slot is empty or `r` leaves a smaller part empty.
+fn keep_least_empty(slot: &mut Option<Box<Rejected>>, r: Box<Rejected>) {
+    if slot.as_ref().is_none_or(|b| r.empty.tiles < b.empty.tiles) {
+        *slot = Some(r);
     }
 }
 
@@ -245,10 +253,17 @@ fn plan_styles(
             Err(e) => {
                 let (part, p) = *e;
                 found.failures.push(format!("one serpentine {part}"));
-                found.reject(Box::new(Rejected {
+                let bridges =
+                    monotone.is_empty() && p.metrics.outside_share > MAX_OUTSIDE_NON_MONOTONE;
+                let r = Box::new(Rejected {
                     plan: p,
                     empty: part,
-                }));
+                });
+                if bridges {
+                    keep_least_empty(&mut found.bridging, r);
+                } else {
+                    found.reject(r);
+                }
             }
         }
     }

@@ -126,12 +126,31 @@ const FEWER: [f64; 4] = [2.0 / 3.0, 1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0];
 /// Counts below this are not tried.
 const MIN_TRIED: usize = 10;
 
+/// How a refusal looks for a count to advise: `plans_at` plans the shape at another count
+/// and returns the plan's tile count, or `None`; a count is advised only when its plan's
+/// count is within `tolerance` (a share, as [`crate::PlanOptions::tiles_tolerance`]) of it,
+/// so the advice never names a count whose plan has a fraction of its tiles (issue 26: 67
+/// tiles advised for a plan of 12).
+pub(crate) struct Retry<'a> {
+    /// Plans the shape at a count, returning the plan's tile count.
+    pub plans_at: &'a dyn Fn(usize) -> Option<usize>,
+    /// The share by which an advised count's plan may miss it.
+    pub tolerance: f64,
+}
+
+impl Retry<'_> {
+    /// The tile count of the plan at `n` tiles, if it plans within the tolerance of `n`.
+    fn plans_within(&self, n: usize) -> Option<usize> {
+        let tol = (self.tolerance * n as f64) as usize;
+        (self.plans_at)(n).filter(|got| got.abs_diff(n) <= tol)
+    }
+}
+
 /// The refusal when no plan was found: `asked` tiles (or the count a tile width gives),
 /// what each planner said (`failures`), whether the shape is monotone in no direction,
-/// and the best plan rejected for a part it leaves empty. `plans_at`, when the count was
-/// asked (not a tile width), plans the shape at another count and returns the plan's tile
-/// count, or `None`: the counts of [`FEWER`] are tried in turn and the first that plans is
-/// named.
+/// and the best plan rejected for a part it leaves empty. `retry`, when the count was
+/// asked (not a tile width): the counts of [`FEWER`] are tried in turn and the first whose
+/// plan is within the tolerance of it is named.
 pub(crate) fn no_plan(
     name: &str,
     asked: usize,
@@ -139,7 +158,7 @@ pub(crate) fn no_plan(
     failures: Vec<String>,
     rejected: Option<Box<Rejected>>,
     mm_per_unit: f64,
-    plans_at: Option<&dyn Fn(usize) -> Option<usize>>,
+    retry: Option<Retry<'_>>,
 ) -> PlanError {
     let mut detail: Vec<String> = Vec::new();
     if nowhere_monotone {
@@ -172,18 +191,25 @@ pub(crate) fn no_plan(
     } else {
         "simplify the outline"
     };
-    let advice = match plans_at {
+    let advice = match retry {
         None => format!("try another tile width, or {part}"),
-        Some(plans_at) => {
+        Some(retry) => {
             let tried: Vec<usize> = FEWER
                 .iter()
                 .map(|f| (asked as f64 * f).round() as usize)
                 .filter(|&n| n >= MIN_TRIED)
                 .collect();
-            match tried.iter().find_map(|&n| plans_at(n).map(|got| (n, got))) {
+            match tried
+                .iter()
+                .find_map(|&n| retry.plans_within(n).map(|got| (n, got)))
+            {
                 Some((n, got)) => format!("try {n} tiles: that plans ({got} tiles), or {part}"),
                 None if tried.is_empty() => part.to_string(),
-                None => format!("{} tiles do not plan either: {part}", list(&tried)),
+                None => format!(
+                    "{} tiles do not plan within {:.0}% either: {part}",
+                    list(&tried),
+                    100.0 * retry.tolerance
+                ),
             }
         }
     };
@@ -207,5 +233,54 @@ fn list(v: &[usize]) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reason(e: PlanError) -> String {
+        match e {
+            PlanError::Unplannable { reason, .. } => reason,
+            other => other.to_string(),
+        }
+    }
+
+    /// A count is advised only when its plan lands within the tolerance of it: a plan of 12
+    /// tiles at 67 asked is no reason to advise 67 (issue 26's narrowb-at), one of 66 is.
+    #[test]
+    fn a_count_is_advised_only_when_it_plans_within_the_tolerance() {
+        let refuse = |plans_at: &dyn Fn(usize) -> Option<usize>| {
+            reason(no_plan(
+                "x.svg",
+                100,
+                false,
+                Vec::new(),
+                None,
+                1.0,
+                Some(Retry {
+                    plans_at,
+                    tolerance: 0.03,
+                }),
+            ))
+        };
+        let tiny = refuse(&|n| (n >= 60).then_some(12));
+        assert!(!tiny.contains("try 67"), "{tiny}");
+        assert!(
+            tiny.contains("67, 50, 33 or 25 tiles do not plan within 3% either"),
+            "{tiny}"
+        );
+        let near = refuse(&|n| (n <= 70).then_some(n - 1));
+        assert!(
+            near.contains("try 67 tiles: that plans (66 tiles)"),
+            "{near}"
+        );
+        // the first count that plans within the tolerance is named, not the first that plans
+        let later = refuse(&|n| Some(if n == 67 { 12 } else { n }));
+        assert!(
+            later.contains("try 50 tiles: that plans (50 tiles)"),
+            "{later}"
+        );
     }
 }
