@@ -24,6 +24,10 @@ use crate::caps::{CapCell, CapPlan, Dir, PBox, Raster, Search};
 use crate::rows::{solve_rows, tile_area, Lattice, Style};
 use crate::shape::Shape;
 
+/// A slab of a decomposition: its tight box, the cut before it (its first line along the
+/// axis), and its price in each direction whose rows fit ([`slab_price`]).
+type Slab = (PBox, usize, Vec<(f64, Dir)>);
+
 /// The most cuts considered per axis (the largest jumps): 2^6 decompositions at most.
 const MAX_CUTS: usize = 6;
 /// Decompositions returned per shape (each in both orders along its axis).
@@ -61,7 +65,7 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
             );
             edges.push(hi);
             // each slab's tight box, the cut before it, its price in each direction
-            let mut slabs: Vec<(PBox, usize, Vec<(f64, Dir)>)> = Vec::new();
+            let mut slabs: Vec<Slab> = Vec::new();
             let mut whole = true;
             for e in edges.windows(2) {
                 let slab = if across_x {
@@ -133,6 +137,13 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
             }
         }
     }
+    assemble(found, joined)
+}
+
+/// The cheapest [`KEEP`] of the decompositions priced alone (`found`), each in both orders,
+/// then the cheapest by the joined price when it is not one of those, marked `joined`, in
+/// both orders (see [`slab_plans`]).
+fn assemble(mut found: Vec<CapPlan>, mut joined: Vec<CapPlan>) -> Vec<CapPlan> {
     found.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     found.truncate(KEEP);
     joined.sort_by(|a, b| a.cost.total_cmp(&b.cost));
@@ -303,11 +314,7 @@ fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Vec<
 /// in each direction)`, in order along the axis) that makes the least sum of the slabs'
 /// misfits and the parts their joins leave empty ([`entry_price`]), and that sum: exact,
 /// by dynamic programming over the slabs (two directions each). None if a slab has none.
-fn directions(
-    s: &Search<'_>,
-    across_x: bool,
-    slabs: &[(PBox, usize, Vec<(f64, Dir)>)],
-) -> Option<(f64, Vec<Dir>)> {
+fn directions(s: &Search<'_>, across_x: bool, slabs: &[Slab]) -> Option<(f64, Vec<Dir>)> {
     // per slab, per direction: (cost so far, index of the previous slab's direction)
     let mut table: Vec<Vec<(f64, usize)>> = Vec::with_capacity(slabs.len());
     for (i, (t, cut, prices)) in slabs.iter().enumerate() {
