@@ -80,6 +80,9 @@ struct EdgeIndex {
     buckets: Vec<Vec<(usize, Point, Point)>>,
 }
 
+/// Bucket entries an [`EdgeIndex`] holds per edge at most, on average over the outline.
+const SPANNED_PER_EDGE: f64 = 8.0;
+
 impl EdgeIndex {
     fn new(paths: &[FilledPath], bbox: Rect) -> EdgeIndex {
         let edges: usize = paths
@@ -88,8 +91,20 @@ impl EdgeIndex {
             .map(|r| r.points.len())
             .sum();
         let h = bbox.height().max(1e-12);
-        // about two edges a bucket on average, at most 65,536 buckets
-        let n = (edges / 2).clamp(1, 1 << 16);
+        // the edges' heights together, in heights of the shape: an edge is put in every
+        // bucket it spans
+        let spans: f64 = paths
+            .iter()
+            .flat_map(|p| p.rings.iter().flat_map(Ring::edges))
+            .map(|(a, b)| (a.y - b.y).abs() / h)
+            .sum();
+        // about two edges a bucket on average, at most 65,536 buckets, and at most
+        // SPANNED_PER_EDGE bucket entries an edge over all (a fine zigzag of tall edges put
+        // 200,000 edges in a thousand buckets each: 5 GB); the buckets only narrow what a
+        // row query looks at, so their number changes no answer
+        let n = (edges / 2)
+            .min((SPANNED_PER_EDGE * edges as f64 / spans.max(1e-12)) as usize)
+            .clamp(1, 1 << 16);
         let per = n as f64 / h;
         let mut buckets: Vec<Vec<(usize, Point, Point)>> = vec![Vec::new(); n];
         for (pi, p) in paths.iter().enumerate() {
@@ -284,15 +299,22 @@ impl Shape {
     /// [`Shape::intervals_at`] into `out` (cleared first), so that a caller asking many lines
     /// reuses one buffer; the crossings are gathered in a buffer kept per thread.
     pub(crate) fn intervals_into(&self, y: f64, out: &mut Vec<(f64, f64)>) {
-        thread_local! {
-            static CROSSINGS: std::cell::RefCell<Vec<(f64, i32)>> =
-                const { std::cell::RefCell::new(Vec::new()) };
-        }
         out.clear();
         let index = self
             .index
             .get_or_init(|| EdgeIndex::new(&self.paths, self.bbox));
-        let edges = index.near(y);
+        self.intervals_of(index.near(y), y, out);
+    }
+
+    /// The intervals where the horizontal line at `y` lies inside the shape, from `edges`
+    /// (with the index of their filled path, grouped by path, each path's in outline order):
+    /// every edge of the shape that crosses the line must be among them; appended to `out`,
+    /// which is then sorted and made disjoint.
+    fn intervals_of(&self, edges: &[(usize, Point, Point)], y: f64, out: &mut Vec<(f64, f64)>) {
+        thread_local! {
+            static CROSSINGS: std::cell::RefCell<Vec<(f64, i32)>> =
+                const { std::cell::RefCell::new(Vec::new()) };
+        }
         if edges.is_empty() {
             return;
         }
@@ -379,17 +401,62 @@ impl Shape {
     /// The first height at which a horizontal line meets the shape in more than one piece,
     /// with the number of pieces; stops after `limit` splits are counted (returns the
     /// largest seen).
+    ///
+    /// A sweep from the lowest vertex up: the edges that span each slab between vertex
+    /// heights are kept as the line rises (added when it passes their lower end, dropped at
+    /// their upper one), so each line looks only at the edges it crosses; the work is the
+    /// sorting of the edges plus, per slab, the edges across it (two per slab for a shape a
+    /// line meets once), not the edges times the slabs, and stopping at the first split costs
+    /// nothing more. Lines meet the edges in the order [`Shape::intervals_at`] sees them, so
+    /// the pieces are the same.
     fn first_split(&self, limit: usize) -> Option<(usize, f64)> {
         let ys = self.vertex_heights();
         let size = self.size();
         let mut best: Option<(usize, f64)> = None;
         let mut seen = 0;
+        // every edge (outline order, with its path), by its lower end
+        let edges: Vec<(usize, Point, Point)> = self
+            .paths
+            .iter()
+            .enumerate()
+            .flat_map(|(pi, p)| {
+                p.rings
+                    .iter()
+                    .flat_map(Ring::edges)
+                    .map(move |(a, b)| (pi, a, b))
+            })
+            .collect();
+        let mut by_low: Vec<usize> = (0..edges.len()).collect();
+        by_low.sort_by(|&i, &j| {
+            edges[i]
+                .1
+                .y
+                .min(edges[i].2.y)
+                .total_cmp(&edges[j].1.y.min(edges[j].2.y))
+        });
+        let mut next = 0;
+        // the edges across the current line, by their place in the outline
+        let mut active: Vec<usize> = Vec::new();
+        let mut across: Vec<(usize, Point, Point)> = Vec::new();
+        let mut iv: Vec<(f64, f64)> = Vec::new();
         for w in ys.windows(2) {
             if w[1] - w[0] <= 1e-12 * size {
                 continue;
             }
             let y = 0.5 * (w[0] + w[1]);
-            let iv = self.intervals_at(y);
+            while next < by_low.len() && {
+                let (_, a, b) = edges[by_low[next]];
+                a.y.min(b.y) < y
+            } {
+                active.push(by_low[next]);
+                next += 1;
+            }
+            active.retain(|&i| edges[i].1.y.max(edges[i].2.y) > y);
+            active.sort_unstable();
+            across.clear();
+            across.extend(active.iter().map(|&i| edges[i]));
+            iv.clear();
+            self.intervals_of(&across, y, &mut iv);
             let pieces = 1 + iv
                 .windows(2)
                 .filter(|p| p[1].0 - p[0].1 > 1e-9 * size)

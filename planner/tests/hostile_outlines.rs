@@ -45,16 +45,38 @@ fn a_fine_zigzag_of_50000_points_is_thinned_and_plans() {
     assert!(plan.tiles.abs_diff(300) <= 9, "{} tiles", plan.tiles);
 }
 
-/// A zigzag of 2% of the drawing on 20,000 points is more detail than thinning to 1% can
-/// take away: refused as bad input, saying how many points and what to do.
+/// A zigzag of 2% of the drawing on 20,000 points: plain Douglas-Peucker kept most of its
+/// points (it was refused as too detailed), the bounded one (`simplify.rs`) finds a coarser
+/// zigzag within 1% of the drawing, every point within that of it, and the drawing is read.
 #[test]
-fn a_coarse_zigzag_of_20000_points_is_refused_saying_what_to_do() {
+fn a_coarse_zigzag_of_20000_points_is_thinned_within_one_percent() {
     let svg = zigzag_disc(20_000, 2.0);
-    let err = Shape::from_svg_data(svg.as_bytes(), "coarse.svg").unwrap_err();
+    let shape = Shape::from_svg_data(svg.as_bytes(), "coarse.svg").unwrap();
+    assert!(points(&shape) <= 5_000, "{} points kept", points(&shape));
+    let b = shape.bbox();
+    assert!((b.width() - 82.0).abs() < 3.0, "{b:?}");
+}
+
+/// A square with 2,500 square holes (10,004 points, none of them on a ring long enough to
+/// thin) is more detail than thinning to 1% can take away: refused as bad input, saying
+/// how many points and what to do.
+#[test]
+fn a_sieve_of_2500_holes_is_refused_saying_what_to_do() {
+    let mut d = String::from("M0 0 H100 V100 H0 Z");
+    for i in 0..50 {
+        for j in 0..50 {
+            let (x, y) = (0.5 + 2.0 * i as f64, 0.5 + 2.0 * j as f64);
+            d.push_str(&format!(" M{x} {y} v1 h1 v-1 Z"));
+        }
+    }
+    let svg = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><path fill-rule="evenodd" d="{d}"/></svg>"#
+    );
+    let err = Shape::from_svg_data(svg.as_bytes(), "sieve.svg").unwrap_err();
     assert!(matches!(err, PlanError::TooDetailed { .. }), "{err}");
     assert_eq!(err.exit_code(), 2);
     let text = err.to_string();
-    for w in ["coarse.svg", "points", "Path > Simplify"] {
+    for w in ["sieve.svg", "points", "Path > Simplify"] {
         assert!(text.contains(w), "missing {w:?} in {text}");
     }
 }
