@@ -246,6 +246,8 @@ struct Rates {
     span: f64,
     /// Each joint's jumps (a repeated time with another angle), sorted.
     jumps: Vec<Vec<f64>>,
+    /// Each joint's chord rates ([`RateTable`]; empty for a joint that never turns).
+    tables: Vec<RateTable>,
 }
 
 impl Rates {
@@ -273,6 +275,7 @@ impl Rates {
             t0,
             span: t1 - t0,
             jumps,
+            tables: track_of.iter().map(|tr| RateTable::new(*tr)).collect(),
         }
     }
 }
@@ -475,9 +478,8 @@ impl<'a> PairWalk<'a> {
             .iter()
             .map(|&k| 2.0 * self.outline.circumradius * (j - k) as f64)
             .collect();
-        let mut fastest = vec![0.0f64; moving.len()];
-        let mut ends = vec![f64::INFINITY; moving.len()];
-        let mut cursor = vec![0usize; moving.len()];
+        let mut scratch = StepScratch::new(moving.len());
+        let mut at = vec![0usize; moving.len()];
         let mut t = t0;
         loop {
             if self.work > self.budget {
@@ -506,50 +508,22 @@ impl<'a> PairWalk<'a> {
                     jump = jump.min(x);
                 }
             }
-            // the rate bound over each moving joint's chords from t on (its chord at t, the
-            // node count its hint holds after the evaluation at t), widened chord by chord
-            // while the step it allows reaches past them (at most MAX_WIDEN widenings a step)
+            // the rate bound over each moving joint's chords from t on: the chords up to the
+            // first breakpoint at which the step they allow ends before it
+            // (each joint's count of nodes at or before t: its hint after the evaluation at t)
             for (q, &k) in moving.iter().enumerate() {
-                if let Some(tr) = self.track_of[k] {
-                    let at = tr.times.partition_point(|&x| x <= t);
-                    cursor[q] = at;
-                    (fastest[q], ends[q]) = chord_from(tr, at);
-                }
+                at[q] = self.hints[k];
             }
-            let mut widened = 0;
-            let next = loop {
-                self.work += 1;
-                let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
-                for q in (0..moving.len()).rev() {
-                    speed += fastest[q] * lever[q];
-                    linear += fastest[q] * rho[q];
-                    growth += fastest[q] * beyond;
-                    beyond += fastest[q] * lever[q];
-                }
-                let limit = ends.iter().copied().fold(jump, f64::min);
-                let step = step_within(room, speed, linear, growth);
-                let reach = t + step;
-                let settled = reach < limit || limit >= jump || widened >= MAX_WIDEN;
-                if settled && limit > t {
-                    break reach.min(limit);
-                }
-                if settled {
-                    // (no chord ends after t: rounding; progress below)
-                    break t;
-                }
-                // every joint whose chord ends first takes its next chord too
-                for (q, &k) in moving.iter().enumerate() {
-                    if ends[q] <= limit {
-                        if let Some(tr) = self.track_of[k] {
-                            cursor[q] += 1;
-                            let (rate, end) = chord_from(tr, cursor[q]);
-                            fastest[q] = fastest[q].max(rate);
-                            ends[q] = end;
-                        }
-                    }
-                }
-                widened += 1;
+            let from = StepFrom {
+                t,
+                jump,
+                room,
+                moving: &moving,
+                at: &at,
+                lever: &lever,
+                rho: &rho,
             };
+            let next = self.next_time(&from, &mut scratch);
             // progress whatever the rounding
             t = if next > t {
                 next.min(t_end)
@@ -557,6 +531,213 @@ impl<'a> PairWalk<'a> {
                 t + 1e-15 * t.abs().max(1.0)
             };
         }
+    }
+}
+
+impl PairWalk<'_> {
+    /// Where the step from `from.t` ends. Over the chords of each moving joint from its chord
+    /// at `t` up to the first node at or after a breakpoint `b` (a node time of a moving
+    /// joint after `t`), the joints turn no faster than those chords' fastest, which allows
+    /// a step to `reach(b)`; the step taken is the one at the first breakpoint `b` with
+    /// `reach(b) < b`, or, when no breakpoint before the next jump `j` has it, `reach` at the
+    /// first breakpoint at or after `j`, cut at `j`. `reach(b)` does not grow with `b` (the
+    /// fastest chords only grow), so the breakpoint is found by galloping and bisection over
+    /// the breakpoints, each `reach` a range maximum of each joint's chord rates
+    /// ([`RateTable`]) and one unit of work: the same step as widening the chords one
+    /// breakpoint at a time, in O(log) evaluations rather than one per breakpoint.
+    fn next_time(&mut self, from: &StepFrom, scratch: &mut StepScratch) -> f64 {
+        let track_of = self.track_of;
+        let times =
+            |q: usize| -> &[f64] { track_of[from.moving[q]].map_or(&[][..], |tr| &tr.times[..]) };
+        let q_all = from.moving.len();
+        let StepScratch {
+            fastest,
+            lo_at,
+            hi_at,
+            pivot_at,
+        } = scratch;
+        // each joint's breakpoints after lo (which does not settle) and before hi (which
+        // does) are its nodes lo_at[q] .. hi_at[q]
+        let (mut lo, mut hi) = (from.t, f64::INFINITY);
+        for q in 0..q_all {
+            lo_at[q] = from.at[q];
+            hi_at[q] = times(q).len().max(from.at[q]);
+        }
+        // galloping: the least of each joint's 2^r-th node after t
+        for r in 0..usize::BITS - 1 {
+            let mut pivot = f64::INFINITY;
+            for q in 0..q_all {
+                if let Some(&x) = times(q).get(from.at[q] + (1usize << r) - 1) {
+                    pivot = pivot.min(x);
+                }
+            }
+            if pivot == f64::INFINITY {
+                break;
+            }
+            for q in 0..q_all {
+                // no joint's 2^r-th node lies before the pivot
+                let end = (from.at[q] + (1usize << r)).min(hi_at[q]);
+                pivot_at[q] = first_at_or_after(times(q), lo_at[q], end, pivot);
+            }
+            if self.settles(from, pivot, pivot_at, fastest) {
+                hi = pivot;
+                hi_at[..q_all].copy_from_slice(&pivot_at[..q_all]);
+                break;
+            }
+            lo = pivot;
+            for q in 0..q_all {
+                lo_at[q] = first_after(times(q), pivot_at[q], hi_at[q], pivot);
+            }
+        }
+        // bisection over the breakpoints between lo and hi: the median of the joint with
+        // the most of them
+        loop {
+            let mut widest: Option<usize> = None;
+            for q in 0..q_all {
+                let span = hi_at[q].saturating_sub(lo_at[q]);
+                if span > 0 && widest.is_none_or(|w| span > hi_at[w] - lo_at[w]) {
+                    widest = Some(q);
+                }
+            }
+            let Some(w) = widest else { break };
+            let pivot = times(w)[(lo_at[w] + hi_at[w]) / 2];
+            for q in 0..q_all {
+                pivot_at[q] = first_at_or_after(times(q), lo_at[q], hi_at[q], pivot);
+            }
+            if self.settles(from, pivot, pivot_at, fastest) {
+                hi = pivot;
+                hi_at[..q_all].copy_from_slice(&pivot_at[..q_all]);
+            } else {
+                lo = pivot;
+                for q in 0..q_all {
+                    lo_at[q] = first_after(times(q), pivot_at[q], hi_at[q], pivot);
+                }
+            }
+        }
+        debug_assert!(lo < hi);
+        let reach = self.reach(from, hi_at, fastest);
+        if hi < from.jump {
+            reach
+        } else {
+            reach.min(from.jump)
+        }
+    }
+
+    /// Whether the step over the chords up to breakpoint `b` ends before it (or `b` is at or
+    /// past the next jump), each joint's first node at or after `b` in `upto`: see
+    /// [`PairWalk::next_time`].
+    fn settles(&mut self, from: &StepFrom, b: f64, upto: &[usize], fastest: &mut [f64]) -> bool {
+        b >= from.jump || self.reach(from, upto, fastest) < b
+    }
+
+    /// Where a step from `from.t` can reach over the chords of each moving joint `q` from
+    /// its chord at `t` to the one ending at its node `upto[q]` (past the track: to its end),
+    /// each joint's fastest chord there in `fastest`; one unit of work.
+    fn reach(&mut self, from: &StepFrom, upto: &[usize], fastest: &mut [f64]) -> f64 {
+        self.work += 1;
+        for (q, &k) in from.moving.iter().enumerate() {
+            let n = self.track_of[k].map_or(0, |tr| tr.times.len());
+            fastest[q] = if from.at[q] >= n {
+                0.0
+            } else {
+                self.rates.tables[k].max(from.at[q], upto[q].min(n - 1))
+            };
+        }
+        let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
+        for q in (0..from.moving.len()).rev() {
+            speed += fastest[q] * from.lever[q];
+            linear += fastest[q] * from.rho[q];
+            growth += fastest[q] * beyond;
+            beyond += fastest[q] * from.lever[q];
+        }
+        from.t + step_within(from.room, speed, linear, growth)
+    }
+}
+
+/// The first index of `ts[from..to]` whose time is at or after `x` (`to` if none).
+fn first_at_or_after(ts: &[f64], from: usize, to: usize, x: f64) -> usize {
+    match ts.get(from..to) {
+        Some(part) => from + part.partition_point(|&y| y < x),
+        None => to.max(from),
+    }
+}
+
+/// The first index of `ts[from..to]` whose time is after `x` (`to` if none).
+fn first_after(ts: &[f64], from: usize, to: usize, x: f64) -> usize {
+    match ts.get(from..to) {
+        Some(part) => from + part.partition_point(|&y| y <= x),
+        None => to.max(from),
+    }
+}
+
+/// The working arrays of [`PairWalk::next_time`], one entry per moving joint.
+struct StepScratch {
+    fastest: Vec<f64>,
+    lo_at: Vec<usize>,
+    hi_at: Vec<usize>,
+    pivot_at: Vec<usize>,
+}
+
+impl StepScratch {
+    fn new(len: usize) -> StepScratch {
+        StepScratch {
+            fastest: vec![0.0; len],
+            lo_at: vec![0; len],
+            hi_at: vec![0; len],
+            pivot_at: vec![0; len],
+        }
+    }
+}
+
+/// A step of a pair's walk about to be taken ([`PairWalk::next_time`]).
+struct StepFrom<'s> {
+    /// The moment the step starts at.
+    t: f64,
+    /// The next jump of a moving joint after `t` (else the schedule's end).
+    jump: f64,
+    /// How far the pair may come nearer over the step, tile widths.
+    room: f64,
+    /// The joints between the pair's tiles that have a track, ascending.
+    moving: &'s [usize],
+    /// Each moving joint's count of nodes at or before `t`.
+    at: &'s [usize],
+    /// Each moving joint's lever to the far tile, `2 R (j - k)`.
+    lever: &'s [f64],
+    /// Each moving joint's reach to the far tile now.
+    rho: &'s [f64],
+}
+
+/// The `|rate|` of each chord of a track ([`chord_from`] of each of its nodes) and their
+/// range maxima: `levels[l][i]` is the largest of the rates of nodes `i .. i + 2^l`.
+struct RateTable {
+    levels: Vec<Vec<f64>>,
+}
+
+impl RateTable {
+    fn new(track: Option<&JointTrack>) -> RateTable {
+        let Some(tr) = track else {
+            return RateTable { levels: Vec::new() };
+        };
+        let mut levels: Vec<Vec<f64>> =
+            vec![(0..tr.times.len()).map(|i| chord_from(tr, i).0).collect()];
+        let mut w = 1;
+        while 2 * w <= tr.times.len() {
+            let prev = &levels[levels.len() - 1];
+            let next: Vec<f64> = (0..prev.len() - w)
+                .map(|i| prev[i].max(prev[i + w]))
+                .collect();
+            levels.push(next);
+            w *= 2;
+        }
+        RateTable { levels }
+    }
+
+    /// The largest rate of nodes `a ..= b` (`a <= b` < the track's length).
+    fn max(&self, a: usize, b: usize) -> f64 {
+        let len = b + 1 - a;
+        let l = (usize::BITS - 1 - len.leading_zeros()) as usize;
+        let level = &self.levels[l];
+        level[a].max(level[b + 1 - (1 << l)])
     }
 }
 
@@ -580,9 +761,6 @@ fn step_within(room: f64, speed: f64, linear: f64, growth: f64) -> f64 {
 
 /// The precision of an overlap's depth, besides the absolute one: a hundredth of it.
 const OVERLAP_PRECISION: f64 = 0.01;
-
-/// The most chords past the first one step of a pair may span, per joint that ends first.
-const MAX_WIDEN: usize = 256;
 
 /// The unit octagon at the origin: its vertices and circumradius, computed once.
 struct Outline {
@@ -834,6 +1012,115 @@ mod tests {
         assert!(pairs.len() < 2 * n, "{}", pairs.len());
         // the U-turns' corners, which give the cutoff, are among them
         assert!(pairs.contains(&(19, 21)), "{pairs:?}");
+    }
+
+    /// The step the walk takes, as it was found before the breakpoints were searched: the
+    /// chords widened one breakpoint at a time (without a cap) while the step reaches past
+    /// them.
+    fn widened_step(walk: &PairWalk, from: &StepFrom) -> f64 {
+        let n = from.moving.len();
+        let (mut fastest, mut ends, mut cursor) = (vec![0.0; n], vec![0.0; n], vec![0; n]);
+        for (q, &k) in from.moving.iter().enumerate() {
+            let tr = walk.track_of[k].unwrap();
+            cursor[q] = from.at[q];
+            (fastest[q], ends[q]) = chord_from(tr, cursor[q]);
+        }
+        loop {
+            let (mut speed, mut linear, mut growth, mut beyond) = (0.0, 0.0, 0.0, 0.0);
+            for q in (0..n).rev() {
+                speed += fastest[q] * from.lever[q];
+                linear += fastest[q] * from.rho[q];
+                growth += fastest[q] * beyond;
+                beyond += fastest[q] * from.lever[q];
+            }
+            let limit = ends.iter().copied().fold(from.jump, f64::min);
+            let reach = from.t + step_within(from.room, speed, linear, growth);
+            if reach < limit || limit >= from.jump {
+                return reach.min(limit);
+            }
+            for (q, &k) in from.moving.iter().enumerate() {
+                if ends[q] <= limit {
+                    let tr = walk.track_of[k].unwrap();
+                    cursor[q] += 1;
+                    let (rate, end) = chord_from(tr, cursor[q]);
+                    fastest[q] = fastest[q].max(rate);
+                    ends[q] = end;
+                }
+            }
+        }
+    }
+
+    /// The breakpoint search ([`PairWalk::next_time`]) takes exactly the step that widening
+    /// the chords one at a time takes, on random tracks of many chords (some of them at
+    /// repeated times, some jumps) and random pairs, rooms and moments.
+    #[test]
+    fn the_breakpoint_search_takes_the_widened_step() {
+        let mut rng = crate::collision::xorshift(5);
+        let mut unit = move || (rng() % 1_000_000) as f64 / 1_000_000.0;
+        for case in 0..300 {
+            let joints = 1 + case % 6;
+            let tracks: Vec<JointTrack> = (0..joints)
+                .map(|k| {
+                    let nodes = 1 + (unit() * [3.0, 40.0, 700.0][case % 3]) as usize;
+                    let (mut t, mut a) = (unit(), 0.0);
+                    let (mut times, mut angles) = (Vec::new(), Vec::new());
+                    for _ in 0..nodes {
+                        let r = unit();
+                        if r < 0.1 && !times.is_empty() {
+                            // a repeated time: a jump or a node at the same angle
+                        } else {
+                            t += 1e-3 + unit() * unit() * 0.1;
+                        }
+                        if r >= 0.05 {
+                            a = (a + (unit() - 0.5) * 0.2).clamp(-FRAC_PI_2, FRAC_PI_2);
+                        }
+                        times.push(t);
+                        angles.push(a);
+                    }
+                    track(k, &times, &angles)
+                })
+                .collect();
+            let sched = FoldSchedule { tracks };
+            let track_of = tracks_by_joint(joints, &sched);
+            let rates = Rates::new(&track_of);
+            let walk = PairWalk::new(&track_of, &rates, 1e-4, joints, usize::MAX);
+            let moving: Vec<usize> = (0..joints).collect();
+            let far = joints + 1 + (unit() * 20.0) as usize;
+            let lever: Vec<f64> = moving.iter().map(|&k| 2.0 * (far - k) as f64).collect();
+            for _ in 0..20 {
+                let t = rates.t0 + rates.span * unit() * 1.02;
+                let at: Vec<usize> = moving
+                    .iter()
+                    .map(|&k| track_of[k].unwrap().times.partition_point(|&x| x <= t))
+                    .collect();
+                let rho: Vec<f64> = lever.iter().map(|&l| l * unit()).collect();
+                let mut jump = rates.t0 + rates.span;
+                for &k in &moving {
+                    let jumps = &rates.jumps[k];
+                    if let Some(&x) = jumps.get(jumps.partition_point(|&x| x <= t)) {
+                        jump = jump.min(x);
+                    }
+                }
+                let room = 10f64.powf(-4.0 + 5.0 * unit());
+                let from = StepFrom {
+                    t,
+                    jump,
+                    room,
+                    moving: &moving,
+                    at: &at,
+                    lever: &lever,
+                    rho: &rho,
+                };
+                let old = widened_step(&walk, &from);
+                let mut w = PairWalk::new(&track_of, &rates, 1e-4, joints, usize::MAX);
+                let new = w.next_time(&from, &mut StepScratch::new(joints));
+                assert_eq!(
+                    new.to_bits(),
+                    old.to_bits(),
+                    "case {case}: t {t} room {room}"
+                );
+            }
+        }
     }
 
     #[test]
