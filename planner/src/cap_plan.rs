@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::caps::{cap_plans, CapPlan};
 use crate::cell_plan::{axes, checked_plans, CellFailure, Failed};
 use crate::check::CheckMemo;
-use crate::empty::{empty_cost, rank_key};
+use crate::empty::{empty_cost, rank_key, MIN_EMPTY_TILES};
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -181,7 +181,7 @@ pub(crate) fn plan_by_caps(
         .take(AXES_ROUTED)
         .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
         .collect();
-    let mut slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+    let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
         .iter()
         .flat_map(|(a, plans, w)| {
             let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
@@ -191,6 +191,10 @@ pub(crate) fn plan_by_caps(
                 .collect::<Vec<_>>()
         })
         .collect();
+    // the decompositions chosen with their joins priced: the cheapest of them (over the
+    // axes) sized in a slot of its own, after the first slab groups
+    let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
+    joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.truncate(MORE_SLAB_GROUPS);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
@@ -198,25 +202,49 @@ pub(crate) fn plan_by_caps(
     if !caps.is_empty() {
         groups.push(caps);
     }
+    let first = slabs.len().min(SLAB_GROUPS);
+    let rest = slabs.split_off(first);
     groups.extend(slabs.into_iter().map(|g| vec![g]));
+    let joined_at = joined.first().map(|_| groups.len());
+    groups.extend(joined.into_iter().take(1).map(|g| vec![g]));
+    groups.extend(rest.into_iter().map(|g| vec![g]));
     let mut failed = Failed::default();
     let mut best: Option<Plan> = None;
     let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
     for (i, axes) in groups.iter().enumerate() {
-        if i >= first_slab + SLAB_GROUPS {
-            let least = best
-                .iter()
+        let least = || {
+            best.iter()
                 .map(|b| b.metrics.largest_empty_tiles)
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
-                .fold(known_empty, f64::min);
-            if least <= large {
-                break;
+                .fold(known_empty, f64::min)
+        };
+        if joined_at == Some(i) {
+            // sized where every plan so far leaves a part empty (issue 26's measure)
+            if least() <= MIN_EMPTY_TILES {
+                continue;
             }
+        } else if i >= first_slab + SLAB_GROUPS + usize::from(joined_at.is_some_and(|j| j < i))
+            && least() <= large
+        {
+            break;
         }
         let slabs = axes
             .iter()
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
-        if let Some(p) = size_group(shape, opts, style, name, axes, slabs, &mut failed) {
+        let mut here = Failed::default();
+        let before = least();
+        let mut found = size_group(shape, opts, style, name, axes, slabs, &mut here);
+        if joined_at == Some(i) {
+            // sized for the part left empty: its plan is offered only where it leaves less
+            found = found.filter(|p| p.metrics.largest_empty_tiles < before);
+            // the added decomposition's route rejected for an empty part is kept only with
+            // a count within the tolerance: rejected routes rank by their empty part alone,
+            // and one that leaves less empty with a quarter of the chain missing is no
+            // better plan
+            here.rejected = here.rejected.filter(|(_, r)| miss(opts, &r.plan) == 0);
+        }
+        failed.merge(here);
+        if let Some(p) = found {
             if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
                 best = Some(p);
             }

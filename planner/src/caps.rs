@@ -89,6 +89,9 @@ pub(crate) struct CapPlan {
     /// True for a slab decomposition ([`crate::slabs`]): its cells need not be caps, and it
     /// is sized on its own.
     pub slabs: bool,
+    /// True for the slab decomposition chosen by the price of its joins too
+    /// ([`crate::slabs`]): sized in a slot of its own, its cost not comparable with the others'.
+    pub joined: bool,
 }
 
 /// Cap decompositions kept per box and join requirement.
@@ -776,6 +779,7 @@ impl<'a> Search<'a> {
                         + self.steps(b, stack_y)
                         + self.dropped(b, stack_y, cut),
                     slabs: false,
+                    joined: false,
                 });
             }
         }
@@ -830,6 +834,7 @@ impl<'a> Search<'a> {
                 cells,
                 cost: p.cost + cap_cost + price + parity,
                 slabs: false,
+                joined: false,
             });
         }
     }

@@ -99,6 +99,15 @@ impl CentreGrid {
     /// eight neighbours (every centre within one tile width of `p`, and some further).
     pub(crate) fn any_near(&self, p: Point, mut hit: impl FnMut(usize) -> bool) -> bool {
         let (cx, cy) = cell_of(p);
+        // a point more than a cell beyond the grid has no neighbours in it (the cell router
+        // asks for every tile laid before, most far from the new leg)
+        if cx < self.x0.saturating_sub(1)
+            || cy < self.y0.saturating_sub(1)
+            || cx > self.x0.saturating_add(self.nx)
+            || cy > self.y0.saturating_add(self.ny)
+        {
+            return false;
+        }
         (-1..=1).any(|i| (-1..=1).any(|j| self.in_cell(cx + i, cy + j).iter().any(|&t| hit(t))))
     }
 }

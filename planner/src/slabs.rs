@@ -24,6 +24,10 @@ use crate::caps::{CapCell, CapPlan, Dir, PBox, Raster, Search};
 use crate::rows::{solve_rows, tile_area, Lattice, Style};
 use crate::shape::Shape;
 
+/// A slab of a decomposition: its tight box, the cut before it (its first line along the
+/// axis), and its price in each direction whose rows fit ([`slab_price`]).
+type Slab = (PBox, usize, Vec<(f64, Dir)>);
+
 /// The most cuts considered per axis (the largest jumps): 2^6 decompositions at most.
 const MAX_CUTS: usize = 6;
 /// Decompositions returned per shape (each in both orders along its axis).
@@ -33,16 +37,21 @@ const KEEP: usize = 2;
 const JOIN_PRICE: f64 = 1.0;
 
 /// The cheapest slab decompositions of `axis_shape` (axis frame, unit tiles) into at least
-/// two slabs for rows of `style`, cheapest first, each in both orders along its axis: at
-/// most `2 KEEP`. Empty when the shape is not one piece or has no cut.
+/// two slabs for rows of `style`, cheapest first by their slabs' misfits alone, each in both
+/// orders along its axis: at most `2 KEEP`; then, when it is not one of those, the
+/// decomposition whose slabs' misfits and joins ([`entry_price`]) cost least, with each
+/// slab's direction chosen with its joins ([`directions`]), marked `joined`, in both orders.
+/// Empty when the shape is not one piece or has no cut.
 pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
     let r = Raster::new(axis_shape);
     let s = Search::new(&r, style.pitch);
     let Some(b) = s.whole() else {
         return Vec::new();
     };
-    let mut priced: HashMap<PBox, Option<(f64, Dir)>> = HashMap::new();
+    let mut priced: HashMap<PBox, Vec<(f64, Dir)>> = HashMap::new();
     let mut found: Vec<CapPlan> = Vec::new();
+    // the same decompositions, priced with what their joins leave empty
+    let mut joined: Vec<CapPlan> = Vec::new();
     for across_x in [true, false] {
         let (lo, hi) = if across_x { (b.x0, b.x1) } else { (b.y0, b.y1) };
         let cuts = critical_cuts(&s, b, across_x);
@@ -55,8 +64,8 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
                     .map(|(_, &c)| c),
             );
             edges.push(hi);
-            let mut cells = Vec::new();
-            let mut cost = JOIN_PRICE * (edges.len() - 2) as f64;
+            // each slab's tight box, the cut before it, its price in each direction
+            let mut slabs: Vec<Slab> = Vec::new();
             let mut whole = true;
             for e in edges.windows(2) {
                 let slab = if across_x {
@@ -76,31 +85,83 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
                     whole = false;
                     break;
                 };
-                let price = *priced
+                let price = priced
                     .entry(t)
                     .or_insert_with(|| slab_price(axis_shape, &s, t, style));
-                let Some((c, n)) = price else {
+                if price.is_empty() {
                     whole = false;
                     break;
-                };
-                cost += c;
-                cells.push(CapCell {
-                    rect: s.rect(t),
-                    n,
-                    either_sign: true,
-                });
+                }
+                slabs.push((t, e[0], price.clone()));
             }
-            if whole && cells.len() > 1 {
-                found.push(CapPlan {
-                    cells,
-                    cost,
-                    slabs: true,
-                });
+            if !whole {
+                continue;
+            }
+            let joins = JOIN_PRICE * (edges.len() - 2) as f64;
+            let make = |cost: f64, dirs: Vec<Dir>| CapPlan {
+                cells: slabs
+                    .iter()
+                    .zip(dirs)
+                    .map(|((t, _, _), n)| CapCell {
+                        rect: s.rect(*t),
+                        n,
+                        either_sign: true,
+                    })
+                    .collect(),
+                cost,
+                slabs: true,
+                joined: false,
+            };
+            // each slab alone in its cheaper direction (the first price), and the directions
+            // chosen with the joins
+            let alone: Vec<(f64, Dir)> = slabs
+                .iter()
+                .map(|(_, _, p)| {
+                    p.iter().copied().fold((f64::INFINITY, Dir::PosY), |a, b| {
+                        if b.0 < a.0 {
+                            b
+                        } else {
+                            a
+                        }
+                    })
+                })
+                .collect();
+            if slabs.len() > 1 {
+                found.push(make(
+                    joins + alone.iter().map(|a| a.0).sum::<f64>(),
+                    alone.iter().map(|a| a.1).collect(),
+                ));
+                if let Some((cost, dirs)) = directions(&s, across_x, &slabs) {
+                    joined.push(make(cost + joins, dirs));
+                }
             }
         }
     }
+    assemble(found, joined)
+}
+
+/// The cheapest [`KEEP`] of the decompositions priced alone (`found`), each in both orders,
+/// then the cheapest by the joined price when it is not one of those, marked `joined`, in
+/// both orders (see [`slab_plans`]).
+fn assemble(mut found: Vec<CapPlan>, mut joined: Vec<CapPlan>) -> Vec<CapPlan> {
     found.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     found.truncate(KEEP);
+    joined.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+    let same = |a: &CapPlan, b: &CapPlan| {
+        a.cells.len() == b.cells.len()
+            && a.cells
+                .iter()
+                .zip(&b.cells)
+                .all(|(x, y)| x.rect == y.rect && x.n == y.n)
+    };
+    // the best decomposition by the joined price, added (never in place of one of the
+    // others) when it differs from them, marked to be sized in a slot of its own
+    if let Some(mut j) = joined.into_iter().next() {
+        if !found.iter().any(|f| same(f, &j)) {
+            j.joined = true;
+            found.push(j);
+        }
+    }
     found
         .into_iter()
         .flat_map(|p| {
@@ -156,14 +217,77 @@ fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool) -> Vec<usize> {
     out
 }
 
-/// The misfit of the slab `t` swept in its better direction, and that direction (the
-/// stacking direction of its rows): the row programme's least cost over the lattice phases,
-/// plus the area the rows of `style` would cover were they perfect (so that a slab filled
-/// as well as rows can fill costs about its turns), in tile areas. None if no row fits.
-fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Option<(f64, Dir)> {
+/// The part a route must leave empty to pass from slab `a` to the next slab `b` across the
+/// cut at line `cut` (a pixel column if `across_x`, else a pixel row), in tile areas, each
+/// slab with the stacking direction of its rows. A slab whose rows run across the cut is
+/// entered (or left) by its first (or last) row, which lies at one of its sides along the
+/// cut: where the slabs meet only farther than a tile from those sides, the rows between
+/// the crossing and the nearer side are skipped (a gear's slab round its hole entered
+/// halfway up). A slab whose rows run along the cut is entered at any point of its first
+/// row. The crossing is chosen where the two slabs' skipped parts are least; slabs that do
+/// not meet at the cut are not priced here (the route's fold check decides).
+fn entry_price(s: &Search<'_>, across_x: bool, cut: usize, a: (PBox, Dir), b: (PBox, Dir)) -> f64 {
+    let tile = s.raster().per_tile();
+    // the slab's sides along the cut, its depth along the axis (tiles), and whether its rows
+    // run across the cut (stacked along the cut)
+    let sides = |t: PBox, n: Dir| {
+        let across = matches!(n, Dir::PosY | Dir::NegY) == across_x;
+        if across_x {
+            ((t.y0, t.y1), (t.x1 - t.x0) as f64 / tile, across)
+        } else {
+            ((t.x0, t.x1), (t.y1 - t.y0) as f64 / tile, across)
+        }
+    };
+    let (sa, da, xa) = sides(a.0, a.1);
+    let (sb, db, xb) = sides(b.0, b.1);
+    if !xa && !xb {
+        return 0.0;
+    }
+    let (lo, hi) = (sa.0.min(sb.0), sa.1.max(sb.1));
+    let before = s.runs(!across_x, cut.saturating_sub(1), lo, hi);
+    let after = s.runs(!across_x, cut, lo, hi);
+    let skipped = |e: usize, (s0, s1): (usize, usize), depth: f64| {
+        let d = e.abs_diff(s0).min(e.abs_diff(s1)) as f64 / tile;
+        (d - 1.0).max(0.0) * depth
+    };
+    let price = |e: usize| {
+        let mut p = 0.0;
+        if xa {
+            p += skipped(e, sa, da);
+        }
+        if xb {
+            p += skipped(e, sb, db);
+        }
+        p
+    };
+    let mut best: Option<f64> = None;
+    for &(a0, a1) in &before {
+        for &(b0, b1) in &after {
+            let (r0, r1) = (a0.max(b0), a1.min(b1));
+            if r0 >= r1 {
+                continue;
+            }
+            let last = r1 - 1;
+            let candidates = [r0, last, sa.0, sa.1, sb.0, sb.1];
+            for e in candidates {
+                let p = price(e.clamp(r0, last));
+                if best.is_none_or(|q| p < q) {
+                    best = Some(p);
+                }
+            }
+        }
+    }
+    best.unwrap_or(0.0)
+}
+
+/// The misfit of the slab `t` swept in each direction whose rows fit, with that direction
+/// (the stacking direction of its rows): the row programme's least cost over the lattice
+/// phases, plus the area the rows of `style` would cover were they perfect (so that a slab
+/// filled as well as rows can fill costs about its turns), in tile areas.
+fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Vec<(f64, Dir)> {
     let cell = axis_shape.clipped(s.rect(t));
     let ideal = cell.area() * tile_area() / style.pitch;
-    let mut best: Option<(f64, Dir)> = None;
+    let mut out: Vec<(f64, Dir)> = Vec::new();
     for (n, work) in [
         (Dir::PosY, cell.clone()),
         // rows along y: the cell with x and y swapped
@@ -179,11 +303,55 @@ fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Opti
                     .map(|e| e.0)
             })
             .fold(f64::INFINITY, f64::min);
-        if cost.is_finite() && best.is_none_or(|b| cost + ideal < b.0) {
-            best = Some((cost + ideal, n));
+        if cost.is_finite() {
+            out.push((cost + ideal, n));
         }
     }
-    best
+    out
+}
+
+/// The sweep direction of each slab of a decomposition (`(tight box, cut before it, price
+/// in each direction)`, in order along the axis) that makes the least sum of the slabs'
+/// misfits and the parts their joins leave empty ([`entry_price`]), and that sum: exact,
+/// by dynamic programming over the slabs (two directions each). None if a slab has none.
+fn directions(s: &Search<'_>, across_x: bool, slabs: &[Slab]) -> Option<(f64, Vec<Dir>)> {
+    // per slab, per direction: (cost so far, index of the previous slab's direction)
+    let mut table: Vec<Vec<(f64, usize)>> = Vec::with_capacity(slabs.len());
+    for (i, (t, cut, prices)) in slabs.iter().enumerate() {
+        let row: Vec<(f64, usize)> = prices
+            .iter()
+            .map(|&(c, n)| {
+                if i == 0 {
+                    return (c, 0);
+                }
+                let (pt, _, pp) = &slabs[i - 1];
+                table[i - 1]
+                    .iter()
+                    .zip(pp)
+                    .enumerate()
+                    .map(|(j, (&(sofar, _), &(_, m)))| {
+                        let join = entry_price(s, across_x, *cut, (*pt, m), (*t, n));
+                        (sofar + c + join, j)
+                    })
+                    .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
+            })
+            .collect();
+        table.push(row);
+    }
+    let last = table.last()?;
+    let (mut k, &(cost, _)) = last
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))?;
+    if !cost.is_finite() {
+        return None;
+    }
+    let mut dirs = vec![Dir::PosY; slabs.len()];
+    for i in (0..slabs.len()).rev() {
+        dirs[i] = slabs[i].2[k].1;
+        k = table[i][k].1;
+    }
+    Some((cost, dirs))
 }
 
 #[cfg(test)]

@@ -24,6 +24,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::f64::consts::FRAC_PI_2;
+use std::ops::RangeInclusive;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use kurbo::{Point, Rect};
@@ -72,10 +73,155 @@ struct Run {
     leaves: Vec<Rect>,
     groups: Vec<Rect>,
     bbox: Rect,
+    /// The tiles by cell, for small queries.
+    grid: RunGrid,
+}
+
+/// A run's tiles bucketed by square cell (compressed rows): a query a few cells wide (a new
+/// tile's neighbours) looks at the tiles of those cells, where the boxes of a long run would
+/// be walked group by group (a cost that grows with the run's length, so a leg of `n` tiles
+/// checked tile by tile cost `n^2 / 64` box tests).
+#[derive(Debug)]
+struct RunGrid {
+    x0: f64,
+    y0: f64,
+    /// One over the cell's side.
+    inv: f64,
+    nx: usize,
+    ny: usize,
+    /// `start[c]..start[c + 1]` indexes `ids` for cell `c` (row-major).
+    start: Vec<u32>,
+    /// Tile places in the run, ascending within a cell.
+    ids: Vec<u32>,
+}
+
+/// Queries spanning at most this many cells use the grid, larger ones the boxes.
+const GRID_CELLS: usize = 16;
+
+impl RunGrid {
+    /// The grid of `centres` in the box `bbox` that holds them: cells of side 2 (a new
+    /// tile's neighbourhood spans at most two by two), or wider when the box is large for the
+    /// run (a sparse run keeps about one cell per tile).
+    fn new(centres: &[Point], bbox: &Rect) -> RunGrid {
+        let n = centres.len();
+        if n == 0 {
+            return RunGrid {
+                x0: 0.0,
+                y0: 0.0,
+                inv: 1.0,
+                nx: 0,
+                ny: 0,
+                start: vec![0],
+                ids: Vec::new(),
+            };
+        }
+        let (w, h) = (bbox.x1 - bbox.x0, bbox.y1 - bbox.y0);
+        let side = 2f64.max((w * h / n as f64).sqrt());
+        let inv = 1.0 / side;
+        // cells are at most (w / side + 1) (h / side + 1) <= n + 2 sqrt(n) + 1 when the side
+        // is the wider one; a non-finite box (no tile can have one) leaves a single cell
+        let span = |d: f64| {
+            let c = (d * inv).floor();
+            if c.is_finite() && c >= 0.0 {
+                c as usize + 1
+            } else {
+                1
+            }
+        };
+        let (nx, ny) = (span(w), span(h));
+        let grid = RunGrid {
+            x0: bbox.x0,
+            y0: bbox.y0,
+            inv,
+            nx,
+            ny,
+            start: Vec::new(),
+            ids: Vec::new(),
+        };
+        let cells: Vec<usize> = centres.iter().map(|&c| grid.cell(c)).collect();
+        let mut start = vec![0u32; nx * ny + 1];
+        for &c in &cells {
+            start[c + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut fill = start.clone();
+        let mut ids = vec![0u32; n];
+        for (t, &c) in cells.iter().enumerate() {
+            ids[fill[c] as usize] = t as u32;
+            fill[c] += 1;
+        }
+        RunGrid { start, ids, ..grid }
+    }
+
+    /// The column (or row) of coordinate `v` from the grid's origin `o`, clamped to `0..n`.
+    fn index(&self, v: f64, o: f64, n: usize) -> usize {
+        // truncation is the floor of a non-negative value (and NaN takes the first)
+        let c = (v - o) * self.inv;
+        if c >= 0.0 {
+            (c as usize).min(n - 1)
+        } else {
+            0
+        }
+    }
+
+    /// The cell of a centre of the run.
+    fn cell(&self, c: Point) -> usize {
+        self.index(c.y, self.y0, self.ny) * self.nx + self.index(c.x, self.x0, self.nx)
+    }
+
+    /// The cell ranges `(columns, rows)` a query meets (it meets the grid's box), or `None`
+    /// when they are more than [`GRID_CELLS`] cells.
+    fn cells_of(
+        &self,
+        q: &Rect,
+    ) -> Option<(
+        std::ops::RangeInclusive<usize>,
+        std::ops::RangeInclusive<usize>,
+    )> {
+        let (i0, i1) = (
+            self.index(q.x0, self.x0, self.nx),
+            self.index(q.x1, self.x0, self.nx),
+        );
+        let (j0, j1) = (
+            self.index(q.y0, self.y0, self.ny),
+            self.index(q.y1, self.y0, self.ny),
+        );
+        ((i1 - i0 + 1) * (j1 - j0 + 1) <= GRID_CELLS).then_some((i0..=i1, j0..=j1))
+    }
 }
 
 fn closed_contains(r: &Rect, c: Point) -> bool {
     c.x >= r.x0 && c.x <= r.x1 && c.y >= r.y0 && c.y <= r.y1
+}
+
+/// The f64 screen of the exact overlap test: centres farther apart than this on an axis
+/// cannot overlap (see `lattice::clearly_apart`).
+const AXIS: f64 = 1.0 + 1e-6;
+/// The screen along a diagonal.
+const DIAGONAL: f64 = std::f64::consts::SQRT_2 + 1e-6;
+
+/// Whether tile `t` of `run` overlaps a tile before it in the final shape (exactly, as
+/// [`super::final_overlap`]), among the tiles of `near` (the runs that may hold one, the
+/// latest first; `run` among them).
+fn overlaps_before(near: &[&Run], run: &Run, t: usize) -> bool {
+    let j = run.first + t;
+    if j == 0 {
+        return false;
+    }
+    let (c, p) = (run.centres[t], run.poses[t]);
+    let query = Rect::new(c.x - AXIS, c.y - AXIS, c.x + AXIS, c.y + AXIS);
+    let mut visit = |_, ci: Point, pi: ExactPose| {
+        let (dx, dy) = (c.x - ci.x, c.y - ci.y);
+        let apart = dx.abs() > AXIS
+            || dy.abs() > AXIS
+            || (dx + dy).abs() > DIAGONAL
+            || (dx - dy).abs() > DIAGONAL;
+        !apart && lattice_overlap(pi.centre, p.centre)
+    };
+    near.iter()
+        .any(|r| r.for_each_in(j - 1, &query, &mut visit))
 }
 
 impl Run {
@@ -93,6 +239,7 @@ impl Run {
             .map(|l| l.iter().fold(EMPTY, |b, &r| union(b, r)))
             .collect();
         let bbox = groups.iter().fold(EMPTY, |b, &r| union(b, r));
+        let grid = RunGrid::new(&centres, &bbox);
         Run {
             first,
             poses,
@@ -101,6 +248,7 @@ impl Run {
             leaves,
             groups,
             bbox,
+            grid,
         }
     }
 
@@ -116,6 +264,47 @@ impl Run {
             return false;
         }
         let end = (last + 1 - self.first).min(self.centres.len());
+        match self.grid.cells_of(query) {
+            Some(cells) => self.for_each_in_cells(end, query, cells, visit),
+            None => self.for_each_in_boxes(end, query, visit),
+        }
+    }
+
+    /// [`Run::for_each_in`] over the tiles of the grid cells `(columns, rows)` that a small
+    /// query meets (a centre in the closed query lies in one of them: the cell of a
+    /// coordinate is monotone in it), for the run's tiles before place `end`.
+    fn for_each_in_cells(
+        &self,
+        end: usize,
+        query: &Rect,
+        (cols, rows): (RangeInclusive<usize>, RangeInclusive<usize>),
+        visit: &mut impl FnMut(usize, Point, ExactPose) -> bool,
+    ) -> bool {
+        let g = &self.grid;
+        for j in rows {
+            for i in cols.clone() {
+                let c = j * g.nx + i;
+                let ids = &g.ids[g.start[c] as usize..g.start[c + 1] as usize];
+                for &t in ids.iter().take_while(|&&t| (t as usize) < end) {
+                    let t = t as usize;
+                    let c = self.centres[t];
+                    if closed_contains(query, c) && visit(self.first + t, c, self.poses[t]) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// [`Run::for_each_in`] by the boxes of the run's groups and leaves, for the run's tiles
+    /// before place `end`.
+    fn for_each_in_boxes(
+        &self,
+        end: usize,
+        query: &Rect,
+        visit: &mut impl FnMut(usize, Point, ExactPose) -> bool,
+    ) -> bool {
         for (g, gb) in self.groups.iter().enumerate() {
             let g0 = g * GROUP * LEAF;
             if g0 >= end {
@@ -285,44 +474,28 @@ impl PrefixCheck {
         if poses.is_empty() {
             return;
         }
-        let run = Run::new(first, poses, into);
-        let added = run.poses.len();
-        self.runs.push(Arc::new(run));
-        self.tiles += added;
-        for j in first.max(1)..self.tiles {
-            let (run, t) = self.locate(j);
-            let k = j - 1;
-            if run.into[t] != Fold::S {
+        let run = Arc::new(Run::new(first, poses, into));
+        self.runs.push(Arc::clone(&run));
+        self.tiles += run.poses.len();
+        for (t, &f) in run.into.iter().enumerate() {
+            let j = first + t;
+            if j > 0 && f != Fold::S {
                 // a tail of no tiles is clear
-                self.clear.push(Reverse((k + 1, k, NEVER)));
+                self.clear.push(Reverse((j, j - 1, NEVER)));
             }
         }
         if !self.collided {
-            self.collided = (first..self.tiles).any(|j| self.overlaps_before(j));
+            // only the runs whose box comes near the new run's can hold a tile it overlaps
+            let reach = run.bbox.inflate(AXIS, AXIS);
+            let near: Vec<&Run> = self
+                .runs
+                .iter()
+                .rev()
+                .filter(|r| meets(&r.bbox, &reach))
+                .map(|r| &**r)
+                .collect();
+            self.collided = (0..run.poses.len()).any(|t| overlaps_before(&near, &run, t));
         }
-    }
-
-    /// Whether tile `j` overlaps a tile before it in the final shape (exactly, as
-    /// [`super::final_overlap`]).
-    fn overlaps_before(&self, j: usize) -> bool {
-        if j == 0 {
-            return false;
-        }
-        // the f64 screen of the exact test: centres farther apart than this on an axis
-        // cannot overlap (see `lattice::clearly_apart`)
-        const AXIS: f64 = 1.0 + 1e-6;
-        const DIAGONAL: f64 = std::f64::consts::SQRT_2 + 1e-6;
-        let (run, t) = self.locate(j);
-        let (c, p) = (run.centres[t], run.poses[t]);
-        let query = Rect::new(c.x - AXIS, c.y - AXIS, c.x + AXIS, c.y + AXIS);
-        self.for_each_in(j - 1, &query, |_, ci, pi| {
-            let (dx, dy) = (c.x - ci.x, c.y - ci.y);
-            let apart = dx.abs() > AXIS
-                || dy.abs() > AXIS
-                || (dx + dy).abs() > DIAGONAL
-                || (dx - dy).abs() > DIAGONAL;
-            !apart && lattice_overlap(pi.centre, p.centre)
-        })
     }
 
     /// Extends the cleared tails of the joints so far to a chain of `tiles` tiles (each at
@@ -492,6 +665,63 @@ mod tests {
             &CheckOptions::default(),
         )
         .is_ok()
+    }
+
+    /// A long run's grid lists the same tiles as its boxes, for small queries all over it
+    /// and every prefix end.
+    #[test]
+    fn the_grid_and_the_boxes_list_the_same_tiles() {
+        let mut next = super::super::xorshift(0x2545_F491_4F6C_DD1D);
+        // a serpentine of 40 rows of 30 tiles with stray folds, and a staircase (a sparse box)
+        let mut serp = Vec::new();
+        for r in 0..40 {
+            serp.extend(std::iter::repeat_n(Fold::S, 30));
+            let f = if r % 2 == 0 { Fold::L } else { Fold::R };
+            serp.extend([f, f]);
+        }
+        for _ in 0..6 {
+            let at = (next() % serp.len() as u64) as usize;
+            serp[at] = [Fold::L, Fold::R][(next() % 2) as usize];
+        }
+        let stairs: Vec<Fold> = (0..600)
+            .map(|i| if i % 2 == 0 { Fold::L } else { Fold::R })
+            .collect();
+        for word in [serp, stairs] {
+            let mut chain = PrefixCheck::new();
+            chain.push(&word);
+            let run = &chain.runs[0];
+            let b = run.bbox;
+            let mut gridded = 0;
+            for _ in 0..400 {
+                let x = b.x0 - 2.0 + (b.x1 - b.x0 + 4.0) * (next() % 1000) as f64 / 1000.0;
+                let y = b.y0 - 2.0 + (b.y1 - b.y0 + 4.0) * (next() % 1000) as f64 / 1000.0;
+                let r = 0.5 + (next() % 40) as f64 / 10.0;
+                let q = Rect::new(x - r, y - r, x + r, y + r);
+                let end = 1 + (next() % run.centres.len() as u64) as usize;
+                let list = |by_grid: bool| {
+                    let mut seen = Vec::new();
+                    let mut visit = |i: usize, _, _| {
+                        seen.push(i);
+                        false
+                    };
+                    match run.grid.cells_of(&q) {
+                        Some(cells) if by_grid => {
+                            run.for_each_in_cells(end, &q, cells, &mut visit);
+                        }
+                        _ => {
+                            run.for_each_in_boxes(end, &q, &mut visit);
+                        }
+                    }
+                    seen.sort_unstable();
+                    seen
+                };
+                if run.grid.cells_of(&q).is_some() && meets(&b, &q) {
+                    gridded += 1;
+                    assert_eq!(list(true), list(false), "{q:?} end {end}");
+                }
+            }
+            assert!(gridded > 50, "{gridded}");
+        }
     }
 
     /// Grows random words (serpentines with stray letters, and mostly straight words) in
