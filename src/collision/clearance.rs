@@ -278,6 +278,17 @@ impl Rates {
             tables: track_of.iter().map(|tr| RateTable::new(*tr)).collect(),
         }
     }
+
+    /// The first jump of the joints `moving` after `t`, or `end` if none comes before it.
+    fn first_jump_after(&self, moving: &[usize], t: f64, end: f64) -> f64 {
+        moving
+            .iter()
+            .filter_map(|&k| {
+                let jumps = &self.jumps[k];
+                jumps.get(jumps.partition_point(|&x| x <= t)).copied()
+            })
+            .fold(end, f64::min)
+    }
 }
 
 /// The `|rate|` of the chord of `tr` that ends at its node `i` (0 before the track, after it
@@ -501,13 +512,7 @@ impl<'a> PairWalk<'a> {
             // precision)
             let room = d - m + self.precision + OVERLAP_PRECISION * (-m).max(0.0);
             // no step crosses a jump of a joint between the tiles
-            let mut jump = t_end;
-            for &k in &moving {
-                let jumps = &self.rates.jumps[k];
-                if let Some(&x) = jumps.get(jumps.partition_point(|&x| x <= t)) {
-                    jump = jump.min(x);
-                }
-            }
+            let jump = self.rates.first_jump_after(&moving, t, t_end);
             // the rate bound over each moving joint's chords from t on: the chords up to the
             // first breakpoint at which the step they allow ends before it
             // (each joint's count of nodes at or before t: its hint after the evaluation at t)
@@ -1094,13 +1099,7 @@ mod tests {
                     .map(|&k| track_of[k].unwrap().times.partition_point(|&x| x <= t))
                     .collect();
                 let rho: Vec<f64> = lever.iter().map(|&l| l * unit()).collect();
-                let mut jump = rates.t0 + rates.span;
-                for &k in &moving {
-                    let jumps = &rates.jumps[k];
-                    if let Some(&x) = jumps.get(jumps.partition_point(|&x| x <= t)) {
-                        jump = jump.min(x);
-                    }
-                }
+                let jump = rates.first_jump_after(&moving, t, rates.t0 + rates.span);
                 let room = 10f64.powf(-4.0 + 5.0 * unit());
                 let from = StepFrom {
                     t,
