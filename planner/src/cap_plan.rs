@@ -15,6 +15,7 @@ use crate::empty::{empty_cost, rank_key, MIN_EMPTY_TILES};
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
+use crate::rank::Asked;
 use crate::route::{route_sequence, Need, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
@@ -208,7 +209,8 @@ pub(crate) fn plan_by_caps(
     let joined_at = joined.first().map(|_| groups.len());
     groups.extend(joined.into_iter().take(1).map(|g| vec![g]));
     groups.extend(rest.into_iter().map(|g| vec![g]));
-    let mut failed = Failed::default();
+    let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
+    let mut failed = Failed::new(asked);
     let mut best: Option<Plan> = None;
     let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
     for (i, axes) in groups.iter().enumerate() {
@@ -231,7 +233,7 @@ pub(crate) fn plan_by_caps(
         let slabs = axes
             .iter()
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
-        let mut here = Failed::default();
+        let mut here = Failed::new(asked);
         let before = least();
         let mut found = size_group(shape, opts, style, name, axes, slabs, &mut here);
         if joined_at == Some(i) {
@@ -250,6 +252,14 @@ pub(crate) fn plan_by_caps(
             }
         }
     }
+    // a plan off the count yields to a rejected one nearer it that falls less short of
+    // the asked chain ([`Asked::prefers_rejected`])
+    let best = best.filter(|b| {
+        !failed
+            .rejected
+            .as_ref()
+            .is_some_and(|(_, r)| asked.prefers_rejected(r, b))
+    });
     match best {
         Some(p) => Ok(p),
         None => match failed.rejected {
@@ -354,7 +364,7 @@ fn size_group(
             return Attempt::Nothing;
         };
         let n = first.1.word.tiles();
-        let mut here = Failed::default();
+        let mut here = Failed::new(failed.asked);
         let check = |routes: &[(f64, Arc<Routed>)], here: &mut Failed| {
             checked_plans(
                 shape,

@@ -12,32 +12,43 @@ use crate::empty::{excess_empty, note_empty, EMPTY_PRICE};
 use crate::error::Rejected;
 use crate::frame::Orientation;
 use crate::plan::Plan;
+use crate::rank::Asked;
 use crate::route::Routed;
 use crate::rows::Style;
 use crate::shape::Shape;
 
 /// What the routes checked so far said when they failed: the last collision, and the route
-/// that leaves the smallest part empty (with its reason).
+/// rejected for an empty part that falls least short of the asked chain (with its reason;
+/// [`Asked::before`]).
 #[derive(Default)]
 pub(crate) struct Failed {
     /// The last collision.
     pub collide: String,
-    /// The route rejected for the smallest empty part.
+    /// The rejected route that falls least short of the asked chain.
     pub rejected: Option<(String, Box<Rejected>)>,
+    /// The asked chain, by which rejected routes rank.
+    pub asked: Asked,
 }
 
 impl Failed {
-    /// Adds what `other` says: its collision if any, its rejected route if it leaves a
-    /// smaller part empty.
+    /// Nothing failed yet; rejected routes rank by `asked`.
+    pub(crate) fn new(asked: Asked) -> Failed {
+        Failed {
+            asked,
+            ..Failed::default()
+        }
+    }
+
+    /// Adds what `other` says: its collision if any, its rejected route if it falls less
+    /// short of the asked chain.
     pub(crate) fn merge(&mut self, other: Failed) {
         if !other.collide.is_empty() {
             self.collide = other.collide;
         }
         if let Some((text, r)) = other.rejected {
             if self
-                .rejected
-                .as_ref()
-                .is_none_or(|(_, b)| r.empty.tiles < b.empty.tiles)
+                .asked
+                .before(&r, self.rejected.as_ref().map(|(_, b)| &**b))
             {
                 self.rejected = Some((text, r));
             }
@@ -95,7 +106,11 @@ pub(crate) fn checked_plans(
     admit: &dyn Fn(&Plan) -> bool,
     failed: &mut Failed,
 ) -> Vec<Plan> {
-    let Failed { collide, rejected } = failed;
+    let Failed {
+        collide,
+        rejected,
+        asked,
+    } = failed;
     let mut plans: Vec<(Plan, &Routed, f64)> = Vec::new();
     for (a, r) in routes.iter().take(CHECKED_ROUTES) {
         let good = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
@@ -122,9 +137,10 @@ pub(crate) fn checked_plans(
             Ok(plan) => plan,
             Err(e) => {
                 let (part, mut plan) = *e;
+                let short = asked.shortfall(plan.tiles, plan.tile_size, part.tiles);
                 if rejected
                     .as_ref()
-                    .is_none_or(|(_, b)| part.tiles < b.empty.tiles)
+                    .is_none_or(|(_, b)| short < asked.rejected_shortfall(b))
                 {
                     asm.measure(&mut plan, &r.word);
                     let text = format!(

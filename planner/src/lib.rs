@@ -52,6 +52,7 @@ mod options;
 mod plan;
 mod plan_shape;
 mod preview;
+mod rank;
 mod refusal;
 mod route;
 mod row_chain;

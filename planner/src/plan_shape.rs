@@ -13,6 +13,7 @@ use crate::error::{PlanError, Rejected};
 use crate::narrow;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
 use crate::plan::Plan;
+use crate::rank::Asked;
 use crate::refusal;
 use crate::rows::{Style, LOOSE, TIGHT};
 use crate::serpentine::{pick_directions, size_style, Sized};
@@ -60,7 +61,10 @@ pub(crate) fn plan_shape(
         None => q.tiles.abs_diff(target).saturating_sub(tol),
         Some(_) => 0,
     };
-    let mut found = Found::default();
+    let mut found = Found {
+        asked: Asked::new(opts, shape.area(), tiles_est),
+        ..Found::default()
+    };
     // under `auto`, loose turns are planned only when tight ones give no plan with a count
     // within the tolerance: loose rows lie a tile width farther apart than the empty-part
     // measure reaches under `auto` ([`crate::empty::near`]), so a loose plan with rows
@@ -92,19 +96,24 @@ pub(crate) fn plan_shape(
         failures,
         rejected,
         bridging,
+        asked,
     } = found;
     // one chain can fill the shape, only not without leaving a part of it empty: the plan
     // that leaves the least empty, with a warning saying where, rather than no plan (issue
     // 26: a drawing is refused only when one chain cannot do it); a serpentine bridging the
     // gaps of a shape monotone in no direction with much of the chain outside is never
     // returned (it only words the refusal), but a plan by caps is, whatever lies outside
+    // returned in place of a plan off the count too, when nearer the count and less short
+    // of the asked chain ([`Asked::prefers_rejected`])
+    let returned = |r: Box<Rejected>| {
+        let Rejected { mut plan, empty } = *r;
+        plan.metrics.largest_empty_tiles = empty.tiles;
+        plan.warnings.push(format!("the plan {empty}"));
+        Some(plan)
+    };
     let (best, rejected) = match (best, rejected) {
-        (None, Some(r)) => {
-            let Rejected { mut plan, empty } = *r;
-            plan.metrics.largest_empty_tiles = empty.tiles;
-            plan.warnings.push(format!("the plan {empty}"));
-            (Some(plan), None)
-        }
+        (None, Some(r)) => (returned(r), None),
+        (Some(b), Some(r)) if asked.prefers_rejected(&r, &b) => (returned(r), None),
         (best, None) => (best, bridging),
         other => other,
     };
@@ -197,18 +206,20 @@ struct Found {
     failures: Vec<String>,
     rejected: Option<Box<Rejected>>,
     bridging: Option<Box<Rejected>>,
+    /// The asked chain, by which rejected plans rank ([`Asked::before`]).
+    asked: Asked,
 }
 
 impl Found {
-    /// Keeps `r` if it leaves a smaller part empty than the one kept.
+    /// Keeps `r` if it falls less short of the asked chain than the one kept.
     fn reject(&mut self, r: Box<Rejected>) {
-        keep_least_empty(&mut self.rejected, r);
+        keep_least_short(&mut self.rejected, r, &self.asked);
     }
 }
 
-/// Puts `r` in `slot` if the slot is empty or `r` leaves a smaller part empty.
-fn keep_least_empty(slot: &mut Option<Box<Rejected>>, r: Box<Rejected>) {
-    if slot.as_ref().is_none_or(|b| r.empty.tiles < b.empty.tiles) {
+/// Puts `r` in `slot` if the slot is empty or `r` falls less short of the asked chain.
+fn keep_least_short(slot: &mut Option<Box<Rejected>>, r: Box<Rejected>, asked: &Asked) {
+    if asked.before(&r, slot.as_deref()) {
         *slot = Some(r);
     }
 }
@@ -260,7 +271,7 @@ fn plan_styles(
                     empty: part,
                 });
                 if bridges {
-                    keep_least_empty(&mut found.bridging, r);
+                    keep_least_short(&mut found.bridging, r, &found.asked);
                 } else {
                     found.reject(r);
                 }

@@ -82,6 +82,12 @@ struct EdgeIndex {
 
 /// Bucket entries an [`EdgeIndex`] holds per edge at most, on average over the outline.
 const SPANNED_PER_EDGE: f64 = 8.0;
+/// Edge evaluations spent at most, over one sweep of [`Shape::first_split`], on lines at
+/// heights where edges of overlapping rings cross (each line costs the edges across it):
+/// rings given to [`Shape::from_rings`] may overlap, and an outline whose rings cross each
+/// other everywhere has crossings as the square of its edges. Beyond it, slabs are tested
+/// at their middle only.
+const MAX_CROSSING_WORK: usize = 20_000_000;
 
 impl EdgeIndex {
     fn new(paths: &[FilledPath], bbox: Rect) -> EdgeIndex {
@@ -439,6 +445,10 @@ impl Shape {
         let mut active: Vec<usize> = Vec::new();
         let mut across: Vec<(usize, Point, Point)> = Vec::new();
         let mut iv: Vec<(f64, f64)> = Vec::new();
+        let (mut order, mut heights): (Vec<(f64, f64)>, Vec<f64>) = (Vec::new(), Vec::new());
+        // the work spent on crossing heights (a bound for outlines whose rings cross
+        // everywhere; beyond it, slabs are tested at their middle only)
+        let mut budget = MAX_CROSSING_WORK;
         for w in ys.windows(2) {
             if w[1] - w[0] <= 1e-12 * size {
                 continue;
@@ -455,19 +465,43 @@ impl Shape {
             active.sort_unstable();
             across.clear();
             across.extend(active.iter().map(|&i| edges[i]));
-            iv.clear();
-            self.intervals_of(&across, y, &mut iv);
-            let pieces = 1 + iv
-                .windows(2)
-                .filter(|p| p[1].0 - p[0].1 > 1e-9 * size)
-                .count();
-            if pieces > 1 {
-                if best.is_none_or(|(n, _)| pieces > n) {
-                    best = Some((pieces, y));
-                }
-                seen += 1;
-                if seen >= limit {
-                    break;
+            // where edges of overlapping rings cross inside the slab, the pieces change at
+            // the crossings: a line between every two of them is tested too
+            heights.clear();
+            if budget > 0 {
+                // each swap of the sort and each line costs about the edges across
+                let k = across.len().max(1);
+                crossing_heights(&across, (w[0], w[1]), budget / k, &mut order, &mut heights);
+                heights.truncate(budget / k);
+                budget -= (heights.len() * k).min(budget);
+            }
+            heights.push(w[0]);
+            heights.push(w[1]);
+            heights.sort_by(f64::total_cmp);
+            let lines: Vec<f64> = if heights.len() == 2 {
+                vec![y]
+            } else {
+                heights
+                    .windows(2)
+                    .filter(|h| h[1] - h[0] > 1e-12 * size)
+                    .map(|h| 0.5 * (h[0] + h[1]))
+                    .collect()
+            };
+            for y in lines {
+                iv.clear();
+                self.intervals_of(&across, y, &mut iv);
+                let pieces = 1 + iv
+                    .windows(2)
+                    .filter(|p| p[1].0 - p[0].1 > 1e-9 * size)
+                    .count();
+                if pieces > 1 {
+                    if best.is_none_or(|(n, _)| pieces > n) {
+                        best = Some((pieces, y));
+                    }
+                    seen += 1;
+                    if seen >= limit {
+                        return best;
+                    }
                 }
             }
         }
@@ -519,6 +553,47 @@ impl Shape {
 /// The direction of the edge from `a` to `b` as a row angle in `[0, pi)`.
 fn edge_angle(a: Point, b: Point) -> f64 {
     (b.y - a.y).atan2(b.x - a.x).rem_euclid(PI)
+}
+
+/// The heights strictly inside the slab `(y0, y1)` at which two of `edges` (each spanning
+/// the whole slab) cross, appended to `out`. Edges are ordered by where they meet the
+/// slab's bottom and insertion-sorted by where they meet its top: every swap is one
+/// crossing, so the work is the edges plus the crossings (none for rings that do not
+/// overlap, whose edges meet only at vertices); it stops after `max` crossings. `order` is
+/// scratch space.
+fn crossing_heights(
+    edges: &[(usize, Point, Point)],
+    (y0, y1): (f64, f64),
+    max: usize,
+    order: &mut Vec<(f64, f64)>,
+    out: &mut Vec<f64>,
+) {
+    let x_at = |a: Point, b: Point, y: f64| a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
+    order.clear();
+    order.extend(
+        edges
+            .iter()
+            .map(|&(_, a, b)| (x_at(a, b, y0), x_at(a, b, y1))),
+    );
+    order.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.total_cmp(&q.1)));
+    for i in 1..order.len() {
+        let mut j = i;
+        while j > 0 && order[j - 1].1 > order[j].1 {
+            let (p, q) = (order[j - 1], order[j]);
+            // x of p minus x of q goes from (p.0 - q.0) <= 0 at y0 to (p.1 - q.1) > 0 at y1
+            let (d0, d1) = (p.0 - q.0, p.1 - q.1);
+            let t = -d0 / (d1 - d0);
+            let h = y0 + t * (y1 - y0);
+            if h > y0 && h < y1 {
+                out.push(h);
+                if out.len() >= max {
+                    return;
+                }
+            }
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
 }
 
 /// Merges intervals into a sorted disjoint list, in place.
@@ -578,5 +653,51 @@ mod tests {
         );
         let m = s.mirrored(-1.0, 1.0).scaled(2.0).bbox();
         assert_eq!((m.x0, m.x1, m.y0, m.y1), (-4.0, -2.0, 4.0, 6.0));
+    }
+
+    /// A bar of length 100 and width 10 centred at the origin, turned by `deg` degrees
+    /// (counter-clockwise ring).
+    fn bar(deg: f64) -> Ring {
+        let (sin, cos) = deg.to_radians().sin_cos();
+        let points = [(-50.0, -5.0), (50.0, -5.0), (50.0, 5.0), (-50.0, 5.0)]
+            .iter()
+            .map(|&(x, y)| Point::new(x * cos - y * sin, x * sin + y * cos))
+            .collect();
+        Ring { points }
+    }
+
+    /// Two bars crossing as an X between two plates, given as four overlapping rings: the
+    /// bars' vertices lie at the heights +-25 +-4.33 inside the plates (y 20 to 35 and -35
+    /// to -20), so the slab between vertex heights -20 and 20 is one piece at its middle,
+    /// where the bars cross, and two above and below the crossing; every other slab is one
+    /// piece. The sweep tests a line between every two heights where edges cross too.
+    #[test]
+    fn overlapping_rings_split_between_vertex_heights() {
+        let plate = |y0: f64| Ring::rect(-60.0, y0, 60.0, y0 + 15.0);
+        let x = Shape::from_rings(vec![bar(30.0), bar(-30.0), plate(20.0), plate(-35.0)]);
+        assert_eq!(x.intervals_at(0.0).len(), 1);
+        assert_eq!(x.intervals_at(25.0).len(), 1);
+        assert_eq!(x.intervals_at(15.0).len(), 2);
+        assert!(!x.is_monotone_for_rows(0.0));
+        assert_eq!(x.max_pieces(), 2);
+        // along the bars' middle line the X is two pieces too; one bar alone is monotone
+        let one = Shape::from_rings(vec![bar(30.0)]);
+        assert!(one.is_monotone_for_rows(0.0));
+        assert_eq!(one.max_pieces(), 1);
+        // two squares at 5 degrees overlapping (last session's case) stay one piece at
+        // every height, and the sweep says so
+        let sq = Shape::from_rings(vec![square(0.0, 0.0, 10.0, true), {
+            let (sin, cos) = 5f64.to_radians().sin_cos();
+            let mut r = square(2.0, 2.0, 10.0, true);
+            for p in &mut r.points {
+                *p = Point::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos);
+            }
+            r
+        }]);
+        let pieces = (1..200)
+            .map(|i| sq.intervals_at(-1.0 + i as f64 * 0.07).len())
+            .max()
+            .unwrap();
+        assert_eq!(sq.max_pieces(), pieces);
     }
 }
