@@ -230,7 +230,12 @@ fn beside(
 /// The bounding box of `pts` (inverted, and so [`far_apart`] from every box, when empty).
 fn bbox_of(pts: &[Point]) -> Rect {
     pts.iter().fold(
-        Rect::new(f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+        Rect::new(
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ),
         |b, &q| Rect::new(b.x0.min(q.x), b.y0.min(q.y), b.x1.max(q.x), b.y1.max(q.y)),
     )
 }
