@@ -184,10 +184,13 @@ pub(crate) fn plan_by_caps(
     let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
         .iter()
         .flat_map(|(a, plans, w)| {
-            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
-            // slab_plans returns each decomposition in both orders, one after the other
+            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs && !p.joined).collect();
+            // slab_plans returns each decomposition in both orders, one after the other, then
+            // those chosen with their joins priced, sized together
+            let joined: Vec<CapPlan> = plans.iter().filter(|p| p.joined).cloned().collect();
             slab.chunks(2)
                 .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
+                .chain((!joined.is_empty()).then_some((*a, joined, *w)))
                 .collect::<Vec<_>>()
         })
         .collect();
@@ -233,7 +236,16 @@ pub(crate) fn plan_by_caps(
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
         let mut here = Failed::default();
         let before = least();
-        let mut found = size_group(shape, opts, style, name, axes, slabs, &mut here);
+        if joined_at == Some(i) {
+            // its routes rejected for an empty part ranked by their count first
+            let target = opts.tiles.unwrap_or(DEFAULT_TILES);
+            let tol = (opts.tiles_tolerance * target as f64) as usize;
+            here.by_count = opts.tile_size.is_none().then_some((target, tol));
+        }
+        // the added decomposition is given up at its first width only if it leaves more
+        // empty than every plan so far too
+        let hopeless = if joined_at == Some(i) { before } else { 0.0 };
+        let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
         if joined_at == Some(i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             found = found.filter(|p| p.metrics.largest_empty_tiles < before);
@@ -298,14 +310,15 @@ fn miss(opts: &PlanOptions, p: &Plan) -> usize {
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
 /// found, what the others said in `failed`. A group of `slabs` searches within a budget of
 /// [`SLAB_SEARCH_TILES`] and is given up at its first width if hopeless (see
-/// [`SLAB_HOPELESS_EMPTY`]).
+/// [`SLAB_HOPELESS_EMPTY`]; not while it leaves less empty than `hopeless_above` tile
+/// areas).
 fn size_group(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     axes: &[(f64, Vec<CapPlan>, f64)],
-    slabs: bool,
+    (slabs, hopeless_above): (bool, f64),
     failed: &mut Failed,
 ) -> Option<Plan> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
@@ -384,7 +397,8 @@ fn size_group(
         }
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
         failed.merge(here);
-        let hopeless = least_empty.is_none_or(|e| e > SLAB_HOPELESS_EMPTY * target as f64);
+        let hopeless = least_empty
+            .is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(hopeless_above));
         if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
             return Attempt::Nothing;
         }
