@@ -61,6 +61,8 @@ const SLAB_MIN_WIDTHS: usize = 2;
 /// its rows do not fill a whole slab its order cannot reach (a U's arm swept from the
 /// wrong end leaves a third of the shape empty at every width).
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
+/// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
+const JOINED_GROUPS: usize = 2;
 /// Factors tried on the tile width when every route at the width the steps settle on
 /// collides or leaves a part empty: the joins then fall on the cells at other phases.
 const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
@@ -184,13 +186,10 @@ pub(crate) fn plan_by_caps(
     let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
         .iter()
         .flat_map(|(a, plans, w)| {
-            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs && !p.joined).collect();
-            // slab_plans returns each decomposition in both orders, one after the other, then
-            // those chosen with their joins priced, sized together
-            let joined: Vec<CapPlan> = plans.iter().filter(|p| p.joined).cloned().collect();
+            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
+            // slab_plans returns each decomposition in both orders, one after the other
             slab.chunks(2)
                 .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
-                .chain((!joined.is_empty()).then_some((*a, joined, *w)))
                 .collect::<Vec<_>>()
         })
         .collect();
@@ -208,8 +207,10 @@ pub(crate) fn plan_by_caps(
     let first = slabs.len().min(SLAB_GROUPS);
     let rest = slabs.split_off(first);
     groups.extend(slabs.into_iter().map(|g| vec![g]));
-    let joined_at = joined.first().map(|_| groups.len());
-    groups.extend(joined.into_iter().take(1).map(|g| vec![g]));
+    // the cheapest and the next (the cheapest's laid in the order their joins were priced
+    // for, sized only where they leave less empty, see [`crate::slabs`])
+    let joined_at = groups.len()..groups.len() + joined.len().min(JOINED_GROUPS);
+    groups.extend(joined.into_iter().take(JOINED_GROUPS).map(|g| vec![g]));
     groups.extend(rest.into_iter().map(|g| vec![g]));
     let mut failed = Failed::default();
     let mut best: Option<Plan> = None;
@@ -221,12 +222,12 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        if joined_at == Some(i) {
+        if joined_at.contains(&i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
                 continue;
             }
-        } else if i >= first_slab + SLAB_GROUPS + usize::from(joined_at.is_some_and(|j| j < i))
+        } else if i >= first_slab + SLAB_GROUPS + joined_at.clone().filter(|&j| j < i).count()
             && least() <= large
         {
             break;
@@ -236,7 +237,7 @@ pub(crate) fn plan_by_caps(
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
         let mut here = Failed::default();
         let before = least();
-        if joined_at == Some(i) {
+        if joined_at.contains(&i) {
             // its routes rejected for an empty part ranked by their count first
             let target = opts.tiles.unwrap_or(DEFAULT_TILES);
             let tol = (opts.tiles_tolerance * target as f64) as usize;
@@ -244,9 +245,9 @@ pub(crate) fn plan_by_caps(
         }
         // the added decomposition is given up at its first width only if it leaves more
         // empty than every plan so far too
-        let hopeless = if joined_at == Some(i) { before } else { 0.0 };
+        let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
         let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
-        if joined_at == Some(i) {
+        if joined_at.contains(&i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             found = found.filter(|p| p.metrics.largest_empty_tiles < before);
             // the added decomposition's route rejected for an empty part is kept only with

@@ -126,8 +126,7 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
                     ));
                 }
                 for reverse in [false, true] {
-                    if let Some((cost, dirs)) = directions(&s, across_x, &slabs, (reverse, true))
-                    {
+                    if let Some((cost, dirs)) = directions(&s, across_x, &slabs, (reverse, true)) {
                         let mut p = make(cost + joins, dirs);
                         if reverse {
                             p.cells.reverse();
@@ -187,8 +186,8 @@ fn cut_slabs(
 /// The cheapest [`KEEP`] of the decompositions priced alone (`found`), each in both orders,
 /// then `first` (the cheapest by the joined price at the cuts where the runs change) in both
 /// orders where it is not one of those, and the two cheapest of `joined` (each in the laying
-/// order it was priced for) that are none of these, all marked `joined` to be sized together
-/// (see [`slab_plans`]).
+/// order it was priced for) that are none of these, all marked `joined`, `first`'s pair
+/// sized first and the other two in a slot of their own after it (see [`slab_plans`]).
 fn assemble(
     mut found: Vec<CapPlan>,
     mut joined: Vec<CapPlan>,
