@@ -41,6 +41,10 @@ pub enum ReferenceModel {
     JointAngle,
     /// Every tile a rigid body floating free.
     FreeBody,
+    /// Magnets on their paths and folding joints' angles, the joints turning at once
+    /// integrated together (the free body's equations with the chain's momentum held at
+    /// zero; `ReferenceOptions::coupled`).
+    Coupled,
 }
 
 impl ReferenceModel {
@@ -49,13 +53,14 @@ impl ReferenceModel {
         match self {
             ReferenceModel::JointAngle => "joint-angle",
             ReferenceModel::FreeBody => "free-body",
+            ReferenceModel::Coupled => "coupled",
         }
     }
 
     /// The most tiles it takes.
     pub fn max_tiles(self) -> usize {
         match self {
-            ReferenceModel::JointAngle => MAX_REFERENCE_TILES,
+            ReferenceModel::JointAngle | ReferenceModel::Coupled => MAX_REFERENCE_TILES,
             ReferenceModel::FreeBody => MAX_FREE_BODY_TILES,
         }
     }
@@ -314,6 +319,7 @@ fn reference(req: &RunRequest) -> anyhow::Result<ReferenceRun> {
         .with_model(req.model);
     Ok(match req.reference_model {
         ReferenceModel::JointAngle => run_reference(&req.chain, &req.designs, &ro)?,
+        ReferenceModel::Coupled => run_reference(&req.chain, &req.designs, &ro.with_coupled(true))?,
         ReferenceModel::FreeBody => {
             run_free_body(
                 &req.chain,

@@ -39,6 +39,24 @@ pub fn run_reference(
         return Err(ReferenceError::BadTolerance(opts.tolerance));
     }
     let model = Model::new(chain, designs, &opts.model)?;
+    if opts.coupled {
+        let unsupported = |what| {
+            ReferenceError::FreeBodyUnsupported {
+            what,
+            why: "the coupled joint-angle reference steps the free body's inertial equations with Dormand-Prince 5(4) and weighs pairs by chain index only",
+        }
+        };
+        if opts.method != Method::Dopri5 {
+            return Err(unsupported("the ROS2 method"));
+        }
+        if opts.model.distance_cutoff.is_some() {
+            return Err(unsupported("a distance cutoff"));
+        }
+        let Some(im) = InertialModel::new(&model) else {
+            return Err(unsupported("overdamped dynamics"));
+        };
+        return Ok(crate::reference::free_body::run_coupled(model, im, opts));
+    }
     // inertial dynamics have the model's inertial coefficients; overdamped ones none
     Ok(match InertialModel::new(&model) {
         Some(im) => run_inertial(model, im, opts),

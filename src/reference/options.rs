@@ -71,6 +71,15 @@ pub struct ReferenceOptions {
     pub steps_per_tile: u64,
     /// States to keep for pictures (default [`Recording::Off`]).
     pub record: Recording,
+    /// Inertial dynamics only: the joints turning at once integrated together (default
+    /// `false`: each joint on its own, its two sides rigid in their sequential shapes). The
+    /// groups between turning joints are rigid bodies whose accelerations come from the
+    /// free-body reference's articulated-body recursion with the chain's momentum held at
+    /// zero (its base's velocity follows the joints' rates), a held face lets go when the
+    /// torque it passes would have to pull the part after it back, and a fold meeting its
+    /// walls is an impulse on the whole chain (docs/free-body.md, "The coupled joint-angle
+    /// reference"). Dormand-Prince only.
+    pub coupled: bool,
 }
 
 impl Default for ReferenceOptions {
@@ -82,6 +91,7 @@ impl Default for ReferenceOptions {
             max_steps: 2_000_000,
             steps_per_tile: ReferenceOptions::DEFAULT_STEPS_PER_TILE,
             record: Recording::Off,
+            coupled: false,
         }
     }
 }
@@ -122,6 +132,11 @@ impl ReferenceOptions {
     /// Another step limit.
     pub fn with_max_steps(mut self, max_steps: u64) -> ReferenceOptions {
         self.max_steps = max_steps;
+        self
+    }
+    /// The joints turning at once integrated together, or not ([`ReferenceOptions::coupled`]).
+    pub fn with_coupled(mut self, coupled: bool) -> ReferenceOptions {
+        self.coupled = coupled;
         self
     }
     /// Another recording of states.

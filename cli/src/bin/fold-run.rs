@@ -123,7 +123,9 @@ struct Args {
     /// and every folding joint's angle, the part upstream of a fold held still; up to 2,000
     /// tiles) or free-body (every tile a rigid body floating on water, nothing anchored,
     /// both sides of a fold turning against their inertia and the water's drag; inertial
-    /// dynamics only; docs/free-body.md; up to 100,000 tiles).
+    /// dynamics only; docs/free-body.md; up to 100,000 tiles), or coupled (the joint-angle
+    /// model with the joints turning at once integrated together, the free body's equations
+    /// with the chain's momentum held at zero; inertial dynamics only; up to 2,000 tiles).
     #[arg(long, value_enum, default_value_t = ReferenceModel::JointAngle)]
     model: ReferenceModel,
     /// Run both the event engine and the reference on the chain: both runs' files in
@@ -191,20 +193,21 @@ fn main_run(args: &Args) -> anyhow::Result<u8> {
     Ok(report.exit_code())
 }
 
-/// `--model free-body` refused where it does not apply (the engine, the overdamped
+/// `--model free-body` and `--model coupled` refused where they do not apply (the engine, the overdamped
 /// dynamics, a distance cutoff).
 fn refuse_free_body_misuse(args: &Args, mode: RunMode) -> anyhow::Result<()> {
-    if args.model != ReferenceModel::FreeBody {
+    if args.model == ReferenceModel::JointAngle {
         return Ok(());
     }
+    let m = args.model.name();
     if mode == RunMode::Engine {
-        bail!("--model free-body: the reference's model; give --reference or --compare");
+        bail!("--model {m}: the reference's model; give --reference or --compare");
     }
     if args.dynamics == Some(DynamicsChoice::Overdamped) {
-        bail!("--model free-body --dynamics overdamped: the free-body reference integrates tiles with mass (use --dynamics inertial, the default)");
+        bail!("--model {m} --dynamics overdamped: the {m} reference integrates tiles with mass (use --dynamics inertial, the default)");
     }
     if args.distance_cutoff.is_some() {
-        bail!("--model free-body --distance-cutoff: the free-body reference weighs pairs by chain index only");
+        bail!("--model {m} --distance-cutoff: the {m} reference weighs pairs by chain index only");
     }
     Ok(())
 }

@@ -29,7 +29,7 @@ use crate::reference::free_body::run::FreeBodyRun;
 use crate::reference::free_body::spatial::solve;
 use crate::reference::free_body::system::{FreeBody, Momentum, Setup, Work, BASE};
 use crate::reference::free_body::tile_body::TileBodies;
-use crate::reference::options::ReferenceError;
+use crate::reference::options::{ReferenceError, ReferenceOptions};
 use crate::reference::recorder::Recorder;
 use crate::reference::run_result::ReferenceRun;
 use crate::reference::stepping::{
@@ -72,6 +72,26 @@ pub fn run_free_body(
             why: "the free-body reference integrates tiles with mass (use the inertial dynamics)",
         });
     };
+    Ok(Driver::new(setup(model, im, false), opts).run())
+}
+
+/// The coupled joint-angle reference ([`ReferenceOptions::coupled`]) on `model` with `opts`:
+/// the free body's equations with the chain's momentum held at zero (the base's velocity
+/// follows the joints' rates and is not stepped), so that the joints turning at once are
+/// integrated together, their groups' inertia and drag coupling them, with the free body's
+/// start rule and impacts.
+pub(crate) fn run_coupled(
+    model: Model,
+    im: InertialModel,
+    opts: &ReferenceOptions,
+) -> ReferenceRun {
+    let fo = FreeBodyOptions::default().with_reference(*opts);
+    Driver::new(setup(model, im, true), &fo).run().run
+}
+
+/// What stays the same over a run of `model` (the base's momentum held at zero when
+/// `zero_momentum`).
+fn setup(model: Model, im: InertialModel, zero_momentum: bool) -> Setup {
     let geometry = &model.geometry;
     let bodies = TileBodies::new(geometry, |t| geometry.design(t).magnet_mass * 1e-3);
     let oct = Octagon::new(geometry.w);
@@ -82,7 +102,7 @@ pub fn run_free_body(
     let folding = (0..geometry.tiles().saturating_sub(1))
         .filter(|&j| model.joint_var(j).is_some())
         .collect();
-    let setup = Setup {
+    Setup {
         ri: geometry.ri(),
         cutoff: model.options().cutoff,
         im,
@@ -91,9 +111,9 @@ pub fn run_free_body(
         hinges,
         folding,
         restitution: geometry.design(0).restitution,
+        zero_momentum,
         model,
-    };
-    Ok(Driver::new(setup, opts).run())
+    }
 }
 
 struct Driver {
@@ -323,7 +343,7 @@ impl Driver {
             .packed
             .iter()
             .any(|&i| !(0.0..=1.0).contains(&self.z[Setup::at(i)]));
-        let before = past.then(|| {
+        let before = (past && !self.setup.zero_momentum).then(|| {
             let sys = free_body!(self);
             sys.evaluate(&self.z, &mut self.work);
             sys.base_momentum(&self.work).0
@@ -424,11 +444,13 @@ impl Driver {
         let theta_dot = sign * psi_dot * FRAC_PI_2;
         let coeff = if stays { 1.0 } else { 1.0 + e };
         let lambda = -coeff * theta_dot / r;
-        let a0 = self.work.a[0];
-        let (sp, cp) = self.z[2].sin_cos();
-        self.z[3] += lambda * (cp * a0[1] - sp * a0[2]);
-        self.z[4] += lambda * (sp * a0[1] + cp * a0[2]);
-        self.z[5] += lambda * a0[0];
+        if !self.setup.zero_momentum {
+            let a0 = self.work.a[0];
+            let (sp, cp) = self.z[2].sin_cos();
+            self.z[3] += lambda * (cp * a0[1] - sp * a0[2]);
+            self.z[4] += lambda * (sp * a0[1] + cp * a0[2]);
+            self.z[5] += lambda * a0[0];
+        }
         for gg in 1..self.groups.len() {
             let jj = self.groups.last[gg - 1];
             if let Some(v) = self.setup.model.joint_var(jj) {
@@ -631,7 +653,11 @@ impl Driver {
         self.base.push((self.t, [self.z[0], self.z[1], self.z[2]]));
         FreeBodyRun {
             run: ReferenceRun {
-                made_by: "free-body reference",
+                made_by: if self.setup.zero_momentum {
+                    "coupled joint-angle reference"
+                } else {
+                    "free-body reference"
+                },
                 end_time: self.t,
                 final_state: y,
                 states,

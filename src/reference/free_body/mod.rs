@@ -37,6 +37,7 @@ mod spatial;
 mod system;
 mod tile_body;
 
+pub(crate) use driver::run_coupled;
 pub use driver::run_free_body;
 pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;

@@ -56,6 +56,10 @@ pub(crate) struct Setup {
     pub(crate) folding: Vec<usize>,
     /// Coefficient of restitution of a fold meeting its walls.
     pub(crate) restitution: f64,
+    /// The coupled joint-angle reference ([`crate::reference::ReferenceOptions::coupled`]):
+    /// the base's pose is not integrated and its velocity is not a state but what keeps the
+    /// chain's momentum zero ([`FreeBody::evaluate`]).
+    pub(crate) zero_momentum: bool,
 }
 
 impl Setup {
@@ -232,6 +236,18 @@ impl FreeBody<'_> {
     /// Evaluates the state in `w.full`.
     fn evaluate_full(&self, w: &mut Work) {
         self.clear_work(w);
+        if self.setup.zero_momentum {
+            // the base's velocity that gives the chain no momentum at the joints' rates
+            // (`w.full[2]`, the base's heading, stays 0: tile 0's axes are the world's)
+            w.full[3..BASE].fill(0.0);
+            self.frames_and_velocities(w);
+            self.inertias_and_drags(w);
+            let (h, composite) = self.base_momentum(w);
+            let v0 = solve(&composite, [-h[0], -h[1], -h[2]]).unwrap_or([0.0; 3]);
+            w.full[3] = v0[1];
+            w.full[4] = v0[2];
+            w.full[5] = v0[0];
+        }
         let (sp, cp) = self.frames_and_velocities(w);
         self.inertias_and_drags(w);
         self.pair_wrenches(w);
@@ -288,8 +304,6 @@ impl FreeBody<'_> {
             buf.clear();
             buf.resize(ng, 0.0);
         }
-        w.frames.clear();
-        w.origin.clear();
         w.drive.clear();
         w.drive.resize(self.packed.len(), 0.0);
     }
@@ -301,6 +315,8 @@ impl FreeBody<'_> {
         let groups = self.groups;
         let ng = groups.len();
         let half = 0.5 * model.geometry.w;
+        w.frames.clear();
+        w.origin.clear();
         // the base's velocity in tile 0's axes
         let (sp, cp) = w.full[2].sin_cos();
         let (vx, vy) = (w.full[3], w.full[4]);
@@ -448,12 +464,17 @@ impl FreeBody<'_> {
     fn rates(&self, w: &Work, out: &mut [f64]) {
         let model = self.model();
         let z = &w.full;
-        out[0] = z[3];
-        out[1] = z[4];
-        out[2] = z[5];
-        out[3] = w.base_acc[1];
-        out[4] = w.base_acc[2];
-        out[5] = w.base_acc[0];
+        if self.setup.zero_momentum {
+            // the base's velocity follows the joints' rates: nothing of it is stepped
+            out[..BASE].fill(0.0);
+        } else {
+            out[0] = z[3];
+            out[1] = z[4];
+            out[2] = z[5];
+            out[3] = w.base_acc[1];
+            out[4] = w.base_acc[2];
+            out[5] = w.base_acc[0];
+        }
         for (p, &i) in self.packed.iter().enumerate() {
             let v = z[Setup::at(i) + 1];
             out[BASE + 2 * p] = v;
