@@ -24,6 +24,9 @@ pub(crate) struct Failed {
     pub collide: String,
     /// The route rejected for the smallest empty part.
     pub rejected: Option<(String, Box<Rejected>)>,
+    /// When set (the asked count and its tolerance, tiles), a rejected route is kept by the
+    /// tiles its count misses beyond the tolerance first, then by its empty part.
+    pub by_count: Option<(usize, usize)>,
 }
 
 impl Failed {
@@ -34,11 +37,15 @@ impl Failed {
             self.collide = other.collide;
         }
         if let Some((text, r)) = other.rejected {
-            if self
-                .rejected
-                .as_ref()
-                .is_none_or(|(_, b)| r.empty.tiles < b.empty.tiles)
-            {
+            let miss = |p: &Rejected| {
+                self.by_count
+                    .map_or(0, |(n, tol)| p.plan.tiles.abs_diff(n).saturating_sub(tol))
+            };
+            if self.rejected.as_ref().is_none_or(|(_, b)| {
+                (miss(&r), r.empty.tiles)
+                    .partial_cmp(&(miss(b), b.empty.tiles))
+                    .is_some_and(|o| o.is_lt())
+            }) {
                 self.rejected = Some((text, r));
             }
         }
@@ -95,7 +102,9 @@ pub(crate) fn checked_plans(
     admit: &dyn Fn(&Plan) -> bool,
     failed: &mut Failed,
 ) -> Vec<Plan> {
-    let Failed { collide, rejected } = failed;
+    let Failed {
+        collide, rejected, ..
+    } = failed;
     let mut plans: Vec<(Plan, &Routed, f64)> = Vec::new();
     for (a, r) in routes.iter().take(CHECKED_ROUTES) {
         let good = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
