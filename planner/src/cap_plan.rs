@@ -62,6 +62,8 @@ const SLAB_MIN_WIDTHS: usize = 2;
 /// its rows do not fill a whole slab its order cannot reach (a U's arm swept from the
 /// wrong end leaves a third of the shape empty at every width).
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
+/// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
+const JOINED_GROUPS: usize = 2;
 /// Factors tried on the tile width when every route at the width the steps settle on
 /// collides or leaves a part empty: the joins then fall on the cells at other phases.
 const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
@@ -206,8 +208,10 @@ pub(crate) fn plan_by_caps(
     let first = slabs.len().min(SLAB_GROUPS);
     let rest = slabs.split_off(first);
     groups.extend(slabs.into_iter().map(|g| vec![g]));
-    let joined_at = joined.first().map(|_| groups.len());
-    groups.extend(joined.into_iter().take(1).map(|g| vec![g]));
+    // the cheapest and the next (the cheapest's laid in the order their joins were priced
+    // for, sized only where they leave less empty, see [`crate::slabs`])
+    let joined_at = groups.len()..groups.len() + joined.len().min(JOINED_GROUPS);
+    groups.extend(joined.into_iter().take(JOINED_GROUPS).map(|g| vec![g]));
     groups.extend(rest.into_iter().map(|g| vec![g]));
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
@@ -220,12 +224,12 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        if joined_at == Some(i) {
+        if joined_at.contains(&i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
                 continue;
             }
-        } else if i >= first_slab + SLAB_GROUPS + usize::from(joined_at.is_some_and(|j| j < i))
+        } else if i >= first_slab + SLAB_GROUPS + joined_at.clone().filter(|&j| j < i).count()
             && least() <= large
         {
             break;
@@ -235,8 +239,13 @@ pub(crate) fn plan_by_caps(
             .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
         let mut here = Failed::new(asked);
         let before = least();
-        let mut found = size_group(shape, opts, style, name, axes, slabs, &mut here);
-        if joined_at == Some(i) {
+        // its routes rejected for an empty part rank by how far they fall short of the
+        // asked chain, the count's miss and the part left empty in one price ([`Asked`])
+        // the added decomposition is given up at its first width only if it leaves more
+        // empty than every plan so far too
+        let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
+        let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
+        if joined_at.contains(&i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             found = found.filter(|p| p.metrics.largest_empty_tiles < before);
             // the added decomposition's route rejected for an empty part is kept only with
@@ -308,14 +317,15 @@ fn miss(opts: &PlanOptions, p: &Plan) -> usize {
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
 /// found, what the others said in `failed`. A group of `slabs` searches within a budget of
 /// [`SLAB_SEARCH_TILES`] and is given up at its first width if hopeless (see
-/// [`SLAB_HOPELESS_EMPTY`]).
+/// [`SLAB_HOPELESS_EMPTY`]; not while it leaves less empty than `hopeless_above` tile
+/// areas).
 fn size_group(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     axes: &[(f64, Vec<CapPlan>, f64)],
-    slabs: bool,
+    (slabs, hopeless_above): (bool, f64),
     failed: &mut Failed,
 ) -> Option<Plan> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
@@ -394,7 +404,8 @@ fn size_group(
         }
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
         failed.merge(here);
-        let hopeless = least_empty.is_none_or(|e| e > SLAB_HOPELESS_EMPTY * target as f64);
+        let hopeless = least_empty
+            .is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(hopeless_above));
         if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
             return Attempt::Nothing;
         }

@@ -118,6 +118,9 @@ pub(crate) struct Route {
     legs: Vec<Arc<Leg>>,
     /// Tile centres so far, in pieces (shared between routes).
     centres: Vec<Arc<Vec<Point>>>,
+    /// The bounding box of each piece of `centres`: the tests of a new leg pass over the
+    /// pieces far from it (see [`far_apart`]).
+    boxes: Vec<Rect>,
     /// The sequential fold check of the route so far (its tiles shared between routes).
     check: PrefixCheck,
 }
@@ -224,11 +227,40 @@ fn beside(
     found
 }
 
-/// True if some centre of `new` comes closer than [`MIN_GAP`] to a centre in `old`.
-fn overlaps(old: &[Arc<Vec<Point>>], new: &[Point]) -> bool {
+/// The bounding box of `pts` (inverted, and so [`far_apart`] from every box, when empty).
+fn bbox_of(pts: &[Point]) -> Rect {
+    pts.iter().fold(
+        Rect::new(
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |b, &q| Rect::new(b.x0.min(q.x), b.y0.min(q.y), b.x1.max(q.x), b.y1.max(q.y)),
+    )
+}
+
+/// True if every point of box `a` lies more than `gap` from every point of box `b` along x
+/// or along y (a point of one then lies farther than `gap` from any point of the other).
+fn far_apart(a: Rect, b: Rect, gap: f64) -> bool {
+    a.x0 > b.x1 + gap || b.x0 > a.x1 + gap || a.y0 > b.y1 + gap || b.y0 > a.y1 + gap
+}
+
+/// True if some centre of `new` comes closer than [`MIN_GAP`] to a centre in `old` (pieces
+/// with bounding boxes `boxes`): only the pieces whose box comes within a tile of `new`'s
+/// are looked at, the same verdict as testing every centre.
+fn overlaps(old: &[Arc<Vec<Point>>], boxes: &[Rect], new: &[Point]) -> bool {
+    let reach = bbox_of(new);
+    let mut near = old
+        .iter()
+        .zip(boxes)
+        .filter(|(_, &b)| !far_apart(b, reach, 1.0))
+        .peekable();
+    if near.peek().is_none() {
+        return false;
+    }
     let grid = CentreGrid::new(new);
-    old.iter()
-        .flat_map(|v| v.iter())
+    near.flat_map(|(v, _)| v.iter())
         .any(|&p| grid.any_near(p, |t| (new[t].x - p.x).hypot(new[t].y - p.y) < MIN_GAP))
 }
 
@@ -468,6 +500,7 @@ fn route_beam(
             Route {
                 cost,
                 legs: vec![Arc::new(leg)],
+                boxes: vec![bbox_of(&c)],
                 centres: vec![Arc::new(c)],
                 check,
             }
@@ -475,12 +508,21 @@ fn route_beam(
         .collect();
     for (at, &(shape, need)) in seq.iter().enumerate().skip(1) {
         let toward = centre(at + 1);
+        // only tiles near the cell can block its rows (see [`next_legs`]): the pieces of a
+        // route far from it are passed over whole
+        let cell_box = shape.bbox().inflate(2.0, 2.0);
         // every extension, cheapest first; the overlap test (the costly part) runs only
         // until the beam is full
         let mut cands: Vec<(f64, f64, usize, Leg, Vec<Point>)> = Vec::new();
         for (i, r) in beam.iter().enumerate() {
             let Some(prev) = r.legs.last() else { continue };
-            let laid: Vec<Point> = r.centres.iter().flat_map(|v| v.iter().copied()).collect();
+            let laid: Vec<Point> = r
+                .centres
+                .iter()
+                .zip(&r.boxes)
+                .filter(|(_, &b)| !far_apart(b, cell_box, 0.0))
+                .flat_map(|(v, _)| v.iter().copied())
+                .collect();
             for (cost, look, leg, join_tiles) in
                 next_legs(prev, &laid, shape, style, toward, need, spread)
             {
@@ -505,7 +547,7 @@ fn route_beam(
             let r = &mut beam[i];
             let mut c = join_tiles;
             c.extend(leg.centres(style));
-            if overlaps(&r.centres, &c) {
+            if overlaps(&r.centres, &r.boxes, &c) {
                 continue;
             }
             // folding is sequential from tile 0: a prefix that collides stays colliding,
@@ -522,11 +564,14 @@ fn route_beam(
             let mut legs = r.legs.clone();
             legs.push(Arc::new(leg));
             seen.insert(key);
+            let mut boxes = r.boxes.clone();
+            boxes.push(bbox_of(&c));
             let mut centres = r.centres.clone();
             centres.push(Arc::new(c));
             next.push(Route {
                 cost,
                 legs,
+                boxes,
                 centres,
                 check,
             });

@@ -38,10 +38,12 @@ const JOIN_PRICE: f64 = 1.0;
 
 /// The cheapest slab decompositions of `axis_shape` (axis frame, unit tiles) into at least
 /// two slabs for rows of `style`, cheapest first by their slabs' misfits alone, each in both
-/// orders along its axis: at most `2 KEEP`; then, when it is not one of those, the
-/// decomposition whose slabs' misfits and joins ([`entry_price`]) cost least, with each
-/// slab's direction chosen with its joins ([`directions`]), marked `joined`, in both orders.
-/// Empty when the shape is not one piece or has no cut.
+/// orders along its axis: at most `2 KEEP`; then the two decompositions (each in its own
+/// laying order) not among those whose slabs' misfits and joins ([`entry_price`]) cost
+/// least, with each slab's direction chosen with its joins and allowed only where it may
+/// follow the slabs laid before ([`directions`]), marked `joined`. The joined price also
+/// sees cuts across the middle of each hole, so a ring may be laid as two halves, the second
+/// swept along the cut. Empty when the shape is not one piece or has no cut.
 pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
     let r = Raster::new(axis_shape);
     let s = Search::new(&r, style.pitch);
@@ -52,98 +54,145 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
     let mut found: Vec<CapPlan> = Vec::new();
     // the same decompositions, priced with what their joins leave empty
     let mut joined: Vec<CapPlan> = Vec::new();
+    // the cheapest of them at the cuts where the runs change, each slab's direction chosen
+    // with its joins alone (not by the order of laying)
+    let mut first: Option<CapPlan> = None;
     for across_x in [true, false] {
         let (lo, hi) = if across_x { (b.x0, b.x1) } else { (b.y0, b.y1) };
-        let cuts = critical_cuts(&s, b, across_x);
-        for mask in 1u32..(1u32 << cuts.len()) {
-            let mut edges = vec![lo];
-            edges.extend(
-                cuts.iter()
-                    .enumerate()
-                    .filter(|(i, _)| mask >> i & 1 == 1)
-                    .map(|(_, &c)| c),
-            );
-            edges.push(hi);
-            // each slab's tight box, the cut before it, its price in each direction
-            let mut slabs: Vec<Slab> = Vec::new();
-            let mut whole = true;
-            for e in edges.windows(2) {
-                let slab = if across_x {
-                    PBox {
-                        x0: e[0],
-                        x1: e[1],
-                        ..b
-                    }
-                } else {
-                    PBox {
-                        y0: e[0],
-                        y1: e[1],
-                        ..b
-                    }
+        let cuts = critical_cuts(&s, b, across_x, false);
+        // the joined price also sees cuts across the holes' middles
+        let middles = critical_cuts(&s, b, across_x, true);
+        let sets: Vec<(&[usize], bool)> = if middles == cuts {
+            vec![(&cuts, true)]
+        } else {
+            vec![(&cuts, true), (&middles, false)]
+        };
+        for (cuts, old) in sets {
+            for mask in 1u32..(1u32 << cuts.len()) {
+                let mut edges = vec![lo];
+                edges.extend(
+                    cuts.iter()
+                        .enumerate()
+                        .filter(|(i, _)| mask >> i & 1 == 1)
+                        .map(|(_, &c)| c),
+                );
+                edges.push(hi);
+                let mut price = |t: PBox| {
+                    priced
+                        .entry(t)
+                        .or_insert_with(|| slab_price(axis_shape, &s, t, style))
+                        .clone()
                 };
-                let Some(t) = s.tight(slab).filter(|&t| s.components(t) == 1) else {
-                    whole = false;
-                    break;
+                let Some(slabs) = cut_slabs(&s, b, across_x, &edges, &mut price) else {
+                    continue;
                 };
-                let price = priced
-                    .entry(t)
-                    .or_insert_with(|| slab_price(axis_shape, &s, t, style));
-                if price.is_empty() {
-                    whole = false;
-                    break;
+                if slabs.len() < 2 {
+                    continue;
                 }
-                slabs.push((t, e[0], price.clone()));
-            }
-            if !whole {
-                continue;
-            }
-            let joins = JOIN_PRICE * (edges.len() - 2) as f64;
-            let make = |cost: f64, dirs: Vec<Dir>| CapPlan {
-                cells: slabs
-                    .iter()
-                    .zip(dirs)
-                    .map(|((t, _, _), n)| CapCell {
-                        rect: s.rect(*t),
-                        n,
-                        either_sign: true,
-                    })
-                    .collect(),
-                cost,
-                slabs: true,
-                joined: false,
-            };
-            // each slab alone in its cheaper direction (the first price), and the directions
-            // chosen with the joins
-            let alone: Vec<(f64, Dir)> = slabs
-                .iter()
-                .map(|(_, _, p)| {
-                    p.iter().copied().fold((f64::INFINITY, Dir::PosY), |a, b| {
-                        if b.0 < a.0 {
-                            b
-                        } else {
-                            a
+                let joins = JOIN_PRICE * (edges.len() - 2) as f64;
+                let make = |cost: f64, dirs: Vec<Dir>| CapPlan {
+                    cells: slabs
+                        .iter()
+                        .zip(dirs)
+                        .map(|((t, _, _), n)| CapCell {
+                            rect: s.rect(*t),
+                            n,
+                            either_sign: true,
+                        })
+                        .collect(),
+                    cost,
+                    slabs: true,
+                    joined: false,
+                };
+                // each slab alone in its cheaper direction (the first price; only for the
+                // cuts where the runs change), and the directions chosen with the joins in
+                // both laying orders
+                if old {
+                    let alone: Vec<(f64, Dir)> = slabs
+                        .iter()
+                        .map(|(_, _, p)| {
+                            p.iter().copied().fold((f64::INFINITY, Dir::PosY), |a, b| {
+                                if b.0 < a.0 {
+                                    b
+                                } else {
+                                    a
+                                }
+                            })
+                        })
+                        .collect();
+                    found.push(make(
+                        joins + alone.iter().map(|a| a.0).sum::<f64>(),
+                        alone.iter().map(|a| a.1).collect(),
+                    ));
+                }
+                for reverse in [false, true] {
+                    if let Some((cost, dirs)) = directions(&s, across_x, &slabs, (reverse, true)) {
+                        let mut p = make(cost + joins, dirs);
+                        if reverse {
+                            p.cells.reverse();
                         }
-                    })
-                })
-                .collect();
-            if slabs.len() > 1 {
-                found.push(make(
-                    joins + alone.iter().map(|a| a.0).sum::<f64>(),
-                    alone.iter().map(|a| a.1).collect(),
-                ));
-                if let Some((cost, dirs)) = directions(&s, across_x, &slabs) {
-                    joined.push(make(cost + joins, dirs));
+                        joined.push(p);
+                    }
+                }
+                if old {
+                    if let Some((cost, dirs)) = directions(&s, across_x, &slabs, (false, false)) {
+                        let p = make(cost + joins, dirs);
+                        if first.as_ref().is_none_or(|f| p.cost < f.cost) {
+                            first = Some(p);
+                        }
+                    }
                 }
             }
         }
     }
-    assemble(found, joined)
+    assemble(found, joined, first)
+}
+
+/// The slabs of `b` between consecutive `edges` (pixel columns if `across_x`, else rows):
+/// each slab's tight box, the cut before it and its `price` in each direction; None when a
+/// slab is not one piece or has no direction whose rows fit.
+fn cut_slabs(
+    s: &Search<'_>,
+    b: PBox,
+    across_x: bool,
+    edges: &[usize],
+    price: &mut dyn FnMut(PBox) -> Vec<(f64, Dir)>,
+) -> Option<Vec<Slab>> {
+    let mut slabs: Vec<Slab> = Vec::new();
+    for e in edges.windows(2) {
+        let slab = if across_x {
+            PBox {
+                x0: e[0],
+                x1: e[1],
+                ..b
+            }
+        } else {
+            PBox {
+                y0: e[0],
+                y1: e[1],
+                ..b
+            }
+        };
+        let t = s.tight(slab).filter(|&t| s.components(t) == 1)?;
+        let p = price(t);
+        if p.is_empty() {
+            return None;
+        }
+        slabs.push((t, e[0], p));
+    }
+    Some(slabs)
 }
 
 /// The cheapest [`KEEP`] of the decompositions priced alone (`found`), each in both orders,
-/// then the cheapest by the joined price when it is not one of those, marked `joined`, in
-/// both orders (see [`slab_plans`]).
-fn assemble(mut found: Vec<CapPlan>, mut joined: Vec<CapPlan>) -> Vec<CapPlan> {
+/// then `first` (the cheapest by the joined price at the cuts where the runs change) in both
+/// orders where it is not one of those, and the two cheapest of `joined` (each in the laying
+/// order it was priced for) that are none of these, all marked `joined`, `first`'s pair
+/// sized first and the other two in a slot of their own after it (see [`slab_plans`]).
+fn assemble(
+    mut found: Vec<CapPlan>,
+    mut joined: Vec<CapPlan>,
+    first: Option<CapPlan>,
+) -> Vec<CapPlan> {
     found.sort_by(|a, b| a.cost.total_cmp(&b.cost));
     found.truncate(KEEP);
     joined.sort_by(|a, b| a.cost.total_cmp(&b.cost));
@@ -154,29 +203,50 @@ fn assemble(mut found: Vec<CapPlan>, mut joined: Vec<CapPlan>) -> Vec<CapPlan> {
                 .zip(&b.cells)
                 .all(|(x, y)| x.rect == y.rect && x.n == y.n)
     };
-    // the best decomposition by the joined price, added (never in place of one of the
-    // others) when it differs from them, marked to be sized in a slot of its own
-    if let Some(mut j) = joined.into_iter().next() {
-        if !found.iter().any(|f| same(f, &j)) {
-            j.joined = true;
-            found.push(j);
-        }
-    }
-    found
+    // the cheapest with each slab's direction chosen with its joins alone, added (never in
+    // place of one of the others) when it differs from them, in both orders
+    let alone = first.filter(|j| !found.iter().any(|f| same(f, j)));
+    let mut out: Vec<CapPlan> = found
         .into_iter()
         .flat_map(|p| {
             let mut rev = p.clone();
             rev.cells.reverse();
             [p, rev]
         })
-        .collect()
+        .collect();
+    let mut group: Vec<CapPlan> = Vec::new();
+    if let Some(j) = alone {
+        let mut rev = j.clone();
+        rev.cells.reverse();
+        group.extend([j, rev]);
+    }
+    // then the two cheapest laid in the order the joins were priced for that are none of
+    // those; the group ranks by the first, after every group that has one (infinite cost)
+    let group_cost = group.first().map_or(f64::INFINITY, |j| j.cost);
+    let mut extra = 0;
+    for j in joined {
+        if extra == 2 {
+            break;
+        }
+        if out.iter().chain(&group).any(|f| same(f, &j)) {
+            continue;
+        }
+        group.push(j);
+        extra += 1;
+    }
+    for p in &mut group {
+        p.joined = true;
+        p.cost = group_cost;
+    }
+    out.extend(group);
+    out
 }
 
 /// The lines (pixel columns if `across_x`, else pixel rows) of `b` at which a slab may be
 /// cut: where the runs of a line differ in number from the line before or an end moves by
 /// more than a tile; at most [`MAX_CUTS`], the largest changes, at least a tile from the
 /// box's sides and from each other, in order.
-fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool) -> Vec<usize> {
+fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool, middles: bool) -> Vec<usize> {
     let tile = s.raster().per_tile();
     let min = tile.ceil() as usize;
     let (lo, hi, alo, ahi) = if across_x {
@@ -187,8 +257,22 @@ fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool) -> Vec<usize> {
     // (line, size of the change)
     let mut changes: Vec<(usize, f64)> = Vec::new();
     let mut prev = s.runs(!across_x, lo, alo, ahi);
+    // the line where the runs last grew in number (a hole or a notch opens)
+    let mut opened: Option<usize> = None;
     for k in lo + 1..hi {
         let runs = s.runs(!across_x, k, alo, ahi);
+        if runs.len() > prev.len() {
+            opened = Some(k);
+        } else if runs.len() < prev.len() {
+            if let Some(o) = opened.take().filter(|_| middles) {
+                // a hole's middle: the halves beside it may be laid one after the other,
+                // the second swept along the cut ([`may_follow`])
+                let mid = (o + k) / 2;
+                if mid >= lo + min && mid + min <= hi {
+                    changes.push((mid, f64::MAX));
+                }
+            }
+        }
         let change = if runs.len() != prev.len() {
             f64::INFINITY
         } else {
@@ -310,28 +394,74 @@ fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Vec<
     out
 }
 
+/// Whether slab `t` swept with rows stacked along `n` may follow the slabs `earlier` under
+/// sequential folding: the unfolded tail runs straight on from the tile being laid, as long
+/// as the chain still to lay, so rows that run across the cuts (towards the slabs beside
+/// this one) may not be laid once a slab across their lines is laid (it lies beside the
+/// slab, or across a hole: a ring's second half swept in columns heads into its first
+/// half). Rows along the cuts never meet another slab of the decomposition.
+fn may_follow(across_x: bool, t: PBox, n: Dir, earlier: &[PBox], tile: f64) -> bool {
+    let across = matches!(n, Dir::PosY | Dir::NegY) == across_x;
+    if !across {
+        return true;
+    }
+    // the slab's extent along its rows' lines' spacing (rows along x: its y range)
+    let span = |b: PBox| if across_x { (b.y0, b.y1) } else { (b.x0, b.x1) };
+    let (a0, a1) = span(t);
+    earlier.iter().all(|&e| {
+        let (e0, e1) = span(e);
+        (a1.min(e1) as f64 - a0.max(e0) as f64) < tile
+    })
+}
+
 /// The sweep direction of each slab of a decomposition (`(tight box, cut before it, price
-/// in each direction)`, in order along the axis) that makes the least sum of the slabs'
-/// misfits and the parts their joins leave empty ([`entry_price`]), and that sum: exact,
-/// by dynamic programming over the slabs (two directions each). None if a slab has none.
-fn directions(s: &Search<'_>, across_x: bool, slabs: &[Slab]) -> Option<(f64, Vec<Dir>)> {
-    // per slab, per direction: (cost so far, index of the previous slab's direction)
+/// in each direction)`, in order along the axis), laid in that order or (`reverse`) the
+/// other, that makes the least sum of the slabs' misfits and the parts their joins leave
+/// empty ([`entry_price`]), each slab's rows allowed (if `follow`) only where they may
+/// follow the slabs laid before ([`may_follow`]), and that sum: exact, by dynamic programming over the slabs
+/// (two directions each). None if a slab has no allowed direction.
+fn directions(
+    s: &Search<'_>,
+    across_x: bool,
+    slabs: &[Slab],
+    (reverse, follow): (bool, bool),
+) -> Option<(f64, Vec<Dir>)> {
+    let tile = s.raster().per_tile();
+    let order: Vec<usize> = if reverse {
+        (0..slabs.len()).rev().collect()
+    } else {
+        (0..slabs.len()).collect()
+    };
+    // per slab in laying order, per direction: (cost so far, previous slab's direction)
     let mut table: Vec<Vec<(f64, usize)>> = Vec::with_capacity(slabs.len());
-    for (i, (t, cut, prices)) in slabs.iter().enumerate() {
+    for (i, &k) in order.iter().enumerate() {
+        let (t, _, prices) = &slabs[k];
+        let earlier: Vec<PBox> = order[..i].iter().map(|&e| slabs[e].0).collect();
         let row: Vec<(f64, usize)> = prices
             .iter()
             .map(|&(c, n)| {
+                if follow && !may_follow(across_x, *t, n, &earlier, tile) {
+                    return (f64::INFINITY, 0);
+                }
                 if i == 0 {
                     return (c, 0);
                 }
-                let (pt, _, pp) = &slabs[i - 1];
+                let prev = order[i - 1];
+                let (pt, _, pp) = &slabs[prev];
+                // the cut between the two: the start of the later one along the axis
+                let (lower, upper) = if prev < k { (prev, k) } else { (k, prev) };
+                let cut = slabs[upper].1;
                 table[i - 1]
                     .iter()
                     .zip(pp)
                     .enumerate()
                     .map(|(j, (&(sofar, _), &(_, m)))| {
-                        let join = entry_price(s, across_x, *cut, (*pt, m), (*t, n));
-                        (sofar + c + join, j)
+                        let (a, b) = if lower == prev {
+                            ((*pt, m), (*t, n))
+                        } else {
+                            ((*t, n), (*pt, m))
+                        };
+                        (sofar + c + entry_price(s, across_x, cut, a, b), j)
                     })
                     .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
             })
@@ -339,7 +469,7 @@ fn directions(s: &Search<'_>, across_x: bool, slabs: &[Slab]) -> Option<(f64, Ve
         table.push(row);
     }
     let last = table.last()?;
-    let (mut k, &(cost, _)) = last
+    let (mut d, &(cost, _)) = last
         .iter()
         .enumerate()
         .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))?;
@@ -347,9 +477,9 @@ fn directions(s: &Search<'_>, across_x: bool, slabs: &[Slab]) -> Option<(f64, Ve
         return None;
     }
     let mut dirs = vec![Dir::PosY; slabs.len()];
-    for i in (0..slabs.len()).rev() {
-        dirs[i] = slabs[i].2[k].1;
-        k = table[i][k].1;
+    for i in (0..order.len()).rev() {
+        dirs[order[i]] = slabs[order[i]].2[d].1;
+        d = table[i][d].1;
     }
     Some((cost, dirs))
 }

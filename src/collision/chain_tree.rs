@@ -322,6 +322,25 @@ impl ChainTree {
         out.retain(|&p| self.nodes[p].radius >= 0.0);
     }
 
+    /// The world pose of tile `i` (tile 0 at the origin heading +x): down from the root,
+    /// O(log n).
+    pub fn tile_pose(&self, i: usize) -> Rigid {
+        let mut at = Rigid::IDENTITY;
+        let (mut p, mut width) = (1usize, self.leaves);
+        while width > 1 {
+            width /= 2;
+            let right = 2 * p + 1;
+            if i >= self.first(right) {
+                at = at.then(&self.nodes[p].to_right);
+                p = right;
+            } else {
+                p *= 2;
+            }
+        }
+        debug_assert_eq!(p, self.leaves + i);
+        at
+    }
+
     /// Joint `k`'s angle in the tree.
     pub fn angle(&self, k: usize) -> f64 {
         self.angles[k]
@@ -418,6 +437,7 @@ mod tests {
             let poses = crate::kinematics::poses_at_angles(&a, 1.0);
             for (i, p) in poses.iter().enumerate() {
                 let at = tree.pose_of(i);
+                assert_eq!(tree.tile_pose(i), at, "tile {i}");
                 assert!(close(at.apply(Point::ORIGIN), (p.x, p.y)), "tile {i}");
                 let ahead = at.apply(Point::new(1.0, 0.0));
                 assert!(close(ahead, p.transform_point((1.0, 0.0))), "tile {i}");

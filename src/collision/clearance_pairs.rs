@@ -11,9 +11,12 @@
 //! the schedule's start). Over a segment of length `dt` a point of tile `q` moves, seen from
 //! tile `p`, at most `dt sum_k |rate_k| 2 R (q - k)` over the joints `p <= k < q` that turn
 //! (`R` the circumradius: a point of tile `q` lies within `2 R (q - k)` of joint `k`'s
-//! hinge, [`super::clearance`]); two runs whose discs are further apart than the cutoff
-//! plus both runs' motion are dropped together, the others are split down to pairs of
-//! tiles. The cost is the number of runs near the turning joints, times the segments: about
+//! hinge, [`super::clearance`]), and at most `dt sum_k |rate_k| |x - H_k|` with `|x - H_k|`
+//! the distance from the hinge, bounded from the runs' discs and the turning tiles' centres
+//! plus what the step can add to it (`Search::reach`): far tighter for rows far along the
+//! chain that fold back near each other. Two runs whose discs are further apart than the
+//! cutoff plus both runs' motion are dropped together, the others are split down to pairs
+//! of tiles. The cost is the number of runs near the turning joints, times the segments: about
 //! linear in the chain, times the joints turning at once.
 
 use kurbo::Point;
@@ -46,7 +49,11 @@ pub(super) fn pairs_within(
     t0: f64,
     cutoff: f64,
     budget: usize,
-) -> Option<Vec<(usize, usize)>> {
+) -> Option<Vec<(u32, u32)>> {
+    // pairs are kept as two u32 (MAX_TILES is ten million)
+    if u32::try_from(tiles).is_err() {
+        return None;
+    }
     let joints = tiles.saturating_sub(1);
     let tracks: Vec<&JointTrack> = track_of.iter().flatten().copied().collect();
     let mut breakpoints: Vec<f64> = tracks
@@ -68,6 +75,7 @@ pub(super) fn pairs_within(
         active: Vec::new(),
         spin: Vec::new(),
         moment: Vec::new(),
+        centres: Vec::new(),
     };
     // the whole chain at the start
     let all: Vec<(usize, f64)> = (0..joints).map(|k| (k, 0.0)).collect();
@@ -141,9 +149,44 @@ pub(super) fn pairs_within(
         let still: Vec<(usize, f64)> = changed.iter().map(|&(k, _)| (k, 0.0)).collect();
         search.look(&still, 0.0)?;
     }
-    let mut pairs: Vec<(usize, usize)> = search.found.into_iter().collect();
+    let mut pairs: Vec<u64> = search.found.into_iter().collect();
     pairs.sort_unstable();
-    Some(pairs)
+    Some(
+        pairs
+            .into_iter()
+            .map(|p| ((p >> 32) as u32, p as u32))
+            .collect(),
+    )
+}
+
+/// The pairs one look of the search finds on a chain at `angles` whose joints `joints`
+/// (ascending, with their `|rate|`) turn for `dt`: the tests' view of one step.
+#[cfg(test)]
+pub(super) fn one_look(
+    angles: Vec<f64>,
+    joints: &[(usize, f64)],
+    dt: f64,
+    cutoff: f64,
+) -> Vec<(u32, u32)> {
+    let mut search = Search {
+        tree: ChainTree::new(angles, 0.0),
+        radius: Octagon::new(1.0).circumradius(),
+        cutoff,
+        budget: usize::MAX,
+        work: 0,
+        found: FxHashSet::default(),
+        active: Vec::new(),
+        spin: Vec::new(),
+        moment: Vec::new(),
+        centres: Vec::new(),
+    };
+    let _ = search.look(joints, dt);
+    let mut pairs: Vec<u64> = search.found.into_iter().collect();
+    pairs.sort_unstable();
+    pairs
+        .into_iter()
+        .map(|p| ((p >> 32) as u32, p as u32))
+        .collect()
 }
 
 /// The search's state: the chain at a segment's start and the pairs found.
@@ -153,12 +196,17 @@ struct Search {
     cutoff: f64,
     budget: usize,
     work: usize,
-    found: FxHashSet<(usize, usize)>,
+    /// The pairs found, `i << 32 | j` (eight bytes a pair: a long serpentine's search finds
+    /// millions).
+    found: FxHashSet<u64>,
     /// The joints looked at in the segment (ascending), with prefix sums of their `|rate|`
     /// and of `|rate| k`.
     active: Vec<usize>,
     spin: Vec<f64>,
     moment: Vec<f64>,
+    /// The world centre of the first tile of each joint looked at (its hinge lies within a
+    /// circumradius of it).
+    centres: Vec<Point>,
 }
 
 /// A run of tiles placed in the world: its node and its first tile's pose.
@@ -184,6 +232,11 @@ impl Search {
             self.spin.push(self.spin[l] + r);
             self.moment.push(self.moment[l] + r * k as f64);
         }
+        self.centres.clear();
+        for &(k, _) in joints {
+            let c = self.tree.tile_pose(k).apply(Point::ORIGIN);
+            self.centres.push(c);
+        }
         let root = Run {
             node: 1,
             pose: Rigid::IDENTITY,
@@ -196,7 +249,7 @@ impl Search {
                 return None;
             }
             let (pf, pl) = (self.tree.first(p.node), self.tree.last(p.node));
-            let ql = self.tree.last(q.node);
+            let (qf, ql) = (self.tree.first(q.node), self.tree.last(q.node));
             if same {
                 if self.tree.tile(p.node).is_some() || !self.any(pf, pl) {
                     continue;
@@ -219,17 +272,27 @@ impl Search {
             }
             let (cp, rp) = self.disc(&p);
             let (cq, rq) = self.disc(&q);
-            // how far q moves seen from p's first tile, and p's tiles seen from it
-            let reach = 2.0 * self.radius * dt * (self.lever(pf, ql, ql) + self.lever(pf, pl, pl));
-            let gap = (cp - cq).hypot() - rp - rq - reach;
+            // how far q moves seen from p's first tile, and p's tiles seen from it: along
+            // the chain first, then from where the turning joints' hinges lie
+            let (ep, eq) = (
+                2.0 * self.radius * dt * self.lever(pf, pl, pl),
+                2.0 * self.radius * dt * self.lever(pf, ql, ql),
+            );
+            let dist = (cp - cq).hypot();
             let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
-            if gap - round > self.cutoff {
+            // the pair is dropped when it stays apart by more than the cutoff
+            let room = dist - rp - rq - round - self.cutoff;
+            if room > ep + eq {
+                continue;
+            }
+            if room > 0.0 && self.reach([pf, pl, qf, ql], (rp, rq), (cq, dist), (ep, eq), dt) < room
+            {
                 continue;
             }
             match (self.tree.tile(p.node), self.tree.tile(q.node)) {
                 (Some(i), Some(j)) => {
                     if j >= i + 2 {
-                        self.found.insert((i, j));
+                        self.found.insert(((i as u64) << 32) | j as u64);
                     }
                 }
                 (pt, qt) => {
@@ -247,6 +310,46 @@ impl Search {
             }
         }
         Some(())
+    }
+
+    /// How far the tiles of run `q` can move towards those of run `p` over `dt` seconds
+    /// (`p` before `q` along the chain: tiles `pf..=pl` and `qf..=ql`), from where the
+    /// turning joints' hinges lie rather than from how far along the chain: joint `k` turning
+    /// at `w_k` moves a point `x` at most `w_k |x - H_k|` seen from `p`'s first tile. At the
+    /// step's start `|x - H_k|` is at most `2 r_q` for a joint inside `q` (both in its disc),
+    /// `dist + r_p + r_q` for one inside `p`, and `|c_q - c_k| + r_q + R` for one between
+    /// them (`c_k` the centre of tile `k`, whose vertex the hinge is); over the step it grows
+    /// by at most twice the motion along the chain (`eq`: every point of the tiles up to the
+    /// last of `q` moves at most that much seen from `p`'s first tile), and likewise for the
+    /// joints inside `p` moving its own tiles. Each part is never taken above its bound along
+    /// the chain (`ep`, `eq`); the joints between are summed only until that bound is
+    /// reached.
+    fn reach(
+        &self,
+        [pf, pl, qf, ql]: [usize; 4],
+        (rp, rq): (f64, f64),
+        (cq, dist): (Point, f64),
+        (ep, eq): (f64, f64),
+        dt: f64,
+    ) -> f64 {
+        let at = |x: usize| self.active.partition_point(|&k| k < x);
+        let (a, b, c, d) = (at(pf), at(pl), at(qf), at(ql));
+        // the joints inside p, between, inside q: active[a..b], [b..c], [c..d]
+        let spin = |u: usize, v: usize| self.spin[v] - self.spin[u];
+        let inside_p = spin(a, b) * (dist + rp + rq + 2.0 * eq);
+        let inside_q = spin(c, d) * (2.0 * rq + 2.0 * eq);
+        let mut between = 0.0;
+        let cap = eq / dt.max(f64::MIN_POSITIVE);
+        for x in b..c {
+            let w = self.spin[x + 1] - self.spin[x];
+            between += w * ((cq - self.centres[x]).hypot() + rq + self.radius + 2.0 * eq);
+            if between + inside_p + inside_q >= cap {
+                break;
+            }
+        }
+        let q = (dt * (inside_p + between + inside_q)).min(eq);
+        let p = (dt * spin(a, b) * (2.0 * rp + 2.0 * ep)).min(ep);
+        q + p
     }
 
     /// Whether a joint looked at lies in `lo..hi`.
