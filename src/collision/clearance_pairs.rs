@@ -65,18 +65,7 @@ pub(super) fn pairs_within(
     let angles: Vec<f64> = (0..joints)
         .map(|k| track_of[k].map_or(0.0, |t| t.angle_at(t0)))
         .collect();
-    let mut search = Search {
-        tree: ChainTree::new(angles, 0.0),
-        radius: Octagon::new(1.0).circumradius(),
-        cutoff,
-        budget,
-        work: 0,
-        found: FxHashSet::default(),
-        active: Vec::new(),
-        spin: Vec::new(),
-        moment: Vec::new(),
-        centres: Vec::new(),
-    };
+    let mut search = Search::new(angles, cutoff, budget);
     // the whole chain at the start
     let all: Vec<(usize, f64)> = (0..joints).map(|k| (k, 0.0)).collect();
     search.look(&all, 0.0)?;
@@ -168,18 +157,7 @@ pub(super) fn one_look(
     dt: f64,
     cutoff: f64,
 ) -> Vec<(u32, u32)> {
-    let mut search = Search {
-        tree: ChainTree::new(angles, 0.0),
-        radius: Octagon::new(1.0).circumradius(),
-        cutoff,
-        budget: usize::MAX,
-        work: 0,
-        found: FxHashSet::default(),
-        active: Vec::new(),
-        spin: Vec::new(),
-        moment: Vec::new(),
-        centres: Vec::new(),
-    };
+    let mut search = Search::new(angles, cutoff, usize::MAX);
     let _ = search.look(joints, dt);
     let mut pairs: Vec<u64> = search.found.into_iter().collect();
     pairs.sort_unstable();
@@ -217,6 +195,23 @@ struct Run {
 }
 
 impl Search {
+    /// A search over the chain at joint `angles` for pairs within `cutoff`, giving up past
+    /// `budget` units of work.
+    fn new(angles: Vec<f64>, cutoff: f64, budget: usize) -> Search {
+        Search {
+            tree: ChainTree::new(angles, 0.0),
+            radius: Octagon::new(1.0).circumradius(),
+            cutoff,
+            budget,
+            work: 0,
+            found: FxHashSet::default(),
+            active: Vec::new(),
+            spin: Vec::new(),
+            moment: Vec::new(),
+            centres: Vec::new(),
+        }
+    }
+
     /// Finds the pairs of tiles with one of `joints` (ascending, each with its `|rate|`)
     /// between them that may come within the cutoff over `dt` seconds from the tree's
     /// angles; `None` past the budget.
