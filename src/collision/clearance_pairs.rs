@@ -195,9 +195,9 @@ struct Run {
 }
 
 impl Search {
-    /// A search over the chain at `angles` for pairs within `cutoff`, giving up past
-    /// `budget` steps.
-    fn new(angles: Vec<f64>, cutoff: f64, budget: usize) -> Self {
+    /// A search over the chain at joint `angles` for pairs within `cutoff`, giving up past
+    /// `budget` units of work.
+    fn new(angles: Vec<f64>, cutoff: f64, budget: usize) -> Search {
         Search {
             tree: ChainTree::new(angles, 0.0),
             radius: Octagon::new(1.0).circumradius(),
