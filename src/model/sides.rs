@@ -250,8 +250,9 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
         after_mass[t] = mass.add(after_mass[t + 1]);
         after_drag[t] = Moments::body(b.drag, centre, b.rotational_drag).add(after_drag[t + 1]);
     }
-    // side A: the tiles up to each joint, every fold before it made, magnets at their final
-    // points, the RI with tile 0; prefix sums in the world frame of the folded chain
+    // side A: the tiles up to each joint, every fold before it made, magnets at their rest
+    // points (riding with their tile, as in the free body), the RI with tile 0; prefix sums
+    // in the world frame of the folded chain
     let angles: Vec<f64> = signs.iter().map(|s| s * FRAC_PI_2).collect();
     let ri = geometry.ri();
     let mut before_mass = Moments::body(
@@ -270,11 +271,7 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
         };
         let mut mass = Moments::body(b.mass, at((0.0, 0.0)), b.inertia);
         for k in [2 * t, 2 * t + 1] {
-            mass = mass.add(Moments::body(
-                magnet_mass(k),
-                at(geometry.path(k).end_point()),
-                0.0,
-            ));
+            mass = mass.add(Moments::body(magnet_mass(k), at(geometry.path(k).rest()), 0.0));
         }
         before_mass = before_mass.add(mass);
         before_drag = before_drag.add(Moments::body(b.drag, at((0.0, 0.0)), b.rotational_drag));
