@@ -24,9 +24,11 @@
 //!
 //! **Which configuration.** Each side is taken rigid in the shape it has while the joint
 //! turns in sequential folding: the folds before the joint made (their final angles), the
-//! chain after it straight; magnets before the joint at their final points, after it at
-//! rest. The free-body reference (`reference::free_body`) integrates the sides as they
-//! really are, and measures what this assumption costs.
+//! chain after it straight; every magnet at its rest point, riding with its tile, as in the
+//! free-body reference (`reference::free_body`'s tile bodies; side A's magnets at their final
+//! points made a fold at the chain's first joint 0.8-1.4% slower, docs/physics.md). The
+//! free-body reference integrates the sides as they really are, and measures what the rigid
+//! sequential shape costs.
 
 use std::f64::consts::FRAC_PI_2;
 
