@@ -273,7 +273,11 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
         };
         let mut mass = Moments::body(b.mass, at((0.0, 0.0)), b.inertia);
         for k in [2 * t, 2 * t + 1] {
-            mass = mass.add(Moments::body(magnet_mass(k), at(geometry.path(k).rest()), 0.0));
+            mass = mass.add(Moments::body(
+                magnet_mass(k),
+                at(geometry.path(k).rest()),
+                0.0,
+            ));
         }
         before_mass = before_mass.add(mass);
         before_drag = before_drag.add(Moments::body(b.drag, at((0.0, 0.0)), b.rotational_drag));
@@ -369,7 +373,14 @@ mod tests {
         // at rest and mid-fold, for a fold at the chain's first joint (L, LS: the RI's side is
         // one tile), further on (SSL, SLS) and after a made fold (LL's second joint)
         let mut worst: f64 = 0.0;
-        for (word, j) in [("L", 0), ("LS", 0), ("RS", 0), ("SSL", 2), ("SLS", 1), ("LL", 1)] {
+        for (word, j) in [
+            ("L", 0),
+            ("LS", 0),
+            ("RS", 0),
+            ("SSL", 2),
+            ("SLS", 1),
+            ("LL", 1),
+        ] {
             let g = Geometry::from_designs(&Chain::parse(word).unwrap(), &TileDesigns::default())
                 .unwrap();
             let signs: Vec<f64> = word
