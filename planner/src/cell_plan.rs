@@ -137,10 +137,11 @@ pub(crate) fn checked_plans(
             Ok(plan) => plan,
             Err(e) => {
                 let (part, mut plan) = *e;
-                if rejected.as_ref().is_none_or(|(_, b)| {
-                    let than = (b.plan.tiles, b.plan.tile_size, b.empty.tiles);
-                    asked.shorter(plan.tiles, plan.tile_size, part.tiles, than)
-                }) {
+                let short = asked.shortfall(plan.tiles, plan.tile_size, part.tiles);
+                if rejected
+                    .as_ref()
+                    .is_none_or(|(_, b)| short < asked.rejected_shortfall(b))
+                {
                     asm.measure(&mut plan, &r.word);
                     let text = format!(
                         "the best route ({} cells, {} tiles) {part}",

@@ -70,40 +70,6 @@ impl Asked {
         empty + self.miss(tiles) as f64
     }
 
-    /// Whether a plan of `tiles` tiles of width `w` leaving `empty` of its own tile areas
-    /// empty ranks before one of `than` (tiles, width, empty) among plans that break a
-    /// rule: when both counts are within the tolerance, the one leaving less of its own
-    /// tile areas empty (their counts are the asked chain's, so the part left empty is
-    /// compared as the plan lays it, as for plans that pass); otherwise the one that falls
-    /// less short of the asked chain ([`Asked::shortfall`]). Converting the empty part to
-    /// tiles of the asked chain between two counts in the band let a plan of a few more,
-    /// narrower tiles leaving more of its tile areas empty win (libsi-Q at 1000: 992 tiles
-    /// leaving 348.8 tile areas empty over 989 leaving 332.2).
-    pub(crate) fn shorter(
-        &self,
-        tiles: usize,
-        w: f64,
-        empty: f64,
-        than: (usize, f64, f64),
-    ) -> bool {
-        let (t, tw, te) = than;
-        if self.miss(tiles) == 0 && self.miss(t) == 0 {
-            empty < te
-        } else {
-            self.shortfall(tiles, w, empty) < self.shortfall(t, tw, te)
-        }
-    }
-
-    /// Whether rejected plan `r` ranks before rejected plan `k` ([`Asked::shorter`]).
-    fn rejected_before(&self, r: &Rejected, k: &Rejected) -> bool {
-        self.shorter(
-            r.plan.tiles,
-            r.plan.tile_size,
-            r.empty.tiles,
-            (k.plan.tiles, k.plan.tile_size, k.empty.tiles),
-        )
-    }
-
     /// [`Asked::shortfall`] of a plan (its largest part left empty as measured).
     pub(crate) fn plan_shortfall(&self, p: &Plan) -> f64 {
         self.shortfall(p.tiles, p.tile_size, p.metrics.largest_empty_tiles)
@@ -114,10 +80,10 @@ impl Asked {
         self.shortfall(r.plan.tiles, r.plan.tile_size, r.empty.tiles)
     }
 
-    /// Whether rejected plan `r` ranks before `kept` (none kept: yes; [`Asked::shorter`]).
-    /// Rejected plans rank by this alone.
+    /// Whether rejected plan `r` falls less short of the asked chain than `kept` (none kept:
+    /// yes). Rejected plans rank by this alone.
     pub(crate) fn before(&self, r: &Rejected, kept: Option<&Rejected>) -> bool {
-        kept.is_none_or(|k| self.rejected_before(r, k))
+        kept.is_none_or(|k| self.rejected_shortfall(r) < self.rejected_shortfall(k))
     }
 
     /// Whether rejected plan `r` is returned in place of `best`, a plan that passed the
@@ -171,23 +137,5 @@ mod tests {
         let a = Asked::new(&opts, 10_000.0, 283);
         assert_eq!(a.miss(10), 0);
         assert!(a.shortfall(10, 5.0, 3.0) < a.shortfall(500, 5.0, 4.0));
-    }
-
-    /// Between two counts within the tolerance the plan leaving less of its own tile areas
-    /// empty ranks first, even where a few more, narrower tiles make its empty part fewer
-    /// tiles of the asked chain (libsi-Q at 1000: 989 tiles leaving 332.2 tile areas empty
-    /// kept over 992 leaving 348.8).
-    #[test]
-    fn within_the_band_the_smaller_empty_part_ranks_first() {
-        let a = asked(1000);
-        let (wide, narrow) = (1.0, 0.97);
-        // the narrower plan's empty part is fewer tiles of the asked chain ...
-        assert!(a.shortfall(992, narrow, 348.8) < a.shortfall(989, wide, 332.2));
-        // ... but both counts are in the band: the smaller empty part ranks first
-        assert!(a.shorter(989, wide, 332.2, (992, narrow, 348.8)));
-        assert!(!a.shorter(992, narrow, 348.8, (989, wide, 332.2)));
-        // one count off the band: the shortfall decides (the miss is priced in)
-        assert!(a.shorter(992, narrow, 348.8, (900, wide, 332.2)));
-        assert!(!a.shorter(900, wide, 332.2, (992, narrow, 348.8)));
     }
 }
