@@ -323,6 +323,17 @@ mod tests {
     use crate::timeline::TileDesigns;
     use crate::Chain;
 
+    /// Each joint's fold sign in `word`: +1 for L, -1 for R, 0 for S.
+    fn fold_signs(word: &str) -> Vec<f64> {
+        word.chars()
+            .map(|c| match c {
+                'L' => 1.0,
+                'R' => -1.0,
+                _ => 0.0,
+            })
+            .collect()
+    }
+
     /// The free-body reference's two sides of joint `j` of `word` about its hinge, at the
     /// joint's angle `phi` (radians, the fold's sign), the folds before it made and the chain
     /// after it straight: each tile the free body's rigid body ([`TileBodies`]: plate, magnets
@@ -333,14 +344,7 @@ mod tests {
         let g =
             Geometry::from_designs(&Chain::parse(word).unwrap(), &TileDesigns::default()).unwrap();
         let bodies = TileBodies::new(&g, |t| g.design(t).magnet_mass * 1e-3);
-        let signs: Vec<f64> = word
-            .chars()
-            .map(|c| match c {
-                'L' => 1.0,
-                'R' => -1.0,
-                _ => 0.0,
-            })
-            .collect();
+        let signs = fold_signs(word);
         let angles: Vec<f64> = (0..signs.len())
             .map(|k| match k.cmp(&j) {
                 std::cmp::Ordering::Less => signs[k] * FRAC_PI_2,
@@ -383,14 +387,7 @@ mod tests {
         ] {
             let g = Geometry::from_designs(&Chain::parse(word).unwrap(), &TileDesigns::default())
                 .unwrap();
-            let signs: Vec<f64> = word
-                .chars()
-                .map(|c| match c {
-                    'L' => 1.0,
-                    'R' => -1.0,
-                    _ => 0.0,
-                })
-                .collect();
+            let signs = fold_signs(word);
             let sides = joint_sides(&g, &signs)[j].unwrap();
             for frac in [0.0, 0.5, 1.0] {
                 let phi = signs[j] * frac * FRAC_PI_2;
