@@ -62,6 +62,10 @@ const SLAB_MIN_WIDTHS: usize = 2;
 /// its rows do not fill a whole slab its order cannot reach (a U's arm swept from the
 /// wrong end leaves a third of the shape empty at every width).
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
+/// Slab decompositions sized for an axis that the first [`SLAB_GROUPS`] do not sweep (the
+/// cheapest on it, see [`other_axis`]), where every plan so far leaves a part empty larger
+/// than issue 26's bound: at most one more width search.
+const OTHER_AXIS_GROUPS: usize = 1;
 /// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
 const JOINED_GROUPS: usize = 2;
 /// Factors tried on the tile width when every route at the width the steps settle on
@@ -199,6 +203,9 @@ pub(crate) fn plan_by_caps(
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
     joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
+    // the cheapest decomposition of an axis that none of the first groups sweeps, taken
+    // out to be sized in a slot of its own after them ([`OTHER_AXIS_GROUPS`])
+    let other = other_axis(&mut slabs);
     slabs.truncate(MORE_SLAB_GROUPS);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
     let first_slab = usize::from(!caps.is_empty());
@@ -208,6 +215,10 @@ pub(crate) fn plan_by_caps(
     let first = slabs.len().min(SLAB_GROUPS);
     let rest = slabs.split_off(first);
     groups.extend(slabs.into_iter().map(|g| vec![g]));
+    let other_at = other.map(|g| {
+        groups.push(vec![g]);
+        groups.len() - 1
+    });
     // the cheapest and the next (the cheapest's laid in the order their joins were priced
     // for, sized only where they leave less empty, see [`crate::slabs`])
     let joined_at = groups.len()..groups.len() + joined.len().min(JOINED_GROUPS);
@@ -224,12 +235,13 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        if joined_at.contains(&i) {
+        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j);
+        if extra(i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
                 continue;
             }
-        } else if i >= first_slab + SLAB_GROUPS + joined_at.clone().filter(|&j| j < i).count()
+        } else if i >= first_slab + SLAB_GROUPS + (0..i).filter(|&j| extra(j)).count()
             && least() <= large
         {
             break;
@@ -283,6 +295,23 @@ pub(crate) fn plan_by_caps(
             None => Err(("no cap decomposition".into(), None)),
         },
     }
+}
+
+/// Takes out of `slabs` (cheapest first) the cheapest decomposition swept along an axis
+/// that none of the first [`SLAB_GROUPS`] is swept along, when it is not among them: the
+/// decompositions' prices are their rows' misfit, blind to the empty parts, and a shape
+/// whose best plan is on the axis second by that price would never be planned that way (a
+/// key: its head in columns and its shaft and teeth in rows comes third, after two on the
+/// other axis). One group more at most ([`OTHER_AXIS_GROUPS`]).
+fn other_axis(slabs: &mut Vec<(f64, Vec<CapPlan>, f64)>) -> Option<(f64, Vec<CapPlan>, f64)> {
+    let first = slabs.len().min(SLAB_GROUPS);
+    let same = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(std::f64::consts::PI);
+        d.min(std::f64::consts::PI - d) < 1e-6
+    };
+    let at =
+        (first..slabs.len()).find(|&j| !slabs[..first].iter().any(|g| same(g.0, slabs[j].0)))?;
+    (OTHER_AXIS_GROUPS > 0).then(|| slabs.remove(at))
 }
 
 /// The share of the plan's tile centres that lie inside the shape.
