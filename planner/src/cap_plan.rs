@@ -64,7 +64,9 @@ const SLAB_MIN_WIDTHS: usize = 2;
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
 /// Slab decompositions sized for an axis that the first [`SLAB_GROUPS`] do not sweep (the
 /// cheapest on it, see [`other_axis`]), where every plan so far leaves a part empty larger
-/// than issue 26's bound: at most one more width search.
+/// than issue 26's bound, and offered only where its plan leaves less empty than every plan
+/// so far (like the join-priced groups; at 100 tiles a cat's plan on the other axis ranked
+/// first with 12.5 tile areas empty against 10.4): at most one more width search.
 const OTHER_AXIS_GROUPS: usize = 1;
 /// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
 const JOINED_GROUPS: usize = 2;
@@ -257,7 +259,7 @@ pub(crate) fn plan_by_caps(
         // empty than every plan so far too
         let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
         let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
-        if joined_at.contains(&i) {
+        if extra(i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             found = found.filter(|p| p.metrics.largest_empty_tiles < before);
             // the added decomposition's route rejected for an empty part is kept only with
