@@ -63,10 +63,11 @@ const SLAB_MIN_WIDTHS: usize = 2;
 /// wrong end leaves a third of the shape empty at every width).
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
 /// Slab decompositions sized for an axis that the first [`SLAB_GROUPS`] do not sweep (the
-/// cheapest on it, see [`other_axis`]), where every plan so far leaves a part empty larger
-/// than issue 26's bound, and offered only where its plan leaves less empty than every plan
-/// so far (like the join-priced groups; at 100 tiles a cat's plan on the other axis ranked
-/// first with 12.5 tile areas empty against 10.4): at most one more width search.
+/// cheapest on it, see [`other_axis`]), after all the others, where every plan found leaves
+/// a part empty larger than issue 26's bound, and offered only where its plan leaves less
+/// empty than every one of them (sized before the later groups, a cat's plan on the other
+/// axis at 100 tiles ranked first with 12.5 tile areas empty against 10.4): at most one
+/// more width search.
 const OTHER_AXIS_GROUPS: usize = 1;
 /// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
 const JOINED_GROUPS: usize = 2;
@@ -206,7 +207,7 @@ pub(crate) fn plan_by_caps(
     joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     // the cheapest decomposition of an axis that none of the first groups sweeps, taken
-    // out to be sized in a slot of its own after them ([`OTHER_AXIS_GROUPS`])
+    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`])
     let other = other_axis(&mut slabs);
     slabs.truncate(MORE_SLAB_GROUPS);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
@@ -217,15 +218,16 @@ pub(crate) fn plan_by_caps(
     let first = slabs.len().min(SLAB_GROUPS);
     let rest = slabs.split_off(first);
     groups.extend(slabs.into_iter().map(|g| vec![g]));
-    let other_at = other.map(|g| {
-        groups.push(vec![g]);
-        groups.len() - 1
-    });
     // the cheapest and the next (the cheapest's laid in the order their joins were priced
     // for, sized only where they leave less empty, see [`crate::slabs`])
     let joined_at = groups.len()..groups.len() + joined.len().min(JOINED_GROUPS);
     groups.extend(joined.into_iter().take(JOINED_GROUPS).map(|g| vec![g]));
     groups.extend(rest.into_iter().map(|g| vec![g]));
+    // the other axis' last: offered only where it leaves less empty than every plan found
+    let other_at = other.map(|g| {
+        groups.push(vec![g]);
+        groups.len() - 1
+    });
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
     let mut best: Option<Plan> = None;
@@ -246,7 +248,8 @@ pub(crate) fn plan_by_caps(
         } else if i >= first_slab + SLAB_GROUPS + (0..i).filter(|&j| extra(j)).count()
             && least() <= large
         {
-            break;
+            // (least() only falls: the later slab groups are passed over too)
+            continue;
         }
         let slabs = axes
             .iter()
