@@ -1,5 +1,6 @@
 //! `fold-plan` on hostile files and outputs (issue 26): huge, tiny and NaN numbers, a
-//! `<use>` cycle, deep nesting, files that are not SVG, a directory, a missing file, and
+//! `<use>` cycle, deep nesting, an entity loop, bytes that are not UTF-8, a shape drawn at
+//! 1e15 (the reader's f32 digits), files that are not SVG, a directory, a missing file, and
 //! outputs in a missing directory, on the --out file, or on a file the tool did not write.
 //! Each is exit 2 with a message naming the file, never a panic, and leaves what was there.
 
@@ -35,6 +36,8 @@ fn hostile_drawings_are_bad_input_naming_the_file() {
         ("text.svg", "hello, not a drawing".into(), vec!["not a readable SVG"]),
         ("empty.svg", String::new(), vec!["not a readable SVG"]),
         ("open.svg", format!("{SVG}<rect width=\"5\" height=\"5\"/>"), vec!["not a readable SVG"]),
+        ("laughs.svg", format!("<!DOCTYPE svg [<!ENTITY a \"aaaaaaaaaa\"><!ENTITY b \"&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;\"><!ENTITY c \"&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;\"><!ENTITY d \"&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;\"><!ENTITY e \"&d;&d;&d;&d;&d;&d;&d;&d;&d;&d;\"><!ENTITY f \"&e;&e;&e;&e;&e;&e;&e;&e;&e;&e;\">]>{SVG}<title>&f;&f;&f;&f;</title><rect width=\"5\" height=\"5\"/></svg>"), vec!["not a readable SVG"]),
+        ("far.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"1e15 1e15 100 100\"><rect x=\"1e15\" y=\"1e15\" width=\"100\" height=\"100\"/></svg>".into(), vec!["significant digits", "nearer the origin"]),
     ];
     for (name, body, words) in cases {
         let f = write(&d, name, &body);
@@ -44,6 +47,15 @@ fn hostile_drawings_are_bad_input_naming_the_file() {
         w.push(name);
         assert_exit_saying(&o, 2, &w);
     }
+    // bytes that are not UTF-8 in a comment
+    let latin = d.join("latin1.svg");
+    let mut bytes = format!("{SVG}<!-- ").into_bytes();
+    bytes.extend_from_slice(&[0xff, 0xfe, 0xe9]);
+    bytes.extend_from_slice(b" --><rect width=\"5\" height=\"5\"/></svg>");
+    std::fs::write(&latin, bytes).unwrap();
+    let o = run("fold-plan", &[latin.to_str().unwrap(), "--quiet"]);
+    assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+    assert_exit_saying(&o, 2, &["latin1.svg", "not a readable SVG", "UTF-8"]);
     let o = run("fold-plan", &[d.to_str().unwrap(), "--quiet"]);
     assert_exit_saying(&o, 2, &["cannot read", "directory"]);
     let missing = d.join("missing.svg");

@@ -29,6 +29,9 @@ struct Element<'a> {
     subpaths: Vec<Vec<PathSeg>>,
     even_odd: bool,
     clips: Vec<ClipRef<'a>>,
+    /// The largest coordinate of its path data as usvg stores it (f32, in its own user
+    /// space), and the step by which f32 rounds coordinates that large.
+    rounding: (f64, f64),
 }
 
 impl Shape {
@@ -88,7 +91,7 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
         }
         let size = (hi.x - lo.x).max(hi.y - lo.y);
         if !size.is_finite() || size <= 0.0 {
-            return Err(no_area("the filled elements have zero size"));
+            return Err(no_area(&zero_size(&elements)));
         }
         let tol = FLATTEN_TOLERANCE * size;
         let mut paths = Vec::new();
@@ -376,6 +379,36 @@ fn control_points(s: &PathSeg) -> Vec<Point> {
     }
 }
 
+/// The largest coordinate of `p`'s path data as usvg stores it (f32, its own user space)
+/// and the step by which f32 rounds coordinates that large, in the same units.
+fn rounding(p: &usvg::Path) -> (f64, f64) {
+    let b = p.data().bounds();
+    let far = [b.left(), b.right(), b.top(), b.bottom()]
+        .iter()
+        .fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
+    (far, far * f64::from(f32::EPSILON))
+}
+
+/// Why the filled elements have zero size: as drawn, or because the SVG reader keeps
+/// coordinates to about 7 significant digits (f32): beyond 2^23 it cannot tell whole units
+/// apart, and a shape 100 units wide drawn at 1e15 becomes a point.
+fn zero_size(elements: &[Element]) -> String {
+    let (far, step) = elements
+        .iter()
+        .map(|e| e.rounding)
+        .fold((0.0f64, 0.0f64), |(f, s), (ef, es)| (f.max(ef), s.max(es)));
+    if step >= 1.0 {
+        format!(
+            "the filled elements have zero size as read: their coordinates reach {far:.3e}, \
+             and the SVG reader keeps about 7 significant digits (at that size, points \
+             {step:.3e} units apart), which merges their points; move the drawing nearer the \
+             origin (its coordinates and viewBox) and plan that file"
+        )
+    } else {
+        "the filled elements have zero size".into()
+    }
+}
+
 /// The transform from usvg's output coordinates back to the root element's user units:
 /// usvg wraps everything in one group holding the viewBox mapping (and the root's own
 /// transform), which is undone here so that plans are in the drawing's user units.
@@ -463,6 +496,7 @@ fn collect_elements<'a>(
                     subpaths: path_segments(p, ts),
                     even_odd,
                     clips: clips.clone(),
+                    rounding: rounding(p),
                 });
             }
             _ => {}
@@ -524,6 +558,32 @@ mod tests {
 
     fn svg(body: &str) -> String {
         format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100">{body}</svg>"#)
+    }
+
+    /// A shape drawn 100 units wide at 1e15 (its viewBox there too) is merged to a point
+    /// by the reader's f32 coordinates: the refusal says so and what to do, not only that
+    /// the elements have zero size; a point drawn near the origin says zero size alone.
+    #[test]
+    fn a_shape_far_from_the_origin_is_refused_for_the_reader_s_digits() {
+        let far = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="1e15 1e15 100 100"><rect x="1e15" y="1e15" width="100" height="100"/></svg>"#;
+        let e = Shape::from_svg_data(far.as_bytes(), "far.svg")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("far.svg"), "{e}");
+        assert!(e.contains("1.000e15"), "{e}");
+        assert!(e.contains("far.svg: no filled area"), "{e}");
+        assert!(e.contains("significant digits"), "{e}");
+        assert!(e.contains("nearer the origin"), "{e}");
+        let point = svg(r#"<path d="M50 50 L50 50 L50 50 Z"/>"#);
+        let e = Shape::from_svg_data(point.as_bytes(), "p.svg")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("zero size"), "{e}");
+        assert!(!e.contains("significant digits"), "{e}");
+        // a map in large projected coordinates (5e6, 1e5 wide) reads as drawn
+        let map = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="5e6 5e6 1e5 1e5"><rect x="5e6" y="5e6" width="1e5" height="5e4"/></svg>"#;
+        let s = Shape::from_svg_data(map.as_bytes(), "map.svg").unwrap();
+        assert!((s.area() / 5e9 - 1.0).abs() < 1e-3, "{}", s.area());
     }
 
     #[test]

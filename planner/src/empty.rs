@@ -7,6 +7,7 @@
 
 use kurbo::{Point, Rect, Vec2};
 
+use crate::centre_grid::{ceil_i64, floor_i64};
 use crate::plan::Plan;
 use crate::shape::Shape;
 
@@ -179,15 +180,16 @@ pub(crate) fn largest_empty_part(
     let b = work.bbox();
     let nx = ((b.width() / step).ceil() as usize).max(1);
     let ny = ((b.height() / step).ceil() as usize).max(1);
-    // reached[i * nx + j]: the sample at column j, line i lies within `near` of a tile
-    // centre; each centre marks the samples of its disc, line by line (the work grows with
-    // the tiles times the samples of one disc, not with the samples times a neighbourhood
-    // search)
-    let mut reached = vec![false; nx * ny];
+    // state[i * nx + j] of the sample at column j, line i: REACHED when it lies within
+    // `near` of a tile centre; each centre marks the samples of its disc, line by line (the
+    // work grows with the tiles times the samples of one disc, not with the samples times a
+    // neighbourhood search)
+    let mut state = vec![FAR; nx * ny];
     let r2 = near * near;
     // the first sample index at or after `v` and the one after the last at or before `e`
-    let first = |v: f64, o: f64| (((v - o) / step) - 0.5).ceil().max(0.0) as usize;
-    let end = |v: f64, o: f64| ((((v - o) / step) - 0.5).floor() + 1.0).max(0.0) as usize;
+    // (`ceil`/`floor` without libm: the values are finite)
+    let first = |v: f64, o: f64| ceil_i64(((v - o) / step) - 0.5).max(0) as usize;
+    let end = |v: f64, o: f64| (floor_i64(((v - o) / step) - 0.5) + 1).max(0) as usize;
     for c in centres {
         for i in first(c.y - near, b.y0)..end(c.y + near, b.y0).min(ny) {
             let dy = b.y0 + (i as f64 + 0.5) * step - c.y;
@@ -198,38 +200,40 @@ pub(crate) fn largest_empty_part(
             let h = h2.sqrt();
             let (j0, j1) = (first(c.x - h, b.x0), end(c.x + h, b.x0).min(nx));
             if j0 < j1 {
-                reached[i * nx + j0..i * nx + j1].fill(true);
+                state[i * nx + j0..i * nx + j1].fill(REACHED);
             }
         }
     }
-    // empty[i * nx + j]: the sample at column j, line i lies inside the shape at least
-    // EDGE from its outline ([`DeepLine`]) and farther than `near` from every tile centre
-    let mut empty = vec![false; nx * ny];
+    // EMPTY: the sample lies inside the shape at least EDGE from its outline ([`DeepLine`])
+    // and farther than `near` from every tile centre
     for i in 0..ny {
         let y = b.y0 + (i as f64 + 0.5) * step;
         // the line's chords, found the first time a sample on it is not reached
         let mut deep_line: Option<DeepLine> = None;
         for (a, e) in work.intervals_at(y) {
-            let j0 = (((a - b.x0) / step) - 0.5).ceil().max(0.0) as usize;
-            let j1 = ((((e - b.x0) / step) - 0.5).floor().max(-1.0) + 1.0) as usize;
+            let j0 = ceil_i64(((a - b.x0) / step) - 0.5).max(0) as usize;
+            let j1 = (floor_i64(((e - b.x0) / step) - 0.5).max(-1) + 1) as usize;
             for j in j0..j1.min(nx) {
-                if reached[i * nx + j] {
+                let s = &mut state[i * nx + j];
+                if *s == REACHED {
                     continue;
                 }
-                empty[i * nx + j] = deep_line
+                let deep = deep_line
                     .get_or_insert_with(|| DeepLine::new(work, y))
                     .deep(b.x0 + (j as f64 + 0.5) * step);
+                *s = if deep { EMPTY } else { FAR };
             }
         }
     }
-    let mut seen = vec![false; nx * ny];
+    // the parts: samples EMPTY joined by the four neighbours, each marked SEEN as it is
+    // reached (the start samples in order, so the largest first found wins a tie)
     let mut best: Option<(f64, Point, Rect)> = None;
     let mut stack = Vec::new();
     for start in 0..nx * ny {
-        if !empty[start] || seen[start] {
+        if state[start] != EMPTY {
             continue;
         }
-        seen[start] = true;
+        state[start] = SEEN;
         stack.push(start);
         let mut count = 0usize;
         let (mut sum, mut bb) = (
@@ -246,8 +250,8 @@ pub(crate) fn largest_empty_part(
             sum += p.to_vec2();
             bb = bb.union_pt(p);
             four_neighbours(c, nx, ny, |n| {
-                if empty[n] && !seen[n] {
-                    seen[n] = true;
+                if state[n] == EMPTY {
+                    state[n] = SEEN;
                     stack.push(n);
                 }
             });
@@ -259,6 +263,15 @@ pub(crate) fn largest_empty_part(
     }
     best
 }
+
+/// A sample of [`largest_empty_part`] not known to be near a tile centre nor empty.
+const FAR: u8 = 0;
+/// A sample within `near` of a tile centre.
+const REACHED: u8 = 1;
+/// A sample deep inside the shape and far from every tile centre.
+const EMPTY: u8 = 2;
+/// An empty sample already joined to a part.
+const SEEN: u8 = 3;
 
 /// Calls `visit` on the four neighbours of cell `c` of a grid `nx` cells wide and `ny`
 /// high, stored row by row: left, right, below, above.

@@ -274,11 +274,17 @@ fn edge_gaps(iv: &[(f64, f64)], x0: f64, pitch: f64, gaps: &mut [(f64, f64)]) {
             0.0
         }
     };
+    // the intervals are sorted and disjoint and the columns ascend: the one interval that
+    // may hold column j is the first not ending before it
+    let mut at = 0;
     for (j, g) in gaps.iter_mut().enumerate() {
         let x = x0 + j as f64;
-        *g = match iv.iter().find(|&&(a, b)| a <= x && x <= b) {
-            Some(&(a, b)) => (price(x - a), price(b - x)),
-            None => (0.0, 0.0),
+        while at < iv.len() && iv[at].1 < x {
+            at += 1;
+        }
+        *g = match iv.get(at) {
+            Some(&(a, b)) if a <= x => (price(x - a), price(b - x)),
+            _ => (0.0, 0.0),
         };
     }
 }

@@ -132,7 +132,9 @@ impl TailHits {
         let h = self.window.hinge;
         let inner = (d - 2.0 * self.radius - SLACK - 1e-6).max(0.0);
         let along = (inner * inner - h.y * h.y).max(0.0).sqrt();
-        ((h.x + along).floor() as usize).saturating_sub(2).max(1)
+        // `as` truncates and saturates: the floor for every value (a negative one, or NaN,
+        // gives 0 either way), without a call into libm on baseline x86-64
+        ((h.x + along) as usize).saturating_sub(2).max(1)
     }
 
     fn at(&self, c: Point) -> [Point; 8] {
@@ -150,7 +152,8 @@ impl TailHits {
         // the first tail centre not nearer the hinge than dp - apart
         let inner = (dp - apart).max(0.0);
         let along = (inner * inner - h.y * h.y).max(0.0).sqrt();
-        let first = ((h.x + along).floor() as u32).saturating_sub(1).max(1);
+        // `as u32` is the floor here (see `least_hit`)
+        let first = ((h.x + along) as u32).saturating_sub(1).max(1);
         let fixed = self.at(p);
         for m in first.. {
             let dm = self.tail_distance(f64::from(m));

@@ -24,9 +24,11 @@
 //!
 //! **Which configuration.** Each side is taken rigid in the shape it has while the joint
 //! turns in sequential folding: the folds before the joint made (their final angles), the
-//! chain after it straight; magnets before the joint at their final points, after it at
-//! rest. The free-body reference (`reference::free_body`) integrates the sides as they
-//! really are, and measures what this assumption costs.
+//! chain after it straight; every magnet at its rest point, riding with its tile, as in the
+//! free-body reference (`reference::free_body`'s tile bodies; side A's magnets at their final
+//! points made a fold at the chain's first joint 0.8-1.4% slower, docs/physics.md). The
+//! free-body reference integrates the sides as they really are, and measures what the rigid
+//! sequential shape costs.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -250,8 +252,9 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
         after_mass[t] = mass.add(after_mass[t + 1]);
         after_drag[t] = Moments::body(b.drag, centre, b.rotational_drag).add(after_drag[t + 1]);
     }
-    // side A: the tiles up to each joint, every fold before it made, magnets at their final
-    // points, the RI with tile 0; prefix sums in the world frame of the folded chain
+    // side A: the tiles up to each joint, every fold before it made, magnets at their rest
+    // points (riding with their tile, as in the free body), the RI with tile 0; prefix sums
+    // in the world frame of the folded chain
     let angles: Vec<f64> = signs.iter().map(|s| s * FRAC_PI_2).collect();
     let ri = geometry.ri();
     let mut before_mass = Moments::body(
@@ -272,7 +275,7 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
         for k in [2 * t, 2 * t + 1] {
             mass = mass.add(Moments::body(
                 magnet_mass(k),
-                at(geometry.path(k).end_point()),
+                at(geometry.path(k).rest()),
                 0.0,
             ));
         }
@@ -313,8 +316,99 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use super::*;
+    use crate::reference::free_body::tile_body::TileBodies;
+    use crate::timeline::TileDesigns;
+    use crate::Chain;
+
+    /// Each joint's fold sign in `word`: +1 for L, -1 for R, 0 for S.
+    fn fold_signs(word: &str) -> Vec<f64> {
+        word.chars()
+            .map(|c| match c {
+                'L' => 1.0,
+                'R' => -1.0,
+                _ => 0.0,
+            })
+            .collect()
+    }
+
+    /// The free-body reference's two sides of joint `j` of `word` about its hinge, at the
+    /// joint's angle `phi` (radians, the fold's sign), the folds before it made and the chain
+    /// after it straight: each tile the free body's rigid body ([`TileBodies`]: plate, magnets
+    /// riding with it, the RI on tile 0) at its pose. Returns `J_A`, `J_B` about the hinge and
+    /// each side's `J - |s|^2 / m` (`m` both sides' mass) and the pair's inertia `I(phi)` with
+    /// no net momentum, computed directly from the poses.
+    fn free_body_sides(word: &str, j: usize, phi: f64) -> (f64, f64, f64, f64, f64) {
+        let g =
+            Geometry::from_designs(&Chain::parse(word).unwrap(), &TileDesigns::default()).unwrap();
+        let bodies = TileBodies::new(&g, |t| g.design(t).magnet_mass * 1e-3);
+        let signs = fold_signs(word);
+        let angles: Vec<f64> = (0..signs.len())
+            .map(|k| match k.cmp(&j) {
+                std::cmp::Ordering::Less => signs[k] * FRAC_PI_2,
+                std::cmp::Ordering::Equal => phi,
+                std::cmp::Ordering::Greater => 0.0,
+            })
+            .collect();
+        let poses = crate::kinematics::poses_at_angles(&angles, g.w);
+        let mm = 1e-3;
+        let (hx, hy) = poses[j].transform_point(Octagon::new(g.w).hinge(signs[j] > 0.0));
+        let hinge = Point::new(hx * mm, hy * mm);
+        let side = |range: std::ops::Range<usize>| {
+            range.fold(Moments::default(), |acc, t| {
+                let b = bodies.tiles[t];
+                let local = (b.s[0] / b.m / mm, b.s[1] / b.m / mm);
+                let (x, y) = poses[t].transform_point(local);
+                let jc = b.j - (b.s[0] * b.s[0] + b.s[1] * b.s[1]) / b.m;
+                acc.add(Moments::body(b.m, Point::new(x * mm, y * mm), jc))
+            })
+        };
+        let (a, b) = (side(0..j + 1), side(j + 1..g.tiles()));
+        let ((sa, ja), (sb, jb)) = (a.about(hinge), b.about(hinge));
+        let m = a.m + b.m;
+        let (aa, bb, c) = (ja - sa.hypot2() / m, jb - sb.hypot2() / m, -sa.dot(sb) / m);
+        (ja, jb, aa, bb, (aa * bb - c * c) / (aa + bb + 2.0 * c))
+    }
+
+    #[test]
+    fn joint_sides_weigh_the_sides_as_the_free_body_does() {
+        // at rest and mid-fold, for a fold at the chain's first joint (L, LS: the RI's side is
+        // one tile), further on (SSL, SLS) and after a made fold (LL's second joint)
+        let mut worst: f64 = 0.0;
+        for (word, j) in [
+            ("L", 0),
+            ("LS", 0),
+            ("RS", 0),
+            ("SSL", 2),
+            ("SLS", 1),
+            ("LL", 1),
+        ] {
+            let g = Geometry::from_designs(&Chain::parse(word).unwrap(), &TileDesigns::default())
+                .unwrap();
+            let signs = fold_signs(word);
+            let sides = joint_sides(&g, &signs)[j].unwrap();
+            for frac in [0.0, 0.5, 1.0] {
+                let phi = signs[j] * frac * FRAC_PI_2;
+                let (ja, jb, a, b, want) = free_body_sides(word, j, phi);
+                let (got, _) = sides.inertia.at(phi);
+                let two = sides.inertia;
+                println!(
+                    "{word} joint {j} at {frac} of the fold: free body J_A {ja:.4e} J_B {jb:.4e} \
+                     a {a:.4e} b {b:.4e} I {want:.5e}; joint_sides a {:.4e} ({:+.2}%) b {:.4e} \
+                     ({:+.2}%) I {got:.5e} ({:+.3}%)",
+                    two.a,
+                    100.0 * (two.a - a) / a,
+                    two.b,
+                    100.0 * (two.b - b) / b,
+                    100.0 * (got - want) / want
+                );
+                worst = worst.max((got - want).abs() / want);
+            }
+        }
+        assert!(worst < 1e-9, "worst {worst}");
+    }
 
     /// A straight bar of `n` point masses `w` apart from `x0` along x, each with `ic`.
     fn bar(n: usize, x0: f64, w: f64, m: f64, ic: f64) -> Moments {

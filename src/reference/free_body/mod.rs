@@ -35,7 +35,7 @@ mod options;
 mod run;
 mod spatial;
 mod system;
-mod tile_body;
+pub(crate) mod tile_body;
 
 pub(crate) use driver::run_coupled;
 pub use driver::run_free_body;
