@@ -65,9 +65,7 @@ const SLAB_HOPELESS_EMPTY: f64 = 0.1;
 /// Slab decompositions sized for an axis that the first [`SLAB_GROUPS`] do not sweep (the
 /// cheapest on it, see [`other_axis`]), after all the others, where every plan found leaves
 /// a part empty larger than issue 26's bound, and offered only where its plan leaves less
-/// empty than every one of them (sized before the later groups, a cat's plan on the other
-/// axis at 100 tiles ranked first with 12.5 tile areas empty against 10.4): at most one
-/// more width search.
+/// empty than every one of them: at most one more width search.
 const OTHER_AXIS_GROUPS: usize = 1;
 /// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
 const JOINED_GROUPS: usize = 2;
@@ -207,9 +205,9 @@ pub(crate) fn plan_by_caps(
     joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     // the cheapest decomposition of an axis that none of the first groups sweeps, taken
-    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`])
+    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`]);
+    // the others truncated as without it
     let other = other_axis(&mut slabs);
-    slabs.truncate(MORE_SLAB_GROUPS);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
     let first_slab = usize::from(!caps.is_empty());
     if !caps.is_empty() {
@@ -303,20 +301,27 @@ pub(crate) fn plan_by_caps(
 }
 
 /// Takes out of `slabs` (cheapest first) the cheapest decomposition swept along an axis
-/// that none of the first [`SLAB_GROUPS`] is swept along, when it is not among them: the
-/// decompositions' prices are their rows' misfit, blind to the empty parts, and a shape
-/// whose best plan is on the axis second by that price would never be planned that way (a
-/// key: its head in columns and its shaft and teeth in rows comes third, after two on the
-/// other axis). One group more at most ([`OTHER_AXIS_GROUPS`]).
+/// that none of the first [`SLAB_GROUPS`] is swept along, when it is not among them, and
+/// keeps of the rest those of the first [`MORE_SLAB_GROUPS`] (one fewer when it was among
+/// them: the later groups stay those sized without it, so taking it out lets in no group
+/// that was not sized before, a cat's eighth at 100 tiles leaving 12.6 tile areas empty
+/// where a serpentine leaves 10.5). The decompositions' prices are their rows' misfit,
+/// blind to the empty parts, and a shape whose best plan is on the axis second by that
+/// price would never be planned that way (a key: its head in columns and its shaft and
+/// teeth in rows comes third, after two on the other axis). One group more at most
+/// ([`OTHER_AXIS_GROUPS`]).
 fn other_axis(slabs: &mut Vec<(f64, Vec<CapPlan>, f64)>) -> Option<(f64, Vec<CapPlan>, f64)> {
     let first = slabs.len().min(SLAB_GROUPS);
     let same = |a: f64, b: f64| {
         let d = (a - b).rem_euclid(std::f64::consts::PI);
         d.min(std::f64::consts::PI - d) < 1e-6
     };
-    let at =
-        (first..slabs.len()).find(|&j| !slabs[..first].iter().any(|g| same(g.0, slabs[j].0)))?;
-    (OTHER_AXIS_GROUPS > 0).then(|| slabs.remove(at))
+    let at = (first..slabs.len())
+        .find(|&j| !slabs[..first].iter().any(|g| same(g.0, slabs[j].0)))
+        .filter(|_| OTHER_AXIS_GROUPS > 0);
+    let other = at.map(|j| slabs.remove(j));
+    slabs.truncate(MORE_SLAB_GROUPS - usize::from(at.is_some_and(|j| j < MORE_SLAB_GROUPS)));
+    other
 }
 
 /// The share of the plan's tile centres that lie inside the shape.
