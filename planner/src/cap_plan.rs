@@ -180,25 +180,7 @@ pub(crate) fn plan_by_caps(
     all_axes: &[(f64, Vec<CapPlan>, f64)],
     known_empty: f64,
 ) -> Result<Plan, CellFailure> {
-    // the caps of the cheapest axes, sized together as before; then every one of the
-    // cheapest slab decompositions (both its orders) sized on its own, so that one that
-    // holds the asked count at another width than the caps is not passed over
-    let caps: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
-        .iter()
-        .filter(|(_, plans, _)| plans.iter().any(|p| !p.slabs))
-        .take(AXES_ROUTED)
-        .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
-        .collect();
-    let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
-        .iter()
-        .flat_map(|(a, plans, w)| {
-            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
-            // slab_plans returns each decomposition in both orders, one after the other
-            slab.chunks(2)
-                .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
-                .collect::<Vec<_>>()
-        })
-        .collect();
+    let (caps, slabs) = caps_and_slabs(all_axes);
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
@@ -298,6 +280,34 @@ pub(crate) fn plan_by_caps(
             None => Err(("no cap decomposition".into(), None)),
         },
     }
+}
+
+/// The cap decompositions of the cheapest [`AXES_ROUTED`] axes that have any, and every slab
+/// decomposition (both its orders) of every axis, as [`plan_by_caps`] sizes them.
+#[allow(clippy::type_complexity)]
+fn caps_and_slabs(
+    all_axes: &[(f64, Vec<CapPlan>, f64)],
+) -> (Vec<(f64, Vec<CapPlan>, f64)>, Vec<(f64, Vec<CapPlan>, f64)>) {
+    // the caps of the cheapest axes, sized together as before; then every one of the
+    // cheapest slab decompositions (both its orders) sized on its own, so that one that
+    // holds the asked count at another width than the caps is not passed over
+    let caps: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .filter(|(_, plans, _)| plans.iter().any(|p| !p.slabs))
+        .take(AXES_ROUTED)
+        .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
+        .collect();
+    let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .flat_map(|(a, plans, w)| {
+            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
+            // slab_plans returns each decomposition in both orders, one after the other
+            slab.chunks(2)
+                .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    (caps, slabs)
 }
 
 /// Takes out of `slabs` (cheapest first) the cheapest decomposition swept along an axis
