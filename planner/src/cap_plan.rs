@@ -62,6 +62,11 @@ const SLAB_MIN_WIDTHS: usize = 2;
 /// its rows do not fill a whole slab its order cannot reach (a U's arm swept from the
 /// wrong end leaves a third of the shape empty at every width).
 const SLAB_HOPELESS_EMPTY: f64 = 0.1;
+/// Slab decompositions sized for an axis that the first [`SLAB_GROUPS`] do not sweep (the
+/// cheapest on it, see [`other_axis`]), after all the others, where every plan found leaves
+/// a part empty larger than issue 26's bound, and offered only where its plan leaves less
+/// empty than every one of them: at most one more width search.
+const OTHER_AXIS_GROUPS: usize = 1;
 /// The groups of join-priced slab decompositions sized ([`crate::slabs::slab_plans`]).
 const JOINED_GROUPS: usize = 2;
 /// Factors tried on the tile width when every route at the width the steps settle on
@@ -175,31 +180,16 @@ pub(crate) fn plan_by_caps(
     all_axes: &[(f64, Vec<CapPlan>, f64)],
     known_empty: f64,
 ) -> Result<Plan, CellFailure> {
-    // the caps of the cheapest axes, sized together as before; then every one of the
-    // cheapest slab decompositions (both its orders) sized on its own, so that one that
-    // holds the asked count at another width than the caps is not passed over
-    let caps: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
-        .iter()
-        .filter(|(_, plans, _)| plans.iter().any(|p| !p.slabs))
-        .take(AXES_ROUTED)
-        .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
-        .collect();
-    let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
-        .iter()
-        .flat_map(|(a, plans, w)| {
-            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
-            // slab_plans returns each decomposition in both orders, one after the other
-            slab.chunks(2)
-                .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
-                .collect::<Vec<_>>()
-        })
-        .collect();
+    let (caps, slabs) = caps_and_slabs(all_axes);
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
     joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
     slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
-    slabs.truncate(MORE_SLAB_GROUPS);
+    // the cheapest decomposition of an axis that none of the first groups sweeps, taken
+    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`]);
+    // the others truncated as without it
+    let other = other_axis(&mut slabs);
     let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
     let first_slab = usize::from(!caps.is_empty());
     if !caps.is_empty() {
@@ -213,6 +203,11 @@ pub(crate) fn plan_by_caps(
     let joined_at = groups.len()..groups.len() + joined.len().min(JOINED_GROUPS);
     groups.extend(joined.into_iter().take(JOINED_GROUPS).map(|g| vec![g]));
     groups.extend(rest.into_iter().map(|g| vec![g]));
+    // the other axis' last: offered only where it leaves less empty than every plan found
+    let other_at = other.map(|g| {
+        groups.push(vec![g]);
+        groups.len() - 1
+    });
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
     let mut best: Option<Plan> = None;
@@ -224,15 +219,17 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        if joined_at.contains(&i) {
+        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j);
+        if extra(i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
                 continue;
             }
-        } else if i >= first_slab + SLAB_GROUPS + joined_at.clone().filter(|&j| j < i).count()
+        } else if i >= first_slab + SLAB_GROUPS + (0..i).filter(|&j| extra(j)).count()
             && least() <= large
         {
-            break;
+            // (least() only falls: the later slab groups are passed over too)
+            continue;
         }
         let slabs = axes
             .iter()
@@ -245,7 +242,7 @@ pub(crate) fn plan_by_caps(
         // empty than every plan so far too
         let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
         let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
-        if joined_at.contains(&i) {
+        if extra(i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             found = found.filter(|p| p.metrics.largest_empty_tiles < before);
             // the added decomposition's route rejected for an empty part is kept only with
@@ -283,6 +280,58 @@ pub(crate) fn plan_by_caps(
             None => Err(("no cap decomposition".into(), None)),
         },
     }
+}
+
+/// The cap decompositions of the cheapest [`AXES_ROUTED`] axes that have any, and every slab
+/// decomposition (both its orders) of every axis, as [`plan_by_caps`] sizes them.
+#[allow(clippy::type_complexity)]
+fn caps_and_slabs(
+    all_axes: &[(f64, Vec<CapPlan>, f64)],
+) -> (Vec<(f64, Vec<CapPlan>, f64)>, Vec<(f64, Vec<CapPlan>, f64)>) {
+    // the caps of the cheapest axes, sized together as before; then every one of the
+    // cheapest slab decompositions (both its orders) sized on its own, so that one that
+    // holds the asked count at another width than the caps is not passed over
+    let caps: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .filter(|(_, plans, _)| plans.iter().any(|p| !p.slabs))
+        .take(AXES_ROUTED)
+        .map(|(a, plans, w)| (*a, plans.iter().filter(|p| !p.slabs).cloned().collect(), *w))
+        .collect();
+    let slabs: Vec<(f64, Vec<CapPlan>, f64)> = all_axes
+        .iter()
+        .flat_map(|(a, plans, w)| {
+            let slab: Vec<&CapPlan> = plans.iter().filter(|p| p.slabs).collect();
+            // slab_plans returns each decomposition in both orders, one after the other
+            slab.chunks(2)
+                .map(|pair| (*a, pair.iter().map(|&p| p.clone()).collect(), *w))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    (caps, slabs)
+}
+
+/// Takes out of `slabs` (cheapest first) the cheapest decomposition swept along an axis
+/// that none of the first [`SLAB_GROUPS`] is swept along, when it is not among them, and
+/// keeps of the rest those of the first [`MORE_SLAB_GROUPS`] (one fewer when it was among
+/// them: the later groups stay those sized without it, so taking it out lets in no group
+/// that was not sized before, a cat's eighth at 100 tiles leaving 12.6 tile areas empty
+/// where a serpentine leaves 10.5). The decompositions' prices are their rows' misfit,
+/// blind to the empty parts, and a shape whose best plan is on the axis second by that
+/// price would never be planned that way (a key: its head in columns and its shaft and
+/// teeth in rows comes third, after two on the other axis). One group more at most
+/// ([`OTHER_AXIS_GROUPS`]).
+fn other_axis(slabs: &mut Vec<(f64, Vec<CapPlan>, f64)>) -> Option<(f64, Vec<CapPlan>, f64)> {
+    let first = slabs.len().min(SLAB_GROUPS);
+    let same = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(std::f64::consts::PI);
+        d.min(std::f64::consts::PI - d) < 1e-6
+    };
+    let at = (first..slabs.len())
+        .find(|&j| !slabs[..first].iter().any(|g| same(g.0, slabs[j].0)))
+        .filter(|_| OTHER_AXIS_GROUPS > 0);
+    let other = at.map(|j| slabs.remove(j));
+    slabs.truncate(MORE_SLAB_GROUPS - usize::from(at.is_some_and(|j| j < MORE_SLAB_GROUPS)));
+    other
 }
 
 /// The share of the plan's tile centres that lie inside the shape.
