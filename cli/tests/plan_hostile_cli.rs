@@ -201,3 +201,56 @@ fn a_shape_of_any_scale_plans_as_drawn_and_says_its_size() {
         assert!(s.len() < 260, "{s}");
     }
 }
+
+/// A spiral band (three turns, 3 units wide in 100): one chain can fill it, but the
+/// planner's rows do not follow it and the plan leaves most of it empty. Issue 26: not
+/// refused, but the warning says what is empty, how much of the shape that is and what to
+/// try, in at most three lines.
+#[test]
+fn a_band_the_rows_cannot_follow_is_warned_with_what_to_try() {
+    let d = scratch("spiral");
+    let (mut outer, mut inner) = (Vec::new(), Vec::new());
+    for k in 0..=600 {
+        let th = 6.0 * std::f64::consts::PI * f64::from(k) / 600.0;
+        let r = 4.0 + 10.0 * th / (2.0 * std::f64::consts::PI);
+        let at = |r: f64| format!("{:.3},{:.3}", 50.0 + r * th.cos(), 50.0 + r * th.sin());
+        outer.push(at(r + 1.5));
+        inner.push(at(r - 1.5));
+    }
+    inner.reverse();
+    outer.extend(inner);
+    let body = format!("{SVG}<polygon points=\"{}\"/></svg>", outer.join(" "));
+    let f = write(&d, "spiral.svg", &body);
+    let o = run("fold-plan", &[&f, "--tiles", "300", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let err = stderr(&o);
+    let lines: Vec<&str> = err.lines().filter(|l| l.contains("warning")).collect();
+    assert!(lines.len() <= 3, "{err}");
+    let all = lines.join("\n");
+    common::assert_mentions(
+        &all,
+        &[
+            "empty",
+            "tile areas without a tile",
+            "% of the shape",
+            "to try:",
+            "--preview",
+        ],
+    );
+    // the share said is the plan's own: most of the band, as the covered share shows
+    let share: f64 = all
+        .split("that is ")
+        .nth(1)
+        .and_then(|s| s.split('%').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap();
+    assert!(share > 50.0, "{all}");
+    // a plan that leaves nothing over 2 tile areas empty gets no such lines
+    let square = write(
+        &d,
+        "square.svg",
+        &format!("{SVG}<rect width=\"50\" height=\"50\"/></svg>"),
+    );
+    let o = run("fold-plan", &[&square, "--tiles", "100", "--quiet"]);
+    assert!(!stderr(&o).contains("to try:"), "{}", stderr(&o));
+}
