@@ -237,14 +237,14 @@ fn a_band_the_rows_cannot_follow_is_warned_with_what_to_try() {
             "--preview",
         ],
     );
-    // the share said is the plan's own: most of the band, as the covered share shows
+    // the share said is the largest empty part's (the plan covers under 10% of the band)
     let share: f64 = all
         .split("that is ")
         .nth(1)
         .and_then(|s| s.split('%').next())
         .and_then(|s| s.parse().ok())
         .unwrap();
-    assert!(share > 50.0, "{all}");
+    assert!(share > 20.0, "{all}");
     // a plan that leaves nothing over 2 tile areas empty gets no such lines
     let square = write(
         &d,

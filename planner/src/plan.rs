@@ -110,7 +110,7 @@ pub struct Plan {
 /// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
 pub(crate) fn mm(v: f64) -> String {
     let a = v.abs();
-    if a != 0.0 && (a < 0.005 || a >= 1e6) {
+    if a != 0.0 && !(0.005..1e6).contains(&a) {
         // a drawing a billionth of a millimetre or a million kilometres across
         format!("{v:.3e}")
     } else if v >= 100.0 {

@@ -36,7 +36,7 @@ pub(crate) fn mm_per_unit(data: &[u8], tree: &usvg::Tree) -> f64 {
 /// 1e-30 units across plans as the same shape 1 unit across and says its size.
 pub(crate) fn figure(v: f64) -> String {
     let a = v.abs();
-    if a != 0.0 && (a < 1e-3 || a >= 1e7) {
+    if a != 0.0 && !(1e-3..1e7).contains(&a) {
         format!("{v:.4e}")
     } else {
         format!("{v:.4}")
