@@ -64,6 +64,13 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 value: bad.value,
             });
         }
+        if let Some((value, reason)) = bad_view_box(data) {
+            return Err(PlanError::BadViewBox {
+                name: name.to_string(),
+                value,
+                reason,
+            });
+        }
         if let Some((element, content)) = unread_text(data) {
             return Err(PlanError::Text {
                 name: name.to_string(),
@@ -193,6 +200,44 @@ fn element_rings(
         }
     }
     Ok(rings)
+}
+
+/// The root `<svg>` element's viewBox as written and why it cannot be used, when its width
+/// or height is zero or negative. SVG: "A negative value for width or height is an error
+/// [...]. A value of zero disables rendering of the element"; browsers draw nothing (or,
+/// for a negative size, ignore the viewBox and draw at another scale), rsvg-convert refuses
+/// the file. usvg falls back to a size of its own and the planner would plan a drawing no
+/// viewer shows. `None` when there is no viewBox, it is not four numbers (usvg ignores it),
+/// or the document is not XML.
+fn bad_view_box(data: &[u8]) -> Option<(String, String)> {
+    let text = std::str::from_utf8(data).ok()?;
+    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+    let value = doc.root_element().attribute("viewBox")?;
+    let v: Vec<f64> = value
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .ok()?;
+    if v.len() != 4 {
+        return None;
+    }
+    let (what, size) = if v[2] <= 0.0 {
+        ("width", v[2])
+    } else if v[3] <= 0.0 {
+        ("height", v[3])
+    } else {
+        return None;
+    };
+    let reason = if size == 0.0 {
+        format!("its {what} is 0, which disables rendering (a browser draws nothing)")
+    } else {
+        format!(
+            "its {what} is {size}, and a negative size is an error in SVG (a browser draws \
+             nothing or ignores the viewBox, so the drawing's size is unknown)"
+        )
+    };
+    Some((value.to_string(), reason))
 }
 
 /// The first `<text>` element with characters to draw (not under `display="none"`), as
