@@ -2,8 +2,11 @@
 //! found without visiting every pair: the candidates the clearance measurement
 //! ([`super::clearance`]) follows exactly.
 //!
-//! The schedule's time is cut at every breakpoint of every track, so that within a segment
-//! each joint turns at a constant rate. A tree of bounding discs over runs of consecutive
+//! The schedule's time is cut into windows over which no joint turns much more than
+//! [`STEP_TURN`], each joint's rate bounded by the fastest chord of its own track that the
+//! window overlaps (`walk_windows`): the windows follow the fastest joint's clock, not the
+//! union of every track's breakpoints, which for a long serpentine's U-turns folding at once
+//! was some 140 segments a U-turn, each looking along the whole chain. A tree of bounding discs over runs of consecutive
 //! tiles ([`ChainTree`], updated in O(log n) per joint that changes) holds the chain at the
 //! segment's start. Only pairs of runs with a joint between them (or inside them) that turns
 //! in the segment, or whose angle changed at its start, are looked at: every other pair keeps
@@ -35,10 +38,6 @@ const SLACK: f64 = 1e-7;
 /// the runs far along a swinging tail stay clear of what lies near its hinge.
 const STEP_TURN: f64 = 1.0 / 32.0;
 
-/// The most steps one segment is cut into (a segment turning a joint by a quarter turn takes
-/// about 50).
-const MAX_STEPS: f64 = 4096.0;
-
 /// The pairs `(i, j)`, `j >= i + 2`, ascending, that may come within `cutoff` tile widths
 /// of each other (signed distance, negative for an overlap) at some moment from `t0` to the
 /// last breakpoint, the joints of `track_of` following their tracks: a superset of those
@@ -56,12 +55,6 @@ pub(super) fn pairs_within(
     }
     let joints = tiles.saturating_sub(1);
     let tracks: Vec<&JointTrack> = track_of.iter().flatten().copied().collect();
-    let mut breakpoints: Vec<f64> = tracks
-        .iter()
-        .flat_map(|t| t.times.iter().copied())
-        .collect();
-    breakpoints.sort_by(f64::total_cmp);
-    breakpoints.dedup();
     let angles: Vec<f64> = (0..joints)
         .map(|k| track_of[k].map_or(0.0, |t| t.angle_at(t0)))
         .collect();
@@ -69,63 +62,9 @@ pub(super) fn pairs_within(
     // the whole chain at the start
     let all: Vec<(usize, f64)> = (0..joints).map(|k| (k, 0.0)).collect();
     search.look(&all, 0.0)?;
-    let mut order: Vec<&JointTrack> = tracks.clone();
-    order.sort_by(|a, b| a.times[0].total_cmp(&b.times[0]));
-    let mut next = 0;
-    let mut running: Vec<(&JointTrack, usize)> = Vec::new();
-    let mut changed: Vec<(usize, f64)> = Vec::new();
-    let mut moving: Vec<(usize, f64)> = Vec::new();
-    let mut turning: Vec<(usize, f64, f64)> = Vec::new();
-    for seg in breakpoints.windows(2) {
-        let (ta, tb) = (seg[0], seg[1]);
-        if tb <= ta {
-            continue;
-        }
-        while next < order.len() && order[next].times[0] < tb {
-            running.push((order[next], 0));
-            next += 1;
-        }
-        changed.clear();
-        moving.clear();
-        turning.clear();
-        let tree = &search.tree;
-        running.retain_mut(|(tr, hint)| {
-            let (a0, rate) = tr.chord_at(ta, hint);
-            if tree.angle(tr.joint) != a0 {
-                changed.push((tr.joint, a0));
-            }
-            if rate != 0.0 {
-                moving.push((tr.joint, rate.abs()));
-                turning.push((tr.joint, a0, rate));
-            } else if tree.angle(tr.joint) != a0 {
-                moving.push((tr.joint, 0.0));
-            }
-            tr.times[tr.times.len() - 1] > ta
-        });
-        search.tree.set_angles(changed.iter().copied());
-        if moving.is_empty() {
-            continue;
-        }
-        moving.sort_by_key(|m| m.0);
-        // in steps over which no joint turns more than STEP_TURN
-        let dt = tb - ta;
-        let turn = turning.iter().map(|m| m.2.abs() * dt).fold(0.0, f64::max);
-        let steps = (turn / STEP_TURN).ceil().clamp(1.0, MAX_STEPS) as usize;
-        let h = dt / steps as f64;
-        search.look(&moving, h)?;
-        if steps > 1 {
-            moving.retain(|m| m.1 != 0.0);
-            for u in 1..steps {
-                let at = h * u as f64;
-                search
-                    .tree
-                    .set_angles(turning.iter().map(|&(k, a0, rate)| (k, a0 + rate * at)));
-                search.look(&moving, h)?;
-            }
-        }
-    }
+    walk_windows(&mut search, &tracks)?;
     // the last angles (a jump at the schedule's end)
-    changed.clear();
+    let mut changed: Vec<(usize, f64)> = Vec::new();
     for tr in &tracks {
         let a = tr.angles[tr.angles.len() - 1];
         if search.tree.angle(tr.joint) != a {
@@ -146,6 +85,127 @@ pub(super) fn pairs_within(
             .map(|p| ((p >> 32) as u32, p as u32))
             .collect(),
     )
+}
+
+/// Follows the tracks from their first breakpoint to their last in windows, each one look
+/// of the search: a window is cut so that no joint turns much more than [`STEP_TURN`] over
+/// it (from the fastest chord of each joint's own track that it overlaps, so the bound on
+/// every joint's rate holds over the whole window), and ends at every track's start and at
+/// every jump of a track (a chord of no length). The windows follow the fastest joint's own
+/// clock, not the union of every track's breakpoints: a long serpentine's U-turns, all
+/// folding at once, each with some 140 breakpoints, no longer cut the time into that many
+/// segments each looking along the whole chain.
+thread_local!{static DBG_W: std::cell::Cell<usize> = const { std::cell::Cell::new(0) }; static DBG_M: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };}
+fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
+    // the times a window must end at: every track's start and every jump
+    let mut hard: Vec<f64> = Vec::new();
+    for tr in tracks {
+        if let Some(&t) = tr.times.first() {
+            hard.push(t);
+        }
+        for (i, w) in tr.times.windows(2).enumerate() {
+            if w[1] <= w[0] && tr.angles[i + 1] != tr.angles[i] {
+                hard.push(w[1]);
+            }
+        }
+    }
+    hard.sort_by(f64::total_cmp);
+    hard.dedup();
+    let end = tracks
+        .iter()
+        .filter_map(|t| t.times.last().copied())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let Some(&start) = hard.first() else {
+        return Some(());
+    };
+    let mut order: Vec<&JointTrack> = tracks.to_vec();
+    order.sort_by(|a, b| a.times[0].total_cmp(&b.times[0]));
+    let (mut next, mut next_hard) = (0, 0);
+    let mut running: Vec<(&JointTrack, usize)> = Vec::new();
+    let mut changed: Vec<(usize, f64)> = Vec::new();
+    let mut moving: Vec<(usize, f64)> = Vec::new();
+    let wt: f64 = std::env::var("WIN_TURN").ok().and_then(|v| v.parse().ok()).unwrap_or(STEP_TURN);
+    let mut ta = start;
+    while ta < end {
+        while next < order.len() && order[next].times[0] <= ta {
+            running.push((order[next], 0));
+            next += 1;
+        }
+        while next_hard < hard.len() && hard[next_hard] <= ta {
+            next_hard += 1;
+        }
+        let cap = hard.get(next_hard).map_or(end, |&t| t.min(end));
+        changed.clear();
+        let tree = &search.tree;
+        let mut fastest: f64 = 0.0;
+        let mut rest = cap;
+        running.retain_mut(|(tr, hint)| {
+            let (a0, rate) = tr.chord_at(ta, hint);
+            if tree.angle(tr.joint) != a0 {
+                changed.push((tr.joint, a0));
+            }
+            fastest = fastest.max(rate.abs());
+            if let Some(&t) = tr.times.get(*hint) {
+                rest = rest.min(t);
+            }
+            tr.times[tr.times.len() - 1] > ta
+        });
+        search.tree.set_angles(changed.iter().copied());
+        // the window: STEP_TURN at the fastest rate now, halved while a joint's fastest
+        // chord over it turns it more than twice that; at rest, to the next breakpoint
+        let mut tb = if fastest > 0.0 {
+            (ta + wt / fastest).min(cap)
+        } else {
+            rest.max(ta).min(cap)
+        };
+        if tb <= ta {
+            tb = cap;
+        }
+        for _ in 0..24 {
+            window_rates(&running, ta, tb, &mut moving);
+            let turn = moving.iter().map(|m| m.1).fold(0.0, f64::max) * (tb - ta);
+            let half = ta + (tb - ta) / 2.0;
+            if turn <= 2.0 * wt || half <= ta || half >= tb {
+                break;
+            }
+            tb = half;
+        }
+        for &(k, _) in &changed {
+            if !moving.iter().any(|m| m.0 == k) {
+                moving.push((k, 0.0));
+            }
+        }
+        if !moving.is_empty() {
+            moving.sort_by_key(|m| m.0);
+            search.look(&moving, tb - ta)?;
+        }
+        ta = tb;
+        DBG_W.with(|c| c.set(c.get() + 1));
+        DBG_M.with(|c| c.set(c.get() + moving.len()));
+    }
+    eprintln!("DBG found {}", search.found.len()); eprintln!("DBG windows {} moving {} work {} hard {} tracks {} span {} {}", DBG_W.with(|c| c.get()), DBG_M.with(|c| c.get()), search.work, hard.len(), tracks.len(), start, end);
+    Some(())
+}
+
+/// The joints of `running` with the fastest `|rate|` of the chords of their tracks that
+/// overlap `ta..tb` (those with a non-zero one), into `out`.
+fn window_rates(running: &[(&JointTrack, usize)], ta: f64, tb: f64, out: &mut Vec<(usize, f64)>) {
+    out.clear();
+    for (tr, hint) in running {
+        let (ts, a) = (&tr.times, &tr.angles);
+        // `hint` counts the times at or before `ta`: chord `i` runs from ts[i - 1] to ts[i]
+        let mut i = (*hint).max(1);
+        let mut fastest: f64 = 0.0;
+        while i < ts.len() && ts[i - 1] < tb {
+            if ts[i] > ts[i - 1] && ts[i] > ta {
+                fastest = fastest.max(((a[i] - a[i - 1]) / (ts[i] - ts[i - 1])).abs());
+            }
+            i += 1;
+        }
+        if fastest > 0.0 {
+            out.push((tr.joint, fastest));
+        }
+    }
 }
 
 /// The pairs one look of the search finds on a chain at `angles` whose joints `joints`
