@@ -3,7 +3,7 @@
 //! ([`super::clearance`]) follows exactly.
 //!
 //! The schedule's time is cut into windows over which no joint turns much more than
-//! [`STEP_TURN`], each joint's rate bounded by the fastest chord of its own track that the
+//! [`WINDOW_TURN`], each joint's rate bounded by the fastest chord of its own track that the
 //! window overlaps (`walk_windows`): the windows follow the fastest joint's clock, not the
 //! union of every track's breakpoints, which for a long serpentine's U-turns folding at once
 //! was some 140 segments a U-turn, each looking along the whole chain. A tree of bounding discs over runs of consecutive
@@ -33,10 +33,13 @@ use crate::Octagon;
 /// (1e-10 w at a million tiles), so a pair dropped is one that cannot come within the cutoff.
 const SLACK: f64 = 1e-7;
 
-/// The most a joint turns over one step of the search, radians: a run of tiles `m` widths
-/// along the chain from a turning joint moves at most about `m` times this over a step, so
-/// the runs far along a swinging tail stay clear of what lies near its hinge.
-const STEP_TURN: f64 = 1.0 / 32.0;
+/// The most a joint turns over one window of the search, radians, from the fastest chord
+/// of its track in the window (at most twice this): small, since a tile far along a row
+/// moves by its distance from the turning hinge times this, and what it can reach over a
+/// window is taken as found (on a 3,486-tile serpentine 1/32 found 12 times the pairs of
+/// 0.004 and cost five times the CPU in all; 0.001 found half the pairs with four times the
+/// windows and cost 1.5 times the CPU).
+const WINDOW_TURN: f64 = 1.0 / 256.0;
 
 /// The pairs `(i, j)`, `j >= i + 2`, ascending, that may come within `cutoff` tile widths
 /// of each other (signed distance, negative for an overlap) at some moment from `t0` to the
@@ -88,14 +91,13 @@ pub(super) fn pairs_within(
 }
 
 /// Follows the tracks from their first breakpoint to their last in windows, each one look
-/// of the search: a window is cut so that no joint turns much more than [`STEP_TURN`] over
+/// of the search: a window is cut so that no joint turns much more than [`WINDOW_TURN`] over
 /// it (from the fastest chord of each joint's own track that it overlaps, so the bound on
 /// every joint's rate holds over the whole window), and ends at every track's start and at
 /// every jump of a track (a chord of no length). The windows follow the fastest joint's own
 /// clock, not the union of every track's breakpoints: a long serpentine's U-turns, all
 /// folding at once, each with some 140 breakpoints, no longer cut the time into that many
 /// segments each looking along the whole chain.
-thread_local!{static DBG_W: std::cell::Cell<usize> = const { std::cell::Cell::new(0) }; static DBG_M: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };}
 fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
     // the times a window must end at: every track's start and every jump
     let mut hard: Vec<f64> = Vec::new();
@@ -124,7 +126,6 @@ fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
     let mut running: Vec<(&JointTrack, usize)> = Vec::new();
     let mut changed: Vec<(usize, f64)> = Vec::new();
     let mut moving: Vec<(usize, f64)> = Vec::new();
-    let wt: f64 = std::env::var("WIN_TURN").ok().and_then(|v| v.parse().ok()).unwrap_or(STEP_TURN);
     let mut ta = start;
     while ta < end {
         while next < order.len() && order[next].times[0] <= ta {
@@ -151,10 +152,10 @@ fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
             tr.times[tr.times.len() - 1] > ta
         });
         search.tree.set_angles(changed.iter().copied());
-        // the window: STEP_TURN at the fastest rate now, halved while a joint's fastest
+        // the window: WINDOW_TURN at the fastest rate now, halved while a joint's fastest
         // chord over it turns it more than twice that; at rest, to the next breakpoint
         let mut tb = if fastest > 0.0 {
-            (ta + wt / fastest).min(cap)
+            (ta + WINDOW_TURN / fastest).min(cap)
         } else {
             rest.max(ta).min(cap)
         };
@@ -165,7 +166,7 @@ fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
             window_rates(&running, ta, tb, &mut moving);
             let turn = moving.iter().map(|m| m.1).fold(0.0, f64::max) * (tb - ta);
             let half = ta + (tb - ta) / 2.0;
-            if turn <= 2.0 * wt || half <= ta || half >= tb {
+            if turn <= 2.0 * WINDOW_TURN || half <= ta || half >= tb {
                 break;
             }
             tb = half;
@@ -180,10 +181,7 @@ fn walk_windows(search: &mut Search, tracks: &[&JointTrack]) -> Option<()> {
             search.look(&moving, tb - ta)?;
         }
         ta = tb;
-        DBG_W.with(|c| c.set(c.get() + 1));
-        DBG_M.with(|c| c.set(c.get() + moving.len()));
     }
-    eprintln!("DBG found {}", search.found.len()); eprintln!("DBG windows {} moving {} work {} hard {} tracks {} span {} {}", DBG_W.with(|c| c.get()), DBG_M.with(|c| c.get()), search.work, hard.len(), tracks.len(), start, end);
     Some(())
 }
 
