@@ -445,10 +445,7 @@ fn size_group(
         // last row left beside the next cell, at the phase that may fill it) are checked
         // too: added to the cheapest routes, never in their place, and routed only where
         // those leave a part empty (the work doubles there at most)
-        // (nor where one holds the count leaving no part over [`MIN_EMPTY_TILES`] tile areas
-        // empty: checked byte-identical on the corpus, see BENCHMARKS.md)
-        let fills =
-            |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles <= MIN_EMPTY_TILES;
+        let fills = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
         if !plans.iter().any(fills) {
             let mut more = routed(true);
             more.retain(|(a, r)| !routes.iter().any(|(b, q)| a == b && q.word == r.word));
