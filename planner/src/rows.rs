@@ -329,33 +329,36 @@ pub(crate) fn solve_rows(
     // a tile's cost: its area outside the shape, weighted, less the area it covers
     let tile_cost = |c: f64| k_out * (a - c) - c;
     let w1 = cols + 1;
-    let m = row_measures(work, style, lat);
-    let nh = style.turn_heights.len();
     // pre[k * w1 + m]: cost of the tiles in columns 0..m of row k
     let mut pre = vec![0.0; nrows * w1];
     let mut turn = vec![0.0; nrows * cols];
+    // gaps[k * cols + j]: the prices of row k ending at column j towards -x and +x
+    let mut gaps = vec![(0.0, 0.0); nrows * cols];
+    let mut cover = vec![0.0; cols];
+    let mut diff = vec![0.0; w1];
+    let mut iv = Vec::new();
     for k in 0..nrows {
         let y = y0 + k as f64 * p;
-        let cover = &m.cover[k * cols..(k + 1) * cols];
+        tile_cover(work, (x0, y), &mut cover, &mut diff, &mut iv);
         let pr = &mut pre[k * w1..(k + 1) * w1];
         for j in 0..cols {
             let taken = blocked.is_some_and(|b| b(Point::new(x0 + j as f64, y)));
             pr[j + 1] = pr[j] + if taken { BLOCKED } else { tile_cost(cover[j]) };
         }
+        work.intervals_into(y, &mut iv);
+        edge_gaps(&iv, x0, p, &mut gaps[k * cols..(k + 1) * cols]);
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
-        for (i, h) in style.turn_heights.iter().enumerate() {
+        for h in style.turn_heights {
             let xt = x0 + dir * FRAC_1_SQRT_2;
-            let at = (k * nh + i) * cols;
-            let cover = &m.turn_cover[at..at + cols];
-            for (j, (tj, c)) in t.iter_mut().zip(cover).enumerate() {
+            tile_cover(work, (xt, y + h), &mut cover, &mut diff, &mut iv);
+            for (j, (tj, c)) in t.iter_mut().zip(&cover).enumerate() {
                 let taken = blocked.is_some_and(|b| b(Point::new(xt + j as f64, y + h)));
                 *tj += if taken { BLOCKED } else { tile_cost(*c) };
             }
         }
     }
-    let gaps = &m.gaps;
     let inf = f64::INFINITY;
     let mut dp = vec![inf; nrows * cols];
     let mut back = vec![(0u32, true); nrows * cols];
@@ -421,124 +424,6 @@ pub(crate) fn solve_rows(
         dp,
         back,
     }
-}
-
-/// The measures of a programme's rows that do not depend on the tiles laid before: the
-/// area of the shape under each row tile and each U-turn tile, and the prices of the row
-/// ends ([`edge_gaps`]).
-struct RowMeasures {
-    /// `cover[k * cols + j]`: the shape's area under the tile of row `k`, column `j`.
-    cover: Vec<f64>,
-    /// `turn_cover[(k * heights + i) * cols + j]`: under the U-turn tile at the `i`th of
-    /// the style's turn heights above row `k`, column `j`.
-    turn_cover: Vec<f64>,
-    /// `gaps[k * cols + j]`: the prices of row `k` ending at column `j` towards -x and +x.
-    gaps: Vec<(f64, f64)>,
-}
-
-/// A programme's measures kept with what they were measured on: the work shape (compared
-/// whole), the lattice and the style's pitch (bit for bit) and turn heights.
-struct KeptMeasures {
-    work: Shape,
-    lat: [u64; 4],
-    style: (u64, &'static [f64]),
-    measures: std::rc::Rc<RowMeasures>,
-}
-
-/// The programmes' measures kept per thread: the cell planner solves the same cell from
-/// the same join again and again (each route of the beam that ends there, the plain pass
-/// and the spread pass of one width), and measuring is most of a programme's work. The
-/// same inputs give the same measures bit for bit, so plans do not change.
-const KEPT_MEASURES: usize = 64;
-
-/// [`RowMeasures`] of `work` on `lat` for `style`, measured or found kept.
-fn row_measures(work: &Shape, style: Style, lat: Lattice) -> std::rc::Rc<RowMeasures> {
-    thread_local! {
-        static KEPT: std::cell::RefCell<Vec<KeptMeasures>> =
-            const { std::cell::RefCell::new(Vec::new()) };
-    }
-    let key = [
-        lat.x0.to_bits(),
-        lat.y0.to_bits(),
-        lat.cols as u64,
-        lat.nrows as u64,
-    ];
-    let skey = (style.pitch.to_bits(), style.turn_heights);
-    let same = |k: &KeptMeasures| {
-        k.lat == key
-            && k.style.0 == skey.0
-            && k.style.1 == skey.1
-            && k.work.bbox() == work.bbox()
-            && k.work == *work
-    };
-    let found = KEPT.with_borrow_mut(|kept| {
-        let i = kept.iter().position(same)?;
-        // most recently used last
-        let k = kept.remove(i);
-        let m = k.measures.clone();
-        kept.push(k);
-        Some(m)
-    });
-    if let Some(m) = found {
-        return m;
-    }
-    let measures = std::rc::Rc::new(measure_rows(work, style, lat));
-    KEPT.with_borrow_mut(|kept| {
-        if kept.len() >= KEPT_MEASURES {
-            kept.remove(0);
-        }
-        kept.push(KeptMeasures {
-            work: work.clone(),
-            lat: key,
-            style: skey,
-            measures: measures.clone(),
-        });
-    });
-    measures
-}
-
-/// Measures [`RowMeasures`] of `work` on `lat` for `style`.
-fn measure_rows(work: &Shape, style: Style, lat: Lattice) -> RowMeasures {
-    let Lattice {
-        x0,
-        y0,
-        cols,
-        nrows,
-    } = lat;
-    let p = style.pitch;
-    let nh = style.turn_heights.len();
-    let mut m = RowMeasures {
-        cover: vec![0.0; nrows * cols],
-        turn_cover: vec![0.0; nrows * nh * cols],
-        gaps: vec![(0.0, 0.0); nrows * cols],
-    };
-    let mut diff = vec![0.0; cols + 1];
-    let mut iv = Vec::new();
-    for k in 0..nrows {
-        let y = y0 + k as f64 * p;
-        tile_cover(
-            work,
-            (x0, y),
-            &mut m.cover[k * cols..(k + 1) * cols],
-            &mut diff,
-            &mut iv,
-        );
-        work.intervals_into(y, &mut iv);
-        edge_gaps(&iv, x0, p, &mut m.gaps[k * cols..(k + 1) * cols]);
-        let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
-        for (i, h) in style.turn_heights.iter().enumerate() {
-            let xt = x0 + dir * FRAC_1_SQRT_2;
-            let at = (k * nh + i) * cols;
-            tile_cover(
-                work,
-                (xt, y + h),
-                &mut m.turn_cover[at..at + cols],
-                &mut diff,
-                &mut iv,
-            );
-        }
-    }
-    m
 }
 
 impl Solved {
