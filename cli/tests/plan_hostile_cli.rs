@@ -124,3 +124,133 @@ fn outputs_never_replace_what_the_tool_did_not_write() {
         .unwrap()
         .contains("\"tile_list\""));
 }
+
+/// A viewBox of zero or negative width or height (SVG: zero disables rendering, negative is
+/// an error; rsvg-convert refuses both files, "has no dimensions") used to plan at a size
+/// usvg chose: exit 2 naming the file, the attribute, its value and what is wrong.
+#[test]
+fn a_viewbox_of_no_size_is_refused_naming_it() {
+    let d = scratch("viewbox");
+    let rect = "<rect width=\"50\" height=\"50\"/></svg>";
+    let cases = [
+        (
+            "negw.svg",
+            "0 0 -100 100",
+            vec!["width is -100", "negative size"],
+        ),
+        (
+            "negh.svg",
+            "0,0,100,-1",
+            vec!["height is -1", "negative size"],
+        ),
+        (
+            "zerow.svg",
+            "0 0 0 100",
+            vec!["width is 0", "disables rendering"],
+        ),
+        (
+            "zeroh.svg",
+            "0 0 100 0",
+            vec!["height is 0", "disables rendering"],
+        ),
+    ];
+    for (name, vb, words) in cases {
+        let body = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{vb}\">{rect}");
+        let f = write(&d, name, &body);
+        let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+        let mut w = words.clone();
+        w.extend([name, "viewBox", vb, "positive width and height"]);
+        assert_exit_saying(&o, 2, &w);
+    }
+    // a positive viewBox still plans
+    let body = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">{rect}");
+    let f = write(&d, "ok.svg", &body);
+    let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+/// A shape 1e-30 units across (and one 1e30 across) plans as the same shape 1 unit across
+/// (the reader's tolerances are shares of the drawing's size): the same tile list, and the
+/// summary says the tile's size in significant digits, not "tile 0.0000 units = 0.00 mm".
+#[test]
+fn a_shape_of_any_scale_plans_as_drawn_and_says_its_size() {
+    let d = scratch("scale");
+    let plan = |name: &str, w: &str, h: &str| {
+        let body = format!("{SVG}<rect width=\"{w}\" height=\"{h}\"/></svg>");
+        let f = write(&d, name, &body);
+        let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let out = common::stdout(&o);
+        let mut lines = out.lines();
+        (
+            lines.next().unwrap().to_string(),
+            lines.next().unwrap().to_string(),
+        )
+    };
+    let (one, _) = plan("one.svg", "1", "2");
+    let (tiny, tiny_summary) = plan("tiny.svg", "1e-30", "2e-30");
+    let (huge, huge_summary) = plan("huge.svg", "1e30", "2e30");
+    assert_eq!(tiny, one);
+    assert_eq!(huge, one);
+    for (s, exp) in [
+        (&tiny_summary, "e-31 units = "),
+        (&huge_summary, "e29 units = "),
+    ] {
+        assert!(s.contains(exp), "{s}");
+        assert!(!s.contains("0.0000 units") && !s.contains("0.00 mm"), "{s}");
+        assert!(s.len() < 260, "{s}");
+    }
+}
+
+/// A spiral band (three turns, 3 units wide in 100): one chain can fill it, but the
+/// planner's rows do not follow it and the plan leaves most of it empty. Issue 26: not
+/// refused, but the warning says what is empty, how much of the shape that is and what to
+/// try, in at most three lines.
+#[test]
+fn a_band_the_rows_cannot_follow_is_warned_with_what_to_try() {
+    let d = scratch("spiral");
+    let (mut outer, mut inner) = (Vec::new(), Vec::new());
+    for k in 0..=600 {
+        let th = 6.0 * std::f64::consts::PI * f64::from(k) / 600.0;
+        let r = 4.0 + 10.0 * th / (2.0 * std::f64::consts::PI);
+        let at = |r: f64| format!("{:.3},{:.3}", 50.0 + r * th.cos(), 50.0 + r * th.sin());
+        outer.push(at(r + 1.5));
+        inner.push(at(r - 1.5));
+    }
+    inner.reverse();
+    outer.extend(inner);
+    let body = format!("{SVG}<polygon points=\"{}\"/></svg>", outer.join(" "));
+    let f = write(&d, "spiral.svg", &body);
+    let o = run("fold-plan", &[&f, "--tiles", "300", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let err = stderr(&o);
+    let lines: Vec<&str> = err.lines().filter(|l| l.contains("warning")).collect();
+    assert!(lines.len() <= 3, "{err}");
+    let all = lines.join("\n");
+    common::assert_mentions(
+        &all,
+        &[
+            "empty",
+            "tile areas without a tile",
+            "% of the shape",
+            "to try:",
+            "--preview",
+        ],
+    );
+    // the share said is the largest empty part's (the plan covers under 10% of the band)
+    let share: f64 = all
+        .split("that is ")
+        .nth(1)
+        .and_then(|s| s.split('%').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap();
+    assert!(share > 20.0, "{all}");
+    // a plan that leaves nothing over 2 tile areas empty gets no such lines
+    let square = write(
+        &d,
+        "square.svg",
+        &format!("{SVG}<rect width=\"50\" height=\"50\"/></svg>"),
+    );
+    let o = run("fold-plan", &[&square, "--tiles", "100", "--quiet"]);
+    assert!(!stderr(&o).contains("to try:"), "{}", stderr(&o));
+}

@@ -61,6 +61,18 @@ pub enum PlanError {
         /// The value as written.
         value: String,
     },
+    /// The root `<svg>` element's viewBox has a zero or negative width or height: SVG
+    /// renders nothing for a zero one, and a negative one is an error (a renderer stops or
+    /// ignores the viewBox), so the drawing's size is not known.
+    #[error("{name}: <svg> has viewBox=\"{value}\": {reason}; give the viewBox a positive width and height (its third and fourth numbers), or remove it, and plan that file")]
+    BadViewBox {
+        /// The file name (or `<string>`).
+        name: String,
+        /// The attribute's value as written.
+        value: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// The drawing holds text, which the planner does not read (it loads no fonts): planned
     /// without it, the chain would fill another shape than the one drawn.
     #[error("{name}: {element} holds text (\"{content}\"), which the planner does not read; convert the text to paths (Inkscape: Path > Object to Path) and plan that file")]

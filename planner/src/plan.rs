@@ -109,7 +109,11 @@ pub struct Plan {
 
 /// Millimetres to three significant digits or to 0.1 mm, whichever is coarser.
 pub(crate) fn mm(v: f64) -> String {
-    if v >= 100.0 {
+    let a = v.abs();
+    if a != 0.0 && !(0.005..1e6).contains(&a) {
+        // a drawing a billionth of a millimetre or a million kilometres across
+        format!("{v:.3e}")
+    } else if v >= 100.0 {
         format!("{v:.0}")
     } else if v >= 10.0 {
         format!("{v:.1}")
@@ -160,13 +164,13 @@ impl Plan {
     /// The one-line summary `fold-plan` prints.
     pub fn summary(&self) -> String {
         format!(
-            "{}, {}, {}, {}, axis {:.1} deg, tile {:.4} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
+            "{}, {}, {}, {}, axis {:.1} deg, tile {} units = {} mm, folded {} x {} mm; fit: {:.1}% of the shape covered, {:.1}% of the chain outside it",
             plural(self.tiles, "tile", "tiles"),
             plural(self.u_turns, &format!("{} U-turn", self.turns), &format!("{} U-turns", self.turns)),
             plural(self.quarter_turns, "90-degree turn", "90-degree turns"),
             plural(self.cells, "cell", "cells"),
             self.axis_deg,
-            self.tile_size,
+            crate::units::figure(self.tile_size),
             mm(self.tile_mm),
             mm(self.extent_mm[0]),
             mm(self.extent_mm[1]),

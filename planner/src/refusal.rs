@@ -26,7 +26,9 @@ fn at(p: Point, mm_per_unit: f64) -> String {
 /// A length in drawing units, to three significant digits (at least whole units).
 fn units(v: f64) -> String {
     let a = v.abs();
-    if a >= 100.0 || a == 0.0 {
+    if a != 0.0 && !(1e-3..1e7).contains(&a) {
+        format!("{v:.3e}")
+    } else if a >= 100.0 || a == 0.0 {
         format!("{v:.0}")
     } else if a >= 10.0 {
         format!("{v:.1}")

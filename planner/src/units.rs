@@ -30,6 +30,19 @@ pub(crate) fn mm_per_unit(data: &[u8], tree: &usvg::Tree) -> f64 {
     }
 }
 
+/// A size in user units with four decimals, or in scientific notation when those would
+/// show nothing of it (under 0.001) or it is ten million or more: the planner reads a
+/// drawing at any scale (its tolerances are shares of the drawing's size), so a shape
+/// 1e-30 units across plans as the same shape 1 unit across and says its size.
+pub(crate) fn figure(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-3..1e7).contains(&a) {
+        format!("{v:.4e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {

@@ -202,6 +202,10 @@ fn run(args: &Args) -> anyhow::Result<()> {
         foldchain_cli::output::write_atomic(p, svg.as_bytes()).context("writing the preview")?;
     }
     foldchain_cli::report::print_plan_warnings("fold-plan", &plan.warnings);
+    foldchain_cli::report::print_plan_warnings(
+        "fold-plan",
+        &empty_advice(&plan, args.preview.is_some()),
+    );
     if args.json {
         outln!("{}", plan.to_json());
     } else {
@@ -209,6 +213,35 @@ fn run(args: &Args) -> anyhow::Result<()> {
         outln!("{}", plan.summary());
     }
     Ok(())
+}
+
+/// Issue 26's rule: a plan leaves no part of the shape over two tile areas empty. When the
+/// returned plan does (the planner found none that does not), the two lines printed under
+/// the planner's warning of where that part is: how much of the shape it is, and what to
+/// try. Not in the plan's JSON (its warnings say where; these say what to do).
+fn empty_advice(plan: &foldchain_planner::Plan, preview: bool) -> Vec<String> {
+    let m = &plan.metrics;
+    if m.largest_empty_tiles <= 2.0 || plan.tiles == 0 || m.shape_area <= 0.0 {
+        return Vec::new();
+    }
+    let tile_area = m.chain_area / plan.tiles as f64;
+    let share = (m.largest_empty_tiles * tile_area / m.shape_area).min(1.0);
+    let see = if preview {
+        "the preview frames it in red"
+    } else {
+        "--preview FILE.svg frames it in red"
+    };
+    vec![
+        format!(
+            "that is {:.0}% of the shape, more than the 2 tile areas a plan may leave empty: \
+             no plan found lays rows (parallel strips joined by turns) into it",
+            100.0 * share
+        ),
+        format!(
+            "to try: {see}; another --tiles or --turns; or draw that part wider or \
+             straighter, or as a drawing of its own planned as a second chain"
+        ),
+    ]
 }
 
 /// Words every preview ends with (its legend's note on coverage): how an existing file is
