@@ -254,3 +254,31 @@ fn a_band_the_rows_cannot_follow_is_warned_with_what_to_try() {
     let o = run("fold-plan", &[&square, "--tiles", "100", "--quiet"]);
     assert!(!stderr(&o).contains("to try:"), "{}", stderr(&o));
 }
+
+/// An element whose own transform scales it by 1e-7 or less (here 1e-10): the SVG reader
+/// drops it as invisible, where a browser draws it small. Alone it was "no visible element
+/// with a fill"; beside another shape it was silently left out of the plan. Refused naming
+/// the element, its transform and the scale (exit 2). scale(1e-5) still plans.
+#[test]
+fn an_element_scaled_below_the_reader_s_digits_is_refused_naming_it() {
+    let d = scratch("tinyscale");
+    let square = "<rect width=\"50\" height=\"50\"/>";
+    for (name, body) in [
+        ("alone.svg", "<rect width=\"1\" height=\"2\" transform=\"scale(1e-10)\"/>".to_string()),
+        (
+            "beside.svg",
+            format!("{square}<g id=\"far\" transform=\"translate(60 0) scale(1e-10, 1)\"><rect width=\"5e10\" height=\"50\"/></g>"),
+        ),
+    ] {
+        let f = write(&d, name, &format!("{SVG}{body}</svg>"));
+        let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+        assert_exit_saying(&o, 2, &[name, "transform=", "1e-10", "1.000e-10", "drops an element"]);
+    }
+    let f = write(
+        &d,
+        "small.svg",
+        &format!("{SVG}<rect width=\"1\" height=\"2\" transform=\"scale(1e-5)\"/></svg>"),
+    );
+    let o = run("fold-plan", &[&f, "--tiles", "100", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}

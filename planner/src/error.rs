@@ -73,6 +73,19 @@ pub enum PlanError {
         /// What is wrong with it.
         reason: String,
     },
+    /// An element's own transform scales it by so little that the SVG reader (32-bit
+    /// numbers) drops it, with what it holds: the plan would miss a part a browser draws.
+    #[error("{name}: {element} has transform=\"{value}\", which scales it by {scale:.3e}: the SVG reader (32-bit numbers) drops an element scaled by {limit:.2e} or less, so it would not be planned; give the element larger coordinates and a transform nearer scale(1) (e.g. Inkscape: Object > Transform, or Preferences > Behavior > Transforms > Optimized) and plan that file", limit = f32::EPSILON)]
+    TinyTransform {
+        /// The file name (or `<string>`).
+        name: String,
+        /// The element (its tag and id, or its tag and index among elements of that tag).
+        element: String,
+        /// The attribute's value as written.
+        value: String,
+        /// The smaller of its scales along its two axes.
+        scale: f64,
+    },
     /// The drawing holds text, which the planner does not read (it loads no fonts): planned
     /// without it, the chain would fill another shape than the one drawn.
     #[error("{name}: {element} holds text (\"{content}\"), which the planner does not read; convert the text to paths (Inkscape: Path > Object to Path) and plan that file")]
