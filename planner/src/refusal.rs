@@ -28,7 +28,10 @@ fn units(v: f64) -> String {
     let a = v.abs();
     if a != 0.0 && !(1e-3..1e7).contains(&a) {
         format!("{v:.3e}")
-    } else if a >= 100.0 || a == 0.0 {
+    } else if a == 0.0 {
+        // not "-0" for a negative zero
+        "0".into()
+    } else if a >= 100.0 {
         format!("{v:.0}")
     } else if a >= 10.0 {
         format!("{v:.1}")
@@ -240,6 +243,18 @@ fn list(v: &[usize]) -> String {
 
 #[cfg(test)]
 mod tests {
+    /// Lengths in the refusals' words: no "-0" (a box edge at -0.0 was "y -0 to 24.0"),
+    /// and sizes too small or large for fixed decimals in scientific notation.
+    #[test]
+    fn lengths_read_as_numbers() {
+        assert_eq!(units(-0.0), "0");
+        assert_eq!(units(0.0), "0");
+        assert_eq!(units(-2.148e-4), "-2.148e-4");
+        assert_eq!(units(123.4), "123");
+        assert_eq!(units(0.5), "0.500");
+        assert_eq!(units(3e9), "3.000e9");
+    }
+
     use super::*;
 
     fn reason(e: PlanError) -> String {
