@@ -56,7 +56,13 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 reason: e.to_string(),
             }
         })?;
-        if let Some(bad) = bad_number(data) {
+        // the document as XML, read once for the checks usvg does not make (`None` when it
+        // is not UTF-8 XML: usvg has read it, so none of them applies)
+        let doc = std::str::from_utf8(data)
+            .ok()
+            .and_then(|text| usvg::roxmltree::Document::parse(text).ok());
+        let doc = doc.as_ref();
+        if let Some(bad) = doc.and_then(bad_number) {
             return Err(PlanError::BadNumber {
                 name: name.to_string(),
                 element: bad.element,
@@ -64,7 +70,7 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 value: bad.value,
             });
         }
-        if let Some((element, value, scale)) = tiny_transform(data) {
+        if let Some((element, value, scale)) = doc.and_then(tiny_transform) {
             return Err(PlanError::TinyTransform {
                 name: name.to_string(),
                 element,
@@ -72,14 +78,14 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
                 scale,
             });
         }
-        if let Some((value, reason)) = bad_view_box(data) {
+        if let Some((value, reason)) = doc.and_then(bad_view_box) {
             return Err(PlanError::BadViewBox {
                 name: name.to_string(),
                 value,
                 reason,
             });
         }
-        if let Some((element, content)) = unread_text(data) {
+        if let Some((element, content)) = doc.and_then(unread_text) {
             return Err(PlanError::Text {
                 name: name.to_string(),
                 element,
@@ -87,7 +93,9 @@ pub(crate) fn read_drawing(data: &[u8], name: &str) -> Result<(Shape, f64), Plan
             });
         }
         let mut elements: Vec<Element> = Vec::new();
-        let to_user = user_units_transform(data, &tree);
+        let to_user = doc.map_or(usvg::Transform::identity(), |d| {
+            user_units_transform(d, &tree)
+        });
         collect_elements(tree.root(), &mut elements, to_user, &mut Vec::new());
         if elements.is_empty() {
             return Err(no_area(
@@ -220,23 +228,45 @@ fn element_rings(
     Ok(rings)
 }
 
+/// The drawing as XML (usvg's parser), for what usvg does not check or report.
+type Document<'input> = usvg::roxmltree::Document<'input>;
+
+/// The elements of the SVG namespace in document order, each with its number among the
+/// elements of its name (1 for the first `<path>`, and so on): how messages name an
+/// element that has no `id`.
+fn svg_elements<'a, 'input>(
+    doc: &'a Document<'input>,
+) -> impl Iterator<Item = (usvg::roxmltree::Node<'a, 'input>, usize)> {
+    let mut seen: std::collections::HashMap<&'a str, usize> = std::collections::HashMap::new();
+    doc.descendants()
+        .filter(|n| {
+            n.is_element() && n.tag_name().namespace() == Some("http://www.w3.org/2000/svg")
+        })
+        .map(move |n| {
+            let count = seen.entry(n.tag_name().name()).or_insert(0);
+            *count += 1;
+            (n, *count)
+        })
+}
+
+/// How a message names an element: `<path> id="leaf"`, or `<path> #3` (the third `<path>`)
+/// when it has no `id` ([`svg_elements`]' number).
+fn element_label(node: usvg::roxmltree::Node<'_, '_>, index: usize) -> String {
+    let tag = node.tag_name().name();
+    match node.attribute("id") {
+        Some(id) => format!("<{tag}> id=\"{id}\""),
+        None => format!("<{tag}> #{index}"),
+    }
+}
+
 /// The first element whose own `transform` scales it, along either axis, by more than 0
 /// and at most `f32::EPSILON` (1.2e-7): usvg (tiny-skia's `Transform::is_valid`) takes
 /// such an element for invisible and drops it with its children, where a browser draws
 /// it, small. As (the element, the attribute's value, the smaller scale). A scale of
 /// exactly 0 draws nothing anywhere and is not reported; nor is a transform this parser
 /// does not read (usvg then ignores it too).
-fn tiny_transform(data: &[u8]) -> Option<(String, String, f64)> {
-    let text = std::str::from_utf8(data).ok()?;
-    let doc = usvg::roxmltree::Document::parse(text).ok()?;
-    let mut seen: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
-    for node in doc.descendants().filter(|n| n.is_element()) {
-        let tag = node.tag_name();
-        if tag.namespace() != Some("http://www.w3.org/2000/svg") {
-            continue;
-        }
-        let count = seen.entry(tag.name()).or_insert(0);
-        *count += 1;
+fn tiny_transform(doc: &Document<'_>) -> Option<(String, String, f64)> {
+    for (node, index) in svg_elements(doc) {
         let Some(value) = node.attribute("transform") else {
             continue;
         };
@@ -245,11 +275,7 @@ fn tiny_transform(data: &[u8]) -> Option<(String, String, f64)> {
         };
         let scale = m[0].hypot(m[1]).min(m[2].hypot(m[3]));
         if scale > 0.0 && scale <= f64::from(f32::EPSILON) {
-            let element = match node.attribute("id") {
-                Some(id) => format!("<{}> id=\"{id}\"", tag.name()),
-                None => format!("<{}> #{}", tag.name(), *count),
-            };
-            return Some((element, value.to_string(), scale));
+            return Some((element_label(node, index), value.to_string(), scale));
         }
     }
     None
@@ -309,9 +335,7 @@ fn transform_matrix(value: &str) -> Option<[f64; 6]> {
 /// the file. usvg falls back to a size of its own and the planner would plan a drawing no
 /// viewer shows. `None` when there is no viewBox, it is not four numbers (usvg ignores it),
 /// or the document is not XML.
-fn bad_view_box(data: &[u8]) -> Option<(String, String)> {
-    let text = std::str::from_utf8(data).ok()?;
-    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+fn bad_view_box(doc: &Document<'_>) -> Option<(String, String)> {
     let value = doc.root_element().attribute("viewBox")?;
     let v: Vec<f64> = value
         .split(|c: char| c == ',' || c.is_whitespace())
@@ -344,9 +368,7 @@ fn bad_view_box(data: &[u8]) -> Option<(String, String)> {
 /// (the element, the start of its text): usvg, built without fonts, drops text, so a
 /// drawing that holds some would be planned without it (or refused as having no filled
 /// area, which it has). `None` for a document that is not XML.
-fn unread_text(data: &[u8]) -> Option<(String, String)> {
-    let text = std::str::from_utf8(data).ok()?;
-    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+fn unread_text(doc: &Document<'_>) -> Option<(String, String)> {
     let hidden = |n: usvg::roxmltree::Node<'_, '_>| {
         n.ancestors().any(|a| {
             a.attribute("display") == Some("none")
@@ -415,29 +437,15 @@ const GEOMETRY_ATTRIBUTES: &[&str] = &[
 /// value or drops the element, which would plan a different shape than the one drawn (or
 /// report no filled area); the planner names the element and the value instead. `None` for
 /// a document that is not XML (usvg's parser reports that).
-fn bad_number(data: &[u8]) -> Option<BadNumber> {
-    let text = std::str::from_utf8(data).ok()?;
-    let doc = usvg::roxmltree::Document::parse(text).ok()?;
-    let mut seen: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
-    for node in doc.descendants().filter(|n| n.is_element()) {
-        let tag = node.tag_name();
-        if tag.namespace() != Some("http://www.w3.org/2000/svg") {
-            continue;
-        }
-        let count = seen.entry(tag.name()).or_insert(0);
-        *count += 1;
-        let index = *count;
+fn bad_number(doc: &Document<'_>) -> Option<BadNumber> {
+    for (node, index) in svg_elements(doc) {
         for attr in node.attributes() {
             if attr.namespace().is_some() || !GEOMETRY_ATTRIBUTES.contains(&attr.name()) {
                 continue;
             }
             if let Some(value) = non_finite_token(attr.value()) {
-                let element = match node.attribute("id") {
-                    Some(id) => format!("<{}> id=\"{id}\"", tag.name()),
-                    None => format!("<{}> #{index}", tag.name()),
-                };
                 return Some(BadNumber {
-                    element,
+                    element: element_label(node, index),
                     attribute: attr.name().to_string(),
                     value,
                 });
@@ -557,14 +565,8 @@ fn zero_size(elements: &[Element]) -> String {
 /// The transform from usvg's output coordinates back to the root element's user units:
 /// usvg wraps everything in one group holding the viewBox mapping (and the root's own
 /// transform), which is undone here so that plans are in the drawing's user units.
-fn user_units_transform(data: &[u8], tree: &usvg::Tree) -> usvg::Transform {
+fn user_units_transform(doc: &Document<'_>, tree: &usvg::Tree) -> usvg::Transform {
     let id = usvg::Transform::identity();
-    let Ok(text) = std::str::from_utf8(data) else {
-        return id;
-    };
-    let Ok(doc) = usvg::roxmltree::Document::parse(text) else {
-        return id;
-    };
     let root = doc.root_element();
     let has_ts = root.attribute("transform").is_some();
     // usvg adds the wrapper only when the viewBox mapping is not the identity
