@@ -30,7 +30,7 @@ use kurbo::{Affine, Point, Rect, Vec2};
 use crate::centre_grid::CentreGrid;
 use crate::check::CheckMemo;
 use crate::options::Turns;
-use crate::rows::{solve_rows, tile_area, Lattice, Serpentine, Solved, Style};
+use crate::rows::{solve_rows, tile_area, Blocked, Lattice, Phased, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
@@ -39,6 +39,9 @@ const BEAM: usize = 24;
 /// octagon is 1/2 from its centre, so two tiles closer than 1 overlap; the margin absorbs
 /// rounding only (touching tiles are exactly 1 apart).
 const MIN_GAP: f64 = 1.0 - 1e-6;
+/// The widening (tile widths) of the box outside which no lattice site of a cell is blocked
+/// ([`Blocked::within`]): far more than the rounding of the maps between the frames.
+const WITHIN_MARGIN: f64 = 1e-3;
 
 /// A cell frame: `x = (q - o) . d`, `y = (q - o) . n` in the axis frame.
 #[derive(Clone, Copy, Debug)]
@@ -54,18 +57,23 @@ impl Frame {
         Affine::new([self.d.x, self.d.y, self.n.x, self.n.y, self.o.x, self.o.y])
     }
 
-    /// The axis-frame shape in the cell frame (`d`, `n` orthonormal: the inverse is the
-    /// transpose).
-    fn work(self, s: &Shape) -> Shape {
+    /// The map from the axis frame to the cell frame (`d`, `n` orthonormal: the inverse is
+    /// the transpose).
+    fn from_axis(self) -> Affine {
         let o = self.o.to_vec2();
-        s.transformed(Affine::new([
+        Affine::new([
             self.d.x,
             self.n.x,
             self.d.y,
             self.n.y,
             -o.dot(self.d),
             -o.dot(self.n),
-        ]))
+        ])
+    }
+
+    /// The axis-frame shape in the cell frame.
+    fn work(self, s: &Shape) -> Shape {
+        s.transformed(self.from_axis())
     }
 
     /// True if turning from `d` towards `n` is counter-clockwise (an L fold).
@@ -291,8 +299,7 @@ fn first_legs(
                 n,
             };
             let work = frame.work(shape);
-            for lat in Lattice::phased(work.bbox(), p) {
-                let sol = solve_rows(&work, style, lat, None, None);
+            for (lat, sol) in Phased::new(&work, style).solve(style) {
                 for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
@@ -413,13 +420,23 @@ fn next_legs(
             // around them rejects most lattice tiles at once)
             let to_axis = frame.to_axis();
             let reach = near_box.inflate(1.0, 1.0);
-            let blocked = |q: Point| {
+            let test = |q: Point| {
                 let q = to_axis * q;
                 reach.contains(q)
                     && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
                         || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
-            let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
+            // `reach` in the cell frame, widened far beyond the rounding of either map: the
+            // sites outside it are not blocked, so the test is not asked there
+            let within = frame
+                .from_axis()
+                .transform_rect_bbox(reach)
+                .inflate(WITHIN_MARGIN, WITHIN_MARGIN);
+            let blocked = Blocked {
+                within,
+                test: &test,
+            };
+            let sol = solve_rows(&work, style, lat, Some(c0), Some(blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread) {
                 let leg = Leg {
                     frame,
