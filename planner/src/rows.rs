@@ -209,7 +209,11 @@ fn add_tile_measures(
         if f0 < f1 {
             diff[f0 as usize] += weight * 2.0 * hw;
             diff[f1 as usize] -= weight * 2.0 * hw;
-            for j in (t0..f0).chain(f1..t1) {
+            // two plain loops (not a chained iterator): the same columns, each once
+            for j in t0..f0 {
+                out[j as usize] += weight * overlap(j);
+            }
+            for j in f1..t1 {
                 out[j as usize] += weight * overlap(j);
             }
         } else {
