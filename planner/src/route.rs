@@ -59,7 +59,7 @@ impl Frame {
 
     /// The map from the axis frame to the cell frame (`d`, `n` orthonormal: the inverse is
     /// the transpose).
-    fn from_axis(self) -> Affine {
+    fn axis_to_cell(self) -> Affine {
         let o = self.o.to_vec2();
         Affine::new([
             self.d.x,
@@ -73,7 +73,7 @@ impl Frame {
 
     /// The axis-frame shape in the cell frame.
     fn work(self, s: &Shape) -> Shape {
-        s.transformed(self.from_axis())
+        s.transformed(self.axis_to_cell())
     }
 
     /// True if turning from `d` towards `n` is counter-clockwise (an L fold).
@@ -429,7 +429,7 @@ fn next_legs(
             // `reach` in the cell frame, widened far beyond the rounding of either map: the
             // sites outside it are not blocked, so the test is not asked there
             let within = frame
-                .from_axis()
+                .axis_to_cell()
                 .transform_rect_bbox(reach)
                 .inflate(WITHIN_MARGIN, WITHIN_MARGIN);
             let blocked = Blocked {
