@@ -171,20 +171,33 @@ fn ends(
 ) -> Vec<(f64, f64, usize, usize)> {
     let to_axis = frame.to_axis();
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
+    let apart = |t: Rect, k: usize, e: usize| {
+        let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
+        let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
+        let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
+        (t.width().max(t.height()) * tile_area() / pitch, dx, dy)
+    };
     let look = |k: usize, e: usize| match toward {
         Some(t) => {
-            let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
-            let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
-            let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
-            let strip = t.width().max(t.height()) * tile_area() / pitch;
+            let (strip, dx, dy) = apart(t, k, e);
             strip * dx.hypot(dy)
+        }
+        None => 0.0,
+    };
+    // a bound the look-ahead never falls below, without the libm call: the hypotenuse is
+    // at least the longer leg (faithfully rounded too: that leg is a float below it), less a
+    // relative 1e-12 that covers the rounding of the products
+    let look_lower = |k: usize, e: usize| match toward {
+        Some(t) => {
+            let (strip, dx, dy) = apart(t, k, e);
+            strip * dx.max(dy) * (1.0 - 1e-12)
         }
         None => 0.0,
     };
     let mut out: Vec<(f64, f64, usize, usize)> = Vec::new();
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
-        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look));
+        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look_lower, look));
         // and the other exits of the near end's row that lie beside the next cell: where
         // along the last row the chain leaves sets the phase of the next cell's rows (a
         // key's head ends its last column where the shaft's first row runs along the

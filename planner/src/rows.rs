@@ -577,20 +577,22 @@ impl Solved {
     }
 
     /// The end `(cost, row, column)` among rows that `row_ok` accepts that minimises its
-    /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out). The
-    /// penalty must never be negative: it is not asked where the cost alone loses.
+    /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out), the first
+    /// in the order of rows and columns where several do. `lower(row, column)` is a cheap
+    /// bound that the penalty never falls below: the penalty is not asked where the cost plus
+    /// the bound cannot beat the best so far (floating-point addition is monotone, so the
+    /// cost plus the penalty could not either).
     pub(crate) fn best_end_with(
         &self,
         row_ok: impl Fn(usize) -> bool,
+        lower: impl Fn(usize, usize) -> f64,
         penalty: impl Fn(usize, usize) -> f64,
     ) -> Option<(f64, usize, usize)> {
         let mut best: Option<(f64, f64, usize, usize)> = None;
         for k in (0..self.nrows).filter(|&k| row_ok(k)) {
             let row = &self.dp[k * self.cols..(k + 1) * self.cols];
             for (e, &c) in row.iter().enumerate() {
-                // the penalty is never negative, so an end whose cost alone is not below
-                // the best cannot beat it (c + penalty >= c in floating point too)
-                if !c.is_finite() || best.is_some_and(|b| c >= b.0) {
+                if !c.is_finite() || best.is_some_and(|b| c + lower(k, e) >= b.0) {
                     continue;
                 }
                 let t = c + penalty(k, e);
