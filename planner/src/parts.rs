@@ -17,7 +17,7 @@
 //! high ones (mapsicon's Russia, Ecuador, Kuwait, Sint Maarten at 100 and 300 tiles against
 //! 1000).
 
-use kurbo::{Point, Rect};
+use kurbo::{Line, ParamCurveNearest, Point, Rect};
 
 use crate::clip::filled_pieces;
 use crate::drawing::FLATTEN_TOLERANCE;
@@ -102,7 +102,7 @@ pub(crate) fn parts(shape: &Shape) -> Vec<Part> {
         .into_iter()
         .map(|rings| {
             let area = rings.iter().map(Ring::signed_area).sum::<f64>().abs();
-            let bbox = bounds(rings.iter().flat_map(|r| r.points.iter().copied()));
+            let bbox = bounds(&rings);
             Part { rings, area, bbox }
         })
         .collect();
@@ -141,17 +141,11 @@ pub(crate) fn parts(shape: &Shape) -> Vec<Part> {
     out
 }
 
-/// The bounding box of points.
-fn bounds(points: impl Iterator<Item = Point>) -> Rect {
-    points.fold(
-        Rect::new(
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |b, p| Rect::new(b.x0.min(p.x), b.y0.min(p.y), b.x1.max(p.x), b.y1.max(p.y)),
-    )
+/// The bounding box of the rings' points.
+fn bounds(rings: &[Ring]) -> Rect {
+    let mut points = rings.iter().flat_map(|r| r.points.iter().copied());
+    let first = points.next().unwrap_or_default();
+    points.fold(Rect::from_points(first, first), |b, p| b.union_pt(p))
 }
 
 /// Whether two pieces (whose areas do not overlap) come within `gap` of each other: only
@@ -192,14 +186,7 @@ fn near(a: &Part, b: &Part, gap: f64) -> bool {
 
 /// The distance from `p` to the segment `a`-`b`.
 fn seg_dist(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let len2 = ab.hypot2();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).hypot()
+    Line::new(a, b).nearest(p, 0.0).distance_sq.sqrt()
 }
 
 #[cfg(test)]

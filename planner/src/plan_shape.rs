@@ -40,19 +40,7 @@ pub(crate) fn plan_shape(
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
     opts.check(shape)?;
-    // the drawing's parts, the same at every count: several large ones are refused, islands
-    // left out ([`crate::parts`])
-    let (kept, islands) = match parts::split(shape) {
-        Parts::Several { large, islands } => {
-            return Err(refusal::separate_parts(name, &large, &islands, mm_per_unit))
-        }
-        Parts::One { shape, islands } => (shape, islands),
-    };
-    let island_warning = refusal::islands_left_out(
-        &islands,
-        kept.as_ref().map_or(0.0, Shape::area) + islands.iter().map(|p| p.area).sum::<f64>(),
-        mm_per_unit,
-    );
+    let (kept, island_warning) = without_islands(shape, name, mm_per_unit)?;
     let shape = kept.as_ref().unwrap_or(shape);
     let styles: Vec<Style> = match opts.turns {
         Turns::Tight => vec![TIGHT],
@@ -157,6 +145,30 @@ pub(crate) fn plan_shape(
     plan.warnings.extend(count_warning(opts, plan.tiles));
     plan.warnings.extend(island_warning);
     Ok(plan)
+}
+
+/// The drawing's parts, the same at every count ([`crate::parts`]): a drawing of several
+/// large parts is refused; otherwise the shape without its islands (`None`: the drawing as
+/// read) and the warning that names them.
+fn without_islands(
+    shape: &Shape,
+    name: &str,
+    mm_per_unit: f64,
+) -> Result<(Option<Shape>, Option<String>), PlanError> {
+    match parts::split(shape) {
+        Parts::Several { large, islands } => {
+            Err(refusal::separate_parts(name, &large, &islands, mm_per_unit))
+        }
+        Parts::One {
+            shape: kept,
+            islands,
+        } => {
+            let total = kept.as_ref().map_or(0.0, Shape::area)
+                + islands.iter().map(|p| p.area).sum::<f64>();
+            let warning = refusal::islands_left_out(&islands, total, mm_per_unit);
+            Ok((kept, warning))
+        }
+    }
 }
 
 /// The refusal made before any search: a drawing (of one part, [`crate::parts`]) in which
