@@ -236,8 +236,8 @@ fn islands_are_left_out_at_every_count_with_the_same_warning() {
     }
 }
 
-/// A drawing of two large parts (Natural Earth's Estonia: the mainland and Saaremaa, 6.1% of
-/// its area, and two islands) is refused at every count, with the same short message
+/// A drawing of two large parts (Natural Earth's Estonia: the mainland, Saaremaa, 6.1% of
+/// its area, and two islands, 2.7% together) is refused at every count, with the same short message
 /// naming both parts' boxes and what to do; `--verbose` adds each part's share and the
 /// islands. Before, the count of parts named changed with the tiles (3 at 100 and 300, 4
 /// at 1000).
@@ -263,7 +263,7 @@ fn several_large_parts_are_refused_at_every_count_naming_them() {
         &v,
         &[
             "tried: part 2: x 0 to 233, y 491 to 701 (61.7 x 55.6 mm), 6.1% of the area",
-            "tried: and 2 islands under 5% of the area each",
+            "tried: and 2 islands (2.7% of the area together), which a plan would leave out",
         ],
     );
 }

@@ -6,11 +6,12 @@
 //!   drawing's size (the reading's precision: each curve is flattened within half of it)
 //!   are one part, so a hairline a tracing left between two pieces, or two pieces touching
 //!   at a point, does not split a drawing.
-//! - An *island* is a part of less than [`ISLAND_SHARE`] of the drawing's filled area: it is
-//!   left out of the plan, with a warning naming it, at every count (one chain cannot reach
-//!   it; a map's islets, a logo's dot).
-//! - A drawing with two or more parts of at least that share each is refused, at every
-//!   count, naming them.
+//! - The *islands* are the smallest parts, as many as are together under [`ISLAND_SHARE`] of
+//!   the drawing's filled area: they are left out of the plan, with a warning naming them,
+//!   at every count (one chain cannot reach them; a map's islets, a logo's dot). A budget
+//!   for them together, not a share each, so that a drawing of many small pieces (a stipple,
+//!   a logo's letters) is not planned as its largest piece alone.
+//! - A drawing with two or more parts besides is refused, at every count, naming them.
 //!
 //! Before, a part counted only where it held half a tile at the asked count, so a drawing
 //! with islands planned at low counts (the islands under a tile, dropped) and was refused at
@@ -28,7 +29,8 @@ use crate::shape::{FilledPath, Ring, Shape};
 /// come apart when each is flattened.
 pub(crate) const GAP: f64 = 2.0 * FLATTEN_TOLERANCE;
 
-/// A part of less than this share of the drawing's filled area is an island, left out.
+/// The smallest parts, together under this share of the drawing's filled area, are islands,
+/// left out.
 pub(crate) const ISLAND_SHARE: f64 = 0.05;
 
 /// A separate part of a drawing.
@@ -53,8 +55,7 @@ pub(crate) enum Parts {
         /// The islands left out.
         islands: Vec<Part>,
     },
-    /// Two or more parts of at least [`ISLAND_SHARE`] of the area each (largest first),
-    /// and the islands.
+    /// Two or more parts besides the islands (largest first), and the islands.
     Several {
         /// The large parts.
         large: Vec<Part>,
@@ -73,11 +74,18 @@ pub(crate) fn split(shape: &Shape) -> Parts {
         };
     }
     let total: f64 = parts.iter().map(|p| p.area).sum();
-    let n_large = parts
+    // the smallest parts, while together under the budget
+    let mut left_out = 0.0;
+    let n_islands = parts
         .iter()
-        .take_while(|p| p.area >= ISLAND_SHARE * total)
+        .rev()
+        .take_while(|p| {
+            left_out += p.area;
+            left_out < ISLAND_SHARE * total
+        })
         .count()
-        .max(1);
+        .min(parts.len() - 1);
+    let n_large = parts.len() - n_islands;
     let islands = parts.split_off(n_large);
     if parts.len() > 1 {
         return Parts::Several {
@@ -214,6 +222,27 @@ mod tests {
                 assert_eq!(islands.len(), 1);
                 assert!((s.area() - 10_000.0).abs() < 1e-2, "{}", s.area());
                 assert!((islands[0].bbox.x0 - 120.0).abs() < 1e-3);
+            }
+            other => panic!("{other:?}"),
+        }
+        // two islands of 2% each: left out together
+        let two_isles = Shape::from_rings(vec![
+            square(0.0, 0.0, 100.0),
+            square(120.0, 0.0, 14.5),
+            square(120.0, 50.0, 14.5),
+        ]);
+        assert!(matches!(split(&two_isles), Parts::One { islands, .. } if islands.len() == 2));
+        // three of 2% each, 6% together: the smallest two left out, the drawing refused
+        let three = Shape::from_rings(vec![
+            square(0.0, 0.0, 100.0),
+            square(120.0, 0.0, 14.5),
+            square(120.0, 30.0, 14.4),
+            square(120.0, 60.0, 14.3),
+        ]);
+        match split(&three) {
+            Parts::Several { large, islands } => {
+                assert_eq!((large.len(), islands.len()), (2, 2));
+                assert!((large[1].bbox.y0 - 0.0).abs() < 1e-3, "{:?}", large[1].bbox);
             }
             other => panic!("{other:?}"),
         }

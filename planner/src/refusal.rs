@@ -7,7 +7,7 @@ use kurbo::{Point, Rect};
 
 use crate::empty::REFUSE_EMPTY_TILES;
 use crate::error::{PlanError, Rejected};
-use crate::parts::{Part, ISLAND_SHARE};
+use crate::parts::Part;
 use crate::plan::mm;
 
 /// Parts listed in a refusal's detail (the short reason names the largest two).
@@ -83,9 +83,9 @@ fn percent(share: f64) -> String {
     }
 }
 
-/// The refusal of a drawing in two or more parts of at least [`ISLAND_SHARE`] of its area
-/// each (`large`, largest first), whatever the count: the short reason names the largest
-/// two, the detail every part and the islands (smaller parts).
+/// The refusal of a drawing in two or more parts besides its islands (`large`, largest
+/// first; [`crate::parts`]), whatever the count: the short reason names the largest two,
+/// the detail every part and the islands.
 pub(crate) fn separate_parts(
     name: &str,
     large: &[Part],
@@ -110,9 +110,8 @@ pub(crate) fn separate_parts(
         )
         .chain((!islands.is_empty()).then(|| {
             format!(
-                "and {} under {} of the area each ({} together), which a plan would leave out",
+                "and {} ({} of the area together), which a plan would leave out",
                 islands_word(islands.len()),
-                percent(ISLAND_SHARE),
                 percent(islands.iter().map(|p| p.area).sum::<f64>() / total)
             )
         }))
@@ -140,8 +139,9 @@ fn islands_word(n: usize) -> String {
 /// Islands whose boxes the warning that they were left out names.
 const LISTED_ISLANDS: usize = 2;
 
-/// The warning that `islands` (parts of under [`ISLAND_SHARE`] of the drawing's area
-/// `total`, largest first) were left out of the plan, naming the largest two.
+/// The warning that `islands` (the smallest parts, together under
+/// [`crate::parts::ISLAND_SHARE`] of the drawing's area `total`, largest first) were left out
+/// of the plan, naming the largest two.
 pub(crate) fn islands_left_out(islands: &[Part], total: f64, mm_per_unit: f64) -> Option<String> {
     if islands.is_empty() {
         return None;
