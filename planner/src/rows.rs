@@ -506,6 +506,18 @@ fn solve_on(
         } else {
             None
         };
+        if let (Some(_), Some((pd, pt))) = (fixed_start, prev) {
+            // past a fixed first row no row starts a chain: its minimum would stay infinite
+            // and never lower an end, so only the continuations are relaxed
+            let rows = (
+                &pre[k * w1..(k + 1) * w1],
+                &gaps[k * cols..(k + 1) * cols],
+                &pd[..cols],
+                pt,
+            );
+            continue_row(cur, bk, rows, k % 2 == 0);
+            continue;
+        }
         // a first row may start here (free start: any row; fixed: row 0 at column c only)
         let first_ok = |s: usize| match fixed_start {
             None => true,
@@ -557,6 +569,36 @@ fn solve_on(
         nrows,
         dp,
         back,
+    }
+}
+
+/// The row of a programme after a fixed first row (see [`solve_on`]): each end `e` lowered
+/// to the least continuation from the row before, `rows` the row's prefix costs and gaps,
+/// the best costs of the row before and its U-turn costs; the same operations, in the same
+/// order, as the general loop makes when no chain may start in the row.
+fn continue_row(
+    cur: &mut [f64],
+    bk: &mut [(u32, bool)],
+    (pre, gaps, pd, pt): (&[f64], &[(f64, f64)], &[f64], &[f64]),
+    rightward: bool,
+) {
+    let cols = cur.len();
+    let mut cont_min = (f64::INFINITY, 0usize);
+    for i in 0..cols {
+        let e = if rightward { i } else { cols - 1 - i };
+        let (gl, gr) = gaps[e];
+        let (term_s, base) = if rightward {
+            (-pre[e] + gl, pre[e + 1] + gr)
+        } else {
+            (pre[e + 1] + gr, -pre[e] + gl)
+        };
+        relax(
+            &mut cur[e],
+            &mut bk[e],
+            base + cont_min.0,
+            (cont_min.1, false),
+        );
+        lower(&mut cont_min, pd[e] + pt[e] + term_s, e);
     }
 }
 
