@@ -77,7 +77,9 @@ struct EdgeIndex {
     y0: f64,
     /// Buckets per unit of height.
     per: f64,
-    buckets: Vec<Vec<(usize, Point, Point)>>,
+    /// `edges[start[i]..start[i + 1]]`: bucket `i`, its edges in outline order.
+    start: Vec<usize>,
+    edges: Vec<(usize, Point, Point)>,
 }
 
 /// Bucket entries an [`EdgeIndex`] holds per edge at most, on average over the outline.
@@ -112,32 +114,52 @@ impl EdgeIndex {
             .min((SPANNED_PER_EDGE * edges as f64 / spans.max(1e-12)) as usize)
             .clamp(1, 1 << 16);
         let per = n as f64 / h;
-        let mut buckets: Vec<Vec<(usize, Point, Point)>> = vec![Vec::new(); n];
-        for (pi, p) in paths.iter().enumerate() {
-            for (a, b) in p.rings.iter().flat_map(Ring::edges) {
-                let lo = a.y.min(b.y);
-                let hi = a.y.max(b.y);
-                let i0 = (((lo - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
-                let i1 = (((hi - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
-                for bucket in &mut buckets[i0..=i1] {
-                    bucket.push((pi, a, b));
-                }
+        // each edge with the buckets it spans, in outline order; then the buckets laid out
+        // one after another (compressed rows), each holding its edges in that order
+        let spans = || {
+            paths.iter().enumerate().flat_map(move |(pi, p)| {
+                p.rings.iter().flat_map(Ring::edges).map(move |(a, b)| {
+                    let lo = a.y.min(b.y);
+                    let hi = a.y.max(b.y);
+                    let i0 = (((lo - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
+                    let i1 = (((hi - bbox.y0) * per).floor().max(0.0) as usize).min(n - 1);
+                    (pi, a, b, i0, i1)
+                })
+            })
+        };
+        let mut start = vec![0usize; n + 1];
+        for (_, _, _, i0, i1) in spans() {
+            for c in &mut start[i0 + 1..=i1 + 1] {
+                *c += 1;
+            }
+        }
+        for i in 1..=n {
+            start[i] += start[i - 1];
+        }
+        let mut fill = start.clone();
+        let mut edges = vec![(0, Point::ZERO, Point::ZERO); start[n]];
+        for (pi, a, b, i0, i1) in spans() {
+            for f in &mut fill[i0..=i1] {
+                edges[*f] = (pi, a, b);
+                *f += 1;
             }
         }
         EdgeIndex {
             y0: bbox.y0,
             per,
-            buckets,
+            start,
+            edges,
         }
     }
 
     /// The edges (with their path) that may cross the line at `y`, grouped by path.
     fn near(&self, y: f64) -> &[(usize, Point, Point)] {
         let i = ((y - self.y0) * self.per).floor();
-        if !(i >= 0.0 && (i as usize) < self.buckets.len()) {
+        if !(i >= 0.0 && (i as usize) + 1 < self.start.len()) {
             return &[];
         }
-        &self.buckets[i as usize]
+        let i = i as usize;
+        &self.edges[self.start[i]..self.start[i + 1]]
     }
 }
 
