@@ -572,6 +572,10 @@ fn solve_on(
     }
 }
 
+/// A row's prefix costs and end gaps, the best costs of the row before and its U-turn
+/// costs (see [`continue_row`]).
+type RowData<'a> = (&'a [f64], &'a [(f64, f64)], &'a [f64], &'a [f64]);
+
 /// The row of a programme after a fixed first row (see [`solve_on`]): each end `e` lowered
 /// to the least continuation from the row before, `rows` the row's prefix costs and gaps,
 /// the best costs of the row before and its U-turn costs; the same operations, in the same
@@ -579,7 +583,7 @@ fn solve_on(
 fn continue_row(
     cur: &mut [f64],
     bk: &mut [(u32, bool)],
-    (pre, gaps, pd, pt): (&[f64], &[(f64, f64)], &[f64], &[f64]),
+    (pre, gaps, pd, pt): RowData<'_>,
     rightward: bool,
 ) {
     let cols = cur.len();
