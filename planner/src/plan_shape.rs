@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
+use crate::check::check_folds;
 use crate::empty::{note_empty, rank_key, EmptyPart};
 use crate::error::{PlanError, Rejected};
 use crate::narrow;
@@ -377,34 +378,49 @@ fn serpentine_at_other_widths(
 ) -> Result<Plan, Box<(EmptyPart, Plan)>> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
     let large = |e: &(EmptyPart, Plan)| e.0.tiles > RETRY_EMPTY_SHARE * target;
-    if !large(&first) {
+    // under `auto`, loose serpentines are not tried again: on the corpus none so found
+    // ranked first, and they doubled the work (libsi-A at 3000 tiles went past 10 s)
+    let loose_under_auto =
+        opts.turns == Turns::Auto && styles.iter().all(|s| s.turns == Turns::Loose);
+    if loose_under_auto || !large(&first) {
         return Err(first);
     }
     let w = first.1.tile_size;
+    let near = crate::empty::near(opts.turns);
     let mut best = first;
-    for f in SERPENTINE_RETRIES {
+    for (f, &style) in SERPENTINE_RETRIES
+        .iter()
+        .flat_map(|f| styles.iter().map(move |s| (f, s)))
+    {
         let at = PlanOptions {
             tile_size: Some(w * f),
             ..opts.clone()
         };
-        let Some(p) = best_serpentine(
-            shape,
-            &at,
-            styles,
-            directions,
-            name,
-            &mut Vec::new(),
-            progress,
-        ) else {
+        let Ok(sz) = size_style(shape, &at, style, directions, progress) else {
             continue;
         };
+        let Some(p) = sz.best_unchecked(shape, name) else {
+            continue;
+        };
+        // the count and the part left empty first, the fold check (the costly part on long
+        // chains) only for a plan that would be kept
         if miss(&p) != 0 {
             continue;
         }
-        match note_empty(shape, p, crate::empty::near(opts.turns)) {
+        let m = note_empty(shape, p, near);
+        if m.as_ref().is_err_and(|e| e.0.tiles >= best.0.tiles) {
+            continue;
+        }
+        if sz
+            .all
+            .first()
+            .is_none_or(|c| check_folds(&c.word(style)).is_err())
+        {
+            continue;
+        }
+        match m {
             Ok(p) => return Ok(p),
-            Err(e) if e.0.tiles < best.0.tiles => best = e,
-            Err(_) => {}
+            Err(e) => best = e,
         }
         if !large(&best) {
             break;
