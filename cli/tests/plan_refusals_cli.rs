@@ -177,6 +177,97 @@ fn drawings_in_separate_parts_are_refused_briefly() {
     assert!(refused >= 5, "{refused} of {} refused", apart.len());
 }
 
+/// A map with islands (Natural Earth's Ecuador: the mainland and 8 islands, 3.2% of its
+/// area; Kuwait: the mainland and Bubiyan, 3.9%) plans at every count with the islands left
+/// out, and says so in the same warning at every count, on stderr and in the JSON: before,
+/// Ecuador planned at 100 tiles (its islands then under half a tile) and was refused at
+/// 300 and 1000, and Kuwait was refused at every count.
+#[test]
+fn islands_are_left_out_at_every_count_with_the_same_warning() {
+    for (file, islands, west_of_mainland) in [
+        (
+            "planner/corpus/countries/ecuador.svg",
+            "8 islands",
+            Some(600.0),
+        ),
+        ("planner/corpus/countries/kuwait.svg", "1 island", None),
+    ] {
+        let mut warnings = Vec::new();
+        for tiles in [100, 300, 1000] {
+            let o = fold_plan(&[file, "--tiles", &tiles.to_string(), "--json"]);
+            let e = stderr(&o);
+            assert_eq!(o.status.code(), Some(0), "{file} at {tiles}: {e}");
+            let plan: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            let n = plan["tiles"].as_u64().unwrap() as usize;
+            assert!(
+                n.abs_diff(tiles) <= tiles * 3 / 100,
+                "{file}: {n} of {tiles}"
+            );
+            let w: Vec<String> = plan["warnings"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter_map(|w| w.as_str())
+                .filter(|w| w.contains("left out"))
+                .map(String::from)
+                .collect();
+            assert_eq!(w.len(), 1, "{file} at {tiles}: {w:?}");
+            assert!(
+                w[0].starts_with(&format!("{islands} apart from the rest"))
+                    && w[0].contains(" mm)")
+                    && w[0].contains("join "),
+                "{}",
+                w[0]
+            );
+            assert!(e.contains(&format!("fold-plan: warning: {}", w[0])), "{e}");
+            // no tile on the islands (Ecuador's lie west of x = 600, the mainland east)
+            if let Some(x) = west_of_mainland {
+                let poses = plan["poses"].as_array().unwrap();
+                assert!(poses.iter().all(|p| p["x"].as_f64().unwrap() > x));
+            }
+            warnings.push(w[0].clone());
+        }
+        warnings.dedup();
+        assert_eq!(
+            warnings.len(),
+            1,
+            "{file}: the warning changes with the count"
+        );
+    }
+}
+
+/// A drawing of two large parts (Natural Earth's Estonia: the mainland, Saaremaa, 6.1% of
+/// its area, and two islands, 2.7% together) is refused at every count, with the same short message
+/// naming both parts' boxes and what to do; `--verbose` adds each part's share and the
+/// islands. Before, the count of parts named changed with the tiles (3 at 100 and 300, 4
+/// at 1000).
+#[test]
+fn several_large_parts_are_refused_at_every_count_naming_them() {
+    let file = "planner/corpus/countries/estonia.svg";
+    let mut reasons = Vec::new();
+    for tiles in ["100", "1000", "3000"] {
+        let e = short_refusal(&fold_plan(&[file, "--tiles", tiles]), file, 1);
+        assert_mentions(
+            &e,
+            &[
+                "2 separate parts: x 250 to 1000, y 178 to 822 (198 x 171 mm) and x 0 to 233",
+                "join the parts",
+            ],
+        );
+        reasons.push(e);
+    }
+    reasons.dedup();
+    assert_eq!(reasons.len(), 1, "{reasons:?}");
+    let v = stderr(&fold_plan(&[file, "--tiles", "300", "--verbose"]));
+    assert_mentions(
+        &v,
+        &[
+            "tried: part 2: x 0 to 233, y 491 to 701 (61.7 x 55.6 mm), 6.1% of the area",
+            "tried: and 2 islands (2.7% of the area together), which a plan would leave out",
+        ],
+    );
+}
+
 /// Drawings whose best plan (today) leaves a part empty at 300 tiles: refused in a short
 /// message naming where (drawing units and mm) and a tile count that plans (checked) or
 /// what to draw; `--verbose` adds what each planner tried. (Should the planner learn to

@@ -267,6 +267,29 @@ pub(crate) fn clip_element(
     })
 }
 
+/// The connected pieces of the union of filled paths (each filled by its own rule): each
+/// piece's contours, its outer contour first and then its holes, as `i_overlay` groups them
+/// (pieces that touch at a point may come apart).
+pub(crate) fn filled_pieces(paths: &[FilledPath]) -> Vec<Vec<Ring>> {
+    let all: Region = paths
+        .iter()
+        .flat_map(|p| simple(&p.rings, p.even_odd))
+        .collect();
+    all.simplify_shape(FillRule::NonZero)
+        .into_iter()
+        .map(|piece| {
+            piece
+                .into_iter()
+                .map(|c| Ring {
+                    points: c.into_iter().map(|[x, y]| Point::new(x, y)).collect(),
+                })
+                .filter(|r| r.points.len() >= 3)
+                .collect::<Vec<Ring>>()
+        })
+        .filter(|rings| !rings.is_empty())
+        .collect()
+}
+
 /// The union of filled paths, each filled by its own rule: one path (its contours as
 /// `i_overlay` returns them, read under the even-odd rule) when there are several, the path
 /// itself when there is one. Contours of touching pieces merge, so that seams between them

@@ -49,6 +49,7 @@ mod flatten;
 mod frame;
 mod narrow;
 mod options;
+mod parts;
 mod plan;
 mod plan_shape;
 mod preview;

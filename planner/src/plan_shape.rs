@@ -13,6 +13,7 @@ use crate::empty::{note_empty, rank_key, EmptyPart};
 use crate::error::{PlanError, Rejected};
 use crate::narrow;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
+use crate::parts::{self, Parts};
 use crate::plan::Plan;
 use crate::rank::Asked;
 use crate::refusal;
@@ -46,6 +47,8 @@ pub(crate) fn plan_shape(
     progress: Progress<'_>,
 ) -> Result<Plan, PlanError> {
     opts.check(shape)?;
+    let (kept, island_warning) = without_islands(shape, name, mm_per_unit)?;
+    let shape = kept.as_ref().unwrap_or(shape);
     let styles: Vec<Style> = match opts.turns {
         Turns::Tight => vec![TIGHT],
         Turns::Loose => vec![LOOSE],
@@ -147,11 +150,36 @@ pub(crate) fn plan_shape(
         ));
     };
     plan.warnings.extend(count_warning(opts, plan.tiles));
+    plan.warnings.extend(island_warning);
     Ok(plan)
 }
 
-/// The refusals made before any search: a drawing in separate parts (one chain cannot cross
-/// a gap), or one in which no tile fits at the width `tiles_est` tiles give.
+/// The drawing's parts, the same at every count ([`crate::parts`]): a drawing of several
+/// large parts is refused; otherwise the shape without its islands (`None`: the drawing as
+/// read) and the warning that names them.
+fn without_islands(
+    shape: &Shape,
+    name: &str,
+    mm_per_unit: f64,
+) -> Result<(Option<Shape>, Option<String>), PlanError> {
+    match parts::split(shape) {
+        Parts::Several { large, islands } => {
+            Err(refusal::separate_parts(name, &large, &islands, mm_per_unit))
+        }
+        Parts::One {
+            shape: kept,
+            islands,
+        } => {
+            let total = kept.as_ref().map_or(0.0, Shape::area)
+                + islands.iter().map(|p| p.area).sum::<f64>();
+            let warning = refusal::islands_left_out(&islands, total, mm_per_unit);
+            Ok((kept, warning))
+        }
+    }
+}
+
+/// The refusal made before any search: a drawing (of one part, [`crate::parts`]) in which
+/// no tile fits at the width `tiles_est` tiles give.
 fn refuse_at_once(
     shape: &Shape,
     opts: &PlanOptions,
@@ -159,29 +187,24 @@ fn refuse_at_once(
     mm_per_unit: f64,
     tiles_est: usize,
 ) -> Result<(), PlanError> {
-    // one chain cannot cross a gap: a drawing in separate parts is refused at once
-    let parts = separate_parts(shape, tiles_est);
-    if parts.len() > 1 {
-        return Err(refusal::separate_parts(name, &parts, mm_per_unit));
-    }
-    // the raster found no part that holds a tile: unless a finer look finds one, no chain
-    // can fill the drawing at this tile width, refused at once (searching widths at which
-    // every row sticks out of it took minutes)
-    if parts.is_empty() {
-        let w = opts
-            .tile_size
-            .unwrap_or_else(|| width_for(shape.area(), tiles_est.max(1), TIGHT.pitch));
-        if !narrow::fits_a_tile(&shape.scaled(1.0 / w)) {
-            let min_w = width_for(shape.area(), MAX_PLAN_TILES, TIGHT.pitch);
-            return Err(refusal::too_narrow(
-                name,
-                tiles_est,
-                w,
-                opts.tile_size.is_some(),
-                narrow::fitting_width(shape, w, min_w),
-                mm_per_unit,
-            ));
-        }
+    // the raster found no part that holds half a tile: unless a finer look finds one, no
+    // chain can fill the drawing at this tile width, refused at once (searching widths at
+    // which every row sticks out of it took minutes)
+    let w = opts
+        .tile_size
+        .unwrap_or_else(|| width_for(shape.area(), tiles_est.max(1), TIGHT.pitch));
+    if caps::parts(&shape.scaled(1.0 / w)).is_empty()
+        && !narrow::fits_a_tile(&shape.scaled(1.0 / w))
+    {
+        let min_w = width_for(shape.area(), MAX_PLAN_TILES, TIGHT.pitch);
+        return Err(refusal::too_narrow(
+            name,
+            tiles_est,
+            w,
+            opts.tile_size.is_some(),
+            narrow::fitting_width(shape, w, min_w),
+            mm_per_unit,
+        ));
     }
     Ok(())
 }
@@ -466,16 +489,6 @@ fn best_serpentine(
         }
     }
     None
-}
-
-/// The separate parts of the shape at about `tiles` tiles, by their bounding boxes in the
-/// physical frame (parts smaller than half a tile are not counted).
-fn separate_parts(shape: &Shape, tiles: usize) -> Vec<kurbo::Rect> {
-    let w = width_for(shape.area(), tiles.max(1), TIGHT.pitch);
-    caps::parts(&shape.scaled(1.0 / w))
-        .into_iter()
-        .map(|b| kurbo::Rect::new(b.x0 * w, b.y0 * w, b.x1 * w, b.y1 * w))
-        .collect()
 }
 
 #[cfg(test)]

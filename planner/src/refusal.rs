@@ -7,6 +7,7 @@ use kurbo::{Point, Rect};
 
 use crate::empty::REFUSE_EMPTY_TILES;
 use crate::error::{PlanError, Rejected};
+use crate::parts::Part;
 use crate::plan::mm;
 
 /// Parts listed in a refusal's detail (the short reason names the largest two).
@@ -55,35 +56,112 @@ fn span(b: Rect, mm_per_unit: f64) -> String {
     )
 }
 
-/// The refusal of a drawing in separate parts, given their boxes in the physical frame
-/// (y up), largest first.
-pub(crate) fn separate_parts(name: &str, parts: &[Rect], mm_per_unit: f64) -> PlanError {
-    // SVG frame: y down
-    let svg = |b: &Rect| Rect::new(b.x0, -b.y1, b.x1, -b.y0);
-    let mut boxes: Vec<Rect> = parts.iter().map(svg).collect();
-    boxes.sort_by(|a, b| b.area().total_cmp(&a.area()));
-    let largest = boxes.first().map_or(String::new(), |b| {
-        format!(" (the largest: {})", span(*b, mm_per_unit))
-    });
-    let detail = boxes
+/// A box of the physical frame (y up) in the SVG frame (y down).
+fn svg_box(b: Rect) -> Rect {
+    Rect::new(b.x0, -b.y1, b.x1, -b.y0)
+}
+
+/// A part as `x 10 to 90, y 5 to 40 (20 x 9 mm), 12% of the area`, of a drawing whose
+/// parts have the area `total`.
+fn part_span(p: &Part, total: f64, mm_per_unit: f64) -> String {
+    format!(
+        "{}, {} of the area",
+        span(svg_box(p.bbox), mm_per_unit),
+        percent(p.area / total)
+    )
+}
+
+/// A share as a percentage: `12%`, `0.8%`, `0.03%`.
+fn percent(share: f64) -> String {
+    let v = 100.0 * share;
+    if v >= 10.0 || v.fract() == 0.0 {
+        format!("{v:.0}%")
+    } else if v >= 1.0 {
+        format!("{v:.1}%")
+    } else {
+        format!("{v:.2}%")
+    }
+}
+
+/// The refusal of a drawing in two or more parts besides its islands (`large`, largest
+/// first; [`crate::parts`]), whatever the count: the short reason names the largest two,
+/// the detail every part and the islands.
+pub(crate) fn separate_parts(
+    name: &str,
+    large: &[Part],
+    islands: &[Part],
+    mm_per_unit: f64,
+) -> PlanError {
+    let total: f64 = large.iter().chain(islands).map(|p| p.area).sum();
+    let at = |p: &Part| span(svg_box(p.bbox), mm_per_unit);
+    let which = match large {
+        [a, b] => format!(": {} and {}", at(a), at(b)),
+        [a, b, ..] => format!(", the largest {} and {}", at(a), at(b)),
+        _ => String::new(),
+    };
+    let detail = large
         .iter()
         .take(LISTED_PARTS)
         .enumerate()
-        .map(|(i, b)| format!("part {}: {}", i + 1, span(*b, mm_per_unit)))
+        .map(|(i, p)| format!("part {}: {}", i + 1, part_span(p, total, mm_per_unit)))
         .chain(
-            (boxes.len() > LISTED_PARTS)
-                .then(|| format!("and {} smaller parts", boxes.len() - LISTED_PARTS)),
+            (large.len() > LISTED_PARTS)
+                .then(|| format!("and {} smaller parts", large.len() - LISTED_PARTS)),
         )
+        .chain((!islands.is_empty()).then(|| {
+            format!(
+                "and {} ({} of the area together), which a plan would leave out",
+                islands_word(islands.len()),
+                percent(islands.iter().map(|p| p.area).sum::<f64>() / total)
+            )
+        }))
         .collect();
     PlanError::Unplannable {
         name: name.into(),
         reason: format!(
-            "the drawing is in {} separate parts{largest}; one chain cannot cross a gap: join the parts in the drawing, or plan each on its own",
-            boxes.len()
+            "the drawing is in {} separate parts{which}; one chain cannot cross a gap: join the parts in the drawing, or plan each on its own",
+            large.len()
         ),
         detail,
         rejected: None,
     }
+}
+
+/// `1 island`, `3 islands`.
+fn islands_word(n: usize) -> String {
+    if n == 1 {
+        "1 island".into()
+    } else {
+        format!("{n} islands")
+    }
+}
+
+/// Islands whose boxes the warning that they were left out names.
+const LISTED_ISLANDS: usize = 2;
+
+/// The warning that `islands` (the smallest parts, together under
+/// [`crate::parts::ISLAND_SHARE`] of the drawing's area `total`, largest first) were left out
+/// of the plan, naming the largest two.
+pub(crate) fn islands_left_out(islands: &[Part], total: f64, mm_per_unit: f64) -> Option<String> {
+    if islands.is_empty() {
+        return None;
+    }
+    let mut named: Vec<String> = islands
+        .iter()
+        .take(LISTED_ISLANDS)
+        .map(|p| span(svg_box(p.bbox), mm_per_unit))
+        .collect();
+    if islands.len() > LISTED_ISLANDS {
+        named.push(format!("{} smaller", islands.len() - LISTED_ISLANDS));
+    }
+    Some(format!(
+        "{} apart from the rest, {} of the drawing's area, left out (one chain cannot reach a part apart): {}; join {} to the rest to plan {}",
+        islands_word(islands.len()),
+        percent(islands.iter().map(|p| p.area).sum::<f64>() / total),
+        named.join("; "),
+        if islands.len() == 1 { "it" } else { "them" },
+        if islands.len() == 1 { "it" } else { "them" },
+    ))
 }
 
 /// The refusal of a drawing no tile fits in: no point lies half a tile inside its outline

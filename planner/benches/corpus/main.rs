@@ -95,7 +95,8 @@ fn drawings(readme: &str) -> Vec<Drawing> {
                 return None;
             }
             let connected = match *cells.get(2)? {
-                "yes" => true,
+                // islands: one part, its islands left out at every count (`parts.rs`)
+                "yes" | "islands" => true,
                 "no" => false,
                 _ => return None,
             };
@@ -287,9 +288,8 @@ fn ladder(n: usize) -> Vec<usize> {
 }
 
 /// The cases of one-piece drawings refused or timed out at a count above one at which the
-/// drawing planned: `drawing at M (exit E; planned at K)`. (A drawing not in one piece may
-/// rightly plan at a count where its gaps are narrower than a tile and be refused at
-/// larger counts.)
+/// drawing planned: `drawing at M (exit E; planned at K)`. (A drawing not in one piece is
+/// refused at every count: its parts are decided from its outline, not at the count.)
 fn ladder_breaks(cases: &[Case]) -> Vec<String> {
     cases
         .iter()
