@@ -236,6 +236,24 @@ fn islands_are_left_out_at_every_count_with_the_same_warning() {
     }
 }
 
+/// Pieces that touch are one part: ionicons' leaf, whose stalk ends 0.03 units (of 512) from
+/// the leaf's outline, plans at every count with nothing left out. Before, it planned at
+/// 100 and 300 tiles and was refused at 1000 as "in 2 separate parts" (the raster at that
+/// count saw the stalk apart).
+#[test]
+fn pieces_that_touch_are_one_part_at_every_count() {
+    let file = "planner/corpus/icons/ion-leaf.svg";
+    for tiles in [100, 300, 1000] {
+        let o = fold_plan(&[file, "--tiles", &tiles.to_string(), "--json"]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(0), "{tiles}: {e}");
+        assert!(!e.contains("left out"), "{tiles}: {e}");
+        let plan: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let n = plan["tiles"].as_u64().unwrap() as usize;
+        assert!(n.abs_diff(tiles) <= tiles * 3 / 100, "{n} of {tiles}");
+    }
+}
+
 /// A drawing of two large parts (Natural Earth's Estonia: the mainland, Saaremaa, 6.1% of
 /// its area, and two islands, 2.7% together) is refused at every count, with the same short message
 /// naming both parts' boxes and what to do; `--verbose` adds each part's share and the

@@ -205,7 +205,10 @@ pub(crate) fn largest_empty_part(
         }
     }
     // EMPTY: the sample lies inside the shape at least EDGE from its outline ([`DeepLine`])
-    // and farther than `near` from every tile centre
+    // and farther than `near` from every tile centre; `empties` lists them in ascending
+    // order (lines up, intervals and columns left to right), the order the parts are
+    // started from
+    let mut empties: Vec<usize> = Vec::new();
     for i in 0..ny {
         let y = b.y0 + (i as f64 + 0.5) * step;
         // the line's chords, found the first time a sample on it is not reached
@@ -222,6 +225,9 @@ pub(crate) fn largest_empty_part(
                     .get_or_insert_with(|| DeepLine::new(work, y))
                     .deep(b.x0 + (j as f64 + 0.5) * step);
                 *s = if deep { EMPTY } else { FAR };
+                if deep {
+                    empties.push(i * nx + j);
+                }
             }
         }
     }
@@ -229,7 +235,7 @@ pub(crate) fn largest_empty_part(
     // reached (the start samples in order, so the largest first found wins a tie)
     let mut best: Option<(f64, Point, Rect)> = None;
     let mut stack = Vec::new();
-    for start in 0..nx * ny {
+    for start in empties {
         if state[start] != EMPTY {
             continue;
         }

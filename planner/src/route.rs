@@ -30,7 +30,7 @@ use kurbo::{Affine, Point, Rect, Vec2};
 use crate::centre_grid::CentreGrid;
 use crate::check::CheckMemo;
 use crate::options::Turns;
-use crate::rows::{solve_rows, tile_area, Lattice, Serpentine, Solved, Style};
+use crate::rows::{solve_rows, tile_area, Blocked, Lattice, Phased, Serpentine, Solved, Style};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
@@ -39,6 +39,9 @@ const BEAM: usize = 24;
 /// octagon is 1/2 from its centre, so two tiles closer than 1 overlap; the margin absorbs
 /// rounding only (touching tiles are exactly 1 apart).
 const MIN_GAP: f64 = 1.0 - 1e-6;
+/// The widening (tile widths) of the box outside which no lattice site of a cell is blocked
+/// ([`Blocked::within`]): far more than the rounding of the maps between the frames.
+const WITHIN_MARGIN: f64 = 1e-3;
 
 /// A cell frame: `x = (q - o) . d`, `y = (q - o) . n` in the axis frame.
 #[derive(Clone, Copy, Debug)]
@@ -54,18 +57,23 @@ impl Frame {
         Affine::new([self.d.x, self.d.y, self.n.x, self.n.y, self.o.x, self.o.y])
     }
 
-    /// The axis-frame shape in the cell frame (`d`, `n` orthonormal: the inverse is the
-    /// transpose).
-    fn work(self, s: &Shape) -> Shape {
+    /// The map from the axis frame to the cell frame (`d`, `n` orthonormal: the inverse is
+    /// the transpose).
+    fn axis_to_cell(self) -> Affine {
         let o = self.o.to_vec2();
-        s.transformed(Affine::new([
+        Affine::new([
             self.d.x,
             self.n.x,
             self.d.y,
             self.n.y,
             -o.dot(self.d),
             -o.dot(self.n),
-        ]))
+        ])
+    }
+
+    /// The axis-frame shape in the cell frame.
+    fn work(self, s: &Shape) -> Shape {
+        s.transformed(self.axis_to_cell())
     }
 
     /// True if turning from `d` towards `n` is counter-clockwise (an L fold).
@@ -163,20 +171,33 @@ fn ends(
 ) -> Vec<(f64, f64, usize, usize)> {
     let to_axis = frame.to_axis();
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
+    let apart = |t: Rect, k: usize, e: usize| {
+        let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
+        let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
+        let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
+        (t.width().max(t.height()) * tile_area() / pitch, dx, dy)
+    };
     let look = |k: usize, e: usize| match toward {
         Some(t) => {
-            let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
-            let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
-            let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
-            let strip = t.width().max(t.height()) * tile_area() / pitch;
+            let (strip, dx, dy) = apart(t, k, e);
             strip * dx.hypot(dy)
+        }
+        None => 0.0,
+    };
+    // a bound the look-ahead never falls below, without the libm call: the hypotenuse is
+    // at least the longer leg (faithfully rounded too: that leg is a float below it), less a
+    // relative 1e-12 that covers the rounding of the products
+    let look_lower = |k: usize, e: usize| match toward {
+        Some(t) => {
+            let (strip, dx, dy) = apart(t, k, e);
+            strip * dx.max(dy) * (1.0 - 1e-12)
         }
         None => 0.0,
     };
     let mut out: Vec<(f64, f64, usize, usize)> = Vec::new();
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
-        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look));
+        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look_lower, look));
         // and the other exits of the near end's row that lie beside the next cell: where
         // along the last row the chain leaves sets the phase of the next cell's rows (a
         // key's head ends its last column where the shaft's first row runs along the
@@ -291,8 +312,7 @@ fn first_legs(
                 n,
             };
             let work = frame.work(shape);
-            for lat in Lattice::phased(work.bbox(), p) {
-                let sol = solve_rows(&work, style, lat, None, None);
+            for (lat, sol) in Phased::new(&work, style).solve(style) {
                 for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
@@ -413,13 +433,23 @@ fn next_legs(
             // around them rejects most lattice tiles at once)
             let to_axis = frame.to_axis();
             let reach = near_box.inflate(1.0, 1.0);
-            let blocked = |q: Point| {
+            let test = |q: Point| {
                 let q = to_axis * q;
                 reach.contains(q)
                     && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
                         || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
             };
-            let sol = solve_rows(&work, style, lat, Some(c0), Some(&blocked));
+            // `reach` in the cell frame, widened far beyond the rounding of either map: the
+            // sites outside it are not blocked, so the test is not asked there
+            let within = frame
+                .axis_to_cell()
+                .transform_rect_bbox(reach)
+                .inflate(WITHIN_MARGIN, WITHIN_MARGIN);
+            let blocked = Blocked {
+                within,
+                test: &test,
+            };
+            let sol = solve_rows(&work, style, lat, Some(c0), Some(blocked));
             for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread) {
                 let leg = Leg {
                     frame,

@@ -209,7 +209,11 @@ fn add_tile_measures(
         if f0 < f1 {
             diff[f0 as usize] += weight * 2.0 * hw;
             diff[f1 as usize] -= weight * 2.0 * hw;
-            for j in (t0..f0).chain(f1..t1) {
+            // two plain loops (not a chained iterator): the same columns, each once
+            for j in t0..f0 {
+                out[j as usize] += weight * overlap(j);
+            }
+            for j in f1..t1 {
                 out[j as usize] += weight * overlap(j);
             }
         } else {
@@ -221,26 +225,102 @@ fn add_tile_measures(
 }
 
 /// Sets `out[j]` to the area of the shape under the tile centred at `(x0 + j, y)`, for
-/// every column `j` (the quadrature of [`AREA_LINES`]); `diff` is scratch of
-/// `out.len() + 1`, `iv` scratch for the intervals of a line.
-fn tile_cover(
-    work: &Shape,
-    (x0, y): (f64, f64),
-    out: &mut [f64],
-    diff: &mut [f64],
-    iv: &mut Vec<(f64, f64)>,
-) {
+/// every column `j` (the quadrature of [`AREA_LINES`]), from the intervals `lines[i]` of
+/// the shape along `y + AREA_LINES[i]`; `diff` is scratch of `out.len() + 1`.
+fn tile_cover(lines: &RowLines, first: usize, x0: f64, out: &mut [f64], diff: &mut [f64]) {
     out.iter_mut().for_each(|v| *v = 0.0);
     diff.iter_mut().for_each(|v| *v = 0.0);
     let weight = 1.0 / AREA_LINES.len() as f64;
-    for dy in AREA_LINES {
-        work.intervals_into(y + dy, iv);
-        add_tile_measures(iv, x0, half_chord(dy), weight, out, diff);
+    for (i, dy) in AREA_LINES.into_iter().enumerate() {
+        add_tile_measures(lines.line(first + i), x0, half_chord(dy), weight, out, diff);
     }
     let mut run = 0.0;
     for (o, d) in out.iter_mut().zip(diff.iter()) {
         run += d;
         *o += run;
+    }
+}
+
+/// The intervals of a work shape along every line a programme with rows at
+/// `y0 + k pitch` measures: for each row, the [`AREA_LINES`] across its tiles, the row's
+/// own line (its ends' gaps to the outline), then the area lines across each of its U-turn
+/// tiles. They depend on the rows' heights only, so the lattices of the three horizontal
+/// phases share them ([`Phased`]).
+pub(crate) struct RowLines {
+    /// Lines per row.
+    per_row: usize,
+    iv: Vec<(f64, f64)>,
+    /// `iv[at[i]..at[i + 1]]`: the intervals of line `i`.
+    at: Vec<usize>,
+}
+
+impl RowLines {
+    /// The lines of `nrows` rows of `style` from `y0` over `work`.
+    pub(crate) fn new(work: &Shape, style: Style, y0: f64, nrows: usize) -> RowLines {
+        let per_row = (1 + style.turn_heights.len()) * AREA_LINES.len() + 1;
+        let mut iv = Vec::new();
+        let mut at = Vec::with_capacity(nrows * per_row + 1);
+        at.push(0);
+        let mut line = Vec::new();
+        let mut push = |y: f64| {
+            work.intervals_into(y, &mut line);
+            iv.extend_from_slice(&line);
+            at.push(iv.len());
+        };
+        for k in 0..nrows {
+            let y = y0 + k as f64 * style.pitch;
+            for dy in AREA_LINES {
+                push(y + dy);
+            }
+            push(y);
+            for h in style.turn_heights {
+                let yt = y + h;
+                for dy in AREA_LINES {
+                    push(yt + dy);
+                }
+            }
+        }
+        RowLines { per_row, iv, at }
+    }
+
+    /// The intervals of line `i`.
+    fn line(&self, i: usize) -> &[(f64, f64)] {
+        &self.iv[self.at[i]..self.at[i + 1]]
+    }
+
+    /// The index of row `k`'s first line.
+    fn row(&self, k: usize) -> usize {
+        k * self.per_row
+    }
+}
+
+/// The nine phased lattices of a free serpentine over a work shape ([`Lattice::phased`]),
+/// with the lines of the three vertical phases, each shared by its three horizontal phases.
+pub(crate) struct Phased {
+    lats: Vec<Lattice>,
+    /// The lines of `lats[i]` are `lines[i % PHASES.len()]`.
+    lines: Vec<RowLines>,
+}
+
+impl Phased {
+    /// The lattices over `work` and their lines.
+    pub(crate) fn new(work: &Shape, style: Style) -> Phased {
+        let lats: Vec<Lattice> = Lattice::phased(work.bbox(), style.pitch).collect();
+        // the vertical phase is the inner one: the first three lattices hold one each
+        let lines = lats
+            .iter()
+            .take(PHASES.len())
+            .map(|l| RowLines::new(work, style, l.y0, l.nrows))
+            .collect();
+        Phased { lats, lines }
+    }
+
+    /// Each lattice (in [`Lattice::phased`]'s order) with its free programme solved.
+    pub(crate) fn solve(&self, style: Style) -> impl Iterator<Item = (Lattice, Solved)> + '_ {
+        self.lats.iter().enumerate().map(move |(i, &lat)| {
+            let lines = &self.lines[i % PHASES.len()];
+            (lat, solve_on(lines, style, lat, None, None))
+        })
     }
 }
 
@@ -289,8 +369,25 @@ fn edge_gaps(iv: &[(f64, f64)], x0: f64, pitch: f64, gaps: &mut [(f64, f64)]) {
     }
 }
 
-/// True where a tile centred at the point (work frame) would overlap a tile laid before.
-pub(crate) type Blocked<'a> = &'a (dyn Fn(Point) -> bool + Sync);
+/// The tiles (work frame) that would overlap tiles laid before: `test` holds where a tile
+/// centred at the point would, and never outside `within` (a box around the tiles laid
+/// near the cell), so the lattice sites outside it are passed over without asking.
+#[derive(Clone, Copy)]
+pub(crate) struct Blocked<'a> {
+    /// No site outside this box (closed) is blocked.
+    pub within: Rect,
+    /// True where a tile centred at the point would overlap a tile laid before.
+    pub test: &'a (dyn Fn(Point) -> bool + Sync),
+}
+
+impl Blocked<'_> {
+    /// True if a tile centred at `q` would overlap a tile laid before.
+    #[inline]
+    fn at(&self, q: Point) -> bool {
+        let w = &self.within;
+        q.x >= w.x0 && q.x <= w.x1 && q.y >= w.y0 && q.y <= w.y1 && (self.test)(q)
+    }
+}
 
 /// The cost of a tile that overlaps one laid before (see [`solve_rows`]): more than any
 /// chain's gain (a tile gains at most one tile area), finite so that prefix sums stay exact
@@ -317,6 +414,22 @@ pub(crate) fn solve_rows(
     fixed_start: Option<usize>,
     blocked: Option<Blocked<'_>>,
 ) -> Solved {
+    let lines = RowLines::new(work, style, lat.y0, lat.nrows);
+    solve_on(&lines, style, lat, fixed_start, blocked)
+}
+
+/// The row tables of a programme: `pre[k * (cols + 1) + m]`, the cost of the tiles in
+/// columns `0..m` of row `k`; `turn[k * cols + j]`, the cost of the U-turn after row `k`
+/// ending at column `j`; `gaps[k * cols + j]`, the prices of row `k` ending at column `j`
+/// towards -x and towards +x.
+struct Tables {
+    pre: Vec<f64>,
+    turn: Vec<f64>,
+    gaps: Vec<(f64, f64)>,
+}
+
+/// The row tables of the programme on `lat` from the shape's `lines` (see [`solve_rows`]).
+fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<'_>>) -> Tables {
     let Lattice {
         x0,
         y0,
@@ -329,36 +442,57 @@ pub(crate) fn solve_rows(
     // a tile's cost: its area outside the shape, weighted, less the area it covers
     let tile_cost = |c: f64| k_out * (a - c) - c;
     let w1 = cols + 1;
-    // pre[k * w1 + m]: cost of the tiles in columns 0..m of row k
     let mut pre = vec![0.0; nrows * w1];
     let mut turn = vec![0.0; nrows * cols];
-    // gaps[k * cols + j]: the prices of row k ending at column j towards -x and +x
     let mut gaps = vec![(0.0, 0.0); nrows * cols];
     let mut cover = vec![0.0; cols];
     let mut diff = vec![0.0; w1];
-    let mut iv = Vec::new();
     for k in 0..nrows {
         let y = y0 + k as f64 * p;
-        tile_cover(work, (x0, y), &mut cover, &mut diff, &mut iv);
+        let first = lines.row(k);
+        tile_cover(lines, first, x0, &mut cover, &mut diff);
         let pr = &mut pre[k * w1..(k + 1) * w1];
-        for j in 0..cols {
-            let taken = blocked.is_some_and(|b| b(Point::new(x0 + j as f64, y)));
-            pr[j + 1] = pr[j] + if taken { BLOCKED } else { tile_cost(cover[j]) };
+        // the running sum in a register: pr[j + 1] = pr[j] + cost, the same additions
+        let mut run = pr[0];
+        for (j, (p, &c)) in pr[1..].iter_mut().zip(&cover).enumerate() {
+            let taken = blocked.is_some_and(|b| b.at(Point::new(x0 + j as f64, y)));
+            run += if taken { BLOCKED } else { tile_cost(c) };
+            *p = run;
         }
-        work.intervals_into(y, &mut iv);
-        edge_gaps(&iv, x0, p, &mut gaps[k * cols..(k + 1) * cols]);
+        let row_line = first + AREA_LINES.len();
+        edge_gaps(
+            lines.line(row_line),
+            x0,
+            p,
+            &mut gaps[k * cols..(k + 1) * cols],
+        );
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
-        for h in style.turn_heights {
+        for (i, h) in style.turn_heights.iter().enumerate() {
             let xt = x0 + dir * FRAC_1_SQRT_2;
-            tile_cover(work, (xt, y + h), &mut cover, &mut diff, &mut iv);
+            let at = row_line + 1 + i * AREA_LINES.len();
+            tile_cover(lines, at, xt, &mut cover, &mut diff);
             for (j, (tj, c)) in t.iter_mut().zip(&cover).enumerate() {
-                let taken = blocked.is_some_and(|b| b(Point::new(xt + j as f64, y + h)));
+                let taken = blocked.is_some_and(|b| b.at(Point::new(xt + j as f64, y + h)));
                 *tj += if taken { BLOCKED } else { tile_cost(*c) };
             }
         }
     }
+    Tables { pre, turn, gaps }
+}
+
+/// [`solve_rows`] with the shape's lines given (their rows those of `lat`).
+fn solve_on(
+    lines: &RowLines,
+    style: Style,
+    lat: Lattice,
+    fixed_start: Option<usize>,
+    blocked: Option<Blocked<'_>>,
+) -> Solved {
+    let Lattice { cols, nrows, .. } = lat;
+    let w1 = cols + 1;
+    let Tables { pre, turn, gaps } = tables(lines, style, lat, blocked);
     let inf = f64::INFINITY;
     let mut dp = vec![inf; nrows * cols];
     let mut back = vec![(0u32, true); nrows * cols];
@@ -443,17 +577,22 @@ impl Solved {
     }
 
     /// The end `(cost, row, column)` among rows that `row_ok` accepts that minimises its
-    /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out).
+    /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out), the first
+    /// in the order of rows and columns where several do. `lower(row, column)` is a cheap
+    /// bound that the penalty never falls below: the penalty is not asked where the cost plus
+    /// the bound cannot beat the best so far (floating-point addition is monotone, so the
+    /// cost plus the penalty could not either).
     pub(crate) fn best_end_with(
         &self,
         row_ok: impl Fn(usize) -> bool,
+        lower: impl Fn(usize, usize) -> f64,
         penalty: impl Fn(usize, usize) -> f64,
     ) -> Option<(f64, usize, usize)> {
         let mut best: Option<(f64, f64, usize, usize)> = None;
         for k in (0..self.nrows).filter(|&k| row_ok(k)) {
             let row = &self.dp[k * self.cols..(k + 1) * self.cols];
             for (e, &c) in row.iter().enumerate() {
-                if !c.is_finite() {
+                if !c.is_finite() || best.is_some_and(|b| c + lower(k, e) >= b.0) {
                     continue;
                 }
                 let t = c + penalty(k, e);

@@ -19,7 +19,7 @@ use crate::fit::estimate;
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
-use crate::rows::{solve_rows, Lattice, Serpentine, Style};
+use crate::rows::{Phased, Serpentine, Style};
 use crate::shape::Shape;
 use crate::sizing::{tiles_for, width_for, SizeSearch};
 use crate::Progress;
@@ -271,9 +271,9 @@ fn solve_all(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<
         .par_iter()
         .flat_map_iter(|&orient| {
             let work = orient.work_shape(shape, w);
-            Lattice::phased(work.bbox(), style.pitch)
-                .filter_map(|lat| {
-                    let sol = solve_rows(&work, style, lat, None, None);
+            Phased::new(&work, style)
+                .solve(style)
+                .filter_map(|(lat, sol)| {
                     let (cost, k, e) = sol.best_end(|_| true)?;
                     let serp = sol.serpentine(lat, style.pitch, k, e);
                     let rank = estimate(area, serp.tiles(style), serp.u_turns(), cost, style);

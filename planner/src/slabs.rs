@@ -21,7 +21,7 @@ use std::collections::HashMap;
 use kurbo::Affine;
 
 use crate::caps::{CapCell, CapPlan, Dir, PBox, Raster, Search};
-use crate::rows::{solve_rows, tile_area, Lattice, Style};
+use crate::rows::{tile_area, Phased, Style};
 use crate::shape::Shape;
 
 /// A slab of a decomposition: its tight box, the cut before it (its first line along the
@@ -380,12 +380,9 @@ fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Vec<
             cell.transformed(Affine::new([0.0, 1.0, 1.0, 0.0, 0.0, 0.0])),
         ),
     ] {
-        let cost = Lattice::phased(work.bbox(), style.pitch)
-            .filter_map(|lat| {
-                solve_rows(&work, style, lat, None, None)
-                    .best_end(|_| true)
-                    .map(|e| e.0)
-            })
+        let cost = Phased::new(&work, style)
+            .solve(style)
+            .filter_map(|(_, sol)| sol.best_end(|_| true).map(|e| e.0))
             .fold(f64::INFINITY, f64::min);
         if cost.is_finite() {
             out.push((cost + ideal, n));
