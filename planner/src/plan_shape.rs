@@ -8,7 +8,8 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
-use crate::empty::{note_empty, rank_key};
+use crate::check::check_folds;
+use crate::empty::{note_empty, rank_key, EmptyPart};
 use crate::error::{PlanError, Rejected};
 use crate::narrow;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES, MAX_PLAN_TILES};
@@ -27,6 +28,12 @@ use crate::Progress;
 const MAX_OUTSIDE_NON_MONOTONE: f64 = 0.10;
 /// Shapes monotone in some direction are also planned by cells up to this many tiles.
 const MAX_CELL_TILES: usize = 20_000;
+/// Factors on the width of a serpentine that leaves a large part empty, tried in turn
+/// ([`serpentine_at_other_widths`]).
+const SERPENTINE_RETRIES: [f64; 4] = [1.01, 0.99, 1.02, 0.98];
+/// The share of the asked count (in tile areas) that the part a serpentine leaves empty
+/// must exceed for [`SERPENTINE_RETRIES`] to be tried.
+const RETRY_EMPTY_SHARE: f64 = 0.05;
 
 /// Plans a shape (physical frame); `name` names it in errors and in the plan.
 /// `mm_per_unit` (the drawing's millimetres per user unit) only words a refusal; `retry`
@@ -282,7 +289,15 @@ fn plan_styles(
         progress,
     );
     if let Some(p) = serp.take() {
-        match note_empty(shape, p, crate::empty::near(opts.turns)) {
+        let near = crate::empty::near(opts.turns);
+        let measured = note_empty(shape, p, near);
+        let measured = match measured {
+            Err(e) if opts.tile_size.is_none() => {
+                serpentine_at_other_widths(shape, opts, styles, directions, name, progress, miss, e)
+            }
+            m => m,
+        };
+        match measured {
             Ok(p) => serp = Some(p),
             Err(e) => {
                 let (part, p) = *e;
@@ -363,6 +378,78 @@ fn plan_styles(
             }
         }
     }
+}
+
+/// Where the serpentine sized for the asked count leaves a part larger than
+/// [`RETRY_EMPTY_SHARE`] of the count empty (`first`), the serpentines at the widths
+/// [`SERPENTINE_RETRIES`] times its own, each with a count within the tolerance, until one
+/// leaves less than that share: the one whose part left empty is smallest (in its own tile
+/// areas, as issue 26 measures it; none empty first). The size search settles on the rows' fit alone, blind to the parts a serpentine
+/// leaves empty, and on a ring with spokes the rows' phase decides which side of the hole
+/// the fold check lets them fill (bi-gear-wide-connected at 3000 tiles: 2432 tile areas
+/// empty at the width found, 781 at 2% wider).
+#[allow(clippy::too_many_arguments)]
+fn serpentine_at_other_widths(
+    shape: &Shape,
+    opts: &PlanOptions,
+    styles: &[Style],
+    directions: &[f64],
+    name: &str,
+    progress: Progress<'_>,
+    miss: &dyn Fn(&Plan) -> usize,
+    first: Box<(EmptyPart, Plan)>,
+) -> Result<Plan, Box<(EmptyPart, Plan)>> {
+    let target = opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
+    let large = |e: &(EmptyPart, Plan)| e.0.tiles > RETRY_EMPTY_SHARE * target;
+    // under `auto`, loose serpentines are not tried again: on the corpus none so found
+    // ranked first, and they doubled the work (libsi-A at 3000 tiles went past 10 s)
+    let loose_under_auto =
+        opts.turns == Turns::Auto && styles.iter().all(|s| s.turns == Turns::Loose);
+    if loose_under_auto || !large(&first) {
+        return Err(first);
+    }
+    let w = first.1.tile_size;
+    let near = crate::empty::near(opts.turns);
+    let mut best = first;
+    for (f, &style) in SERPENTINE_RETRIES
+        .iter()
+        .flat_map(|f| styles.iter().map(move |s| (f, s)))
+    {
+        let at = PlanOptions {
+            tile_size: Some(w * f),
+            ..opts.clone()
+        };
+        let Ok(sz) = size_style(shape, &at, style, directions, progress) else {
+            continue;
+        };
+        let Some(p) = sz.best_unchecked(shape, name) else {
+            continue;
+        };
+        // the count and the part left empty first, the fold check (the costly part on long
+        // chains) only for a plan that would be kept
+        if miss(&p) != 0 {
+            continue;
+        }
+        let m = note_empty(shape, p, near);
+        if m.as_ref().is_err_and(|e| e.0.tiles >= best.0.tiles) {
+            continue;
+        }
+        if sz
+            .all
+            .first()
+            .is_none_or(|c| check_folds(&c.word(style)).is_err())
+        {
+            continue;
+        }
+        match m {
+            Ok(p) => return Ok(p),
+            Err(e) => best = e,
+        }
+        if !large(&best) {
+            break;
+        }
+    }
+    Err(best)
 }
 
 /// The best serpentine over the turn styles that folds without collision: every style is

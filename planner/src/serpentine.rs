@@ -64,7 +64,7 @@ impl Candidate {
     }
 
     /// The fold word: rows of straight joints, U-turns between them.
-    fn word(&self, style: Style) -> FoldWord {
+    pub(crate) fn word(&self, style: Style) -> FoldWord {
         let mut folds = Vec::new();
         // turning from +x towards +y is counter-clockwise in the work frame: an L fold when
         // the work frame keeps the physical handedness
