@@ -554,13 +554,8 @@ fn solve_on(
             }
             if let Some((pd, pt)) = prev {
                 // continuation needs s before e: cont_min holds the columns behind e
-                relax(
-                    &mut cur[e],
-                    &mut bk[e],
-                    base + cont_min.0,
-                    (cont_min.1, false),
-                );
-                lower(&mut cont_min, pd[e] + pt[e] + term_s, e);
+                let onward = pd[e] + pt[e] + term_s;
+                continue_at((&mut cur[e], &mut bk[e]), &mut cont_min, base, (onward, e));
             }
         }
     }
@@ -596,14 +591,23 @@ fn continue_row(
         } else {
             (pre[e + 1] + gr, -pre[e] + gl)
         };
-        relax(
-            &mut cur[e],
-            &mut bk[e],
-            base + cont_min.0,
-            (cont_min.1, false),
-        );
-        lower(&mut cont_min, pd[e] + pt[e] + term_s, e);
+        let onward = pd[e] + pt[e] + term_s;
+        continue_at((&mut cur[e], &mut bk[e]), &mut cont_min, base, (onward, e));
     }
+}
+
+/// One end `e` of a row lowered to the best continuation from the row before (its start
+/// column the one `cont_min` holds), then `cont_min` lowered to `onward`, the cost of
+/// continuing from the row before at `e`.
+#[inline]
+fn continue_at(
+    (cur, back): (&mut f64, &mut (u32, bool)),
+    cont_min: &mut (f64, usize),
+    base: f64,
+    (onward, e): (f64, usize),
+) {
+    relax(cur, back, base + cont_min.0, (cont_min.1, false));
+    lower(cont_min, onward, e);
 }
 
 impl Solved {
