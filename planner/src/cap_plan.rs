@@ -44,8 +44,15 @@ const MORE_SLABS_EMPTY: f64 = 0.05;
 /// A slab plan is kept only while at least this share of its tile centres lies inside the
 /// shape: a slab's rows may bridge a gap (a key's teeth), and the U-turns of rows across a
 /// round slab may fall outside it; issue 26 asks that a plan keep 97% of its tile centres on
-/// the drawn area, and a slab plan that does not is not offered against the others.
-const MIN_SLAB_INSIDE: f64 = 0.90;
+/// the drawn area, and a slab plan that does not is not offered against the others. Unless
+/// the plan found before the caps (the serpentine, kept or rejected for a part left empty)
+/// keeps fewer: then a slab plan that keeps as many is offered too, down to
+/// [`LEAST_SLAB_INSIDE`] (a gear's serpentine bridges its hole with 5.6% of its chain
+/// outside at 1000 tiles, while every route of its first four slab groups, 91-97% of their
+/// centres inside, was dropped, and the groups given up: 349 tile areas left empty).
+const MIN_SLAB_INSIDE: f64 = 0.97;
+/// The share of its tile centres inside the shape below which no slab plan is kept.
+const LEAST_SLAB_INSIDE: f64 = 0.90;
 /// Routes kept per decomposition.
 const ROUTES_PER_DECOMPOSITION: usize = 2;
 /// Size steps of the tile width search.
@@ -171,15 +178,18 @@ pub(crate) fn start_width(shape: &Shape, opts: &PlanOptions, style: Style) -> f6
 /// no route was found, with the best route rejected for an empty part. `all_axes` is
 /// [`cap_axes`] at [`start_width`]; `known_empty` is the least part left empty (tile areas)
 /// by the plans found before (one serpentine, kept or rejected; 0 when one fills the shape),
-/// which decides whether more slab decompositions are sized ([`MORE_SLABS_EMPTY`]).
+/// which decides whether more slab decompositions are sized ([`MORE_SLABS_EMPTY`]), and
+/// `known_inside` the share of that plan's tile centres inside the shape (1 without one),
+/// which the slab plans are held to ([`MIN_SLAB_INSIDE`]).
 pub(crate) fn plan_by_caps(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     all_axes: &[(f64, Vec<CapPlan>, f64)],
-    known_empty: f64,
+    (known_empty, known_inside): (f64, f64),
 ) -> Result<Plan, CellFailure> {
+    let min_inside = MIN_SLAB_INSIDE.min(known_inside.max(LEAST_SLAB_INSIDE));
     let (caps, slabs) = caps_and_slabs(all_axes);
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
@@ -251,7 +261,15 @@ pub(crate) fn plan_by_caps(
         // the added decomposition is given up at its first width only if it leaves more
         // empty than every plan so far too
         let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
-        let mut found = size_group(shape, opts, style, name, axes, (slabs, hopeless), &mut here);
+        let mut found = size_group(
+            shape,
+            opts,
+            style,
+            name,
+            axes,
+            (slabs, hopeless, min_inside),
+            &mut here,
+        );
         if extra(i) {
             // sized for the part left empty: its plan is offered only where it leaves less
             // and with a count within the tolerance, as its rejected routes below: one off
@@ -368,7 +386,7 @@ fn same_axis(a: f64, b: f64) -> bool {
 }
 
 /// The share of the plan's tile centres that lie inside the shape.
-fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
+pub(crate) fn centres_inside(shape: &Shape, p: &Plan) -> f64 {
     let inside = p
         .poses
         .iter()
@@ -400,14 +418,15 @@ fn miss(opts: &PlanOptions, p: &Plan) -> usize {
 /// found, what the others said in `failed`. A group of `slabs` searches within a budget of
 /// [`SLAB_SEARCH_TILES`] and is given up at its first width if hopeless (see
 /// [`SLAB_HOPELESS_EMPTY`]; not while it leaves less empty than `hopeless_above` tile
-/// areas).
+/// areas), and keeps only slab plans with at least `min_inside` of their tile centres
+/// inside the shape ([`MIN_SLAB_INSIDE`]).
 fn size_group(
     shape: &Shape,
     opts: &PlanOptions,
     style: Style,
     name: &str,
     axes: &[(f64, Vec<CapPlan>, f64)],
-    (slabs, hopeless_above): (bool, f64),
+    (slabs, hopeless_above, min_inside): (bool, f64, f64),
     failed: &mut Failed,
 ) -> Option<Plan> {
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
@@ -469,7 +488,7 @@ fn size_group(
                 // a slab plan with much of its chain outside the shape is not kept: passed
                 // over where the routes are ranked, so that the width search ranks only
                 // plans it keeps
-                &|p| !slabs || centres_inside(shape, p) >= MIN_SLAB_INSIDE,
+                &|p| !slabs || centres_inside(shape, p) >= min_inside,
                 here,
             )
         };

@@ -5,7 +5,7 @@
 
 use rayon::prelude::*;
 
-use crate::cap_plan::{cap_axes, plan_by_caps, start_width};
+use crate::cap_plan::{cap_axes, centres_inside, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
 use crate::check::check_folds;
@@ -361,10 +361,17 @@ fn plan_styles(
         .map(|b| b.metrics.largest_empty_tiles)
         .chain(found.rejected.iter().map(|r| r.empty.tiles))
         .fold(f64::INFINITY, f64::min);
+    // and the share of its tile centres inside the shape, which slab plans need not beat
+    let known_inside = found
+        .best
+        .as_ref()
+        .or(found.rejected.as_ref().map(|r| &r.plan))
+        .map_or(1.0, |p| centres_inside(shape, p));
+    let known = (known_empty, known_inside);
     let by_caps: Vec<Result<Plan, CellFailure>> = styles
         .par_iter()
         .zip(&by_axis)
-        .map(|(&style, axes)| plan_by_caps(shape, opts, style, name, axes, known_empty))
+        .map(|(&style, axes)| plan_by_caps(shape, opts, style, name, axes, known))
         .collect();
     progress("planning by caps", 1, 1);
     for r in by_caps {
