@@ -225,18 +225,10 @@ pub(crate) fn plan_by_caps(
     let mut best: Option<Plan> = None;
     let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
     for (i, axes) in groups.iter().enumerate() {
-        // (a route rejected off the count does not count: a group given up at its first
-        // width leaves one, whose part left empty is no bar for the groups after it)
         let least = || {
             best.iter()
                 .map(|b| b.metrics.largest_empty_tiles)
-                .chain(
-                    failed
-                        .rejected
-                        .iter()
-                        .filter(|r| miss(opts, &r.1.plan) == 0)
-                        .map(|r| r.1.empty.tiles),
-                )
+                .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
         let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j);
@@ -281,6 +273,14 @@ pub(crate) fn plan_by_caps(
             // and one that leaves less empty with a quarter of the chain missing is no
             // better plan
             here.rejected = here.rejected.filter(|(_, r)| miss(opts, &r.plan) == 0);
+        }
+        // a slab plan let in under the 97% bar ([`MIN_SLAB_INSIDE`]) is offered only where
+        // it leaves less empty than every plan so far, which is what it is let in for
+        if slabs {
+            found = found.filter(|p| {
+                p.metrics.largest_empty_tiles < before
+                    || centres_inside(shape, p) >= MIN_SLAB_INSIDE
+            });
         }
         failed.merge(here);
         if let Some(p) = found {
