@@ -253,7 +253,7 @@ pub(crate) fn plan_by_caps(
         // the added decomposition is given up at its first width only if it leaves more
         // empty than every plan so far too
         let hopeless = if joined_at.contains(&i) { before } else { 0.0 };
-        let mut found = size_group(
+        let found = size_group(
             shape,
             opts,
             style,
@@ -262,26 +262,7 @@ pub(crate) fn plan_by_caps(
             (slabs, hopeless, min_inside),
             &mut here,
         );
-        if extra(i) {
-            // sized for the part left empty: its plan is offered only where it leaves less
-            // and with a count within the tolerance, as its rejected routes below: one off
-            // the count would stop the later slab groups being sized (fa-gear at 1000 tiles:
-            // 1043 tiles leaving 7.7 tile areas empty in place of 971 leaving 8.4)
-            found = found.filter(|p| p.metrics.largest_empty_tiles < before && miss(opts, p) == 0);
-            // the added decomposition's route rejected for an empty part is kept only with
-            // a count within the tolerance: rejected routes rank by their empty part alone,
-            // and one that leaves less empty with a quarter of the chain missing is no
-            // better plan
-            here.rejected = here.rejected.filter(|(_, r)| miss(opts, &r.plan) == 0);
-        }
-        // a slab plan let in under the 97% bar ([`MIN_SLAB_INSIDE`]) is offered only where
-        // it leaves less empty than every plan so far, which is what it is let in for
-        if slabs {
-            found = found.filter(|p| {
-                p.metrics.largest_empty_tiles < before
-                    || centres_inside(shape, p) >= MIN_SLAB_INSIDE
-            });
-        }
+        let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
         failed.merge(here);
         if let Some(p) = found {
             if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
@@ -311,6 +292,40 @@ pub(crate) fn plan_by_caps(
             None => Err(("no cap decomposition".into(), None)),
         },
     }
+}
+
+/// What a group's width search `found` is offered as, after the rules of
+/// [`plan_by_caps`]: for a group sized for the part left empty (`extra`), only a plan that
+/// leaves less than `before` (the least so far) with a count within the tolerance, and its
+/// rejected route (in `here`) only with such a count; for a slab group, a plan under
+/// [`MIN_SLAB_INSIDE`] only where it leaves less than `before`.
+fn offered(
+    shape: &Shape,
+    opts: &PlanOptions,
+    mut found: Option<Plan>,
+    here: &mut Failed,
+    (extra, slabs, before): (bool, bool, f64),
+) -> Option<Plan> {
+    if extra {
+        // sized for the part left empty: its plan is offered only where it leaves less
+        // and with a count within the tolerance, as its rejected routes below: one off
+        // the count would stop the later slab groups being sized (fa-gear at 1000 tiles:
+        // 1043 tiles leaving 7.7 tile areas empty in place of 971 leaving 8.4)
+        found = found.filter(|p| p.metrics.largest_empty_tiles < before && miss(opts, p) == 0);
+        // the added decomposition's route rejected for an empty part is kept only with
+        // a count within the tolerance: rejected routes rank by their empty part alone,
+        // and one that leaves less empty with a quarter of the chain missing is no
+        // better plan
+        here.rejected = here.rejected.filter(|(_, r)| miss(opts, &r.plan) == 0);
+    }
+    // a slab plan let in under the 97% bar ([`MIN_SLAB_INSIDE`]) is offered only where
+    // it leaves less empty than every plan so far, which is what it is let in for
+    if slabs {
+        found = found.filter(|p| {
+            p.metrics.largest_empty_tiles < before || centres_inside(shape, p) >= MIN_SLAB_INSIDE
+        });
+    }
+    found
 }
 
 /// The cap decompositions of the cheapest [`AXES_ROUTED`] axes that have any, and every slab

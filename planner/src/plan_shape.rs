@@ -383,21 +383,7 @@ fn plan_styles(
         return;
     }
     progress("planning by caps", 0, 1);
-    // the least part left empty by the plans found so far (more slab decompositions are
-    // sized only while it is large)
-    let known_empty = found
-        .best
-        .iter()
-        .map(|b| b.metrics.largest_empty_tiles)
-        .chain(found.rejected.iter().map(|r| r.empty.tiles))
-        .fold(f64::INFINITY, f64::min);
-    // and the share of its tile centres inside the shape, which slab plans need not beat
-    let known_inside = found
-        .best
-        .as_ref()
-        .or(found.rejected.as_ref().map(|r| &r.plan))
-        .map_or(1.0, |p| centres_inside(shape, p));
-    let known = (known_empty, known_inside);
+    let known = known(shape, found);
     let by_caps: Vec<Result<Plan, CellFailure>> = styles
         .par_iter()
         .zip(&by_axis)
@@ -415,6 +401,25 @@ fn plan_styles(
             }
         }
     }
+}
+
+/// The least part left empty (tile areas) by the plans found so far (more slab
+/// decompositions are sized only while it is large), and the share of the tile centres
+/// inside the shape of the plan found (kept, or rejected for a part left empty; 1 without
+/// one), which slab plans need not beat ([`crate::cap_plan`]).
+fn known(shape: &Shape, found: &Found) -> (f64, f64) {
+    let known_empty = found
+        .best
+        .iter()
+        .map(|b| b.metrics.largest_empty_tiles)
+        .chain(found.rejected.iter().map(|r| r.empty.tiles))
+        .fold(f64::INFINITY, f64::min);
+    let known_inside = found
+        .best
+        .as_ref()
+        .or(found.rejected.as_ref().map(|r| &r.plan))
+        .map_or(1.0, |p| centres_inside(shape, p));
+    (known_empty, known_inside)
 }
 
 /// Where the serpentine sized for the asked count leaves a part larger than
