@@ -316,7 +316,10 @@ fn offered(
         // a count within the tolerance: rejected routes rank by their empty part alone,
         // and one that leaves less empty with a quarter of the chain missing is no
         // better plan
-        here.rejected = here.rejected.filter(|(_, r)| miss(opts, &r.plan) == 0);
+        here.rejected = here
+            .rejected
+            .take()
+            .filter(|(_, r)| miss(opts, &r.plan) == 0);
     }
     // a slab plan let in under the 97% bar ([`MIN_SLAB_INSIDE`]) is offered only where
     // it leaves less empty than every plan so far, which is what it is let in for
