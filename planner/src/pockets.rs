@@ -330,8 +330,83 @@ impl Grid {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+    use crate::empty::NEAR;
+    use crate::shape::Ring;
+
+    /// A serpentine of four rows (unit tiles, lanes `sqrt2` apart from y = 0.7) in a band
+    /// whose right edge slants (x = 40 - 4 y), each U-turn pair cut at the column its outer
+    /// row reaches: the plan, and the shape (physical frame, w = 1).
+    fn slanted_band() -> (Plan, Shape) {
+        let edge = |y: f64| 40.0 - 4.0 * y;
+        let lane = |k: usize| 0.7 + k as f64 * std::f64::consts::SQRT_2;
+        let shape = Shape::from_rings(vec![Ring {
+            points: vec![
+                Point::new(0.0, 0.0),
+                Point::new(edge(0.0), 0.0),
+                Point::new(edge(5.66), 5.66),
+                Point::new(0.0, 5.66),
+            ],
+        }]);
+        // the pair's last column: its upper row's tile wholly inside
+        let end = |k: usize| (edge(lane(k) + 0.5) - 0.5 - 0.5).floor() as usize;
+        let (e1, e3) = (end(1), end(3));
+        let word = format!("S*{e1} LL S*{e1} RR S*{e3} LL S*{e3}");
+        let word = FoldWord::parse(&word).unwrap();
+        let orient = Orientation::along(0.0);
+        let work = orient.work_shape(&shape, 1.0);
+        let mut plan = Assembly {
+            work: &work,
+            chain_to_work: Affine::translate((0.5, 0.7)),
+            work_to_svg: orient.work_to_svg(1.0),
+            row_angle: 0.0,
+            style: TIGHT,
+            w: 1.0,
+            u_turns: 3,
+            quarter_turns: 0,
+            cells: 1,
+        }
+        .to_plan(&word, "band");
+        plan.metrics.largest_empty_tiles = empty_part(&shape, &plan, NEAR).map_or(0.0, |e| e.tiles);
+        (plan, shape)
+    }
+
+    /// The band's lowest lane runs on past its pair's U-turn, empty; pushing the turn fills
+    /// it (the part left shrinks below the allowance), adds two tiles a column, and leaves
+    /// the rows after the pair where they were.
+    #[test]
+    fn a_u_turn_is_pushed_into_the_lane_its_pair_leaves() {
+        let (plan, shape) = slanted_band();
+        assert!(plan.metrics.largest_empty_tiles > 2.0, "{}", plan.summary());
+        let opts = PlanOptions::default().with_tiles(plan.tiles);
+        let opts = opts.with_tiles_tolerance(0.2);
+        let pushed = fill_row_ends(&shape, plan.clone(), &opts);
+        assert!(
+            pushed.metrics.largest_empty_tiles < plan.metrics.largest_empty_tiles,
+            "{} -> {}",
+            plan.summary(),
+            pushed.summary()
+        );
+        let added = pushed.tiles - plan.tiles;
+        assert!(added > 0 && added % 2 == 0, "{added}");
+        // the last row ends where it did
+        let tail = |p: &Plan| p.poses[p.poses.len() - 5..].to_vec();
+        assert_eq!(tail(&plan), tail(&pushed));
+        assert!(check_folds(&pushed.fold_word().unwrap()).is_ok());
+        assert_eq!(pushed.u_turns, plan.u_turns);
+    }
+
+    /// No push beyond the asked count's tolerance: at a tolerance of zero the plan stays.
+    #[test]
+    fn no_push_beyond_the_tolerance() {
+        let (plan, shape) = slanted_band();
+        let opts = PlanOptions::default()
+            .with_tiles(plan.tiles)
+            .with_tiles_tolerance(0.0);
+        assert_eq!(fill_row_ends(&shape, plan.clone(), &opts), plan);
+    }
 
     /// The U-turns of a word: tight and loose, not the joints of a longer spiral.
     #[test]
