@@ -253,9 +253,11 @@ impl Pocket<'_> {
             let on_shape = |x: Point, inward: Vec2| {
                 self.work.contains(x) || self.work.contains(x + inward * 0.5)
             };
-            if !(self.free(a, &skip) && self.free(b, &skip))
-                || !(on_shape(a, across) && on_shape(b, -across))
-            {
+            let fits = self.free(a, &skip)
+                && self.free(b, &skip)
+                && on_shape(a, across)
+                && on_shape(b, -across);
+            if !fits {
                 break;
             }
             let useful = |x: Point| {
