@@ -12,11 +12,12 @@
 //! to it without touching another tile; the pushed plan is kept only when its largest
 //! empty part is smaller, it ranks before the plan it came from by the planner's own price
 //! ([`crate::empty::rank_key`]: fit, turns, parts left empty), its count stays within the
-//! asked tolerance and it folds without collision. Rounds repeat on the new largest part
+//! asked tolerance, at most [`MAX_OFF_SHARE`] of its tile centres lie off the shape (unless
+//! more did before) and it folds without collision. Rounds repeat on the new largest part
 //! while they help.
 
 use foldchain::{Fold, FoldWord};
-use kurbo::{Affine, Point, Rect, Vec2};
+use kurbo::{Affine, Point, Rect};
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
@@ -31,6 +32,13 @@ use crate::shape::Shape;
 const MAX_PUSH: usize = 8;
 /// The most rounds of pushes (each on the largest part left then).
 const MAX_ROUNDS: usize = 4;
+/// A new tile's centre may lie this far (tile widths) off the shape, towards the row beside
+/// it.
+const OUTER: f64 = 0.5;
+/// The share of tile centres that may lie off the shape after a push (unless more did
+/// before): issue 26's bar for a plan that follows the drawn shape (97% of the centres on
+/// the drawn area).
+const MAX_OFF_SHARE: f64 = 0.03;
 /// Tile centres closer than this (tile widths) overlap.
 const TOUCH: f64 = 1.0 - 1e-6;
 
@@ -110,6 +118,16 @@ fn pushed(shape: &Shape, plan: &Plan, opts: &PlanOptions) -> Option<Plan> {
     }
     let new_word = FoldWord::from_folds(with_pushes(folds, &pushes));
     let candidate = remeasured(shape, plan, &new_word, reach)?;
+    let off = |p: &Plan| {
+        let n = p.poses.iter();
+        let off = n
+            .filter(|q| !work.contains(to_work * Point::new(q.x, q.y)))
+            .count();
+        off as f64 / p.poses.len().max(1) as f64
+    };
+    if off(&candidate) > off(plan).max(MAX_OFF_SHARE) {
+        return None;
+    }
     let smaller = candidate.metrics.largest_empty_tiles < plan.metrics.largest_empty_tiles;
     let cheaper = rank_key(&candidate, opts.turn_cost) < rank_key(plan, opts.turn_cost);
     if !(smaller && cheaper) || check_folds(&new_word).is_err() {
@@ -222,7 +240,7 @@ struct Pocket<'a> {
 impl Pocket<'_> {
     /// The columns by which the U-turn of `g` joints from joint `j` may be pushed, if any:
     /// the most `d` such that at every column up to it both new tiles touch no other tile and
-    /// lie on the shape (the outer one may stick out by up to half its width), and at least
+    /// have their centres on the shape (a plan's tiles are where the drawing is), and at least
     /// one of them lands in the part left empty (in its box, at least half a tile inside the
     /// outline and beyond the reach of every other tile).
     fn push(&self, j: usize, g: usize) -> Option<usize> {
@@ -250,8 +268,8 @@ impl Pocket<'_> {
         let mut best = 0;
         for t in 1..=MAX_PUSH {
             let (a, b) = (p + u * t as f64, q + u * t as f64);
-            let on_shape = |x: Point, inward: Vec2| {
-                self.work.contains(x) || self.work.contains(x + inward * 0.5)
+            let on_shape = |x: Point, inward: kurbo::Vec2| {
+                self.work.contains(x) || self.work.contains(x + inward * OUTER)
             };
             let fits = self.free(a, &skip)
                 && self.free(b, &skip)
