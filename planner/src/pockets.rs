@@ -356,25 +356,30 @@ mod tests {
     use crate::empty::NEAR;
     use crate::shape::Ring;
 
-    /// A serpentine of four rows (unit tiles, lanes `sqrt2` apart from y = 0.7) in a band
-    /// whose right edge slants (x = 40 - 4 y), each U-turn pair cut at the column its outer
+    /// A serpentine of ten rows (unit tiles, lanes `sqrt2` apart from y = 0.7) in a band
+    /// whose right edge slants (x = 80 - 4 y), each U-turn pair cut at the column its outer
     /// row reaches: the plan, and the shape (physical frame, w = 1).
     fn slanted_band() -> (Plan, Shape) {
-        let edge = |y: f64| 40.0 - 4.0 * y;
+        let edge = |y: f64| 80.0 - 4.0 * y;
         let lane = |k: usize| 0.7 + k as f64 * std::f64::consts::SQRT_2;
+        let top = lane(9) + 0.7;
         let shape = Shape::from_rings(vec![Ring {
             points: vec![
                 Point::new(0.0, 0.0),
                 Point::new(edge(0.0), 0.0),
-                Point::new(edge(5.66), 5.66),
-                Point::new(0.0, 5.66),
+                Point::new(edge(top), top),
+                Point::new(0.0, top),
             ],
         }]);
-        // the pair's last column: its upper row's tile wholly inside
+        // each pair's last column: its upper row's tile wholly inside
         let end = |k: usize| (edge(lane(k) + 0.5) - 0.5 - 0.5).floor() as usize;
-        let (e1, e3) = (end(1), end(3));
-        let word = format!("S*{e1} LL S*{e1} RR S*{e3} LL S*{e3}");
-        let word = FoldWord::parse(&word).unwrap();
+        let pairs: Vec<String> = (0..5)
+            .map(|i| {
+                let e = end(2 * i + 1);
+                format!("S*{e} LL S*{e}")
+            })
+            .collect();
+        let word = FoldWord::parse(&pairs.join(" RR ")).unwrap();
         let orient = Orientation::along(0.0);
         let work = orient.work_shape(&shape, 1.0);
         let mut plan = Assembly {
@@ -384,7 +389,7 @@ mod tests {
             row_angle: 0.0,
             style: TIGHT,
             w: 1.0,
-            u_turns: 3,
+            u_turns: 9,
             quarter_turns: 0,
             cells: 1,
         }
@@ -393,9 +398,9 @@ mod tests {
         (plan, shape)
     }
 
-    /// The band's lowest lane runs on past its pair's U-turn, empty; pushing the turn fills
-    /// it (the part left shrinks below the allowance), adds two tiles a column, and leaves
-    /// the rows after the pair where they were.
+    /// The band's lower lane of each pair runs on past the pair's U-turn, empty; pushing
+    /// the turns fills them (the largest part left shrinks), adds two tiles a column, and
+    /// leaves the last row where it was.
     #[test]
     fn a_u_turn_is_pushed_into_the_lane_its_pair_leaves() {
         let (plan, shape) = slanted_band();
