@@ -190,53 +190,47 @@ mod tests {
         m
     }
 
-    /// `(joint, start, end)` of every fold, and the outcome, of the engine on `word`.
-    fn engine(word: &str, s: f64, swung: u8) -> (Vec<(usize, f64, f64)>, String) {
-        let m = model(word, s, swung);
-        let run = run_local(&m, 1e-8, 1, 100_000);
+    /// What a test reads of a run: `(joint, start, end)` of every fold, the outcome and
+    /// the last event's time.
+    type Run = (Vec<(usize, f64, f64)>, String, f64);
+
+    fn read(
+        folds: &[crate::timeline::FoldRecord],
+        outcome: &crate::timeline::Outcome,
+        events: &[crate::timeline::Event],
+    ) -> Run {
         (
-            run.folds
-                .iter()
-                .map(|f| (f.joint, f.start, f.end))
-                .collect(),
-            format!("{:?}", run.outcome),
+            folds.iter().map(|f| (f.joint, f.start, f.end)).collect(),
+            format!("{outcome:?}"),
+            events.last().map_or(0.0, |e| e.time),
         )
+    }
+
+    /// The engine on `word` (`swung`: 0 one joint at a time, 1 swung faces, 2 and the
+    /// folds downstream).
+    fn engine(word: &str, s: f64, swung: u8) -> Run {
+        let run = run_local(&model(word, s, swung), 1e-8, 1, 100_000);
+        read(&run.folds, &run.outcome, &run.events)
+    }
+
+    /// The coupled reference on `word`.
+    fn coupled(word: &str, s: f64) -> Run {
+        let ro = ReferenceOptions::default()
+            .with_model(ModelOptions::default().with_dynamics(Dynamics::Inertial))
+            .with_coupled(true);
+        let designs = TileDesigns::global(Design::thesis().with_s(s));
+        let run = run_reference(&Chain::parse(word).unwrap(), &designs, &ro).unwrap();
+        read(&run.folds, &run.outcome, &run.events)
     }
 
     /// The outcome's kind, the folded joints and the last event's time.
     type Verdict = (String, Vec<usize>, f64);
 
-    fn kind(o: &crate::timeline::Outcome) -> String {
-        format!("{o:?}")
-            .split([' ', '{'])
-            .next()
-            .unwrap()
-            .to_string()
-    }
-
-    fn engine_verdict(word: &str, s: f64, swung: u8) -> Verdict {
-        let run = run_local(&model(word, s, swung), 1e-8, 1, 100_000);
-        let mut folds: Vec<usize> = run.folds.iter().map(|f| f.joint).collect();
+    fn verdict(run: Run) -> Verdict {
+        let mut folds: Vec<usize> = run.0.iter().map(|f| f.0).collect();
         folds.sort_unstable();
-        let t = run.events.last().map_or(0.0, |e| e.time);
-        (kind(&run.outcome), folds, t)
-    }
-
-    fn coupled_verdict(word: &str, s: f64) -> Verdict {
-        let chain = Chain::parse(word).unwrap();
-        let ro = ReferenceOptions::default()
-            .with_model(ModelOptions::default().with_dynamics(Dynamics::Inertial))
-            .with_coupled(true);
-        let run = run_reference(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ro,
-        )
-        .unwrap();
-        let mut folds: Vec<usize> = run.folds.iter().map(|f| f.joint).collect();
-        folds.sort_unstable();
-        let t = run.events.last().map_or(0.0, |e| e.time);
-        (kind(&run.outcome), folds, t)
+        let kind = run.1.split([' ', '{']).next().unwrap().to_string();
+        (kind, folds, run.2)
     }
 
     fn words(max: usize) -> Vec<String> {
@@ -264,11 +258,11 @@ mod tests {
                 (0.0, String::new()),
                 (0.0, String::new()),
             ];
-            let mut examples = vec![Vec::new(), Vec::new(), Vec::new()];
+            let mut examples = [Vec::new(), Vec::new(), Vec::new()];
             for w in &all {
-                let c = coupled_verdict(w, s);
+                let c = verdict(coupled(w, s));
                 for (i, swung) in [0u8, 1, 2].into_iter().enumerate() {
-                    let e = engine_verdict(w, s, swung);
+                    let e = verdict(engine(w, s, swung));
                     if (&e.0, &e.1) != (&c.0, &c.1) {
                         counts[i][0] += 1;
                         if examples[i].len() < 12 {
@@ -296,31 +290,11 @@ mod tests {
         }
     }
 
-    fn coupled(word: &str, s: f64) -> (Vec<(usize, f64, f64)>, String) {
-        let chain = Chain::parse(word).unwrap();
-        let ro = ReferenceOptions::default()
-            .with_model(ModelOptions::default().with_dynamics(Dynamics::Inertial))
-            .with_coupled(true);
-        let run = run_reference(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ro,
-        )
-        .unwrap();
-        (
-            run.folds
-                .iter()
-                .map(|f| (f.joint, f.start, f.end))
-                .collect(),
-            format!("{:?}", run.outcome),
-        )
-    }
-
     /// Every fold's start and end within `tol` s of the coupled reference's, the same
     /// joints in the same order.
     fn close(word: &str, swung: u8, tol: f64) {
-        let (e, eo) = engine(word, 0.3, swung);
-        let (c, co) = coupled(word, 0.3);
+        let (e, eo, _) = engine(word, 0.3, swung);
+        let (c, co, _) = coupled(word, 0.3);
         assert_eq!(e.len(), c.len(), "{word}: {e:?} {c:?}");
         for (a, b) in e.iter().zip(&c) {
             assert_eq!(a.0, b.0, "{word}: {e:?} {c:?}");
@@ -342,7 +316,7 @@ mod tests {
             close(w, 2, 5e-5);
         }
         // without the swing the engine is the one-joint model of before
-        let (e, _) = engine("SLLS", 0.3, 0);
+        let (e, _, _) = engine("SLLS", 0.3, 0);
         assert!((e[1].1 - 0.22164).abs() < 1e-4, "{e:?}");
     }
 
@@ -352,14 +326,14 @@ mod tests {
         // fold starts (coupled reference 0.16009 s in SLRS, 0.15999 s in SLSRS), before its
         // magnets' pull would (the one-joint engine: 0.2373 s, 0.2596 s)
         for w in ["SLRS", "SLSRS"] {
-            let (e, _) = engine(w, 0.3, 1);
-            let (c, _) = coupled(w, 0.3);
+            let (e, _, _) = engine(w, 0.3, 1);
+            let (c, _, _) = coupled(w, 0.3);
             assert!((e[1].1 - c[1].1).abs() < 1e-4, "{w}: {e:?} {c:?}");
         }
         // with the later fold's reaction on the earlier one the first fold ends with the
         // free body's (SLRS: 0.33190 s; alone, as before, 0.41303 s)
-        let (e, _) = engine("SLRS", 0.3, 2);
-        let (c, _) = coupled("SLRS", 0.3);
+        let (e, _, _) = engine("SLRS", 0.3, 2);
+        let (c, _, _) = coupled("SLRS", 0.3);
         assert!((e[0].2 - c[0].2).abs() < 1e-3, "{e:?} {c:?}");
     }
 
