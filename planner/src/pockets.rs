@@ -21,7 +21,10 @@ use kurbo::{Affine, Point, Rect};
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
-use crate::empty::{empty_part, empty_parts, near, rank_key, DeepLine, EmptyPart};
+use crate::empty::{
+    empty_part, empty_parts, excess_empty, near, plan_cost, rank_key, DeepLine, EmptyPart,
+    EMPTY_PRICE,
+};
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -128,12 +131,37 @@ fn pushed(shape: &Shape, plan: &Plan, opts: &PlanOptions) -> Option<Plan> {
     if off(&candidate) > off(plan).max(MAX_OFF_SHARE) {
         return None;
     }
-    let smaller = candidate.metrics.largest_empty_tiles < plan.metrics.largest_empty_tiles;
-    let cheaper = rank_key(&candidate, opts.turn_cost) < rank_key(plan, opts.turn_cost);
-    if !(smaller && cheaper) || check_folds(&new_word).is_err() {
+    let (old_key, new_key) = (
+        rank_key(plan, opts.turn_cost),
+        rank_key(&candidate, opts.turn_cost),
+    );
+    let (old_largest, new_largest) = (
+        plan.metrics.largest_empty_tiles,
+        candidate.metrics.largest_empty_tiles,
+    );
+    // the largest part smaller at a lower price, or (where the largest part is of another
+    // kind, which no push reaches) no larger and the plan cheaper with every part priced
+    let kept = (new_largest < old_largest && new_key < old_key)
+        || (new_key.0 <= old_key.0
+            && new_largest <= old_largest
+            && all_parts_cost(shape, &candidate, opts, reach)
+                < all_parts_cost(shape, plan, opts, reach));
+    if !kept || check_folds(&new_word).is_err() {
         return None;
     }
     Some(candidate)
+}
+
+/// [`plan_cost`] with every part left empty priced, not only the largest: the
+/// [`EMPTY_PRICE`] of the tile areas beyond the allowance of the others added.
+fn all_parts_cost(shape: &Shape, plan: &Plan, opts: &PlanOptions, reach: f64) -> f64 {
+    let excess: Vec<f64> = empty_parts(shape, plan, reach)
+        .iter()
+        .map(|e| excess_empty(e.tiles))
+        .collect();
+    let others = excess.iter().sum::<f64>() - excess.iter().copied().fold(0.0, f64::max);
+    let area_tiles = plan.metrics.shape_area / (plan.tile_size * plan.tile_size);
+    plan_cost(plan, opts.turn_cost) + EMPTY_PRICE * others / area_tiles.max(1e-9)
 }
 
 /// The U-turns of a fold word: `(j, g)` for the `g` joints from joint `j` that turn the
