@@ -7,14 +7,16 @@
 //! The repair pushes such a U-turn outward by `d` columns: `d` straight joints inserted
 //! before the turn and `d` after it lengthen both rows at that end and move the turn, and
 //! nothing else of the chain moves (the row after the turn runs back `d` tiles farther, to
-//! the column it ended at before). It is tried on the largest part left empty, for every
-//! U-turn whose extension reaches into it, as far as the new tiles land in the part or next
-//! to it without touching another tile; the pushed plan is kept only when its largest
+//! the column it ended at before). It is tried on every part left empty over the allowance,
+//! for every U-turn whose extension reaches into one, as far as the new tiles' centres lie
+//! on the shape (the outer row's up to half a tile off it), touch no other tile and land in
+//! a part or next to it; the pushed plan is kept only when its largest
 //! empty part is smaller, it ranks before the plan it came from by the planner's own price
 //! ([`crate::empty::rank_key`]: fit, turns, parts left empty), its count stays within the
 //! asked tolerance, at most [`MAX_OFF_SHARE`] of its tile centres lie off the shape (unless
-//! more did before) and it folds without collision. Rounds repeat on the new largest part
-//! while they help.
+//! more did before) and it folds without collision; or, where the largest part is of a kind
+//! no push reaches (a lobe, a seam between cells), when that part stays and the plan is
+//! cheaper with every part priced ([`all_parts_cost`]). Rounds repeat while they help.
 
 use foldchain::{Fold, FoldWord};
 use kurbo::{Affine, Point, Rect};
