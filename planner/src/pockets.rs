@@ -7,21 +7,26 @@
 //! The repair pushes such a U-turn outward by `d` columns: `d` straight joints inserted
 //! before the turn and `d` after it lengthen both rows at that end and move the turn, and
 //! nothing else of the chain moves (the row after the turn runs back `d` tiles farther, to
-//! the column it ended at before). It is tried on the largest part left empty, for every
-//! U-turn whose extension reaches into it, as far as the new tiles land in the part or next
-//! to it without touching another tile; the pushed plan is kept only when its largest
+//! the column it ended at before). It is tried on every part left empty over the allowance,
+//! for every U-turn whose extension reaches into one, as far as the new tiles' centres lie
+//! on the shape (the outer row's up to half a tile off it), touch no other tile and land in
+//! a part or next to it; the pushed plan is kept only when its largest
 //! empty part is smaller, it ranks before the plan it came from by the planner's own price
 //! ([`crate::empty::rank_key`]: fit, turns, parts left empty), its count stays within the
 //! asked tolerance, at most [`MAX_OFF_SHARE`] of its tile centres lie off the shape (unless
-//! more did before) and it folds without collision. Rounds repeat on the new largest part
-//! while they help.
+//! more did before) and it folds without collision; or, where the largest part is of a kind
+//! no push reaches (a lobe, a seam between cells), when that part stays and the plan is
+//! cheaper with every part priced ([`all_parts_cost`]). Rounds repeat while they help.
 
 use foldchain::{Fold, FoldWord};
 use kurbo::{Affine, Point, Rect};
 
 use crate::assembly::Assembly;
 use crate::check::check_folds;
-use crate::empty::{empty_part, empty_parts, near, rank_key, DeepLine, EmptyPart};
+use crate::empty::{
+    empty_part, empty_parts, excess_empty, near, plan_cost, rank_key, DeepLine, EmptyPart,
+    EMPTY_PRICE,
+};
 use crate::frame::Orientation;
 use crate::options::{PlanOptions, Turns, DEFAULT_TILES};
 use crate::plan::Plan;
@@ -128,12 +133,37 @@ fn pushed(shape: &Shape, plan: &Plan, opts: &PlanOptions) -> Option<Plan> {
     if off(&candidate) > off(plan).max(MAX_OFF_SHARE) {
         return None;
     }
-    let smaller = candidate.metrics.largest_empty_tiles < plan.metrics.largest_empty_tiles;
-    let cheaper = rank_key(&candidate, opts.turn_cost) < rank_key(plan, opts.turn_cost);
-    if !(smaller && cheaper) || check_folds(&new_word).is_err() {
+    let (old_key, new_key) = (
+        rank_key(plan, opts.turn_cost),
+        rank_key(&candidate, opts.turn_cost),
+    );
+    let (old_largest, new_largest) = (
+        plan.metrics.largest_empty_tiles,
+        candidate.metrics.largest_empty_tiles,
+    );
+    // the largest part smaller at a lower price, or (where the largest part is of another
+    // kind, which no push reaches) no larger and the plan cheaper with every part priced
+    let kept = (new_largest < old_largest && new_key < old_key)
+        || (new_key.0 <= old_key.0
+            && new_largest <= old_largest
+            && all_parts_cost(shape, &candidate, opts, reach)
+                < all_parts_cost(shape, plan, opts, reach));
+    if !kept || check_folds(&new_word).is_err() {
         return None;
     }
     Some(candidate)
+}
+
+/// [`plan_cost`] with every part left empty priced, not only the largest: the
+/// [`EMPTY_PRICE`] of the tile areas beyond the allowance of the others added.
+fn all_parts_cost(shape: &Shape, plan: &Plan, opts: &PlanOptions, reach: f64) -> f64 {
+    let excess: Vec<f64> = empty_parts(shape, plan, reach)
+        .iter()
+        .map(|e| excess_empty(e.tiles))
+        .collect();
+    let others = excess.iter().sum::<f64>() - excess.iter().copied().fold(0.0, f64::max);
+    let area_tiles = plan.metrics.shape_area / (plan.tile_size * plan.tile_size);
+    plan_cost(plan, opts.turn_cost) + EMPTY_PRICE * others / area_tiles.max(1e-9)
 }
 
 /// The U-turns of a fold word: `(j, g)` for the `g` joints from joint `j` that turn the
