@@ -146,6 +146,12 @@ impl std::fmt::Display for EmptyPart {
 /// documentation; points farther than `near` tile widths from every centre), in SVG user
 /// units, if it has at least [`MIN_EMPTY_TILES`] tile areas.
 pub(crate) fn empty_part(shape: &Shape, plan: &Plan, near: f64) -> Option<EmptyPart> {
+    largest(empty_parts(shape, plan, near), |p| p.tiles)
+}
+
+/// Every part of the shape that `plan` leaves empty with more than [`MIN_EMPTY_TILES`] tile
+/// areas, as [`empty_part`] measures them, in the order they are found.
+pub(crate) fn empty_parts(shape: &Shape, plan: &Plan, near: f64) -> Vec<EmptyPart> {
     let w = plan.tile_size;
     let work = shape.scaled(1.0 / w);
     let centres: Vec<Point> = plan
@@ -153,24 +159,40 @@ pub(crate) fn empty_part(shape: &Shape, plan: &Plan, near: f64) -> Option<EmptyP
         .iter()
         .map(|p| Point::new(p.x / w, -p.y / w))
         .collect();
-    let (tiles, c, b) = largest_empty_part(&work, &centres, near)?;
-    Some(EmptyPart {
-        tiles,
-        centre: Point::new(c.x * w, -c.y * w),
-        bbox: Rect::new(b.x0 * w, -b.y1 * w, b.x1 * w, -b.y0 * w),
+    all_empty_parts(&work, &centres, near)
+        .into_iter()
+        .map(|(tiles, c, b)| EmptyPart {
+            tiles,
+            centre: Point::new(c.x * w, -c.y * w),
+            bbox: Rect::new(b.x0 * w, -b.y1 * w, b.x1 * w, -b.y0 * w),
+        })
+        .collect()
+}
+
+/// The first of `items` with the largest `size`.
+fn largest<T>(items: Vec<T>, size: impl Fn(&T) -> f64) -> Option<T> {
+    items.into_iter().fold(None, |best, p| match best {
+        Some(b) if size(&p) <= size(&b) => Some(b),
+        _ => Some(p),
     })
 }
 
-/// The largest empty part of the plan with tile centres `centres` over `work` (both in the
-/// work frame, unit tiles): its area in tile areas, its centroid and its bounding box (of
-/// the sample points), if it has at least [`MIN_EMPTY_TILES`].
+/// The largest empty part of [`all_empty_parts`], if any.
+#[cfg(test)]
 pub(crate) fn largest_empty_part(
     work: &Shape,
     centres: &[Point],
     near: f64,
 ) -> Option<(f64, Point, Rect)> {
+    largest(all_empty_parts(work, centres, near), |p| p.0)
+}
+
+/// The empty parts of the plan with tile centres `centres` over `work` (both in the work
+/// frame, unit tiles) larger than [`MIN_EMPTY_TILES`], in the order they are found: each
+/// one's area in tile areas, its centroid and its bounding box (of the sample points).
+fn all_empty_parts(work: &Shape, centres: &[Point], near: f64) -> Vec<(f64, Point, Rect)> {
     if centres.is_empty() || centres.len() > MAX_CHECKED_TILES {
-        return None;
+        return Vec::new();
     }
     let step = if centres.len() <= FINE_TILES {
         STEP
@@ -233,7 +255,7 @@ pub(crate) fn largest_empty_part(
     }
     // the parts: samples EMPTY joined by the four neighbours, each marked SEEN as it is
     // reached (the start samples in order, so the largest first found wins a tie)
-    let mut best: Option<(f64, Point, Rect)> = None;
+    let mut parts: Vec<(f64, Point, Rect)> = Vec::new();
     let mut stack = Vec::new();
     for start in empties {
         if state[start] != EMPTY {
@@ -263,14 +285,14 @@ pub(crate) fn largest_empty_part(
             });
         }
         let area = count as f64 * step * step / tile_area_exact();
-        if area > MIN_EMPTY_TILES && best.is_none_or(|(a, _, _)| area > a) {
-            best = Some((area, (sum / count as f64).to_point(), bb));
+        if area > MIN_EMPTY_TILES {
+            parts.push((area, (sum / count as f64).to_point(), bb));
         }
     }
-    best
+    parts
 }
 
-/// A sample of [`largest_empty_part`] not known to be near a tile centre nor empty.
+/// A sample of [`all_empty_parts`] not known to be near a tile centre nor empty.
 const FAR: u8 = 0;
 /// A sample within `near` of a tile centre.
 const REACHED: u8 = 1;

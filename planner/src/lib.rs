@@ -52,6 +52,7 @@ mod options;
 mod parts;
 mod plan;
 mod plan_shape;
+mod pockets;
 mod preview;
 mod rank;
 mod refusal;

@@ -137,7 +137,7 @@ pub(crate) fn plan_shape(
         (best, None) => (best, bridging),
         other => other,
     };
-    let Some(mut plan) = best else {
+    let Some(plan) = best else {
         progress("looking for a tile count that plans", 0, 1);
         let plans_at = |n: usize| {
             let fewer = opts.clone().with_tiles(n);
@@ -159,6 +159,8 @@ pub(crate) fn plan_shape(
             }),
         ));
     };
+    // U-turns pushed into the parts left empty at row ends ([`crate::pockets`])
+    let mut plan = crate::pockets::fill_row_ends(shape, plan, opts);
     plan.warnings.extend(count_warning(opts, plan.tiles));
     plan.warnings.extend(island_warning);
     Ok(plan)

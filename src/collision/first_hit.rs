@@ -78,7 +78,98 @@ pub(crate) struct TailHits {
     outline: [Point; 8],
     radius: f64,
     window: TailWindow,
-    memo: FxHashMap<ExactPoint, u32>,
+    memo: OffsetMemo,
+}
+
+/// Not yet computed, in a block of [`OffsetMemo`] (a first hit is far below it: an offset
+/// kept in the blocks lies within `2^13` widths, so its first hit within about `2^14`).
+const UNKNOWN: u32 = u32::MAX - 1;
+/// Offsets kept in the blocks have every coordinate's `a` and `b` (half widths) in
+/// `-BOUND..BOUND`; farther ones go to the map.
+const BOUND: i64 = 1 << 14;
+
+/// One cache line of first hits: 4 by 4 neighbouring offsets of one class.
+#[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
+struct Block([u32; 16]);
+
+/// First hits by offset, kept so that neighbouring offsets share memory: the placed tiles a
+/// fold's scan looks up come row by row, and neighbours in a row differ in one coordinate's
+/// rational part only. Offsets with the same `1/sqrt2` parts (and parities of the rational
+/// parts) form a class; within it, 4 by 4 neighbouring offsets share a [`Block`], found
+/// through a small map (and the last block used, which consecutive lookups mostly hit).
+/// A pure memo: the value for an offset is the same as a plain map's.
+#[derive(Clone, Debug, Default)]
+struct OffsetMemo {
+    /// Block index by packed block key.
+    index: FxHashMap<u64, u32>,
+    blocks: Vec<Block>,
+    /// The last block key looked up and its index.
+    last: Option<(u64, u32)>,
+    /// Offsets beyond [`BOUND`].
+    far: FxHashMap<ExactPoint, u32>,
+}
+
+impl OffsetMemo {
+    /// The block key of `offset` and its slot in the block, or `None` beyond [`BOUND`].
+    fn key(offset: ExactPoint) -> Option<(u64, usize)> {
+        let [xa, xb, ya, yb] = [offset.x.a, offset.x.b, offset.y.a, offset.y.b].map(|v| {
+            // in 0..2^15 when within the bound
+            (-BOUND..BOUND).contains(&v).then_some((v + BOUND) as u64)
+        });
+        let (xa, xb, ya, yb) = (xa?, xb?, ya?, yb?);
+        // 15 + 15 bits of the class, 12 + 12 of the block, 2 of parity
+        let key =
+            xb | yb << 15 | (xa >> 3) << 30 | (ya >> 3) << 42 | (xa & 1) << 54 | (ya & 1) << 55;
+        let slot = ((xa >> 1) & 3) | ((ya >> 1) & 3) << 2;
+        Some((key, slot as usize))
+    }
+
+    /// The memo's entry for `offset`, [`UNKNOWN`] when none.
+    fn get(&mut self, offset: ExactPoint) -> u32 {
+        match OffsetMemo::key(offset) {
+            Some((key, slot)) => match self.block(key, false) {
+                Some(b) => self.blocks[b].0[slot],
+                None => UNKNOWN,
+            },
+            None => self.far.get(&offset).copied().unwrap_or(UNKNOWN),
+        }
+    }
+
+    /// Keeps `m` for `offset`.
+    fn insert(&mut self, offset: ExactPoint, m: u32) {
+        match OffsetMemo::key(offset) {
+            Some((key, slot)) => {
+                if let Some(b) = self.block(key, true) {
+                    self.blocks[b].0[slot] = m;
+                }
+            }
+            None => {
+                self.far.insert(offset, m);
+            }
+        }
+    }
+
+    /// The index of block `key`, made (all [`UNKNOWN`]) when `make`.
+    fn block(&mut self, key: u64, make: bool) -> Option<usize> {
+        if let Some((k, b)) = self.last {
+            if k == key {
+                return Some(b as usize);
+            }
+        }
+        let b = match self.index.get(&key) {
+            Some(&b) => b,
+            None if make => {
+                let b = u32::try_from(self.blocks.len()).ok()?;
+                self.blocks.push(Block([UNKNOWN; 16]));
+                self.index.insert(key, b);
+                b
+            }
+            None => return None,
+        };
+        self.last = Some((key, b));
+        Some(b as usize)
+    }
 }
 
 impl TailHits {
@@ -93,7 +184,7 @@ impl TailHits {
                 min_x: half_side - 2.0 * radius - SLACK,
                 min_y: -half_side - 2.0 * radius - SLACK,
             },
-            memo: FxHashMap::default(),
+            memo: OffsetMemo::default(),
         }
     }
 
@@ -117,7 +208,8 @@ impl TailHits {
     /// `offset` while the fold turns, or [`NEVER`]. The folding tile itself (offset zero) is
     /// never tested against tile `k + 1`, its hinged neighbour.
     pub(super) fn get(&mut self, offset: ExactPoint) -> u32 {
-        if let Some(&m) = self.memo.get(&offset) {
+        let m = self.memo.get(offset);
+        if m != UNKNOWN {
             return m;
         }
         let m = self.first_hit(offset);

@@ -72,6 +72,13 @@ pub struct Model {
     pub(crate) magnet_mass: Vec<f64>,
     /// Each joint's two sides (`None` where it does not fold).
     pub(crate) sides: Vec<Option<Sides>>,
+    /// Whether the engine's local solves add to a folding joint's drive the torque that a
+    /// fold turning upstream makes its face pass (the free body's held-face rule, one way:
+    /// `engine::local::swing`). Off by default: an experiment (issue 27 item 2, step 3).
+    pub(crate) swung_faces: bool,
+    /// With [`Model::swung_faces`], the folds turning downstream too (the reaction of a
+    /// later fold on an earlier one turning with it).
+    pub(crate) swung_back: bool,
     /// The unknowns, in state order.
     pub(crate) unknowns: Vec<Unknown>,
     /// State index of each magnet.
@@ -279,6 +286,8 @@ impl Model {
             friction: d0.friction,
             magnet_mass,
             sides,
+            swung_faces: false,
+            swung_back: false,
             unknowns,
             magnet_var,
             joint_var,

@@ -31,7 +31,7 @@ mod forces;
 mod free_motion;
 mod mode;
 mod options;
-mod sides;
+pub(crate) mod sides;
 mod verdict;
 
 pub use chain_model::Model;

@@ -197,6 +197,10 @@ pub(crate) struct FirstMoments {
     pub(crate) a: Vec2,
     /// Side B's first moment about the hinge at angle 0.
     pub(crate) b: Vec2,
+    /// Side B's second moment about the hinge (kg m^2, or N m s).
+    pub(crate) jb: f64,
+    /// Side B's total (kg, or N s/m).
+    pub(crate) mb: f64,
 }
 
 impl Sides {
@@ -302,11 +306,15 @@ pub(crate) fn joint_sides(geometry: &Geometry, signs: &[f64]) -> Vec<Option<Side
                     total: before_mass.m + after_mass[t + 1].m,
                     a: sa,
                     b: sb,
+                    jb,
+                    mb: after_mass[t + 1].m,
                 },
                 drag_first: FirstMoments {
                     total: before_drag.m + after_drag[t + 1].m,
                     a: da,
                     b: db,
+                    jb: gb,
+                    mb: after_drag[t + 1].m,
                 },
             });
         }

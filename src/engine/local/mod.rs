@@ -20,6 +20,7 @@ mod cache;
 mod relaxation;
 mod solve;
 mod sweep;
+mod swing;
 #[cfg(test)]
 mod test_support;
 mod trajectory;

@@ -107,6 +107,10 @@ pub(crate) const AUTO_MIN_TILES: usize = 500;
 /// `threads` threads (more than 2 are not used; 0: as many as the machine has, but one for
 /// a chain of fewer than [`AUTO_MIN_TILES`] tiles or when called on a rayon pool's thread).
 pub(crate) fn solve_chain(model: &Model, opts: SolveOptions, threads: usize) -> ChainSolution {
+    // a unit that reads the folds upstream of its window is not keyed by them: no cache
+    if model.swung_faces {
+        return solve_chain_with(model, opts, false, 1);
+    }
     solve_chain_with(model, opts, true, threads)
 }
 

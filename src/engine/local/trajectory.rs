@@ -27,6 +27,28 @@ impl Shape {
         self.at_hinted(t, &mut 0)
     }
 
+    /// The first and second derivatives by time at `t` of the Hermite piece holding it
+    /// (0 outside the nodes).
+    pub(crate) fn rates_at(&self, t: f64) -> (f64, f64) {
+        let n = self.t.len();
+        if n < 2 || t <= self.t[0] || t >= self.t[n - 1] {
+            return (0.0, 0.0);
+        }
+        let i = self.t.partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
+        let h = self.t[i + 1] - self.t[i];
+        if h <= 0.0 {
+            return (self.dy[i], 0.0);
+        }
+        let s = (t - self.t[i]) / h;
+        let (y0, m0, y1, m1) = (self.y[i], self.dy[i], self.y[i + 1], self.dy[i + 1]);
+        let d1 = (6.0 * s * s - 6.0 * s) * (y0 - y1) / h
+            + (3.0 * s * s - 4.0 * s + 1.0) * m0
+            + (3.0 * s * s - 2.0 * s) * m1;
+        let d2 = (12.0 * s - 6.0) * (y0 - y1) / (h * h)
+            + ((6.0 * s - 4.0) * m0 + (6.0 * s - 2.0) * m1) / h;
+        (d1, d2)
+    }
+
     /// [`Shape::at`], starting the search for `t`'s interval at `hint` (the interval found
     /// last, kept up to date): the same value, in constant time while `t` moves by no more
     /// than an interval between calls.
@@ -219,6 +241,16 @@ impl Shapes {
             return 0.0;
         }
         self.get(track.shape).at_hinted(t - track.offset, hint)
+    }
+
+    /// The value of `track` at `t` and its first and second derivatives by time.
+    pub(crate) fn motion(&self, track: Track, t: f64) -> (f64, f64, f64) {
+        if track.shape == REST {
+            return (0.0, 0.0, 0.0);
+        }
+        let shape = self.get(track.shape);
+        let (d1, d2) = shape.rates_at(t - track.offset);
+        (shape.at(t - track.offset), d1, d2)
     }
 
     /// When `track` starts changing (`None` for the rest track).

@@ -15,6 +15,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use kurbo::{Point, Vec2};
 
+use crate::engine::local::swing::swing_drive;
 use crate::engine::local::trajectory::{Shapes, Track};
 use crate::model::Model;
 use crate::physics::{along_path, neighbours, torque_about, upstream, Pole};
@@ -292,6 +293,9 @@ impl<'a> UnitForces<'a> {
                     for &(p, _) in terms {
                         let on = s.positions[self.pairs[p].1];
                         tau += sign * torque_about(hinge, on, s.forces[p]);
+                    }
+                    if m.swung_faces {
+                        tau += swing_drive(m, j, t, inputs);
                     }
                     tau
                 }
