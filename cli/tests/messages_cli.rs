@@ -272,11 +272,11 @@ fn a_run_reports_its_folder_its_simulated_time_and_odd_designs() {
 
 #[test]
 fn a_long_count_is_never_silent_off_a_terminal() {
-    // 22 tiles: about 0.2 s of counting (19 tiles took 0.03 s since issue 16, less than the
-    // progress interval below)
+    // 24 tiles: about 0.3 s of counting, six progress intervals (22 tiles took 0.07-0.12 s
+    // once the fold check's memo went into blocks, too near the interval to print for sure)
     let o = tool("fold-enum")
         .env("FOLDCHAIN_PROGRESS_SECONDS", "0.05")
-        .args(["--max-tiles", "22"])
+        .args(["--max-tiles", "24"])
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(0));
@@ -288,7 +288,7 @@ fn a_long_count_is_never_silent_off_a_terminal() {
     assert_mentions(line, &["parts", "/s", "left"]);
     let o = tool("fold-enum")
         .env("FOLDCHAIN_PROGRESS_SECONDS", "0.05")
-        .args(["--max-tiles", "22", "--quiet"])
+        .args(["--max-tiles", "24", "--quiet"])
         .output()
         .unwrap();
     assert!(!stderr(&o).contains("counting:"), "{}", stderr(&o));
