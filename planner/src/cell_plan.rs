@@ -91,9 +91,11 @@ pub(crate) fn axes(shape: &Shape) -> Vec<f64> {
 /// widths), measured: the first [`MEASURED`] of those that rank best by (`miss`, the
 /// largest part left empty) in route order (the route cost estimates the fit, the measure on sample
 /// points has the last word). The routes are checked in order until [`MEASURED`] plans
-/// miss by nothing and leave nothing empty. A plan that `admit` refuses (a slab route with
-/// too much of its chain outside the shape) is passed over like one that collides, so that
-/// the plans ranked are those the caller keeps. What the others said is kept in `failed`.
+/// miss by nothing and leave nothing empty. A plan that `admit` refuses, given its largest
+/// part left empty (a slab route with too much of its chain outside the shape for what it
+/// fills; asked with 0 before the plan is measured, and not measured when refused then), is
+/// passed over like one that collides, so that the plans ranked are those the caller
+/// keeps. What the others said is kept in `failed`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn checked_plans(
     shape: &Shape,
@@ -103,7 +105,7 @@ pub(crate) fn checked_plans(
     routes: &[(f64, Arc<Routed>)],
     near: f64,
     miss: &dyn Fn(usize) -> usize,
-    admit: &dyn Fn(&Plan) -> bool,
+    admit: &dyn Fn(&Plan, f64) -> bool,
     failed: &mut Failed,
 ) -> Vec<Plan> {
     let Failed {
@@ -130,13 +132,18 @@ pub(crate) fn checked_plans(
             continue;
         }
         let plan = asm.to_plan_unmeasured(&r.word, name);
-        if !admit(&plan) {
+        // refused whatever it leaves empty: not measured
+        if !admit(&plan, 0.0) {
             continue;
         }
         let plan = match note_empty(shape, plan, near) {
+            Ok(plan) if !admit(&plan, plan.metrics.largest_empty_tiles) => continue,
             Ok(plan) => plan,
             Err(e) => {
                 let (part, mut plan) = *e;
+                if !admit(&plan, part.tiles) {
+                    continue;
+                }
                 let short = asked.shortfall(plan.tiles, plan.tile_size, part.tiles);
                 if rejected
                     .as_ref()
