@@ -444,14 +444,17 @@ struct SlabBar {
 impl SlabBar {
     /// Whether a plan of the group whose largest part left empty is `empty` (its own tile
     /// areas) is kept. A slab plan with fewer than `min_inside` of its tile centres inside
-    /// the shape (at least [`LEAST_SLAB_INSIDE`]) is kept where it leaves far less empty
-    /// than the plans before: its part left empty and the tiles it lays outside beyond the
-    /// bar, both at the asked count (`target`), are less than the least part left before.
-    /// The bar is the serpentine's share, and a slab plan that keeps fewer centres inside
-    /// was dropped unmeasured: mdi-anchor's halves at 1000 tiles (92-94% inside where its
-    /// serpentine keeps 96.3%), narrowb-at's slabs (89-94% against 94.9%) and the gear's
-    /// at 3000 (92-96% against 96.6%), where the serpentines leave 126, 370 and 1352 tile
-    /// areas empty.
+    /// the shape (at least [`LEAST_SLAB_INSIDE`]) is kept where the plans before leave a
+    /// whole stroke empty (a part over [`SLAB_HOPELESS_EMPTY`] of the asked count `target`)
+    /// and it leaves far less: its part left empty and the tiles it lays outside beyond
+    /// the bar, both at the asked count, are less than the least part left before. The
+    /// bar is the serpentine's share (97% at most), and a slab plan that keeps fewer
+    /// centres inside was dropped unmeasured: narrowb-at's slabs at 1000 tiles (89-94%
+    /// inside where its serpentine keeps 94.9%), the gear's at 3000 (92-96% against
+    /// 96.6%), where the serpentines leave 370 and 1352 tile areas empty. A clipped
+    /// logo's plans, which leave less than a tenth of the count, stay at 97% (issue 26's
+    /// bar for it; at 100 tiles a two-slab plan with 93 of 98 centres inside fills it,
+    /// where the plan kept leaves 9.7 tile areas).
     fn keeps(&self, shape: &Shape, p: &Plan, empty: f64, target: usize) -> bool {
         if !self.slabs {
             return true;
@@ -463,7 +466,9 @@ impl SlabBar {
         // tile areas scale with the count: those of this plan's width at the asked count
         let at_count = target as f64 / p.tiles.max(1) as f64;
         let outside = (self.min_inside - inside) * target as f64;
-        inside >= LEAST_SLAB_INSIDE && empty * at_count + outside < self.before
+        inside >= LEAST_SLAB_INSIDE
+            && self.before > SLAB_HOPELESS_EMPTY * target as f64
+            && empty * at_count + outside < self.before
     }
 }
 
