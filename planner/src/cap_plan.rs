@@ -563,8 +563,8 @@ fn size_group(
         }
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
         failed.merge(here);
-        let hopeless = least_empty
-            .is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(bar.before));
+        let hopeless =
+            least_empty.is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(bar.before));
         if slabs && std::mem::take(&mut at_start) && plans.is_empty() && hopeless {
             return Attempt::Nothing;
         }
