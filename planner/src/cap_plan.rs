@@ -476,6 +476,7 @@ impl SlabBar {
         let at_count = target as f64 / p.tiles.max(1) as f64;
         let outside = (self.min_inside - inside) * target as f64;
         inside >= LEAST_SLAB_INSIDE
+            && self.before.is_finite()
             && self.before > SLAB_HOPELESS_EMPTY * target as f64
             && empty * at_count + outside < self.before
     }
@@ -578,7 +579,6 @@ fn size_group(
             plans.extend(check(&more, &mut here));
         }
         let least_empty = here.rejected.as_ref().map(|r| r.1.empty.tiles);
-        failed.merge(here);
         // hopeless: leaves more than a tenth of the count empty, and more than the plans
         // before (a joined group's, or any group's where a plan was found before)
         let hopeless_above = |above: f64| {
@@ -591,11 +591,23 @@ fn size_group(
                 0.0
             };
             if hopeless_above(before) {
+                failed.merge(here);
                 return Attempt::Nothing;
             }
             // searched on for that alone: a few widths more ([`RESCUED_WIDTHS`])
             rescued = hopeless_above(if bar.joined { bar.before } else { 0.0 });
         }
+        // what a group searched on for the part left empty finds, and a plan kept under
+        // the inside bar, leave the group only with a count within the tolerance (as an
+        // added group's, see [`offered`]): gear and narrowb-at at 100 tiles came back with
+        // 95 and 94 tiles
+        let within = |p: &Plan| {
+            miss(p.tiles) == 0
+                || (!rescued && (!slabs || centres_inside(shape, p) >= bar.min_inside))
+        };
+        here.rejected = here.rejected.take().filter(|(_, r)| within(&r.plan));
+        plans.retain(within);
+        failed.merge(here);
         // a count within the tolerance first, then fit, turns and part left empty priced
         // together; the search's cost is the part left empty ([`empty_cost`]), so that among
         // widths whose plans all leave one, the least empty wins, and the retries go on
