@@ -7,7 +7,7 @@ corpus (planner/corpus) at the given tile counts with `fold-plan --out`, then ru
 stall. fold-plan checks every plan with the sequential fold check (one joint at a time);
 fold-run folds the chain as its magnets drive it, several joints at once (docs/verifying.md).
 
-    python3 benches/plans_in_fold_run.py --tiles 100,300 [--coupled] [--bin target/release]
+    python3 benches/plans_in_fold_run.py --tiles 100,300 [--coupled] [--s MM] [--bin target/release]
 """
 import argparse
 import glob
@@ -64,6 +64,7 @@ def main():
     ap.add_argument("--corpus", default="planner/corpus")
     ap.add_argument("--coupled", action="store_true")
     ap.add_argument("--filter", default="")
+    ap.add_argument("--s", default=None, help="fold-run --s for every run (default: the design's)")
     a = ap.parse_args()
     files = sorted(set(glob.glob(os.path.join(a.corpus, "*", "*.svg"))))
     files = [f for f in files if a.filter in f]
@@ -83,7 +84,8 @@ def main():
             for model, extra in models:
                 out = os.path.join(work, f"{name}-{n}-{model}")
                 p, cpu = run([os.path.join(a.bin, "fold-run"), "--plan", plan, "--out", out,
-                              "--quiet", "--frames", "1", *extra])
+                              "--quiet", "--frames", "1", *extra,
+                              *(["--s", a.s] if a.s is not None else [])])
                 summary = summary_of(out)
                 o = str(summary.get("result", "no-summary")) if p.returncode in (0, 1) else f"exit-{p.returncode}"
                 counts.setdefault(model, {}).setdefault(o, 0)
