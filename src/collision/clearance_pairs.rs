@@ -41,6 +41,10 @@ const SLACK: f64 = 1e-7;
 /// windows and cost 1.5 times the CPU).
 const WINDOW_TURN: f64 = 1.0 / 256.0;
 
+/// The joints looked at are counted below every multiple of `1 << RANK_SHIFT` tiles once a
+/// look ([`Search::rank`]): 64.
+const RANK_SHIFT: u32 = 6;
+
 /// The pairs `(i, j)`, `j >= i + 2`, ascending, that may come within `cutoff` tile widths
 /// of each other (signed distance, negative for an overlap) at some moment from `t0` to the
 /// last breakpoint, the joints of `track_of` following their tracks: a superset of those
@@ -243,6 +247,12 @@ struct Search {
     /// The world centre of the first tile of each joint looked at (its hinge lies within a
     /// circumradius of it).
     centres: Vec<Point>,
+    /// How many joints looked at lie below tile `b << RANK_SHIFT`, for every `b`, the last
+    /// entry all of them: a count below any tile is then a search among the few joints of
+    /// one block, not among all (a look asks it eight times for every pair of runs it
+    /// visits; the binary searches over all the joints were half of a 100,000-tile
+    /// serpentine's search).
+    ranks: Vec<u32>,
 }
 
 /// A run of tiles placed in the world: its node and its first tile's pose.
@@ -256,7 +266,9 @@ impl Search {
     /// A search over the chain at joint `angles` for pairs within `cutoff`, giving up past
     /// `budget` units of work.
     fn new(angles: Vec<f64>, cutoff: f64, budget: usize) -> Search {
+        let blocks = ((angles.len() + 1) >> RANK_SHIFT) + 2;
         Search {
+            ranks: vec![0; blocks],
             tree: ChainTree::new(angles, 0.0),
             radius: Octagon::new(1.0).circumradius(),
             cutoff,
@@ -285,6 +297,16 @@ impl Search {
             self.spin.push(self.spin[l] + r);
             self.moment.push(self.moment[l] + r * k as f64);
         }
+        let mut below = 0;
+        let last = self.ranks.len() - 1;
+        for (b, rank) in self.ranks[..last].iter_mut().enumerate() {
+            let start = b << RANK_SHIFT;
+            while below < self.active.len() && self.active[below] < start {
+                below += 1;
+            }
+            *rank = below as u32;
+        }
+        self.ranks[last] = self.active.len() as u32;
         self.centres.clear();
         for &(k, _) in joints {
             let c = self.tree.tile_pose(k).apply(Point::ORIGIN);
@@ -385,8 +407,7 @@ impl Search {
         (ep, eq): (f64, f64),
         dt: f64,
     ) -> f64 {
-        let at = |x: usize| self.active.partition_point(|&k| k < x);
-        let (a, b, c, d) = (at(pf), at(pl), at(qf), at(ql));
+        let (a, b, c, d) = (self.rank(pf), self.rank(pl), self.rank(qf), self.rank(ql));
         // the joints inside p, between, inside q: active[a..b], [b..c], [c..d]
         let spin = |u: usize, v: usize| self.spin[v] - self.spin[u];
         let inside_p = spin(a, b) * (dist + rp + rq + 2.0 * eq);
@@ -405,16 +426,22 @@ impl Search {
         q + p
     }
 
+    /// How many joints looked at lie below tile `x`.
+    fn rank(&self, x: usize) -> usize {
+        let b = (x >> RANK_SHIFT).min(self.ranks.len() - 2);
+        let (lo, hi) = (self.ranks[b] as usize, self.ranks[b + 1] as usize);
+        lo + self.active[lo..hi].partition_point(|&k| k < x)
+    }
+
     /// Whether a joint looked at lies in `lo..hi`.
     fn any(&self, lo: usize, hi: usize) -> bool {
-        let a = self.active.partition_point(|&k| k < lo);
+        let a = self.rank(lo);
         a < self.active.len() && self.active[a] < hi
     }
 
     /// `sum |rate_k| (to - k)` over the joints looked at in `lo..hi`.
     fn lever(&self, lo: usize, hi: usize, to: usize) -> f64 {
-        let a = self.active.partition_point(|&k| k < lo);
-        let b = self.active.partition_point(|&k| k < hi);
+        let (a, b) = (self.rank(lo), self.rank(hi));
         if b <= a {
             return 0.0;
         }
@@ -427,5 +454,36 @@ impl Search {
     fn disc(&self, run: &Run) -> (Point, f64) {
         let (c, r) = self.tree.disc(run.node);
         (run.pose.apply(c), r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_count_below_a_tile_by_blocks_is_the_count_over_all_joints() {
+        // sparse, dense, across block boundaries and at the chain's ends
+        let tiles = 300;
+        let sets: [Vec<usize>; 4] = [
+            vec![],
+            vec![0, 63, 64, 65, 127, 128, 200, 298],
+            (0..tiles - 1).collect(),
+            (5..tiles - 1).step_by(37).collect(),
+        ];
+        for set in sets {
+            let mut search = Search::new(vec![0.0; tiles - 1], 0.5, usize::MAX);
+            let joints: Vec<(usize, f64)> = set.iter().map(|&k| (k, 1.0)).collect();
+            // a look of no time fills the counts (and finds what the start does)
+            let _ = search.look(&joints, 0.0);
+            for x in 0..tiles + 70 {
+                let want = set.partition_point(|&k| k < x);
+                assert_eq!(search.rank(x), want, "{set:?} below {x}");
+                for hi in [x, x + 1, x + 64] {
+                    let any = set.iter().any(|&k| k >= x && k < hi);
+                    assert_eq!(search.any(x, hi), any, "{set:?} in {x}..{hi}");
+                }
+            }
+        }
     }
 }
