@@ -482,6 +482,29 @@ impl SlabBar {
     }
 }
 
+/// [`size_group`]'s width search: secant steps from the first width and the retries, unless
+/// the tile width is given; `tol` tiles off the count are within it.
+fn group_search(opts: &PlanOptions, tol: usize) -> SizeSearch {
+    SizeSearch {
+        secant_steps: if opts.tile_size.is_some() {
+            1
+        } else {
+            SIZE_STEPS
+        },
+        nudges: &[],
+        tolerance: tol,
+        explore: false,
+        shrink_when_empty: None,
+        retries: if opts.tile_size.is_none() {
+            &RETRIES
+        } else {
+            &[]
+        },
+        // a plan that leaves a part empty (its cost: the tile areas) keeps the retries going
+        settle_cost: 0.0,
+    }
+}
+
 /// The tile width search over the decompositions `axes` (see [`plan_by_caps`]): the best plan
 /// found, what the others said in `failed`. A group of slabs (`bar`) searches within a
 /// budget of [`SLAB_SEARCH_TILES`] and is given up at its first width if hopeless (see
@@ -500,24 +523,7 @@ fn size_group(
     let target = opts.tiles.unwrap_or(DEFAULT_TILES);
     let w0 = start_width(shape, opts, style);
     let tol = (opts.tiles_tolerance * target as f64) as usize;
-    let search = SizeSearch {
-        secant_steps: if opts.tile_size.is_some() {
-            1
-        } else {
-            SIZE_STEPS
-        },
-        nudges: &[],
-        tolerance: tol,
-        explore: false,
-        shrink_when_empty: None,
-        retries: if opts.tile_size.is_none() {
-            &RETRIES
-        } else {
-            &[]
-        },
-        // a plan that leaves a part empty (its cost: the tile areas) keeps the retries going
-        settle_cost: 0.0,
-    };
+    let search = group_search(opts, tol);
     let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
     let budget = if slabs {
         (SLAB_SEARCH_TILES / target.max(1)).max(SLAB_MIN_WIDTHS)
