@@ -340,7 +340,7 @@ fn first_legs(
             let work = frame.work(shape);
             // a cell whose rows must span it starts at its near side
             let solved: Vec<(Lattice, Solved)> = if span {
-                solve_spanning(&work, style, work.bbox().y0 + 0.5 + p / 2.0)
+                solve_spanning(&work, style, work.bbox().y0 + 0.5 + p / 6.0)
             } else {
                 Phased::new(&work, style).solve(style).collect()
             };
