@@ -123,7 +123,31 @@ pub(crate) fn grown(plan: &CapPlan) -> Vec<CapPlan> {
     }
     out.sort_by_key(|(n, _)| std::cmp::Reverse(*n));
     out.truncate(MAX_VARIANTS);
-    out.into_iter().map(|(_, p)| p).collect()
+    // each also laid in the other order: every cell's rows stacked the other way, the
+    // first free in sign, the grown cell ending at its lobes where it started there
+    let reversed: Vec<CapPlan> = out
+        .iter()
+        .map(|(_, p)| {
+            let mut q = p.clone();
+            q.cells.reverse();
+            for (i, c) in q.cells.iter_mut().enumerate() {
+                c.n = opposite(c.n);
+                c.either_sign = i == 0 && !c.spans;
+            }
+            q
+        })
+        .collect();
+    out.into_iter().map(|(_, p)| p).chain(reversed).collect()
+}
+
+/// The opposite direction.
+fn opposite(d: Dir) -> Dir {
+    match d {
+        Dir::PosX => Dir::NegX,
+        Dir::NegX => Dir::PosX,
+        Dir::PosY => Dir::NegY,
+        Dir::NegY => Dir::PosY,
+    }
 }
 
 /// The grown decompositions ([`grown`]) of every decomposition of the cap groups `caps`
