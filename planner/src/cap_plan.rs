@@ -120,10 +120,10 @@ fn routes_at(
                 .flat_map(move |p| {
                     let cells: Vec<Shape> =
                         p.cells.iter().map(|c| axis_shape.clipped(c.rect)).collect();
-                    let seq: Vec<(&Shape, Need)> = cells
+                    let seq: Vec<(&Shape, Need, bool)> = cells
                         .iter()
                         .zip(&p.cells)
-                        .map(|(s, c)| (s, Some((c.n.vec(), c.either_sign))))
+                        .map(|(s, c)| (s, Some((c.n.vec(), c.either_sign)), c.spans))
                         .collect();
                     route_sequence(&seq, style, memo, spread)
                         .into_iter()
@@ -197,6 +197,9 @@ pub(crate) fn plan_by_caps(
 ) -> Result<Plan, CellFailure> {
     let min_inside = MIN_SLAB_INSIDE.min(known_inside.max(LEAST_SLAB_INSIDE));
     let (caps, slabs) = caps_and_slabs(all_axes);
+    // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
+    // last like the other added groups
+    let grown = crate::lobes::grown_group(&caps);
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
@@ -226,6 +229,10 @@ pub(crate) fn plan_by_caps(
         groups.push(vec![g]);
         groups.len() - 1
     });
+    let grown_at = grown.map(|g| {
+        groups.push(g);
+        groups.len() - 1
+    });
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
     let mut best: Option<Plan> = None;
@@ -237,7 +244,8 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j);
+        let extra =
+            |j: usize| joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j);
         if extra(i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {

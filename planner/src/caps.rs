@@ -78,6 +78,8 @@ pub(crate) struct CapCell {
     /// True if the opposite stacking direction will do as well (the first cell of a chain
     /// has nothing laid before it).
     pub either_sign: bool,
+    /// True if its rows must span it (a cell grown over lobes, [`crate::lobes`]).
+    pub spans: bool,
 }
 
 /// A cap decomposition in chain order, with its price.
@@ -774,6 +776,7 @@ impl<'a> Search<'a> {
                         rect: self.rect(b),
                         n,
                         either_sign: true,
+                        spans: false,
                     }],
                     cost: self.rows(extent) - 1.0
                         + self.steps(b, stack_y)
@@ -829,6 +832,7 @@ impl<'a> Search<'a> {
                 rect: self.rect(cap),
                 n: d,
                 either_sign: false,
+                spans: false,
             });
             out.push(CapPlan {
                 cells,

@@ -47,6 +47,7 @@ mod error;
 mod fit;
 mod flatten;
 mod frame;
+mod lobes;
 mod narrow;
 mod options;
 mod parts;

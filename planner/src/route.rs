@@ -30,7 +30,9 @@ use kurbo::{Affine, Point, Rect, Vec2};
 use crate::centre_grid::CentreGrid;
 use crate::check::CheckMemo;
 use crate::options::Turns;
-use crate::rows::{solve_rows, tile_area, Blocked, Lattice, Phased, Serpentine, Solved, Style};
+use crate::rows::{
+    solve_rows, solve_spanning, tile_area, Blocked, Lattice, Phased, Serpentine, Solved, Style,
+};
 use crate::shape::Shape;
 
 /// Partial routes kept at every depth of the beam search.
@@ -168,6 +170,7 @@ fn ends(
     frame: Frame,
     toward: Option<Rect>,
     spread: bool,
+    far_y: Option<f64>,
 ) -> Vec<(f64, f64, usize, usize)> {
     let to_axis = frame.to_axis();
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
@@ -207,7 +210,30 @@ fn ends(
             (true, Some(t), Some((_, k, _))) => beside(sol, lat, pitch, frame, t, k),
             _ => Vec::new(),
         };
-        for (c, k, e) in plain.into_iter().chain(near).chain(others) {
+        // and, for a cell whose rows must span it (`far_y`, a grown cell's lobes beyond its
+        // rows, [`crate::lobes`]), the best end in the farthest row of this parity whose
+        // line lies at most `far_y` high: the serpentine that reaches the cell's far side,
+        // which the area alone may not choose
+        let far = far_y.and_then(|y| {
+            let top = ((y - lat.y0) / pitch).floor();
+            if top < 0.0 {
+                return None;
+            }
+            let top = top as usize;
+            let k = if top % 2 == par {
+                top
+            } else {
+                top.checked_sub(1)?
+            };
+            sol.best_end_with(|r| r == k, |_, _| 0.0, look)
+        });
+        // (only those, when asked)
+        let (plain, near) = if far_y.is_some() {
+            (None, None)
+        } else {
+            (plain, near)
+        };
+        for (c, k, e) in plain.into_iter().chain(near).chain(others).chain(far) {
             if !out.iter().any(|o| o.2 == k && o.3 == e) {
                 out.push((c, look(k, e), k, e));
             }
@@ -292,7 +318,7 @@ fn first_legs(
     style: Style,
     toward: Option<Rect>,
     need: Need,
-    spread: bool,
+    (spread, span): (bool, bool),
 ) -> Vec<(f64, f64, Leg)> {
     let p = style.pitch;
     let mut out = Vec::new();
@@ -312,8 +338,14 @@ fn first_legs(
                 n,
             };
             let work = frame.work(shape);
-            for (lat, sol) in Phased::new(&work, style).solve(style) {
-                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread) {
+            // a cell whose rows must span it starts at its near side
+            let solved: Vec<(Lattice, Solved)> = if span {
+                solve_spanning(&work, style, work.bbox().y0 + 0.5 + p / 6.0)
+            } else {
+                Phased::new(&work, style).solve(style).collect()
+            };
+            for (lat, sol) in solved {
+                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread, None) {
                     let serp = sol.serpentine(lat, p, k, e);
                     out.push((
                         cost,
@@ -399,7 +431,7 @@ fn next_legs(
     style: Style,
     toward: Option<Rect>,
     need: Need,
-    spread: bool,
+    (spread, span): (bool, bool),
 ) -> Vec<(f64, f64, Leg, Vec<Point>)> {
     // only tiles near the cell can block its rows
     let cell_box = shape.bbox().inflate(2.0, 2.0);
@@ -450,7 +482,8 @@ fn next_legs(
                 test: &test,
             };
             let sol = solve_rows(&work, style, lat, Some(c0), Some(blocked));
-            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread) {
+            let far = span.then(|| work.bbox().y1 - 0.5);
+            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread, far) {
                 let leg = Leg {
                     frame,
                     serp: sol.serpentine(lat, p, k, end),
@@ -492,36 +525,36 @@ fn allows(need: Need, n: Vec2) -> bool {
 }
 
 /// The best routes through the cells `seq` in this order, each cell's rows stacked as its
-/// [`Need`] says, cheapest first; with `spread`, each cell followed by another also tries
+/// [`Need`] says (and, where its flag is set, also made to span it: started at its near
+/// side if first, ended at its far side, see [`ends`]), cheapest first; with `spread`, each cell followed by another also tries
 /// the other exits of its last row beside that cell ([`ends`]): more ways, found by the same
 /// bounded beam, that replace some of the cheapest (the caller routes both ways where the
 /// cheapest leave a part of the shape empty).
 pub(crate) fn route_sequence(
-    seq: &[(&Shape, Need)],
+    seq: &[(&Shape, Need, bool)],
     style: Style,
     memo: &CheckMemo,
     spread: bool,
 ) -> Vec<Route> {
-    let Some(&(first, need0)) = seq.first() else {
+    let Some(&(first, need0, span0)) = seq.first() else {
         return Vec::new();
     };
     let root = memo.take();
-    let beam = route_beam(seq, first, need0, style, &root, spread);
+    let beam = route_beam(seq, (first, need0, span0), style, &root, spread);
     memo.give(root);
     beam
 }
 
 /// [`route_sequence`] with an empty fold check whose memo the routes share.
 fn route_beam(
-    seq: &[(&Shape, Need)],
-    first: &Shape,
-    need0: Need,
+    seq: &[(&Shape, Need, bool)],
+    (first, need0, span0): (&Shape, Need, bool),
     style: Style,
     root: &PrefixCheck,
     spread: bool,
 ) -> Vec<Route> {
     let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
-    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0, spread)
+    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0, (spread, span0))
         .into_iter()
         .map(|(cost, _, leg)| {
             let c = leg.centres(style);
@@ -536,7 +569,7 @@ fn route_beam(
             }
         })
         .collect();
-    for (at, &(shape, need)) in seq.iter().enumerate().skip(1) {
+    for (at, &(shape, need, span)) in seq.iter().enumerate().skip(1) {
         let toward = centre(at + 1);
         // only tiles near the cell can block its rows (see [`next_legs`]): the pieces of a
         // route far from it are passed over whole
@@ -554,7 +587,7 @@ fn route_beam(
                 .flat_map(|(v, _)| v.iter().copied())
                 .collect();
             for (cost, look, leg, join_tiles) in
-                next_legs(prev, &laid, shape, style, toward, need, spread)
+                next_legs(prev, &laid, shape, style, toward, need, (spread, span))
             {
                 cands.push((r.cost + cost, look, i, leg, join_tiles));
             }

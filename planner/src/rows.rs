@@ -319,9 +319,46 @@ impl Phased {
     pub(crate) fn solve(&self, style: Style) -> impl Iterator<Item = (Lattice, Solved)> + '_ {
         self.lats.iter().enumerate().map(move |(i, &lat)| {
             let lines = &self.lines[i % PHASES.len()];
-            (lat, solve_on(lines, style, lat, None, None))
+            (lat, solve_on(lines, style, lat, None, None, usize::MAX))
         })
     }
+
+}
+
+/// Vertical phases of the lattices of a serpentine that must span its shape
+/// ([`solve_spanning`]), as shares of a row pitch: twice as fine as [`PHASES`].
+const SPAN_PHASES: usize = 6;
+
+/// The free programmes over `work` whose chain starts at the shape's near side, its first
+/// row at most `y_max` high (a grown cell's lobes there, [`crate::lobes`]), on lattices of
+/// [`SPAN_PHASES`] vertical and [`PHASES`] horizontal phases: where the rows must reach a
+/// lobe, the phase at which they also cover the cell's own part is worth a finer search.
+pub(crate) fn solve_spanning(work: &Shape, style: Style, y_max: f64) -> Vec<(Lattice, Solved)> {
+    let b = work.bbox();
+    let p = style.pitch;
+    let mut out = Vec::new();
+    for i in 0..SPAN_PHASES {
+        let yp = i as f64 / SPAN_PHASES as f64;
+        let y0 = b.y0 + 0.5 + (yp - 1.0) * p;
+        let nrows = (((b.y1 - y0) / p).ceil() as usize) + 2;
+        let rows = ((y_max - y0) / p).floor();
+        if rows < 0.0 {
+            continue;
+        }
+        let lines = RowLines::new(work, style, y0, nrows);
+        for &xp in &PHASES {
+            let x0 = b.x0.floor() - 2.0 + xp;
+            let lat = Lattice {
+                x0,
+                y0,
+                cols: ((b.x1 - x0).ceil() as usize) + 3,
+                nrows,
+            };
+            let sol = solve_on(&lines, style, lat, None, None, rows as usize + 1);
+            out.push((lat, sol));
+        }
+    }
+    out
 }
 
 /// The farthest a row end may lie from the outline along its row (tile widths) for rows
@@ -415,7 +452,7 @@ pub(crate) fn solve_rows(
     blocked: Option<Blocked<'_>>,
 ) -> Solved {
     let lines = RowLines::new(work, style, lat.y0, lat.nrows);
-    solve_on(&lines, style, lat, fixed_start, blocked)
+    solve_on(&lines, style, lat, fixed_start, blocked, usize::MAX)
 }
 
 /// The row tables of a programme: `pre[k * (cols + 1) + m]`, the cost of the tiles in
@@ -482,13 +519,15 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
     Tables { pre, turn, gaps }
 }
 
-/// [`solve_rows`] with the shape's lines given (their rows those of `lat`).
+/// [`solve_rows`] with the shape's lines given (their rows those of `lat`); with a free
+/// start, only rows below `first_rows` may be the chain's first.
 fn solve_on(
     lines: &RowLines,
     style: Style,
     lat: Lattice,
     fixed_start: Option<usize>,
     blocked: Option<Blocked<'_>>,
+    first_rows: usize,
 ) -> Solved {
     let Lattice { cols, nrows, .. } = lat;
     let w1 = cols + 1;
@@ -520,7 +559,7 @@ fn solve_on(
         }
         // a first row may start here (free start: any row; fixed: row 0 at column c only)
         let first_ok = |s: usize| match fixed_start {
-            None => true,
+            None => k < first_rows,
             Some(c) => k == 0 && s == c,
         };
         let rightward = k % 2 == 0;

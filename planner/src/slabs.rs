@@ -98,6 +98,7 @@ pub(crate) fn slab_plans(axis_shape: &Shape, style: Style) -> Vec<CapPlan> {
                             rect: s.rect(*t),
                             n,
                             either_sign: true,
+                            spans: false,
                         })
                         .collect(),
                     cost,

@@ -1,0 +1,164 @@
+//! Lobes beside a cell taken by the cell's own rows (issue 26; BENCHMARKS, "Where the small
+//! empty parts sit", kind N): a cap decomposition ([`crate::caps`]) gives every lobe that
+//! hangs off a row cell's side a cell of its own (a key's teeth below its shaft, a cat's
+//! ears above its head), each joined by quarter turns, and a lobe too small for a
+//! serpentine of its own is left empty or costs turns. Here the cell's box is grown to take
+//! the lobes on one side of it: the grown cell is one serpentine whose rows run on into the
+//! lobes (rows added beyond the cell's side, shorter, or bridging a short gap between two
+//! lobes, as the row programme prices them), and the lobes' cells leave the decomposition.
+//! Whether the grown cell can be laid where the cell was is the route's to decide (its fold
+//! check), and whether the plan is better is the rank's.
+//!
+//! A lobe of cell `C` (rows across `C.n`) is another cell whose box lies wholly beside one
+//! side of `C`'s box along `n` (touching it) and within `C`'s extent along the rows; the
+//! grown box must not reach into a cell that stays.
+
+use kurbo::Rect;
+
+use crate::caps::{CapCell, CapPlan, Dir};
+
+/// How far (tile widths) boxes may miss touching, or reach past an extent, and still count.
+const SLACK: f64 = 0.25;
+/// The most grown decompositions made from one decomposition.
+const MAX_VARIANTS: usize = 2;
+
+/// The extent of `r` along the rows of a cell stacked along `n` (`along`) and along `n`
+/// (`across`): `((along0, along1), (across0, across1))`.
+fn extents(r: Rect, rows_along_x: bool) -> ((f64, f64), (f64, f64)) {
+    if rows_along_x {
+        ((r.x0, r.x1), (r.y0, r.y1))
+    } else {
+        ((r.y0, r.y1), (r.x0, r.x1))
+    }
+}
+
+/// The stacking direction across rows along x (`rows_along_x`) or along y, towards the
+/// higher coordinate if `up`: a grown cell laid first starts at its lobes (its rows stacked
+/// away from them), a later one ends there (stacked towards them).
+fn toward(rows_along_x: bool, up: bool) -> Dir {
+    match (rows_along_x, up) {
+        (true, true) => Dir::PosY,
+        (true, false) => Dir::NegY,
+        (false, true) => Dir::PosX,
+        (false, false) => Dir::NegX,
+    }
+}
+
+/// True if the open boxes `a` and `b` overlap by more than [`SLACK`] in both directions.
+fn overlap(a: Rect, b: Rect) -> bool {
+    a.x0.max(b.x0) + SLACK < a.x1.min(b.x1) && a.y0.max(b.y0) + SLACK < a.y1.min(b.y1)
+}
+
+/// The decompositions of `plan` with one row cell's box grown over the lobes on one side
+/// of it (see the module's documentation), at most [`MAX_VARIANTS`], the cells that take
+/// the most lobes first; each keeps `plan`'s price and kind.
+pub(crate) fn grown(plan: &CapPlan) -> Vec<CapPlan> {
+    let cells = &plan.cells;
+    let mut out: Vec<(usize, CapPlan)> = Vec::new();
+    for (c, cell) in cells.iter().enumerate() {
+        let rows_x = matches!(cell.n, Dir::PosY | Dir::NegY);
+        let ((a0, a1), (b0, b1)) = extents(cell.rect, rows_x);
+        for below in [true, false] {
+            let lobes: Vec<usize> = cells
+                .iter()
+                .enumerate()
+                .filter(|&(i, l)| {
+                    let ((la0, la1), (lb0, lb1)) = extents(l.rect, rows_x);
+                    let within = la0 >= a0 - SLACK && la1 <= a1 + SLACK;
+                    let beside = if below {
+                        (lb1 - b0).abs() <= SLACK
+                    } else {
+                        (lb0 - b1).abs() <= SLACK
+                    };
+                    i != c && within && beside
+                })
+                .map(|(i, _)| i)
+                .collect();
+            if lobes.is_empty() {
+                continue;
+            }
+            let rect = lobes
+                .iter()
+                .fold(cell.rect, |r, &i| r.union(cells[i].rect));
+            // the grown box reaches into no cell that stays
+            let clear = cells
+                .iter()
+                .enumerate()
+                .all(|(i, o)| i == c || lobes.contains(&i) || !overlap(rect, o.rect));
+            if !clear {
+                continue;
+            }
+            let first = cells
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| !lobes.contains(i))
+                .map(|(i, _)| i)
+                .next()
+                == Some(c);
+            let kept: Vec<CapCell> = cells
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| !lobes.contains(i))
+                .map(|(i, o)| {
+                    if i == c {
+                        CapCell {
+                            rect,
+                            n: toward(rows_x, below == first),
+                            either_sign: false,
+                            spans: true,
+                        }
+                    } else {
+                        o.clone()
+                    }
+                })
+                .collect();
+            out.push((
+                lobes.len(),
+                CapPlan {
+                    cells: kept,
+                    ..plan.clone()
+                },
+            ));
+        }
+    }
+    out.sort_by_key(|(n, _)| std::cmp::Reverse(*n));
+    out.truncate(MAX_VARIANTS);
+    // each also laid in the other order: every cell's rows stacked the other way, the
+    // first free in sign, the grown cell ending at its lobes where it started there
+    let reversed: Vec<CapPlan> = out
+        .iter()
+        .map(|(_, p)| {
+            let mut q = p.clone();
+            q.cells.reverse();
+            for (i, c) in q.cells.iter_mut().enumerate() {
+                c.n = opposite(c.n);
+                c.either_sign = i == 0 && !c.spans;
+            }
+            q
+        })
+        .collect();
+    out.into_iter().map(|(_, p)| p).chain(reversed).collect()
+}
+
+/// The opposite direction.
+fn opposite(d: Dir) -> Dir {
+    match d {
+        Dir::PosX => Dir::NegX,
+        Dir::NegX => Dir::PosX,
+        Dir::PosY => Dir::NegY,
+        Dir::NegY => Dir::PosY,
+    }
+}
+
+/// The grown decompositions ([`grown`]) of every decomposition of the cap groups `caps`
+/// (`(axis, decompositions, width)`), as one group of the same axes; None when there are
+/// none.
+#[allow(clippy::type_complexity)]
+pub(crate) fn grown_group(caps: &[(f64, Vec<CapPlan>, f64)]) -> Option<Vec<(f64, Vec<CapPlan>, f64)>> {
+    let group: Vec<(f64, Vec<CapPlan>, f64)> = caps
+        .iter()
+        .map(|(a, plans, w)| (*a, plans.iter().flat_map(grown).collect::<Vec<_>>(), *w))
+        .filter(|g| !g.1.is_empty())
+        .collect();
+    (!group.is_empty()).then_some(group)
+}
