@@ -257,7 +257,8 @@ pub(crate) struct RowLines {
 impl RowLines {
     /// The lines of `nrows` rows of `style` from `y0` over `work`.
     pub(crate) fn new(work: &Shape, style: Style, y0: f64, nrows: usize) -> RowLines {
-        let per_row = (1 + style.turn_heights.len()) * AREA_LINES.len() + 1;
+        let per_row = (1 + style.turn_heights.len()) * AREA_LINES.len() + 1 + LANE_LINES;
+        let lane = lane_half(style.pitch);
         let mut iv = Vec::new();
         let mut at = Vec::with_capacity(nrows * per_row + 1);
         at.push(0);
@@ -278,6 +279,12 @@ impl RowLines {
                 for dy in AREA_LINES {
                     push(yt + dy);
                 }
+            }
+            for s in LANE_SAMPLES {
+                let ys = y + s * lane;
+                push(ys - EDGE);
+                push(ys);
+                push(ys + EDGE);
             }
         }
         RowLines { per_row, iv, at }
@@ -372,6 +379,84 @@ fn gap_ok(pitch: f64) -> f64 {
     0.5 + (near * near - pitch * pitch / 4.0).max(0.0).sqrt()
 }
 
+/// The lane of a row line (see [`lane_cover`]): the strip within this many tile widths of
+/// the line, which no tile of the rows beside it reaches, for rows `pitch` apart: a point
+/// of the strip is farther than the empty-part measure's reach ([`gap_ok`]'s `near`) from
+/// both neighbouring lines. 0.46 for tight rows, 0.96 for loose.
+fn lane_half(pitch: f64) -> f64 {
+    let near = crate::centre_grid::NEAR + (pitch - SQRT_2).max(0.0) / 2.0;
+    (pitch - near).clamp(0.0, pitch / 2.0)
+}
+
+/// Offsets (shares of [`lane_half`]) of the lines on which a lane is measured: the
+/// midpoints of its two halves.
+const LANE_SAMPLES: [f64; 2] = [-0.5, 0.5];
+/// Lines per row for its lane: each sample line and the lines [`EDGE`] above and below it.
+const LANE_LINES: usize = 3 * LANE_SAMPLES.len();
+/// Only the shape at least this far (tile widths) inside its outline counts in a lane, as
+/// in the empty-part measure ([`crate::empty::EDGE`]).
+const EDGE: f64 = crate::empty::EDGE;
+/// The price of a lane's area that no tile reaches, per unit of area (tile widths squared),
+/// on top of its price as area uncovered: the empty-part measure counts what no tile centre
+/// comes within its reach of, which the area alone prices no more than the corners between
+/// an outline and its rows.
+const LANE_PRICE: f64 = 1.0;
+
+/// Sets `out` to the intervals of `a` and `b` both.
+fn intersect_into(a: &[(f64, f64)], b: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
+    out.clear();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        let lo = a[i].0.max(b[j].0);
+        let hi = a[i].1.min(b[j].1);
+        if lo < hi {
+            out.push((lo, hi));
+        }
+        if a[i].1 < b[j].1 {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+}
+
+/// Sets `out[j]` to the area of row `k`'s lane ([`lane_half`]) under column `j` (centre
+/// `x0 + j`, one tile width wide) that lies at least [`EDGE`] inside the shape, from the
+/// row's lane lines (from `first`): measured along each sample line where it and the lines
+/// [`EDGE`] above and below it lie inside the shape, less [`EDGE`] at either end. A row
+/// whose tile covers column `j` reaches that area; where no tile of the row does, its
+/// neighbours' tiles do not either. `diff` is scratch of `out.len() + 1`, `a` and `b` of
+/// intervals.
+#[allow(clippy::too_many_arguments)]
+fn lane_cover(
+    lines: &RowLines,
+    first: usize,
+    x0: f64,
+    half: f64,
+    out: &mut [f64],
+    diff: &mut [f64],
+    (a, b): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64)>),
+) {
+    out.iter_mut().for_each(|v| *v = 0.0);
+    diff.iter_mut().for_each(|v| *v = 0.0);
+    let weight = half * 2.0 / LANE_SAMPLES.len() as f64;
+    for i in 0..LANE_SAMPLES.len() {
+        let at = first + 3 * i;
+        intersect_into(lines.line(at), lines.line(at + 1), a);
+        intersect_into(a, lines.line(at + 2), b);
+        b.retain_mut(|v| {
+            *v = (v.0 + EDGE, v.1 - EDGE);
+            v.0 < v.1
+        });
+        add_tile_measures(b, x0, 0.5, weight, out, diff);
+    }
+    let mut run = 0.0;
+    for (o, d) in out.iter_mut().zip(diff.iter()) {
+        run += d;
+        *o += run;
+    }
+}
+
 /// Ends farther than this from the outline are priced by the uncovered area alone (the row
 /// stops well inside the shape, and the area term sees it).
 const GAP_MAX: f64 = 3.0;
@@ -463,6 +548,9 @@ struct Tables {
     pre: Vec<f64>,
     turn: Vec<f64>,
     gaps: Vec<(f64, f64)>,
+    /// The price of every row's lane ([`lane_cover`]) were no tile laid: a chain's first
+    /// row carries it, and each tile takes back the price of the lane it reaches.
+    lanes: f64,
 }
 
 /// The row tables of the programme on `lat` from the shape's `lines` (see [`solve_rows`]).
@@ -483,17 +571,24 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
     let mut turn = vec![0.0; nrows * cols];
     let mut gaps = vec![(0.0, 0.0); nrows * cols];
     let mut cover = vec![0.0; cols];
+    let mut lane = vec![0.0; cols];
     let mut diff = vec![0.0; w1];
+    let (mut sa, mut sb) = (Vec::new(), Vec::new());
+    let half = lane_half(p);
+    let mut lanes = 0.0;
     for k in 0..nrows {
         let y = y0 + k as f64 * p;
         let first = lines.row(k);
         tile_cover(lines, first, x0, &mut cover, &mut diff);
+        let lane_at = first + lines.per_row - LANE_LINES;
+        lane_cover(lines, lane_at, x0, half, &mut lane, &mut diff, (&mut sa, &mut sb));
+        lanes += LANE_PRICE * lane.iter().sum::<f64>();
         let pr = &mut pre[k * w1..(k + 1) * w1];
         // the running sum in a register: pr[j + 1] = pr[j] + cost, the same additions
         let mut run = pr[0];
-        for (j, (p, &c)) in pr[1..].iter_mut().zip(&cover).enumerate() {
+        for (j, (p, (&c, &l))) in pr[1..].iter_mut().zip(cover.iter().zip(&lane)).enumerate() {
             let taken = blocked.is_some_and(|b| b.at(Point::new(x0 + j as f64, y)));
-            run += if taken { BLOCKED } else { tile_cost(c) };
+            run += if taken { BLOCKED } else { tile_cost(c) - LANE_PRICE * l };
             *p = run;
         }
         let row_line = first + AREA_LINES.len();
@@ -516,7 +611,12 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
             }
         }
     }
-    Tables { pre, turn, gaps }
+    Tables {
+        pre,
+        turn,
+        gaps,
+        lanes,
+    }
 }
 
 /// [`solve_rows`] with the shape's lines given (their rows those of `lat`); with a free
@@ -531,7 +631,12 @@ fn solve_on(
 ) -> Solved {
     let Lattice { cols, nrows, .. } = lat;
     let w1 = cols + 1;
-    let Tables { pre, turn, gaps } = tables(lines, style, lat, blocked);
+    let Tables {
+        pre,
+        turn,
+        gaps,
+        lanes,
+    } = tables(lines, style, lat, blocked);
     let inf = f64::INFINITY;
     let mut dp = vec![inf; nrows * cols];
     let mut back = vec![(0u32, true); nrows * cols];
@@ -580,7 +685,7 @@ fn solve_on(
                 (pk(e + 1) + gr, -pk(e) + gl)
             };
             if !first_after && first_ok(e) {
-                lower(&mut first_min, term_s, e);
+                lower(&mut first_min, term_s + lanes, e);
             }
             relax(
                 &mut cur[e],
@@ -589,7 +694,7 @@ fn solve_on(
                 (first_min.1, true),
             );
             if first_after && first_ok(e) {
-                lower(&mut first_min, term_s, e);
+                lower(&mut first_min, term_s + lanes, e);
             }
             if let Some((pd, pt)) = prev {
                 // continuation needs s before e: cont_min holds the columns behind e
