@@ -199,7 +199,7 @@ pub(crate) fn plan_by_caps(
     let (caps, slabs) = caps_and_slabs(all_axes);
     // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
     // last like the other added groups
-    let grown = crate::lobes::grown_group(&caps);
+    let grown = crate::lobes::grown_group(&caps).filter(|_| std::env::var("PA_NOLOBES").is_err());
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
@@ -244,8 +244,7 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        let extra =
-            |j: usize| joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j);
+        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j);
         if extra(i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
@@ -273,7 +272,14 @@ pub(crate) fn plan_by_caps(
             before,
             min_inside,
         };
-        let found = size_group(shape, opts, style, name, axes, bar, &mut here);
+        // a grown group's rows are laid to reach its lobes: its programmes price the lanes
+        // no row reaches ([`crate::rows`])
+        let style_here = if grown_at == Some(i) {
+            style.with_lanes()
+        } else {
+            style
+        };
+        let found = size_group(shape, opts, style_here, name, axes, bar, &mut here);
         let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
         failed.merge(here);
         if let Some(p) = found {

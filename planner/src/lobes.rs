@@ -77,9 +77,7 @@ pub(crate) fn grown(plan: &CapPlan) -> Vec<CapPlan> {
             if lobes.is_empty() {
                 continue;
             }
-            let rect = lobes
-                .iter()
-                .fold(cell.rect, |r, &i| r.union(cells[i].rect));
+            let rect = lobes.iter().fold(cell.rect, |r, &i| r.union(cells[i].rect));
             // the grown box reaches into no cell that stays
             let clear = cells
                 .iter()
@@ -154,7 +152,9 @@ fn opposite(d: Dir) -> Dir {
 /// (`(axis, decompositions, width)`), as one group of the same axes; None when there are
 /// none.
 #[allow(clippy::type_complexity)]
-pub(crate) fn grown_group(caps: &[(f64, Vec<CapPlan>, f64)]) -> Option<Vec<(f64, Vec<CapPlan>, f64)>> {
+pub(crate) fn grown_group(
+    caps: &[(f64, Vec<CapPlan>, f64)],
+) -> Option<Vec<(f64, Vec<CapPlan>, f64)>> {
     let group: Vec<(f64, Vec<CapPlan>, f64)> = caps
         .iter()
         .map(|(a, plans, w)| (*a, plans.iter().flat_map(grown).collect::<Vec<_>>(), *w))

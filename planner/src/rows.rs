@@ -64,6 +64,8 @@ pub(crate) struct Style {
     pub turn_heights: &'static [f64],
     /// The price of a U-turn, in tile areas of misfit (see [`solve_rows`]).
     pub turn_price: f64,
+    /// Whether the programme prices the lanes no row reaches ([`lane_half`]).
+    pub lanes: bool,
 }
 
 impl Style {
@@ -84,6 +86,14 @@ impl Style {
             ..self
         }
     }
+
+    /// The style whose programmes also price the lanes no row reaches ([`lane_half`]).
+    pub(crate) fn with_lanes(self) -> Style {
+        Style {
+            lanes: true,
+            ..self
+        }
+    }
 }
 
 /// One LL/RR tile per U-turn.
@@ -92,6 +102,7 @@ pub(crate) const TIGHT: Style = Style {
     pitch: SQRT_2,
     turn_heights: &[FRAC_1_SQRT_2],
     turn_price: 0.0,
+    lanes: false,
 };
 /// Fold, straight tile, fold.
 pub(crate) const LOOSE: Style = Style {
@@ -99,6 +110,7 @@ pub(crate) const LOOSE: Style = Style {
     pitch: 1.0 + SQRT_2,
     turn_heights: &[FRAC_1_SQRT_2, FRAC_1_SQRT_2 + 1.0],
     turn_price: 0.0,
+    lanes: false,
 };
 
 /// The lattice of a programme: column `j` at `x0 + j`, row `k` at `y0 + k * pitch`.
@@ -249,6 +261,8 @@ fn tile_cover(lines: &RowLines, first: usize, x0: f64, out: &mut [f64], diff: &m
 pub(crate) struct RowLines {
     /// Lines per row.
     per_row: usize,
+    /// Whether the rows' lanes are measured ([`lane_half`] above 0).
+    lanes: bool,
     iv: Vec<(f64, f64)>,
     /// `iv[at[i]..at[i + 1]]`: the intervals of line `i`.
     at: Vec<usize>,
@@ -257,8 +271,13 @@ pub(crate) struct RowLines {
 impl RowLines {
     /// The lines of `nrows` rows of `style` from `y0` over `work`.
     pub(crate) fn new(work: &Shape, style: Style, y0: f64, nrows: usize) -> RowLines {
-        let per_row = (1 + style.turn_heights.len()) * AREA_LINES.len() + 1 + LANE_LINES;
-        let lane = lane_half(style.pitch);
+        let lane = if style.lanes {
+            lane_half(style.pitch)
+        } else {
+            0.0
+        };
+        let lane_lines = if lane > 0.0 { LANE_LINES } else { 0 };
+        let per_row = (1 + style.turn_heights.len()) * AREA_LINES.len() + 1 + lane_lines;
         let mut iv = Vec::new();
         let mut at = Vec::with_capacity(nrows * per_row + 1);
         at.push(0);
@@ -280,14 +299,19 @@ impl RowLines {
                     push(yt + dy);
                 }
             }
-            for s in LANE_SAMPLES {
+            for s in LANE_SAMPLES.iter().filter(|_| lane > 0.0) {
                 let ys = y + s * lane;
                 push(ys - EDGE);
                 push(ys);
                 push(ys + EDGE);
             }
         }
-        RowLines { per_row, iv, at }
+        RowLines {
+            per_row,
+            lanes: lane_lines > 0,
+            iv,
+            at,
+        }
     }
 
     /// The intervals of line `i`.
@@ -329,7 +353,6 @@ impl Phased {
             (lat, solve_on(lines, style, lat, None, None, usize::MAX))
         })
     }
-
 }
 
 /// Vertical phases of the lattices of a serpentine that must span its shape
@@ -381,11 +404,14 @@ fn gap_ok(pitch: f64) -> f64 {
 
 /// The lane of a row line (see [`lane_cover`]): the strip within this many tile widths of
 /// the line, which no tile of the rows beside it reaches, for rows `pitch` apart: a point
-/// of the strip is farther than the empty-part measure's reach ([`gap_ok`]'s `near`) from
-/// both neighbouring lines. 0.46 for tight rows, 0.96 for loose.
+/// of the strip is farther than the empty-part measure's reach ([`crate::centre_grid::NEAR`])
+/// from both neighbouring lines. 0.46 for tight rows; 0 (no lanes priced) for loose rows,
+/// whose gaps the measure does not reach across under `auto` turns anyway, rows or none.
 fn lane_half(pitch: f64) -> f64 {
-    let near = crate::centre_grid::NEAR + (pitch - SQRT_2).max(0.0) / 2.0;
-    (pitch - near).clamp(0.0, pitch / 2.0)
+    if pitch > SQRT_2 + 1e-9 {
+        return 0.0;
+    }
+    (pitch - crate::centre_grid::NEAR).clamp(0.0, pitch / 2.0)
 }
 
 /// Offsets (shares of [`lane_half`]) of the lines on which a lane is measured: the
@@ -580,15 +606,29 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
         let y = y0 + k as f64 * p;
         let first = lines.row(k);
         tile_cover(lines, first, x0, &mut cover, &mut diff);
-        let lane_at = first + lines.per_row - LANE_LINES;
-        lane_cover(lines, lane_at, x0, half, &mut lane, &mut diff, (&mut sa, &mut sb));
-        lanes += LANE_PRICE * lane.iter().sum::<f64>();
+        if lines.lanes {
+            let lane_at = first + lines.per_row - LANE_LINES;
+            lane_cover(
+                lines,
+                lane_at,
+                x0,
+                half,
+                &mut lane,
+                &mut diff,
+                (&mut sa, &mut sb),
+            );
+            lanes += LANE_PRICE * lane.iter().sum::<f64>();
+        }
         let pr = &mut pre[k * w1..(k + 1) * w1];
         // the running sum in a register: pr[j + 1] = pr[j] + cost, the same additions
         let mut run = pr[0];
         for (j, (p, (&c, &l))) in pr[1..].iter_mut().zip(cover.iter().zip(&lane)).enumerate() {
             let taken = blocked.is_some_and(|b| b.at(Point::new(x0 + j as f64, y)));
-            run += if taken { BLOCKED } else { tile_cost(c) - LANE_PRICE * l };
+            run += if taken {
+                BLOCKED
+            } else {
+                tile_cost(c) - LANE_PRICE * l
+            };
             *p = run;
         }
         let row_line = first + AREA_LINES.len();
