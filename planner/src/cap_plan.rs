@@ -199,7 +199,7 @@ pub(crate) fn plan_by_caps(
     let (caps, slabs) = caps_and_slabs(all_axes);
     // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
     // last like the other added groups
-    let grown = crate::lobes::grown_group(&caps).filter(|_| std::env::var("PA_NOLOBES").is_err());
+    let grown = crate::lobes::grown_group(&caps);
     // the decompositions chosen with their joins priced: the cheapest of them (over the
     // axes) sized in a slot of its own, after the first slab groups
     let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
