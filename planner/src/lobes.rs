@@ -162,3 +162,66 @@ pub(crate) fn grown_group(
         .collect();
     (!group.is_empty()).then_some(group)
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn cell(x0: f64, y0: f64, x1: f64, y1: f64, n: Dir) -> CapCell {
+        CapCell {
+            rect: Rect::new(x0, y0, x1, y1),
+            n,
+            either_sign: false,
+            spans: false,
+        }
+    }
+
+    /// A key's cells (a shaft in rows, two teeth below it in columns, the head in columns
+    /// beside it): the shaft's box grows over both teeth and not over the head; the teeth
+    /// leave the decomposition, the grown cell spans; both orders are offered.
+    #[test]
+    fn a_shaft_grows_over_its_teeth_not_its_head() {
+        let plan = CapPlan {
+            cells: vec![
+                cell(0.0, 0.0, 10.0, 14.0, Dir::PosX),
+                cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
+                cell(20.0, 8.0, 22.0, 11.0, Dir::PosX),
+                cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
+            ],
+            cost: 5.0,
+            slabs: false,
+            joined: false,
+        };
+        let grown = grown(&plan);
+        assert_eq!(grown.len(), 2, "{:?}", grown.len());
+        for g in &grown {
+            assert_eq!(g.cells.len(), 2);
+            let shaft = g.cells.iter().find(|c| c.spans).unwrap();
+            assert_eq!(shaft.rect, Rect::new(10.0, 5.0, 30.0, 12.0));
+            assert!(g.cells.iter().any(|c| c.rect == plan.cells[0].rect));
+            assert_eq!(g.cost, plan.cost);
+        }
+        // the second is the first laid the other way round
+        assert_eq!(grown[1].cells[0].rect, grown[0].cells[1].rect);
+    }
+
+    /// A lobe that would make the grown box reach into a cell that stays is not taken.
+    #[test]
+    fn no_growth_into_a_cell_that_stays() {
+        let plan = CapPlan {
+            cells: vec![
+                cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
+                cell(12.0, 8.0, 14.0, 11.0, Dir::PosX),
+                cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
+                // below the shaft between the two lobes, not touching it: the box grown
+                // over the lobes would reach into it
+                cell(16.0, 9.0, 24.0, 20.0, Dir::PosX),
+            ],
+            cost: 1.0,
+            slabs: false,
+            joined: false,
+        };
+        assert!(grown(&plan).is_empty());
+    }
+}

@@ -914,6 +914,101 @@ mod tests {
         }
     }
 
+    /// A row's lane (tight rows): in a wide band, the strip of 2 x 0.464 tile widths along
+    /// the row under each column; nothing within half a tile of the outline; none for
+    /// loose rows.
+    #[test]
+    fn lanes_lie_half_a_tile_inside_the_outline() {
+        let s = rect(0.0, 0.0, 20.0, 3.0);
+        let half = lane_half(TIGHT.pitch);
+        assert!((half - (SQRT_2 - 0.95)).abs() < 1e-12);
+        assert_eq!(lane_half(LOOSE.pitch), 0.0);
+        let style = TIGHT.with_lanes();
+        // rows at y = 1.5 (the middle) and y = 0.2 (within half a tile of the edge, so is
+        // its whole lane)
+        for (y0, want) in [(1.5, 2.0 * half), (0.2, 0.0)] {
+            let lines = RowLines::new(&s, style, y0, 1);
+            assert!(lines.lanes);
+            let mut out = vec![0.0; 24];
+            let mut diff = vec![0.0; 25];
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            let at = lines.per_row - LANE_LINES;
+            lane_cover(
+                &lines,
+                at,
+                -2.0,
+                half,
+                &mut out,
+                &mut diff,
+                (&mut a, &mut b),
+            );
+            // column j is centred at x = j - 2: columns 3..=19 lie wholly in x 0.5..19.5
+            for (j, v) in out.iter().enumerate() {
+                let expect = if (3..=19).contains(&j) {
+                    want
+                } else {
+                    v.min(want)
+                };
+                assert!((v - expect).abs() < 1e-9, "{y0} {j}: {v} vs {expect}");
+            }
+        }
+        assert!(!RowLines::new(&s, TIGHT, 1.5, 1).lanes);
+    }
+
+    /// Priced lanes never lower a programme's cost, and a lane no row can reach (its row
+    /// blocked) adds its area: rows at y = 0, sqrt2 and 2 sqrt2 over a band whose inside
+    /// holds the middle row's lane whole.
+    #[test]
+    fn a_lane_no_row_reaches_is_priced() {
+        let s = rect(0.0, -0.5, 12.0, 2.0 * SQRT_2 + 0.5);
+        let lat = Lattice {
+            x0: -3.0,
+            y0: 0.0,
+            cols: 19,
+            nrows: 3,
+        };
+        let middle = |q: Point| (q.y - SQRT_2).abs() < 0.1;
+        let blocked = Blocked {
+            within: Rect::new(-10.0, -10.0, 30.0, 10.0),
+            test: &middle,
+        };
+        let best = |style: Style, b: Option<Blocked<'_>>| {
+            solve_rows(&s, style, lat, None, b)
+                .best_end(|_| true)
+                .unwrap()
+                .0
+        };
+        for b in [None, Some(blocked)] {
+            let (plain, laned) = (best(TIGHT, b), best(TIGHT.with_lanes(), b));
+            assert!(laned >= plain - 1e-9, "{plain} {laned}");
+        }
+        // the middle row's lane, under the lattice's columns
+        let half = lane_half(SQRT_2);
+        let lines = RowLines::new(&s, TIGHT.with_lanes(), SQRT_2, 1);
+        let (mut out, mut diff) = (vec![0.0; 19], vec![0.0; 20]);
+        let (mut a, mut c) = (Vec::new(), Vec::new());
+        let at = lines.per_row - LANE_LINES;
+        lane_cover(
+            &lines,
+            at,
+            -3.0,
+            half,
+            &mut out,
+            &mut diff,
+            (&mut a, &mut c),
+        );
+        let lane: f64 = out.iter().sum();
+        assert!((lane - 2.0 * half * 11.0).abs() < 1e-9, "{lane}");
+        let (plain, laned) = (
+            best(TIGHT, Some(blocked)),
+            best(TIGHT.with_lanes(), Some(blocked)),
+        );
+        assert!(
+            laned >= plain + LANE_PRICE * lane - 1e-9,
+            "{plain} {laned} {lane}"
+        );
+    }
+
     #[test]
     fn fixed_start_begins_where_asked_with_two_tiles() {
         let s = rect(-0.5, -0.5, 9.5, 6.0);
