@@ -271,6 +271,7 @@ pub(crate) fn plan_by_caps(
             joined: joined_at.contains(&i),
             before,
             min_inside,
+            budgeted: slabs || grown_at == Some(i),
         };
         // a grown group's rows are laid to reach its lobes: its programmes price the lanes
         // no row reaches ([`crate::rows`])
@@ -462,6 +463,9 @@ struct SlabBar {
     /// The share of tile centres inside the shape a slab plan keeps without more ado
     /// ([`MIN_SLAB_INSIDE`]).
     min_inside: f64,
+    /// The group's width search is held to the slab groups' budget
+    /// ([`SLAB_SEARCH_TILES`]): a group of slabs, or of caps grown over their lobes.
+    budgeted: bool,
 }
 
 impl SlabBar {
@@ -539,7 +543,7 @@ fn size_group(
     let tol = (opts.tiles_tolerance * target as f64) as usize;
     let search = group_search(opts, tol);
     let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
-    let budget = if slabs {
+    let budget = if slabs || bar.budgeted {
         (SLAB_SEARCH_TILES / target.max(1)).max(SLAB_MIN_WIDTHS)
     } else {
         usize::MAX
