@@ -621,6 +621,20 @@ fn size_group(
             // searched on for that alone: a few widths more ([`RESCUED_WIDTHS`])
             rescued = hopeless_above(if bar.joined { bar.before } else { 0.0 });
         }
+        // a group of caps grown over their lobes ([`crate::lobes`]) is given up at its first
+        // width where none of its routes there leaves less empty than the plans before it
+        // (it is offered only where it does, see [`offered`])
+        if bar.budgeted && !slabs && std::mem::take(&mut at_start) {
+            let least = plans
+                .iter()
+                .map(|p| p.metrics.largest_empty_tiles)
+                .chain(least_empty)
+                .fold(f64::INFINITY, f64::min);
+            if least >= bar.before {
+                failed.merge(here);
+                return Attempt::Nothing;
+            }
+        }
         // what a group searched on for the part left empty finds, and a plan kept under
         // the inside bar, leave the group only with a count within the tolerance (as an
         // added group's, see [`offered`]): gear and narrowb-at at 100 tiles came back with
