@@ -428,6 +428,9 @@ const EDGE: f64 = crate::empty::EDGE;
 /// an outline and its rows.
 const LANE_PRICE: f64 = 1.0;
 
+/// Intervals along a line, sorted and disjoint.
+type Intervals = Vec<(f64, f64)>;
+
 /// Sets `out` to the intervals of `a` and `b` both.
 fn intersect_into(a: &[(f64, f64)], b: &[(f64, f64)], out: &mut Vec<(f64, f64)>) {
     out.clear();
@@ -453,7 +456,6 @@ fn intersect_into(a: &[(f64, f64)], b: &[(f64, f64)], out: &mut Vec<(f64, f64)>)
 /// whose tile covers column `j` reaches that area; where no tile of the row does, its
 /// neighbours' tiles do not either. `diff` is scratch of `out.len() + 1`, `a` and `b` of
 /// intervals.
-#[allow(clippy::too_many_arguments)]
 fn lane_cover(
     lines: &RowLines,
     first: usize,
@@ -461,7 +463,7 @@ fn lane_cover(
     half: f64,
     out: &mut [f64],
     diff: &mut [f64],
-    (a, b): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64)>),
+    (a, b): (&mut Intervals, &mut Intervals),
 ) {
     out.iter_mut().for_each(|v| *v = 0.0);
     diff.iter_mut().for_each(|v| *v = 0.0);
