@@ -118,6 +118,13 @@ fn routes_at(
             plans
                 .into_iter()
                 .flat_map(move |p| {
+                    // a decomposition grown over lobes ([`crate::lobes`]): its rows are laid
+                    // to reach them, its programmes price the lanes no row reaches
+                    let style = if p.cells.iter().any(|c| c.spans) {
+                        style.with_lanes()
+                    } else {
+                        style
+                    };
                     let cells: Vec<Shape> =
                         p.cells.iter().map(|c| axis_shape.clipped(c.rect)).collect();
                     let seq: Vec<(&Shape, Need, bool)> = cells
@@ -273,14 +280,7 @@ pub(crate) fn plan_by_caps(
             min_inside,
             budgeted: slabs || grown_at == Some(i),
         };
-        // a grown group's rows are laid to reach its lobes: its programmes price the lanes
-        // no row reaches ([`crate::rows`])
-        let style_here = if grown_at == Some(i) {
-            style.with_lanes()
-        } else {
-            style
-        };
-        let found = size_group(shape, opts, style_here, name, axes, bar, &mut here);
+        let found = size_group(shape, opts, style, name, axes, bar, &mut here);
         let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
         failed.merge(here);
         if let Some(p) = found {
@@ -469,6 +469,29 @@ struct SlabBar {
 }
 
 impl SlabBar {
+    /// The widths the group's search may solve: [`SLAB_SEARCH_TILES`] over the asked count
+    /// `target` (at least [`SLAB_MIN_WIDTHS`]) for a budgeted group, else no bound.
+    fn budget(&self, target: usize) -> usize {
+        if self.slabs || self.budgeted {
+            (SLAB_SEARCH_TILES / target.max(1)).max(SLAB_MIN_WIDTHS)
+        } else {
+            usize::MAX
+        }
+    }
+
+    /// True if a group of caps grown over their lobes ([`crate::lobes`]) is given up at its
+    /// first width: none of its `plans` there, nor its route rejected for leaving
+    /// `least_empty`, leaves less empty than the plans before it (it is offered only where
+    /// it does, see [`offered`]).
+    fn grown_hopeless(&self, plans: &[Plan], least_empty: Option<f64>) -> bool {
+        let least = plans
+            .iter()
+            .map(|p| p.metrics.largest_empty_tiles)
+            .chain(least_empty)
+            .fold(f64::INFINITY, f64::min);
+        self.budgeted && !self.slabs && least >= self.before
+    }
+
     /// Whether a plan of the group whose largest part left empty is `empty` (its own tile
     /// areas) is kept. A slab plan with fewer than `min_inside` of its tile centres inside
     /// the shape (at least [`LEAST_SLAB_INSIDE`]) is kept where the plans before leave a
@@ -543,11 +566,7 @@ fn size_group(
     let tol = (opts.tiles_tolerance * target as f64) as usize;
     let search = group_search(opts, tol);
     let by_rank = |x: &Plan, y: &Plan| rank(opts, x, y);
-    let budget = if slabs || bar.budgeted {
-        (SLAB_SEARCH_TILES / target.max(1)).max(SLAB_MIN_WIDTHS)
-    } else {
-        usize::MAX
-    };
+    let budget = bar.budget(target);
     let mut at_start = true;
     let miss = |n: usize| match opts.tile_size {
         Some(_) => 0,
@@ -621,19 +640,9 @@ fn size_group(
             // searched on for that alone: a few widths more ([`RESCUED_WIDTHS`])
             rescued = hopeless_above(if bar.joined { bar.before } else { 0.0 });
         }
-        // a group of caps grown over their lobes ([`crate::lobes`]) is given up at its first
-        // width where none of its routes there leaves less empty than the plans before it
-        // (it is offered only where it does, see [`offered`])
-        if bar.budgeted && !slabs && std::mem::take(&mut at_start) {
-            let least = plans
-                .iter()
-                .map(|p| p.metrics.largest_empty_tiles)
-                .chain(least_empty)
-                .fold(f64::INFINITY, f64::min);
-            if least >= bar.before {
-                failed.merge(here);
-                return Attempt::Nothing;
-            }
+        if !slabs && std::mem::take(&mut at_start) && bar.grown_hopeless(&plans, least_empty) {
+            failed.merge(here);
+            return Attempt::Nothing;
         }
         // what a group searched on for the part left empty finds, and a plan kept under
         // the inside bar, leave the group only with a count within the tolerance (as an

@@ -168,6 +168,15 @@ pub(crate) fn grown_group(
 mod tests {
     use super::*;
 
+    fn plan(cells: Vec<CapCell>) -> CapPlan {
+        CapPlan {
+            cells,
+            cost: 5.0,
+            slabs: false,
+            joined: false,
+        }
+    }
+
     fn cell(x0: f64, y0: f64, x1: f64, y1: f64, n: Dir) -> CapCell {
         CapCell {
             rect: Rect::new(x0, y0, x1, y1),
@@ -182,17 +191,12 @@ mod tests {
     /// leave the decomposition, the grown cell spans; both orders are offered.
     #[test]
     fn a_shaft_grows_over_its_teeth_not_its_head() {
-        let plan = CapPlan {
-            cells: vec![
-                cell(0.0, 0.0, 10.0, 14.0, Dir::PosX),
-                cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
-                cell(20.0, 8.0, 22.0, 11.0, Dir::PosX),
-                cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
-            ],
-            cost: 5.0,
-            slabs: false,
-            joined: false,
-        };
+        let plan = plan(vec![
+            cell(0.0, 0.0, 10.0, 14.0, Dir::PosX),
+            cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
+            cell(20.0, 8.0, 22.0, 11.0, Dir::PosX),
+            cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
+        ]);
         let grown = grown(&plan);
         assert_eq!(grown.len(), 2, "{:?}", grown.len());
         for g in &grown {
@@ -209,19 +213,14 @@ mod tests {
     /// A lobe that would make the grown box reach into a cell that stays is not taken.
     #[test]
     fn no_growth_into_a_cell_that_stays() {
-        let plan = CapPlan {
-            cells: vec![
-                cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
-                cell(12.0, 8.0, 14.0, 11.0, Dir::PosX),
-                cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
-                // below the shaft between the two lobes, not touching it: the box grown
-                // over the lobes would reach into it
-                cell(16.0, 9.0, 24.0, 20.0, Dir::PosX),
-            ],
-            cost: 1.0,
-            slabs: false,
-            joined: false,
-        };
+        let plan = plan(vec![
+            cell(10.0, 5.0, 30.0, 8.0, Dir::PosY),
+            cell(12.0, 8.0, 14.0, 11.0, Dir::PosX),
+            cell(26.0, 8.0, 30.0, 12.0, Dir::PosX),
+            // below the shaft between the two lobes, not touching it: the box grown over
+            // the lobes would reach into it
+            cell(16.0, 9.0, 24.0, 20.0, Dir::PosX),
+        ]);
         assert!(grown(&plan).is_empty());
     }
 }
