@@ -30,14 +30,14 @@
 //! ```
 
 mod driver;
-mod groups;
+pub(crate) mod groups;
 mod options;
 mod run;
 mod spatial;
-mod system;
+pub(crate) mod system;
 pub(crate) mod tile_body;
 
-pub(crate) use driver::run_coupled;
+pub(crate) use driver::{run_coupled, setup};
 pub use driver::run_free_body;
 pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;

@@ -24,6 +24,7 @@ mod step;
 
 pub(crate) use crate::model::InertialModel;
 
+use crate::engine::local::cluster::{Coupled, CoupledScratch, Own};
 use crate::engine::local::trajectory::{Shape, Track};
 use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
@@ -73,6 +74,10 @@ pub(crate) struct SolveOptions<'a> {
     /// Whether an inertial unit at rest checks its release past the input nodes where its
     /// release margin stays short (else at every input node: the tests compare the two).
     pub(crate) rest_skip: bool,
+    /// The coupled equations a folding joint turns by ([`Model::coupled_folds`]), if any.
+    ///
+    /// [`Model::coupled_folds`]: crate::model::Model
+    pub(crate) coupled: Option<&'a Coupled>,
 }
 
 /// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
@@ -117,6 +122,7 @@ pub(super) struct Solver<'a> {
     globals: [usize; M],
     modes: [Mode; M],
     scratch: Scratch,
+    coupled: CoupledScratch,
     rhs: u64,
     /// Whether each magnet's start (each joint's fold start) has been reported.
     reported: [bool; M],
@@ -161,6 +167,34 @@ impl Solver<'_> {
 
     fn drives(&mut self, tau: f64, z: &[f64; Z], out: &mut [f64; M]) {
         let m = self.m;
+        if let (Some(c), Some(im)) = (self.opts.coupled, self.opts.inertial) {
+            // a folding joint's coupled drive reads its velocity and its mode too
+            self.rhs += 1;
+            let t = self.t_ref + tau;
+            self.w
+                .drives(t, &z[..m], &self.inputs, &mut self.scratch, &mut out[..m]);
+            let mut own = [Own {
+                global: 0,
+                y: 0.0,
+                v: 0.0,
+                mode: Mode::AtStart,
+            }; M];
+            for (i, o) in own.iter_mut().enumerate().take(m) {
+                *o = Own {
+                    global: self.globals[i],
+                    y: z[i],
+                    v: z[m + i],
+                    mode: self.modes[i],
+                };
+            }
+            for i in 0..m {
+                if let Var::Joint(j) = self.w.vars[i] {
+                    let own = &own[..m];
+                    out[i] = c.joint_drive(im, j, t, own, &self.inputs, &mut self.coupled);
+                }
+            }
+            return;
+        }
         if let Some((t, x, d)) = &self.memo {
             // the drives depend on the time and the positions only (not on the modes)
             if *t == tau && x[..m] == z[..m] {
@@ -336,6 +370,7 @@ impl<'a> Walk<'a> {
             globals,
             modes: [Mode::AtStart; M],
             scratch: Scratch::default(),
+            coupled: CoupledScratch::default(),
             rhs: 0,
             reported: [false; M],
             closed: [false; M],
