@@ -37,8 +37,8 @@ mod spatial;
 pub(crate) mod system;
 pub(crate) mod tile_body;
 
-pub(crate) use driver::{run_coupled, setup};
 pub use driver::run_free_body;
+pub(crate) use driver::{run_coupled, setup};
 pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;
 pub use system::Momentum;
