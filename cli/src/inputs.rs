@@ -81,6 +81,44 @@ pub fn refuse_overwrite(inputs: &[&Path], output: &Path, what: &str) -> anyhow::
     Ok(())
 }
 
+/// Refuses (before any work) to replace an existing file that this tool did not write:
+/// `ours(head, tail)` recognises its own output from the file's first and last 4 KiB. A
+/// missing or empty file, or one of ours, may be written; anything else (a user's notes, a
+/// drawing) is refused, naming the file and what to do.
+pub fn refuse_foreign(
+    path: &Path,
+    what: &str,
+    kind: &str,
+    ours: impl Fn(&str, &str) -> bool,
+) -> anyhow::Result<()> {
+    use anyhow::Context;
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    if !meta.is_file() || meta.len() == 0 {
+        return Ok(());
+    }
+    let mut f = std::fs::File::open(path)
+        .with_context(|| format!("{what} {}: cannot read the existing file", path.display()))?;
+    let mut head = vec![0u8; 4096];
+    let n = f.read(&mut head)?;
+    head.truncate(n);
+    let mut tail = Vec::new();
+    f.seek(SeekFrom::Start(meta.len().saturating_sub(4096)))?;
+    f.read_to_end(&mut tail)?;
+    if ours(
+        &String::from_utf8_lossy(&head),
+        &String::from_utf8_lossy(&tail),
+    ) {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{what} {}: the file exists and is not {kind}; refusing to overwrite it (remove it first, or choose another name)",
+        path.display()
+    )
+}
+
 /// Refuses an output directory that would replace one of the inputs: an input that lies in
 /// `dir` under one of the names `is_output` claims.
 pub fn refuse_overwrite_in(
