@@ -23,8 +23,12 @@ pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
         Err(e) => {
             let path = Path::new(arg.trim());
             if path.is_file() {
-                if let Ok((chain, _)) = read_plan_file(path) {
-                    return Ok(chain);
+                match read_plan_file(path) {
+                    Ok((chain, _)) => return Ok(chain),
+                    // a damaged plan is reported as a plan, not as chain JSON with an
+                    // unknown field `source`
+                    Err(plan_error) if looks_like_a_plan(path) => return Err(plan_error),
+                    Err(_) => {}
                 }
             }
             let looks_like_a_file = path.extension().is_some() || arg.contains(['/', '\\']);
@@ -63,6 +67,18 @@ fn resolved(p: &Path) -> PathBuf {
         (Ok(d), Some(name)) => d.join(name),
         _ => p.to_path_buf(),
     }
+}
+
+/// Does the file at `path` start as `fold-plan --json` writes a plan: a JSON object whose
+/// first 4 KiB name its `source` drawing?
+fn looks_like_a_plan(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 4096];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .unwrap_or(0);
+    let text = String::from_utf8_lossy(&head[..n]);
+    text.trim_start().starts_with('{') && text.contains("\"source\"")
 }
 
 /// Refuses (before any work) an output that is one of the inputs, after resolving links:
