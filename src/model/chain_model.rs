@@ -179,6 +179,7 @@ pub(crate) fn parameters(
         form_drag_cd: d.form_drag,
         tile_drag_n_s_per_m: tile.drag,
         tile_rotational_drag_n_m_s: tile.rotational_drag,
+        design: crate::timeline::design_parameters(d),
     }
 }
 

@@ -53,6 +53,7 @@ pub(crate) use geometry::{GeometryError, LENGTH_TOLERANCE};
 pub(crate) use json::{TimelineJson, EVENT_INDEX};
 pub use outcome::Outcome;
 pub use pair_energies::PairEnergies;
+pub(crate) use parameters::design_parameters;
 pub use parameters::Parameters;
 pub use run_result::RunResult;
 pub use run_source::RunSource;

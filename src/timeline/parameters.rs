@@ -1,6 +1,6 @@
 //! The physical parameters a run used ([`Parameters`]), as `summary.json` states them: the
-//! model and its dynamics, the pair law, and every mass, drag and property of the water,
-//! resolved (a default filled in is stated as the value used).
+//! model and its dynamics, the pair law, every mass, drag and property of the water, and
+//! the tile design, resolved (a default filled in is stated as the value used).
 
 /// The parameters of a run.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -40,4 +40,32 @@ pub struct Parameters {
     pub tile_drag_n_s_per_m: f64,
     /// A tile's linear drag turning about its centre on the water, N m s.
     pub tile_rotational_drag_n_m_s: f64,
+    /// The tile design of the chain's first tile as the run used it, defaults filled in:
+    /// `tile_width_mm`, `d_mm`, `s_mm`, `e_mm`, `c_mm` (only where the design sets it; else
+    /// the wall places the magnets' final points), `wall_mm`, `magnet_diameter_mm`,
+    /// `magnet_height_mm`, `remanence_t` (a design file's per-tile overrides are not listed;
+    /// the masses, drags and water are the fields above).
+    pub design: std::collections::BTreeMap<&'static str, f64>,
+}
+
+/// [`Parameters::design`] of the design `d`.
+pub(crate) fn design_parameters(
+    d: &crate::Design,
+) -> std::collections::BTreeMap<&'static str, f64> {
+    let mut m: std::collections::BTreeMap<&'static str, f64> = [
+        ("tile_width_mm", d.tile_width),
+        ("d_mm", d.d),
+        ("s_mm", d.s),
+        ("e_mm", d.e),
+        ("wall_mm", d.wall),
+        ("magnet_diameter_mm", d.magnet_diameter),
+        ("magnet_height_mm", d.magnet_height),
+        ("remanence_t", d.remanence),
+    ]
+    .into_iter()
+    .collect();
+    if let Some(c) = d.c {
+        m.insert("c_mm", c);
+    }
+    m
 }
