@@ -47,11 +47,6 @@ use crate::timeline::{Event, EventKind};
 /// Most sweeps over the chain.
 pub(crate) const MAX_SWEEPS: usize = 8;
 
-/// Most sweeps over the chain when its folds turn by the coupled equations
-/// ([`crate::engine::local::cluster`]): the folds turning at once settle a few sweeps apart
-/// each, 40.
-pub(crate) const COUPLED_MAX_SWEEPS: usize = 40;
-
 /// The chain's solution.
 #[derive(Debug)]
 pub(crate) struct ChainSolution {
@@ -178,12 +173,7 @@ impl Done {
         debug_assert!(out.complete, "a sweep waited for stopped short");
         self.solves_per_sweep.push(out.solves);
         self.rhs += out.rhs;
-        let most = if model.coupled_folds {
-            COUPLED_MAX_SWEEPS
-        } else {
-            MAX_SWEEPS
-        };
-        self.solves_per_sweep.len() >= most
+        self.solves_per_sweep.len() >= MAX_SWEEPS
             || out.moved <= SWEEP_TOLERANCE * out.duration.max(model.time_scale)
     }
 }
