@@ -45,6 +45,7 @@ pub(crate) fn solve_word(word: &str, o: Options) -> ChainSolution {
         inertial: inertial.as_ref(),
         rosenbrock: o.rosenbrock,
         rest_skip: o.rest_skip,
+        coupled: None,
     };
     solve_chain_with(&model, opts, o.reuse, o.threads)
 }
