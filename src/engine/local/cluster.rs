@@ -48,6 +48,15 @@ pub(crate) struct CoupledScratch {
     held: Vec<(usize, f64)>,
 }
 
+/// Where a unit reads the chain: at time `t`, its own unknowns `own` from its state, every
+/// other unknown on its track in `inputs`.
+#[derive(Clone, Copy)]
+pub(crate) struct Reading<'a> {
+    pub(crate) t: f64,
+    pub(crate) own: &'a [Own],
+    pub(crate) inputs: &'a Inputs<'a>,
+}
+
 /// One unknown of the unit: its state index, value, velocity and mode.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Own {
@@ -69,14 +78,8 @@ impl Coupled {
 
     /// The chain's state at `t` into `s` (every unknown on its track, the unit's `own` from
     /// its state; joint `free` turning whatever its track says), and its rigid groups.
-    fn state(
-        &self,
-        t: f64,
-        own: &[Own],
-        inputs: &Inputs,
-        s: &mut CoupledScratch,
-        free: Option<usize>,
-    ) -> Groups {
+    fn state(&self, at: Reading, s: &mut CoupledScratch, free: Option<usize>) -> Groups {
+        let Reading { t, own, inputs } = at;
         let model = &self.setup.model;
         let n = model.len();
         s.full.clear();
@@ -122,31 +125,40 @@ impl Coupled {
         )
     }
 
-    /// Joint `j`'s drive at `t` (N m towards its fold) with the unit's unknowns `own` and
-    /// every other unknown on its track in `inputs`: while it turns, the drive under which
+    /// The coupled system of `groups` in `modes`, evaluated at state `full` into `work`.
+    fn evaluated<'s>(
+        &'s self,
+        groups: &'s Groups,
+        modes: &'s [Mode],
+        full: &[f64],
+        work: &mut Work,
+    ) -> FreeBody<'s> {
+        let sys = FreeBody {
+            setup: &self.setup,
+            groups,
+            modes,
+            packed: &[],
+        };
+        sys.evaluate(full, work);
+        sys
+    }
+
+    /// Joint `j`'s drive (N m towards its fold) where `at` reads the chain: while it turns, the drive under which
     /// [`InertialModel::acceleration`] gives the coupled acceleration; while it is held, the
     /// torque its face (or its walls) passes to the part after it.
     pub(crate) fn joint_drive(
         &self,
         im: &InertialModel,
         j: usize,
-        t: f64,
-        own: &[Own],
-        inputs: &Inputs,
+        at: Reading,
         s: &mut CoupledScratch,
     ) -> f64 {
         let model = &self.setup.model;
         let Some(gj) = model.joint_var(j) else {
             return 0.0;
         };
-        let groups = self.state(t, own, inputs, s, None);
-        let sys = FreeBody {
-            setup: &self.setup,
-            groups: &groups,
-            modes: &s.modes,
-            packed: &[],
-        };
-        sys.evaluate(&s.full, &mut s.work);
+        let groups = self.state(at, s, None);
+        let sys = self.evaluated(&groups, &s.modes, &s.full, &mut s.work);
         if s.modes[gj] == Mode::Free {
             let g = groups.of_tile[j + 1];
             let acc = model.joint_sign(j) * s.work.qdd[g] / FRAC_PI_2;
@@ -167,20 +179,12 @@ impl Coupled {
         &self,
         j: usize,
         k: usize,
-        t: f64,
-        own: &[Own],
-        inputs: &Inputs,
+        at: Reading,
         s: &mut CoupledScratch,
     ) -> f64 {
         let model = &self.setup.model;
-        let groups = self.state(t, own, inputs, s, Some(k));
-        let sys = FreeBody {
-            setup: &self.setup,
-            groups: &groups,
-            modes: &s.modes,
-            packed: &[],
-        };
-        sys.evaluate(&s.full, &mut s.work);
+        let groups = self.state(at, s, Some(k));
+        let sys = self.evaluated(&groups, &s.modes, &s.full, &mut s.work);
         let (gj, gk) = (groups.of_tile[j + 1], groups.of_tile[k + 1]);
         if gj == 0 || gj == gk || groups.first[gj] != j + 1 {
             // j is held: it turns with its group
@@ -223,6 +227,7 @@ pub(crate) fn impacts(model: &Model, j: usize, inputs: &Inputs) -> Vec<(f64, usi
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use crate::engine::local::run_local;
+    use crate::engine::local::test_support::inertial_model;
     use crate::model::{Dynamics, Model, ModelOptions};
     use crate::reference::{run_reference, ReferenceOptions};
     use crate::timeline::TileDesigns;
@@ -255,13 +260,7 @@ mod tests {
     ];
 
     fn model(word: &str, s: f64, coupled: bool) -> Model {
-        let chain = Chain::parse(word).unwrap();
-        let mut m = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default().with_dynamics(Dynamics::Inertial),
-        )
-        .unwrap();
+        let mut m = inertial_model(word, s);
         m.coupled_folds = coupled;
         m
     }
@@ -432,19 +431,7 @@ mod probe {
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod words {
     use super::tests::{engine, reference};
-
-    fn words(max: usize) -> Vec<String> {
-        let mut all = Vec::new();
-        let mut level = vec![String::new()];
-        for _ in 0..max {
-            level = level
-                .iter()
-                .flat_map(|w| ['S', 'L', 'R'].map(|c| format!("{w}{c}")))
-                .collect();
-            all.extend(level.iter().cloned());
-        }
-        all
-    }
+    use crate::engine::local::test_support::words;
 
     #[test]
     #[ignore = "every word of 1 to 6 letters (COUPLED_LETTERS): the coupled engine against the coupled reference (prints)"]

@@ -24,7 +24,7 @@ mod step;
 
 pub(crate) use crate::model::InertialModel;
 
-use crate::engine::local::cluster::{self, Coupled, CoupledScratch, Own};
+use crate::engine::local::cluster::{self, Coupled, CoupledScratch, Own, Reading};
 use crate::engine::local::trajectory::{Shape, Track};
 use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
@@ -177,7 +177,12 @@ impl Solver<'_> {
             for (o, v) in out.iter_mut().zip(&self.w.vars) {
                 if let Var::Joint(j) = *v {
                     let own = &own[..m];
-                    *o = c.joint_drive(im, j, t, own, &self.inputs, &mut self.coupled);
+                    let at = Reading {
+                        t,
+                        own,
+                        inputs: &self.inputs,
+                    };
+                    *o = c.joint_drive(im, j, at, &mut self.coupled);
                 }
             }
             return;
@@ -233,7 +238,12 @@ impl Solver<'_> {
             if let (Var::Joint(j), Mode::Free) = (self.w.vars[i], self.modes[i]) {
                 let own = self.own(z);
                 let t = self.t_ref + tau;
-                let ratio = c.impact_ratio(j, k, t, &own[..m], &self.inputs, &mut self.coupled);
+                let at = Reading {
+                    t,
+                    own: &own[..m],
+                    inputs: &self.inputs,
+                };
+                let ratio = c.impact_ratio(j, k, at, &mut self.coupled);
                 let v = z[m + i] + ratio * dv;
                 self.node(i, tau, z[i], v);
                 z[m + i] = v;
