@@ -573,18 +573,21 @@ impl PrefixCheck {
             (query_of(r), r)
         });
         let mut best: Option<usize> = known.map(|(_, m)| m as usize);
+        // a tile this far from the hinge is met, if at all, no sooner than the best so far
+        // (the distance is worked out once per best, not a bound per tile)
+        let mut beyond = best.map_or(f64::INFINITY, |b| hits.no_sooner_than(b));
         self.for_each_in(k, &query, |_, ci, pi| {
             let d = (ci - pivot).hypot();
-            if d > reach || scanned.is_some_and(|(q, r)| d <= r && closed_contains(&q, ci)) {
-                return false;
-            }
-            // a tile this far from the hinge is met, if at all, no sooner than the best so far
-            if best.is_some_and(|b| hits.least_hit(d) >= b) {
+            if d >= beyond
+                || d > reach
+                || scanned.is_some_and(|(q, r)| d <= r && closed_contains(&q, ci))
+            {
                 return false;
             }
             let m = hits.get(canonical_offset(pi.centre, at, fold)) as usize;
             if best.is_none_or(|b| m < b) {
                 best = Some(m);
+                beyond = hits.no_sooner_than(m);
             }
             false
         });
