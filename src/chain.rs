@@ -70,7 +70,8 @@ impl Chain {
         Chain { tiles }
     }
 
-    /// Reads a chain in any of its forms: JSON (text starting with `{`), a tile list (items of
+    /// Reads a chain in any of its forms: JSON (text starting with `{`, or a bare array of
+    /// tiles `["SS","SL"]` starting with `[`), a tile list (items of
     /// two letters separated by white space or commas, e.g. `SS SL LS` or `SS*3`), or a fold
     /// word (`SLLS`). A prefix `tiles:` or `word:` forces the form; without one, a single item
     /// of letters is read as a fold word, so one tile alone is written `tiles:SS`, and a single
@@ -85,6 +86,11 @@ impl Chain {
         }
         if t.starts_with('{') {
             return Chain::from_json(t);
+        }
+        if t.starts_with('[') {
+            let tiles: Vec<Tile> =
+                serde_json::from_str(t).map_err(|e| ChainError::Json(e.to_string()))?;
+            return Chain::from_tiles(tiles);
         }
         let items: Vec<&str> = split_items(t).collect();
         let looks_like_tiles = items.len() > 1
@@ -301,6 +307,12 @@ mod tests {
             Err(ChainError::Json(_))
         ));
         assert!(matches!(Chain::parse("{"), Err(ChainError::Json(_))));
+        assert!(matches!(Chain::parse("[["), Err(ChainError::Json(_))));
+        assert_eq!(
+            Chain::parse(r#"["SS", "SL"]"#),
+            Chain::parse(r#"{"tiles":["SS","SL"]}"#)
+        );
+        assert_eq!(Chain::parse("[]"), Err(ChainError::Empty));
         assert!(matches!(
             Chain::parse("SS*0 SL"),
             Err(ChainError::BadCount { .. })

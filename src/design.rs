@@ -138,7 +138,7 @@ impl Default for Design {
 #[non_exhaustive]
 pub enum DesignError {
     /// A parameter that is not a finite number in its allowed range.
-    #[error("design parameter `{name}` = {} {unit}: expected {expected}", short(*value))]
+    #[error("design parameter `{name}` = {}{}{unit}: expected {expected}", short(*value), if unit.is_empty() { "" } else { " " })]
     BadParameter {
         /// The parameter's name.
         name: &'static str,

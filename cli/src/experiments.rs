@@ -47,16 +47,24 @@ pub fn experiments(out: &Path, json: bool) -> anyhow::Result<ExperimentsReport> 
     }
     let runs = run_experiments(&models, 600)?;
     let mut dir = OutputDir::create(out)?;
-    for (r, run) in &runs {
-        if r.force_law == "dipole" && r.dynamics == "inertial" && r.name.starts_with("7.3 ") {
-            let title = format!(
-                "{}: {} ({}, {}), {}",
-                r.name, r.chain, r.dynamics, r.force_law, r.outcome
-            );
-            let svg = pair_energy_svg(&run.pair_energies(), &title);
+    let drawn: Vec<_> = runs
+        .iter()
+        .filter(|(r, _)| {
+            r.force_law == "dipole" && r.dynamics == "inertial" && r.name.starts_with("7.3 ")
+        })
+        .map(|(r, run)| {
             let stem = r.name.replace(['.', ' '], "-").to_lowercase();
-            dir.write(&format!("experiment-{stem}.svg"), svg.as_bytes())?;
-        }
+            (r, run, format!("experiment-{stem}.svg"))
+        })
+        .collect();
+    dir.claim(drawn.iter().map(|(_, _, file)| file.as_str()))?;
+    for (r, run, file) in drawn {
+        let title = format!(
+            "{}: {} ({}, {}), {}",
+            r.name, r.chain, r.dynamics, r.force_law, r.outcome
+        );
+        let svg = pair_energy_svg(&run.pair_energies(), &title);
+        dir.write(&file, svg.as_bytes())?;
     }
     let files = dir.written().iter().map(|f| out.join(f)).collect();
     let results: Vec<ExperimentResult> = runs.into_iter().map(|(r, _)| r).collect();

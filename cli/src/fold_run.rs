@@ -22,8 +22,8 @@ use crate::numbers::thousands;
 use crate::progress::Progress;
 use crate::run_dir::StagedDir;
 use crate::run_files::{
-    check_and_write_run_files, owns_run_entry, run_view, write_compare_page, write_run_files,
-    RunFilesOptions, MAX_VIEWER_TILES,
+    check_and_write_run_files, first_foreign_run_entry, owns_run_entry, run_view,
+    write_compare_page, write_run_files, RunFilesOptions, MAX_VIEWER_TILES,
 };
 
 /// The most tiles `--reference` and `--compare` take: the reference's cost grows with tiles
@@ -170,6 +170,13 @@ pub fn run(req: &RunRequest, progress: &Progress) -> anyhow::Result<RunReport> {
             thousands(req.chain.len() as u64),
             req.reference_model.name(),
             thousands(most as u64)
+        );
+    }
+    if let Some(file) = first_foreign_run_entry(&req.out_dir) {
+        bail!(
+            "--out {}: {}",
+            file.display(),
+            crate::record::not_ours(&req.out_dir)
         );
     }
     let staged = StagedDir::open(&req.out_dir, owns_run_entry)?;

@@ -23,8 +23,12 @@ pub fn read_chain(arg: &str) -> anyhow::Result<Chain> {
         Err(e) => {
             let path = Path::new(arg.trim());
             if path.is_file() {
-                if let Ok((chain, _)) = read_plan_file(path) {
-                    return Ok(chain);
+                match read_plan_file(path) {
+                    Ok((chain, _)) => return Ok(chain),
+                    // a damaged plan is reported as a plan, not as chain JSON with an
+                    // unknown field `source`
+                    Err(plan_error) if looks_like_a_plan(path) => return Err(plan_error),
+                    Err(_) => {}
                 }
             }
             let looks_like_a_file = path.extension().is_some() || arg.contains(['/', '\\']);
@@ -65,6 +69,18 @@ fn resolved(p: &Path) -> PathBuf {
     }
 }
 
+/// Does the file at `path` start as `fold-plan --json` writes a plan: a JSON object whose
+/// first 4 KiB name its `source` drawing?
+fn looks_like_a_plan(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 4096];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .unwrap_or(0);
+    let text = String::from_utf8_lossy(&head[..n]);
+    text.trim_start().starts_with('{') && text.contains("\"source\"")
+}
+
 /// Refuses (before any work) an output that is one of the inputs, after resolving links:
 /// `what` names the output's flag.
 pub fn refuse_overwrite(inputs: &[&Path], output: &Path, what: &str) -> anyhow::Result<()> {
@@ -79,6 +95,44 @@ pub fn refuse_overwrite(inputs: &[&Path], output: &Path, what: &str) -> anyhow::
         }
     }
     Ok(())
+}
+
+/// Refuses (before any work) to replace an existing file that this tool did not write:
+/// `ours(head, tail)` recognises its own output from the file's first and last 4 KiB. A
+/// missing or empty file, or one of ours, may be written; anything else (a user's notes, a
+/// drawing) is refused, naming the file and what to do.
+pub fn refuse_foreign(
+    path: &Path,
+    what: &str,
+    kind: &str,
+    ours: impl Fn(&str, &str) -> bool,
+) -> anyhow::Result<()> {
+    use anyhow::Context;
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    if !meta.is_file() || meta.len() == 0 {
+        return Ok(());
+    }
+    let mut f = std::fs::File::open(path)
+        .with_context(|| format!("{what} {}: cannot read the existing file", path.display()))?;
+    let mut head = vec![0u8; 4096];
+    let n = f.read(&mut head)?;
+    head.truncate(n);
+    let mut tail = Vec::new();
+    f.seek(SeekFrom::Start(meta.len().saturating_sub(4096)))?;
+    f.read_to_end(&mut tail)?;
+    if ours(
+        &String::from_utf8_lossy(&head),
+        &String::from_utf8_lossy(&tail),
+    ) {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{what} {}: the file exists and is not {kind}; refusing to overwrite it (remove it first, or choose another name)",
+        path.display()
+    )
 }
 
 /// Refuses an output directory that would replace one of the inputs: an input that lies in

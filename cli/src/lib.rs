@@ -2,7 +2,7 @@
 //!
 //! The command-line tools of `foldchain`: `fold-plan`, `fold-run`, `fold-check`, `fold-enum`,
 //! `fold-validate`, `fold-tolerance` and `fold-print` (in `src/bin/`), and the pieces they
-//! share: writing outputs without touching anything the tools did not write ([`output`]),
+//! share: writing outputs without touching anything the tools did not write ([`output`], [`record`]),
 //! writing a run's pictures and JSON into its output directory ([`run_files`]), reading a
 //! chain named on the command line ([`chain_arg`]) and guarding input files ([`inputs`]), the
 //! thesis' experiments ([`experiments`]), progress on stderr ([`progress`]), a run's margins
@@ -23,6 +23,7 @@ pub mod numbers;
 pub mod output;
 pub mod physics_args;
 pub mod progress;
+pub mod record;
 pub mod report;
 pub mod run_dir;
 pub mod run_files;

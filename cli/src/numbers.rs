@@ -25,9 +25,14 @@ pub fn count_in(text: &str, min: u64, max: u64, what: &str) -> Result<u64, Strin
             thousands(max)
         )),
         None => Err(format!(
-            "expected a whole number of {what} from {} to {} (e.g. 1000 or 1e6)",
+            "expected a whole number of {what} from {} to {}{}",
             thousands(min),
-            thousands(max)
+            thousands(max),
+            if max >= 1_000_000 {
+                " (e.g. 1000 or 1e6)"
+            } else {
+                ""
+            }
         )),
     }
 }

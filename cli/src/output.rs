@@ -2,13 +2,16 @@
 //!
 //! Every file goes to a temporary name beside its target and is renamed into place, so an
 //! interrupted run never leaves a half-written file under a real name. An output directory
-//! ([`OutputDir`]) is never removed, renamed or emptied: a run replaces only the files it
-//! writes itself, and removes nothing but files carrying its own names (stale step frames of
-//! an earlier, longer run, and its own temporary files), so whatever else a user keeps there
-//! stays as it was.
+//! ([`OutputDir`]) is never removed, renamed or emptied: a run replaces only the files a tool
+//! wrote there before (listed in the directory's [`crate::record`]), refuses a file it did not
+//! write that stands under a name it writes, and removes nothing but files of its record
+//! under its own names (stale step frames of an earlier, longer run) and its own temporary
+//! files, so whatever else a user keeps there stays as it was.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+use crate::record::{not_ours, Record};
 
 /// A file or directory that could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -78,11 +81,12 @@ pub fn create_dir_all(dir: &Path) -> Result<(), WriteError> {
 }
 
 /// An output directory shared with whatever else is in it: files are added or replaced one
-/// at a time, atomically, and only under names the tool owns.
+/// at a time, atomically, and only where no file stands or one a tool wrote (its record).
 #[derive(Debug)]
 pub struct OutputDir {
     dir: PathBuf,
     written: Vec<String>,
+    record: Record,
 }
 
 impl OutputDir {
@@ -102,7 +106,22 @@ impl OutputDir {
         Ok(OutputDir {
             dir: dir.to_path_buf(),
             written: Vec::new(),
+            record: Record::read(dir),
         })
+    }
+
+    /// Refuses, before anything is written, to replace a file under any of `names` (paths
+    /// relative to the directory) that no tool wrote.
+    pub fn claim<'a>(&self, names: impl IntoIterator<Item = &'a str>) -> Result<(), WriteError> {
+        for name in names {
+            if self.record.foreign(name) && !self.written.iter().any(|w| w == name) {
+                return Err(WriteError::new(
+                    &self.dir.join(name),
+                    std::io::Error::new(std::io::ErrorKind::AlreadyExists, not_ours(&self.dir)),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The directory.
@@ -115,9 +134,15 @@ impl OutputDir {
         &self.written
     }
 
-    /// Writes (or replaces) the file `name` in the directory, atomically.
+    /// Writes the file `name` in the directory, atomically, and records it; a file there
+    /// that no tool wrote is refused ([`OutputDir::claim`]).
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<(), WriteError> {
-        write_atomic(&self.dir.join(name), bytes)?;
+        self.claim([name])?;
+        let path = self.dir.join(name);
+        write_atomic(&path, bytes)?;
+        self.record
+            .note(name)
+            .map_err(|e| WriteError::new(&self.dir.join(crate::record::RECORD), e))?;
         self.written.push(name.to_string());
         Ok(())
     }
@@ -134,20 +159,43 @@ impl OutputDir {
         self.write(name, text.as_bytes())
     }
 
-    /// Removes the files that `stale` claims (names the tool owns, such as step frames) but
-    /// this run did not write, and the temporary files of names `ours` claims, left by an
-    /// interrupted run. Nothing else is touched. Returns the names removed, sorted.
+    /// Removes the files that `stale` claims (names the tool owns, such as step frames) and
+    /// the record lists but this run did not write, and the temporary files of names `ours`
+    /// claims, left by an interrupted run. Nothing else is touched. Returns the names
+    /// removed, sorted.
     pub fn remove_stale(
         &self,
         stale: &dyn Fn(&str) -> bool,
         ours: &dyn Fn(&str) -> bool,
     ) -> Result<Vec<String>, WriteError> {
-        let entries = std::fs::read_dir(&self.dir).map_err(|e| WriteError::new(&self.dir, e))?;
+        self.remove_stale_in("", stale, ours)
+    }
+
+    /// [`OutputDir::remove_stale`] in the subdirectory `sub` (`stale` and `ours` see names
+    /// within it; the record lists them as `sub/name`).
+    pub fn remove_stale_in(
+        &self,
+        sub: &str,
+        stale: &dyn Fn(&str) -> bool,
+        ours: &dyn Fn(&str) -> bool,
+    ) -> Result<Vec<String>, WriteError> {
+        let dir = if sub.is_empty() {
+            self.dir.clone()
+        } else {
+            self.dir.join(sub)
+        };
+        let entries = std::fs::read_dir(&dir).map_err(|e| WriteError::new(&dir, e))?;
         let mut removed = Vec::new();
         for entry in entries {
-            let entry = entry.map_err(|e| WriteError::new(&self.dir, e))?;
+            let entry = entry.map_err(|e| WriteError::new(&dir, e))?;
             let name = entry.file_name().to_string_lossy().into_owned();
-            let remove = (stale(&name) && !self.written.contains(&name)) || is_temp_of(&name, ours);
+            let full = if sub.is_empty() {
+                name.clone()
+            } else {
+                format!("{sub}/{name}")
+            };
+            let ended = stale(&name) && self.record.lists(&full) && !self.written.contains(&full);
+            let remove = ended || is_temp_of(&name, ours);
             if remove && entry.file_type().is_ok_and(|t| t.is_file()) {
                 let path = entry.path();
                 std::fs::remove_file(&path).map_err(|e| WriteError::new(&path, e))?;
@@ -195,16 +243,22 @@ mod tests {
         let dir = scratch("keep");
         std::fs::write(dir.join("keep.txt"), "mine").unwrap();
         std::fs::write(dir.join("step-0007.svg"), "old frame").unwrap();
+        std::fs::write(dir.join("step-0008.svg"), "a user's, under our name").unwrap();
         std::fs::write(dir.join("step-7.svg"), "not our name").unwrap();
         std::fs::write(dir.join(".step-0001.svg.tmp42"), "torn").unwrap();
         std::fs::write(dir.join(".keep.txt.tmp42"), "a user's").unwrap();
+        // an earlier run wrote step-0007.svg (its record says so), not step-0008.svg
+        std::fs::write(dir.join(crate::record::RECORD), "# record\nstep-0007.svg\n").unwrap();
         let mut out = OutputDir::create(&dir).unwrap();
         out.write("step-0000.svg", b"new").unwrap();
+        let e = out.write("step-0008.svg", b"new").unwrap_err();
+        assert!(format!("{e:#}").contains("step-0008.svg"), "{e:#}");
         let ours = |n: &str| n.starts_with("step-") && n.len() == 13 && n.ends_with(".svg");
         let removed = out.remove_stale(&ours, &ours).unwrap();
         assert_eq!(removed, vec![".step-0001.svg.tmp42", "step-0007.svg"]);
         for (f, body) in [
             ("keep.txt", "mine"),
+            ("step-0008.svg", "a user's, under our name"),
             ("step-7.svg", "not our name"),
             (".keep.txt.tmp42", "a user's"),
         ] {

@@ -143,10 +143,10 @@ pub fn is_run_file(name: &str) -> bool {
 }
 
 /// Is the entry at `path`, in a run's output directory, one `fold-run` owns (replaced by
-/// the next run into that directory): one of [`is_run_file`]'s names or a temporary name of
-/// one (a killed run's torn file), or `engine/` or
-/// `reference/` of `--compare` holding nothing but such files. Everything else is a user's,
-/// and stays.
+/// the next run into that directory): a file under one of [`is_run_file`]'s names that the
+/// directory's record lists ([`crate::record`]), a temporary name of one (a killed run's
+/// torn file), or `engine/` or `reference/` of `--compare` holding nothing but such files.
+/// Everything else is a user's, and stays.
 pub fn owns_run_entry(path: &Path) -> bool {
     let Some(name) = path.file_name().map(|n| n.to_string_lossy().into_owned()) else {
         return false;
@@ -154,19 +154,37 @@ pub fn owns_run_entry(path: &Path) -> bool {
     let Ok(meta) = std::fs::symlink_metadata(path) else {
         return false;
     };
-    // a file being written when a run was killed: `.NAME.tmpPID`
-    let ours = |n: &str| is_run_file(n) || crate::output::is_temp_of(n, &is_run_file);
+    // the record itself, and a file being written when a run was killed: `.NAME.tmpPID`
+    if meta.is_file()
+        && (name == crate::record::RECORD || crate::output::is_temp_of(&name, &is_run_file))
+    {
+        return true;
+    }
     if meta.is_file() {
-        return ours(&name);
+        return is_run_file(&name) && crate::record::wrote(path);
     }
     if meta.is_dir() && (name == "engine" || name == "reference") {
-        return std::fs::read_dir(path).is_ok_and(|entries| {
-            entries.flatten().all(|e| {
-                e.file_type().is_ok_and(|t| t.is_file()) && ours(&e.file_name().to_string_lossy())
-            })
-        });
+        return crate::record::wrote(path)
+            && std::fs::read_dir(path).is_ok_and(|entries| {
+                entries.flatten().all(|e| {
+                    let n = e.file_name().to_string_lossy().into_owned();
+                    e.file_type().is_ok_and(|t| t.is_file())
+                        && (is_run_file(&n)
+                            || n == crate::record::RECORD
+                            || crate::output::is_temp_of(&n, &is_run_file))
+                })
+            });
     }
     false
+}
+
+/// The first file of `dir` that a run would replace under one of [`is_run_file`]'s names but
+/// no tool wrote (the record does not list it). `None` for a new directory or one only runs
+/// wrote. (`engine/` and `reference/` of `--compare` that a run did not write are kept as a
+/// user's: the run is then refused when it puts its own in place, before anything is
+/// replaced.)
+pub fn first_foreign_run_entry(dir: &Path) -> Option<std::path::PathBuf> {
+    crate::record::first_foreign(dir, "", &is_run_file)
 }
 
 /// `step-NNNN.svg` (four or more digits), as [`write_run_files`] names its frames.

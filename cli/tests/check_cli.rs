@@ -6,7 +6,7 @@ use foldchain::collision::{check_word, CheckOptions};
 use foldchain::{Fold, FoldWord};
 
 mod common;
-use common::{absent, assert_exit, assert_mentions, run, stderr, stdout};
+use common::{absent, assert_exit, assert_mentions, run, shape, stderr, stdout};
 
 fn check(args: &[&str]) -> Output {
     run("fold-check", args)
@@ -53,6 +53,29 @@ fn chain_from_a_file_and_json() {
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["tiles"], 11);
     assert_eq!(v["result"]["verdict"], "valid");
+    // a bare JSON array of tiles is a chain too
+    let o = check(&[r#"["SS", "SL", "LL", "LS", "SS"]"#]);
+    assert_exit(&o, 0);
+    // a plan fold-plan wrote is read for its tiles; a damaged one is reported as a plan
+    let plan = dir.join("plan.json");
+    let o = run(
+        "fold-plan",
+        &[
+            shape("disc.svg").to_str().unwrap(),
+            "--tiles",
+            "60",
+            "--quiet",
+            "--out",
+            plan.to_str().unwrap(),
+        ],
+    );
+    assert_exit(&o, 0);
+    assert_exit(&check(&[plan.to_str().unwrap()]), 0);
+    let text = std::fs::read_to_string(&plan).unwrap();
+    std::fs::write(&plan, &text[..text.len() / 2]).unwrap();
+    let o = check(&[plan.to_str().unwrap()]);
+    assert_exit(&o, 2);
+    assert_mentions(&stderr(&o), &["plan.json", "not a fold-plan JSON file"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

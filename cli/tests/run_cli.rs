@@ -266,7 +266,9 @@ fn foreign_files(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn without_run_files(files: Vec<(String, Vec<u8>)>) -> Vec<(String, Vec<u8>)> {
     files
         .into_iter()
-        .filter(|(n, _)| !foldchain_cli::run_files::is_run_file(n))
+        .filter(|(n, _)| {
+            !foldchain_cli::run_files::is_run_file(n) && n != foldchain_cli::record::RECORD
+        })
         .collect()
 }
 

@@ -42,6 +42,61 @@ fn a_run_replaces_the_earlier_one_whole_and_keeps_a_users_files() {
 }
 
 #[test]
+fn a_users_file_under_a_run_files_name_is_refused_and_kept() {
+    // fold-run, fold-print and fold-validate replace only what the directory's record lists
+    let base = scratch("foreign");
+    let run_dir = base.join("run");
+    std::fs::create_dir_all(&run_dir).unwrap();
+    std::fs::write(run_dir.join("summary.json"), "mine").unwrap();
+    let print_dir = base.join("print");
+    std::fs::create_dir_all(print_dir.join("parts")).unwrap();
+    std::fs::write(print_dir.join("parts/SS.3mf"), "mine").unwrap();
+    let validate_dir = base.join("validate");
+    std::fs::create_dir_all(&validate_dir).unwrap();
+    std::fs::write(validate_dir.join("experiment-7-3-ss.svg"), "mine").unwrap();
+    for (tool_name, args, file) in [
+        ("fold-run", vec!["SLLS"], run_dir.join("summary.json")),
+        ("fold-print", vec!["SLLS"], print_dir.join("parts/SS.3mf")),
+        (
+            "fold-validate",
+            vec!["--experiments"],
+            validate_dir.join("experiment-7-3-ss.svg"),
+        ),
+    ] {
+        let out = file
+            .ancestors()
+            .find(|d| d.parent() == Some(base.as_path()))
+            .unwrap();
+        let o = tool(tool_name)
+            .args(&args)
+            .args(["--quiet", "--out", out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{tool_name}: {e}");
+        assert_mentions(
+            &e,
+            &[
+                file.file_name().unwrap().to_str().unwrap(),
+                "no foldchain tool wrote it",
+            ],
+        );
+        assert_eq!(text(&file), "mine", "{tool_name}");
+    }
+    // once the user's file is gone, a run writes its record and replaces its own files
+    std::fs::remove_file(run_dir.join("summary.json")).unwrap();
+    for _ in 0..2 {
+        let o = tool("fold-run")
+            .args(["SLLS", "--quiet", "--out", run_dir.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_exit(&o, 0);
+    }
+    assert!(text(&run_dir.join(".foldchain-files")).contains("summary.json"));
+    std::fs::remove_dir_all(&base).unwrap();
+}
+
+#[test]
 fn a_second_writer_is_refused_at_once() {
     let base = scratch("lock");
     let dir = base.join("out");

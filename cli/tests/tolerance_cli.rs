@@ -96,19 +96,22 @@ fn no_tolerance_means_the_nominal_verdict() {
 fn the_search_writes_its_plot() {
     let d = scratch("search");
     let plot = d.join("t.svg");
-    let o = run(
-        "fold-tolerance",
-        &[
-            "SLS",
-            "--optimize",
-            "--search-samples",
-            "20",
-            "--samples",
-            "40",
-            "--plot",
-            plot.to_str().unwrap(),
-        ],
-    );
+    let search = |plot: &std::path::Path| {
+        run(
+            "fold-tolerance",
+            &[
+                "SLS",
+                "--optimize",
+                "--search-samples",
+                "20",
+                "--samples",
+                "40",
+                "--plot",
+                plot.to_str().unwrap(),
+            ],
+        )
+    };
+    let o = search(&plot);
     let text = stdout(&o);
     assert!(
         matches!(o.status.code(), Some(0) | Some(1)),
@@ -140,6 +143,20 @@ fn the_search_writes_its_plot() {
     let svg = std::fs::read_to_string(&plot).unwrap();
     usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
     assert!(svg.contains("folding probability"));
+    // the search's own plot is replaced by a second search; a user's drawing is not
+    assert!(matches!(search(&plot).status.code(), Some(0) | Some(1)));
+    let mine = d.join("mine.svg");
+    std::fs::write(&mine, "<svg xmlns=\"http://www.w3.org/2000/svg\"/>").unwrap();
+    let o = search(&mine);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("refusing to overwrite"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(std::fs::read_to_string(&mine)
+        .unwrap()
+        .starts_with("<svg xmlns"));
 }
 
 #[test]

@@ -50,7 +50,7 @@ pub enum PlanError {
     },
     /// A number in the drawing's geometry is not finite (NaN, an infinity, or beyond the
     /// about 3.4e38 that SVG renderers hold).
-    #[error("{name}: {element} has {attribute}=\"...{value}...\": {value} is not a finite number; give the element's coordinates as ordinary numbers")]
+    #[error("{name}: {element} has {attribute}=\"...{value}...\": {value} is not a finite number within the about 3.4e38 an SVG renderer holds; give the element's coordinates as ordinary numbers")]
     BadNumber {
         /// The file name (or `<string>`).
         name: String,

@@ -172,6 +172,18 @@ impl Default for TileDesigns {
     }
 }
 
+/// What kind of JSON value `v` is, for a message.
+fn json_kind(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "boolean",
+        serde_json::Value::Number(_) => "number",
+        serde_json::Value::String(_) => "string",
+        serde_json::Value::Array(_) => "array",
+        serde_json::Value::Object(_) => "object",
+    }
+}
+
 impl TileDesigns {
     /// One design for every tile.
     pub fn global(design: Design) -> TileDesigns {
@@ -189,6 +201,29 @@ impl TileDesigns {
             reason: e.to_string(),
         };
         let value: serde_json::Value = serde_json::from_str(text).map_err(json_err)?;
+        // serde would read an array as the design's fields in order (`[1, 2]`: a tile 1 mm
+        // wide with d = 2 mm) and report a range error about a field never written
+        let global = value.get("global");
+        let tiles = value.get("tiles").and_then(|t| t.as_array());
+        let objects = std::iter::once(("the design", Some(&value)))
+            .chain(std::iter::once(("`global`", global)))
+            .chain(
+                tiles
+                    .into_iter()
+                    .flatten()
+                    .map(|t| ("a `tiles` entry", Some(t))),
+            );
+        for (what, v) in objects {
+            if let Some(v) = v.filter(|v| !v.is_object()) {
+                return Err(DesignsError::Json {
+                    origin: origin.to_string(),
+                    reason: format!(
+                        "{what} is a JSON {} where an object {{...}} was expected",
+                        json_kind(v)
+                    ),
+                });
+            }
+        }
         let is_file_form = value
             .as_object()
             .is_some_and(|o| o.contains_key("global") || o.contains_key("tiles"));
@@ -414,6 +449,17 @@ mod tests {
         assert!(e.to_string().contains("unknown field"), "{e}");
         let e = TileDesigns::from_json("{", "x.json").unwrap_err();
         assert!(e.to_string().contains("bad design JSON"), "{e}");
+        for text in [
+            "[1, 2]",
+            "3",
+            "null",
+            "\"s\"",
+            r#"{"global": [1, 2]}"#,
+            r#"{"tiles": [[0, 1]]}"#,
+        ] {
+            let e = TileDesigns::from_json(text, "d.json").unwrap_err();
+            assert!(e.to_string().contains("where an object"), "{text}: {e}");
+        }
         let e = TileDesigns::from_json(r#"{"tiles": [{"from": 3, "to": 1}]}"#, "x").unwrap_err();
         assert!(e.to_string().contains("reversed"), "{e}");
         let e = TileDesigns::from_json(r#"{"tiles": [{"from": 0, "to": 1, "e": -2}]}"#, "x")

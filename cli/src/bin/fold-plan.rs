@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Parser;
 use foldchain_cli::help::{PLAN_ABOUT, PLAN_AFTER_HELP};
-use foldchain_cli::inputs::refuse_overwrite;
+use foldchain_cli::inputs::{refuse_foreign, refuse_overwrite};
 use foldchain_cli::numbers::{count_in, number_in, open_range};
 use foldchain_cli::progress::{Progress, ProgressMode};
 use foldchain_cli::report::{finish, parse_args};
@@ -252,43 +252,6 @@ const PREVIEW_MARK: &str = "near that is a full plan";
 /// its directory and name).
 fn resolved_eq(a: &std::path::Path, b: &std::path::Path) -> bool {
     refuse_overwrite(&[a], b, "").is_err()
-}
-
-/// Refuses (before any work) to replace an existing file that this tool did not write:
-/// `ours(head, tail)` recognises its own output from the file's first and last 4 KiB. A
-/// missing or empty file, or one of ours, may be written; anything else (a user's notes, a
-/// drawing) is refused, naming the file and what to do.
-fn refuse_foreign(
-    path: &std::path::Path,
-    what: &str,
-    kind: &str,
-    ours: impl Fn(&str, &str) -> bool,
-) -> anyhow::Result<()> {
-    use std::io::{Read, Seek, SeekFrom};
-    let Ok(meta) = std::fs::metadata(path) else {
-        return Ok(());
-    };
-    if !meta.is_file() || meta.len() == 0 {
-        return Ok(());
-    }
-    let mut f = std::fs::File::open(path)
-        .with_context(|| format!("{what} {}: cannot read the existing file", path.display()))?;
-    let mut head = vec![0u8; 4096];
-    let n = f.read(&mut head)?;
-    head.truncate(n);
-    let mut tail = Vec::new();
-    f.seek(SeekFrom::Start(meta.len().saturating_sub(4096)))?;
-    f.read_to_end(&mut tail)?;
-    if ours(
-        &String::from_utf8_lossy(&head),
-        &String::from_utf8_lossy(&tail),
-    ) {
-        return Ok(());
-    }
-    anyhow::bail!(
-        "{what} {}: the file exists and is not {kind}; refusing to overwrite it (remove it first, or choose another name)",
-        path.display()
-    )
 }
 
 /// A refusal as JSON (`--json`): the short reason stderr shows, what each planner tried (the

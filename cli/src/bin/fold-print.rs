@@ -14,6 +14,7 @@ use foldchain_cli::inputs::{
 use foldchain_cli::numbers::{count_in, in_range};
 use foldchain_cli::output::{create_dir_all, OutputDir};
 use foldchain_cli::progress::{Progress, ProgressMode};
+use foldchain_cli::record::{first_foreign, not_ours};
 use foldchain_cli::report::{finish, parse_args};
 use foldchain_cli::run_name::{inline_name, stem};
 use foldchain_cli::{errln, outln};
@@ -199,6 +200,11 @@ fn run(args: &Args) -> anyhow::Result<()> {
             out.display()
         );
     }
+    for sub in ["", "parts", "plates"] {
+        if let Some(file) = first_foreign(out, sub, &is_job_file) {
+            anyhow::bail!("--out {}: {}", file.display(), not_ours(out));
+        }
+    }
     let progress = Progress::new("fold-print", "files", ProgressMode::detect(args.quiet));
     progress.stage("planning and building the parts");
     // a shape that cannot be planned keeps the planner's own exit code (1)
@@ -214,6 +220,8 @@ fn run(args: &Args) -> anyhow::Result<()> {
         }
     };
     let mut root = OutputDir::create(out)?;
+    // a file of the user's under a name this run writes is refused before anything is written
+    root.claim(job.files.iter().map(|f| f.path.as_str()))?;
     create_dir_all(&out.join("parts"))?;
     create_dir_all(&out.join("plates"))?;
     let total = job.files.len() as u64;
@@ -225,15 +233,8 @@ fn run(args: &Args) -> anyhow::Result<()> {
     // files of an earlier run under our names that this run did not write (a sixth plate
     // when there are five now), and torn temporary files of ours
     for sub in ["parts", "plates"] {
-        let dir = OutputDir::create(&out.join(sub))?;
-        let written: Vec<String> = root
-            .written()
-            .iter()
-            .filter_map(|w| w.strip_prefix(&format!("{sub}/")).map(str::to_string))
-            .collect();
-        let stale = |n: &str| is_job_file(&format!("{sub}/{n}")) && !written.iter().any(|w| w == n);
         let ours = |n: &str| is_job_file(&format!("{sub}/{n}"));
-        dir.remove_stale(&stale, &ours)?;
+        root.remove_stale_in(sub, &ours, &ours)?;
     }
     let r = &job.report;
     // the plan's own warnings (a count off the request, a part left empty), as fold-plan

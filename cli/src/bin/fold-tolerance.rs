@@ -22,7 +22,9 @@ use foldchain::tolerance::{
 };
 use foldchain::{Chain, Design};
 use foldchain_cli::choices::PrinterChoice;
-use foldchain_cli::inputs::{read_designs, refuse_overwrite, resolve_chain, ChainArgs};
+use foldchain_cli::inputs::{
+    read_designs, refuse_foreign, refuse_overwrite, resolve_chain, ChainArgs,
+};
 use foldchain_cli::numbers::{count_in, number_in, thousands};
 use foldchain_cli::outln;
 use foldchain_cli::output::{create_dir_all, write_atomic};
@@ -175,14 +177,14 @@ fn work(args: &Args, progress: &Progress) -> anyhow::Result<u8> {
         progress,
     )?;
     let (chain, name) = (input.chain, input.name);
-    if let Some(plot) = &args.plot {
+    if args.optimize {
         let inputs: Vec<&Path> = input
             .files
             .iter()
             .map(PathBuf::as_path)
             .chain(args.design.as_deref())
             .collect();
-        refuse_overwrite(&inputs, plot, "--plot")?;
+        refuse_search_outputs(&plot_path(args, &name), &inputs)?;
     }
     let printer = args.printer.to_printer();
     let mut tolerances = Tolerances::printed(printer);
@@ -389,10 +391,7 @@ fn search(
     let started = Instant::now();
     progress.stage("design search");
     let result = Search::run(chain, base, &so)?;
-    let plot = args
-        .plot
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("out/{name}-tradeoff.svg")));
+    let plot = plot_path(args, name);
     if let Some(dir) = plot.parent().filter(|d| !d.as_os_str().is_empty()) {
         create_dir_all(dir)?;
     }
@@ -417,15 +416,17 @@ fn search(
         )?)
     };
     let base_study = confirm(&result.base)?;
-    let stem = plot.with_extension("");
     let mut confirmed = Vec::new();
-    for (label, file, c) in [
-        ("chosen", "chosen", &result.best),
-        ("most probable", "most-probable", &result.most_probable),
-    ] {
+    for ((label, c), file) in [
+        ("chosen", &result.best),
+        ("most probable", &result.most_probable),
+    ]
+    .into_iter()
+    .zip(DESIGN_FILES)
+    {
         let Some(c) = c else { continue };
         let s = confirm(c)?;
-        let path = PathBuf::from(format!("{}-{file}.json", stem.display()));
+        let path = design_file_path(&plot, file);
         let mut text = serde_json::to_string_pretty(&c.design_file(chain, base))?;
         text.push('\n');
         write_atomic(&path, text.as_bytes())?;
@@ -504,4 +505,47 @@ fn row(c: &Candidate) -> String {
         c.interval.1,
         100.0 * c.nominal_margin
     )
+}
+
+/// The design files the search writes beside its plot: `PLOT-chosen.json` and
+/// `PLOT-most-probable.json` (PLOT without `.svg`).
+const DESIGN_FILES: [&str; 2] = ["chosen", "most-probable"];
+
+/// Where the search draws its trade-off: `--plot`, or `out/NAME-tradeoff.svg`.
+fn plot_path(args: &Args, name: &str) -> PathBuf {
+    args.plot
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("out/{name}-tradeoff.svg")))
+}
+
+/// The design file `file` (one of [`DESIGN_FILES`]) beside `plot`.
+fn design_file_path(plot: &Path, file: &str) -> PathBuf {
+    PathBuf::from(format!("{}-{file}.json", plot.with_extension("").display()))
+}
+
+/// Refuses, before the search, to write its plot or the design files beside it over an input
+/// or over files it did not write (a plot it did not draw; design files beside a plot that is
+/// not its own).
+fn refuse_search_outputs(plot: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+    refuse_overwrite(inputs, plot, "--plot")?;
+    refuse_foreign(
+        plot,
+        "--plot",
+        "a trade-off fold-tolerance drew",
+        |head, _| head.contains(": folding probability against assembly time ("),
+    )?;
+    // the design files beside the plot go with it: kept only where the plot is ours
+    let plot_is_ours = plot.exists();
+    for file in DESIGN_FILES {
+        let path = design_file_path(plot, file);
+        refuse_overwrite(inputs, &path, "--plot")?;
+        if path.exists() && !plot_is_ours {
+            bail!(
+                "--plot {}: {} exists beside it and fold-tolerance did not draw the plot there; refusing to overwrite it (remove it first, or choose another --plot)",
+                plot.display(),
+                path.display()
+            );
+        }
+    }
+    Ok(())
 }

@@ -169,6 +169,17 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> anyhow::Result<u8> {
+    // a user's file under a name this run writes is refused before the work
+    let written = |n: &str| {
+        (n.starts_with("experiment-") && n.ends_with(".svg")) || n.starts_with("work-precision.")
+    };
+    if let Some(file) = foldchain_cli::record::first_foreign(&args.out, "", &written) {
+        bail!(
+            "--out {}: {}",
+            file.display(),
+            foldchain_cli::record::not_ours(&args.out)
+        );
+    }
     if args.experiments {
         let progress = Progress::new("fold-validate", "", ProgressMode::detect(args.quiet));
         progress.stage("the thesis' experiments in four models");
@@ -209,6 +220,7 @@ fn run(args: &Args) -> anyhow::Result<u8> {
     progress.finish();
     let v = v?;
     let mut out = OutputDir::create(&args.out)?;
+    out.claim(["work-precision.svg", "work-precision.json"])?;
     out.write("work-precision.svg", v.to_svg().as_bytes())?;
     out.write("work-precision.json", v.to_json().as_bytes())?;
     let files: Vec<_> = out.written().iter().map(|f| args.out.join(f)).collect();
