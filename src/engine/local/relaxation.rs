@@ -108,7 +108,7 @@ pub(crate) const AUTO_MIN_TILES: usize = 500;
 /// a chain of fewer than [`AUTO_MIN_TILES`] tiles or when called on a rayon pool's thread).
 pub(crate) fn solve_chain(model: &Model, opts: SolveOptions, threads: usize) -> ChainSolution {
     // a unit that reads the folds upstream of its window is not keyed by them: no cache
-    if model.swung_faces {
+    if model.swung_faces || model.coupled_folds {
         return solve_chain_with(model, opts, false, 1);
     }
     solve_chain_with(model, opts, true, threads)
