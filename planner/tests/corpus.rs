@@ -104,7 +104,9 @@ fn the_measure_finds_the_half_a_plan_leaves_empty() {
     );
     let shape = Shape::from_svg_data(svg.as_bytes(), "rect.svg").unwrap();
     let half = grid(0.5 * w, 9.5 * w, 0.5 * w, 9.5 * w, w);
-    let r = empty_region::largest_empty_region(&shape, &half, w).unwrap();
+    let r = empty_region::measure(&shape, &half, w, false)
+        .largest
+        .unwrap();
     let tile = empty_region::tile_area() * w * w;
     // the whole band right of the last column's reach; the scallops add at most a strip
     let x_from = 9.5 * w + empty_region::REACH * w;
@@ -126,7 +128,50 @@ fn the_measure_finds_the_half_a_plan_leaves_empty() {
     assert!((r.centre.1 - 5.0 * w).abs() < 0.2 * w, "{:?}", r.centre);
     // tiles over all of it leave nothing empty
     let full = grid(0.5 * w, 19.5 * w, 0.5 * w, 9.5 * w, w);
-    assert_eq!(empty_region::largest_empty_region(&shape, &full, w), None);
+    assert_eq!(empty_region::measure(&shape, &full, w, false).largest, None);
+}
+
+/// Two squares 10 w wide, 10 w apart, tiles over the left one only: measured as one
+/// drawing the right square is the largest empty region; measured as a drawing with
+/// islands it is left out, its area reported apart, and nothing is empty. A piece that a
+/// tile centre lies in stays measured: tiles over the left square and one in the right one
+/// leave the rest of the right one empty either way.
+#[test]
+fn the_measure_leaves_out_islands_only_when_asked() {
+    let w = 2.0;
+    let svg = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{c}" height="{a}"><rect width="{a}" height="{a}"/><rect x="{b}" width="{a}" height="{a}"/></svg>"#,
+        a = 10.0 * w,
+        b = 20.0 * w,
+        c = 30.0 * w
+    );
+    let shape = Shape::from_svg_data(svg.as_bytes(), "two.svg").unwrap();
+    let left = grid(0.5 * w, 9.5 * w, 0.5 * w, 9.5 * w, w);
+    let tile = empty_region::tile_area();
+    // the right square's inner 9 w x 9 w, in tile areas
+    let inner = 81.0 / tile;
+    let whole = empty_region::measure(&shape, &left, w, false);
+    let r = whole.largest.unwrap();
+    assert!(
+        (r.tiles - inner).abs() < 0.05 * inner,
+        "{} vs {inner}",
+        r.tiles
+    );
+    assert_eq!(whole.left_out_tiles, 0.0);
+    let islands = empty_region::measure(&shape, &left, w, true);
+    assert_eq!(islands.largest, None);
+    let square = 100.0 / tile;
+    assert!(
+        (islands.left_out_tiles - square).abs() < 0.05 * square,
+        "{} vs {square}",
+        islands.left_out_tiles
+    );
+    // one tile at the right square's corner: that piece is measured
+    let mut reached = left.clone();
+    reached.push((20.5 * w, 0.5 * w));
+    let m = empty_region::measure(&shape, &reached, w, true);
+    assert_eq!(m.left_out_tiles, 0.0);
+    assert!(m.largest.unwrap().tiles > 0.8 * inner, "{:?}", m.largest);
 }
 
 /// The shape held y-up and the poses y-down: centres given in the wrong frame (y up) lie
@@ -145,11 +190,13 @@ fn the_measure_maps_poses_into_the_shape_frame() {
     }]);
     let svg_frame = grid(0.5, 11.5, 0.5, 5.5, w);
     assert_eq!(
-        empty_region::largest_empty_region(&shape, &svg_frame, w),
+        empty_region::measure(&shape, &svg_frame, w, false).largest,
         None
     );
     let wrong: Vec<(f64, f64)> = svg_frame.iter().map(|&(x, y)| (x, -y)).collect();
-    let r = empty_region::largest_empty_region(&shape, &wrong, w).unwrap();
+    let r = empty_region::measure(&shape, &wrong, w, false)
+        .largest
+        .unwrap();
     // all of the inner 11 x 5 rectangle
     let inner = 11.0 * 5.0 / empty_region::tile_area();
     assert!(
@@ -171,7 +218,7 @@ fn holes_are_not_counted_as_empty() {
         .filter(|&(x, y)| !(6.0..=14.0).contains(&x) || !(6.0..=14.0).contains(&y))
         .collect();
     assert_eq!(
-        empty_region::largest_empty_region(&shape, &centres, w),
+        empty_region::measure(&shape, &centres, w, false).largest,
         None
     );
 }

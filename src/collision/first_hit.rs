@@ -219,14 +219,35 @@ impl TailHits {
 
     /// A lower bound on [`TailHits::get`] for a placed centre at distance `d` from the hinge
     /// (within `1e-6` of the exact distance): the first tail index the sweep test looks at for
-    /// such a centre (see [`TailHits::first_hit`]), less one for rounding.
-    pub(super) fn least_hit(&self, d: f64) -> usize {
+    /// such a centre (see [`TailHits::first_hit`]), less one for rounding. The growing check
+    /// uses it through [`TailHits::no_sooner_than`].
+    #[cfg(test)]
+    fn least_hit(&self, d: f64) -> usize {
         let h = self.window.hinge;
         let inner = (d - 2.0 * self.radius - SLACK - 1e-6).max(0.0);
         let along = (inner * inner - h.y * h.y).max(0.0).sqrt();
         // `as` truncates and saturates: the floor for every value (a negative one, or NaN,
         // gives 0 either way), without a call into libm on baseline x86-64
         ((h.x + along) as usize).saturating_sub(2).max(1)
+    }
+
+    /// A distance from the hinge at and beyond which `least_hit` (a lower bound on
+    /// [`TailHits::get`] by distance: the first tail index the sweep test looks at for a
+    /// centre that far, less one for rounding) is at least `b`, a little beyond the least
+    /// such distance for rounding: a placed centre that far (within `1e-6`) is met, if at all,
+    /// no sooner than tail index `b`. Worked out once per `b` and compared with each placed
+    /// tile's distance, it saves a bound (a square root) per tile.
+    pub(super) fn no_sooner_than(&self, b: usize) -> f64 {
+        if b <= 1 {
+            return f64::NEG_INFINITY; // every first hit is at least 1
+        }
+        // `least_hit(d) >= b` once `h.x + along >= b + 2`, so once the distance less the
+        // contact range is at least the hinge's distance from tail centre `b + 2` (plus the
+        // relative and absolute margins, far above the rounding of these few operations)
+        let h = self.window.hinge;
+        let along = b as f64 + 2.0 - h.x;
+        let d = 2.0 * self.radius + SLACK + 1e-6 + along.hypot(h.y);
+        d * (1.0 + 1e-9) + 1e-7
     }
 
     fn at(&self, c: Point) -> [Point; 8] {
@@ -294,6 +315,28 @@ mod tests {
         );
     }
 
+    /// The distance beyond which first hits are at least `b` is one where the bound by
+    /// distance is at least `b`, and not much beyond the first such distance.
+    #[test]
+    fn no_sooner_than_brackets_the_bound() {
+        let h = memo();
+        let mut prev = f64::NEG_INFINITY;
+        for b in 1..3000usize {
+            let t = h.no_sooner_than(b);
+            assert!(t >= prev, "{b}");
+            prev = t;
+            // every distance from the threshold on gives the bound b or more
+            for step in 0..200 {
+                let d = t + f64::from(step) * 0.01;
+                assert!(h.least_hit(d) >= b, "{b} {d}");
+            }
+            // a distance a little before it (by more than the margins) gives less
+            if b > 1 {
+                assert!(h.least_hit(t - 1e-4) < b, "{b} {t}");
+            }
+        }
+    }
+
     #[test]
     fn far_offsets_are_met_by_far_tail_tiles() {
         // a tile ahead-left of the hinge, about 700 widths out, 45 degrees round the sweep:
@@ -352,6 +395,14 @@ mod tests {
                 // the bound the growing check skips lookups by never exceeds a first hit
                 let least = h.least_hit(p.distance(w.hinge));
                 assert!(least <= m as usize, "{off:?} {m} {least}");
+                // and the distance beyond which that bound reaches b is past every
+                // distance where it is below b
+                let d = p.distance(w.hinge);
+                for b in 1..=least + 2 {
+                    if d >= h.no_sooner_than(b) {
+                        assert!(least >= b, "{off:?} {b} {least}");
+                    }
+                }
             }
         }
         assert!(met > 500, "{met}");

@@ -504,11 +504,14 @@ impl PrefixCheck {
     pub fn clear_to(&mut self, tiles: usize) {
         let memo = Arc::clone(&self.memo);
         let mut memo = lock(&memo);
-        self.clear_with(tiles, &mut memo);
+        self.clear_with(tiles, &mut memo, false);
     }
 
-    /// [`PrefixCheck::clear_to`] with the memo locked.
-    fn clear_with(&mut self, tiles: usize, memo: &mut Memo) {
+    /// [`PrefixCheck::clear_to`] with the memo locked. With `sweep`, each joint the memo
+    /// says meets within `tiles` tiles is swept as soon as it is found, and the first that
+    /// meets ends the clearing: the chain collides (and stays colliding), so the joints left
+    /// need not be looked at; returns whether one met.
+    fn clear_with(&mut self, tiles: usize, memo: &mut Memo, sweep: bool) -> bool {
         while let Some(&Reverse((n, k, seen))) = self.clear.peek() {
             if n >= tiles {
                 break;
@@ -521,13 +524,19 @@ impl PrefixCheck {
             // hit is `seen`
             let known = (cleared > 0).then_some((cleared, seen));
             match self.first_hit(k, to, known, memo) {
-                Some(m) if m <= to => self.meets.push((k + 1 + m, k)),
+                Some(m) if m <= to => {
+                    self.meets.push((k + 1 + m, k));
+                    if sweep && k + 1 + m <= tiles && self.sweep_meets(k, &memo.tile) {
+                        return true;
+                    }
+                }
                 m => {
                     let m = m.map_or(NEVER, |m| u32::try_from(m).unwrap_or(NEVER));
                     self.clear.push(Reverse((k + 1 + to, k, m)));
                 }
             }
         }
+        false
     }
 
     /// The smallest tail index `m` (tile `k + m`) at which the memo says joint `k`'s tail
@@ -573,18 +582,21 @@ impl PrefixCheck {
             (query_of(r), r)
         });
         let mut best: Option<usize> = known.map(|(_, m)| m as usize);
+        // a tile this far from the hinge is met, if at all, no sooner than the best so far
+        // (the distance is worked out once per best, not a bound per tile)
+        let mut beyond = best.map_or(f64::INFINITY, |b| hits.no_sooner_than(b));
         self.for_each_in(k, &query, |_, ci, pi| {
             let d = (ci - pivot).hypot();
-            if d > reach || scanned.is_some_and(|(q, r)| d <= r && closed_contains(&q, ci)) {
-                return false;
-            }
-            // a tile this far from the hinge is met, if at all, no sooner than the best so far
-            if best.is_some_and(|b| hits.least_hit(d) >= b) {
+            if d >= beyond
+                || d > reach
+                || scanned.is_some_and(|(q, r)| d <= r && closed_contains(&q, ci))
+            {
                 return false;
             }
             let m = hits.get(canonical_offset(pi.centre, at, fold)) as usize;
             if best.is_none_or(|b| m < b) {
                 best = Some(m);
+                beyond = hits.no_sooner_than(m);
             }
             false
         });
@@ -600,14 +612,14 @@ impl PrefixCheck {
         let n = self.tiles;
         let memo = Arc::clone(&self.memo);
         let mut memo = lock(&memo);
-        self.clear_with(n, &mut memo);
-        let flagged: Vec<usize> = self
-            .meets
-            .iter()
-            .filter(|&&(from, _)| from <= n)
-            .map(|&(_, k)| k)
-            .collect();
-        if flagged.iter().any(|&k| self.sweep_meets(k, &memo.tile)) {
+        // the joints flagged before are swept first, then the others as the clearing finds
+        // them: the same sweeps in the same order as clearing first and sweeping every
+        // flagged joint after, but a chain that collides is left at its first colliding joint
+        let met = (0..self.meets.len()).any(|i| {
+            let (from, k) = self.meets[i];
+            from <= n && self.sweep_meets(k, &memo.tile)
+        });
+        if met || self.clear_with(n, &mut memo, true) {
             self.collided = true;
         }
         !self.collided

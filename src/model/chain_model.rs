@@ -59,7 +59,7 @@ pub(crate) enum Unknown {
 }
 
 /// The model of one chain.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Model {
     /// The chain at rest (paths in tile frames).
     pub geometry: Geometry,
@@ -79,6 +79,12 @@ pub struct Model {
     /// With [`Model::swung_faces`], the folds turning downstream too (the reaction of a
     /// later fold on an earlier one turning with it).
     pub(crate) swung_back: bool,
+    /// Whether the engine's local solves turn a folding joint by the coupled joint-angle
+    /// reference's equations (`engine::local::cluster`: the chain's current shape, every
+    /// fold turning at once read from its track, the momentum held at zero) and take its
+    /// face's release from the torque it passes. Off by default: issue 27 item 2, the
+    /// cluster solve's first step.
+    pub(crate) coupled_folds: bool,
     /// The unknowns, in state order.
     pub(crate) unknowns: Vec<Unknown>,
     /// State index of each magnet.
@@ -289,6 +295,7 @@ impl Model {
             sides,
             swung_faces: false,
             swung_back: false,
+            coupled_folds: false,
             unknowns,
             magnet_var,
             joint_var,

@@ -184,6 +184,14 @@ impl InertialModel {
         (drive - friction) * self.c.inv_mass[g] - self.c.damping[g] * v
     }
 
+    /// The drive under which folding joint `g` at value `y` and velocity `v` has
+    /// acceleration `acc` ([`InertialModel::acceleration`] inverted; `None` for a magnet).
+    pub(crate) fn joint_drive_for(&self, g: usize, y: f64, v: f64, acc: f64) -> Option<f64> {
+        let jc = self.c.joints.get(g)?.as_ref()?;
+        let (inertia, slope, drag) = jc.at(y);
+        Some((acc * inertia + drag * v + 0.5 * slope * v * v) * FRAC_PI_2)
+    }
+
     /// The drive a clamped unknown `g` must exceed to be released.
     pub(crate) fn threshold(&self, model: &Model, g: usize) -> f64 {
         model.threshold(g).max(self.c.coulomb[g])

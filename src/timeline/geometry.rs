@@ -34,7 +34,7 @@ pub(crate) enum GeometryError {
 }
 
 /// The resting chain's geometry: one path per distinct (kind, end, design).
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Geometry {
     /// Tile width, mm.
     pub w: f64,

@@ -22,7 +22,9 @@
 //!
 //! Columns: drawing, tiles asked, exit (0 planned, 1 refused, 2 bad input, `timeout`), CPU
 //! seconds, tiles, U-turns, quarter turns, covered share, outside share (both as the plan
-//! reports them) and the largest empty region in tile areas. The drawings and which of them
+//! reports them), the largest empty region in tile areas and, for a drawing the README marks
+//! `islands`, the area of the islands the planner leaves out (tile areas), which its empty
+//! region is measured without. The drawings and which of them
 //! are one piece come from `planner/corpus/README.md`.
 
 mod empty_region;
@@ -58,6 +60,9 @@ struct Drawing {
     name: String,
     /// One piece: a chain can fill it.
     connected: bool,
+    /// One piece with islands the planner leaves out (README: `islands`): measured over what
+    /// it plans, the islands' area reported apart ([`empty_region::measure`]).
+    islands: bool,
 }
 
 /// How a case ended.
@@ -65,6 +70,8 @@ struct Drawing {
 struct Case {
     drawing: String,
     connected: bool,
+    /// One piece with islands left out (README: `islands`).
+    islands: bool,
     tiles_asked: usize,
     /// "0", "1", "2" or "timeout" (or "crash" for any other end).
     exit: String,
@@ -76,6 +83,8 @@ struct Case {
     outside: Option<f64>,
     /// Largest empty region, tile areas (0 when none).
     empty_tiles: Option<f64>,
+    /// Area of the islands left out (tile areas), for a drawing with islands.
+    left_out_tiles: Option<f64>,
     /// The first line of the refusal or error.
     message: Option<String>,
 }
@@ -94,15 +103,17 @@ fn drawings(readme: &str) -> Vec<Drawing> {
             if !name.ends_with(".svg") {
                 return None;
             }
-            let connected = match *cells.get(2)? {
+            let (connected, islands) = match *cells.get(2)? {
+                "yes" => (true, false),
                 // islands: one part, its islands left out at every count (`parts.rs`)
-                "yes" | "islands" => true,
-                "no" => false,
+                "islands" => (true, true),
+                "no" => (false, false),
                 _ => return None,
             };
             Some(Drawing {
                 name: name.to_string(),
                 connected,
+                islands,
             })
         })
         .collect()
@@ -138,6 +149,7 @@ fn run_case(exe: &Path, d: &Drawing, tiles: usize, timeout: Duration) -> Case {
     let mut case = Case {
         drawing: d.name.clone(),
         connected: d.connected,
+        islands: d.islands,
         tiles_asked: tiles,
         exit: String::new(),
         cpu_s: f64::NAN,
@@ -147,6 +159,7 @@ fn run_case(exe: &Path, d: &Drawing, tiles: usize, timeout: Duration) -> Case {
         covered: None,
         outside: None,
         empty_tiles: None,
+        left_out_tiles: None,
         message: None,
     };
     let before = children_cpu();
@@ -222,19 +235,15 @@ fn run_case(exe: &Path, d: &Drawing, tiles: usize, timeout: Duration) -> Case {
     case.quarter_turns = Some(plan.quarter_turns);
     case.covered = Some(plan.metrics.covered_share);
     case.outside = Some(plan.metrics.outside_share);
-    case.empty_tiles = match std::fs::read(&path)
+    if let Some(shape) = std::fs::read(&path)
         .ok()
         .and_then(|data| Shape::from_svg_data(&data, &d.name).ok())
     {
-        Some(shape) => {
-            let centres: Vec<(f64, f64)> = plan.poses.iter().map(|p| (p.x, p.y)).collect();
-            Some(
-                empty_region::largest_empty_region(&shape, &centres, plan.tile_size)
-                    .map_or(0.0, |r| r.tiles),
-            )
-        }
-        None => None,
-    };
+        let centres: Vec<(f64, f64)> = plan.poses.iter().map(|p| (p.x, p.y)).collect();
+        let m = empty_region::measure(&shape, &centres, plan.tile_size, d.islands);
+        case.empty_tiles = Some(m.largest.map_or(0.0, |r| r.tiles));
+        case.left_out_tiles = d.islands.then_some(m.left_out_tiles);
+    }
     case
 }
 
@@ -336,10 +345,13 @@ fn summary(cases: &[Case], timeout: f64) -> String {
         .filter(|c| !c.connected && c.exit != "0")
         .count();
     let breaks = ladder_breaks(cases);
+    let islands: Vec<f64> = conn.iter().filter_map(|c| c.left_out_tiles).collect();
     format!(
-        "Summary: {planned} of {} connected cases planned ({timeouts} timeouts at {timeout:.0} s of CPU); CPU per case median {med:.2} s, max {max:.2} s; {empty} plans with an empty region > {EMPTY_LIMIT} tile areas; {off} plans with the tile count outside {:.0}% of the request; {others_refused} of {others} cases of drawings not in one piece refused; {} cases refused at a count above one that planned{}",
+        "Summary: {planned} of {} connected cases planned ({timeouts} timeouts at {timeout:.0} s of CPU); CPU per case median {med:.2} s, max {max:.2} s; {empty} plans with an empty region > {EMPTY_LIMIT} tile areas; {off} plans with the tile count outside {:.0}% of the request; {} plans of drawings with islands measured without them (islands left out: at most {:.1} tile areas); {others_refused} of {others} cases of drawings not in one piece refused; {} cases refused at a count above one that planned{}",
         conn.len(),
         100.0 * COUNT_TOLERANCE,
+        islands.len(),
+        islands.iter().copied().fold(0.0, f64::max),
         breaks.len(),
         if breaks.is_empty() {
             String::new()
@@ -351,7 +363,7 @@ fn summary(cases: &[Case], timeout: f64) -> String {
 
 fn markdown(cases: &[Case], summary: &str) -> String {
     let mut s = String::from(
-        "| drawing | one piece | tiles asked | exit | CPU s | tiles | U-turns | quarter turns | covered | outside | largest empty (tile areas) |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| drawing | one piece | tiles asked | exit | CPU s | tiles | U-turns | quarter turns | covered | outside | largest empty (tile areas) | islands left out (tile areas) |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for c in cases {
         s.push_str(&row(c));
@@ -366,9 +378,13 @@ fn markdown(cases: &[Case], summary: &str) -> String {
 /// One case as a Markdown table row.
 fn row(c: &Case) -> String {
     format!(
-        "| {} | {} | {} | {} | {:.2} | {} | {} | {} | {} | {} | {} |",
+        "| {} | {} | {} | {} | {:.2} | {} | {} | {} | {} | {} | {} | {} |",
         c.drawing,
-        if c.connected { "yes" } else { "no" },
+        match (c.connected, c.islands) {
+            (true, true) => "islands",
+            (true, false) => "yes",
+            _ => "no",
+        },
         c.tiles_asked,
         c.exit,
         c.cpu_s,
@@ -378,6 +394,8 @@ fn row(c: &Case) -> String {
         share(c.covered),
         share(c.outside),
         c.empty_tiles
+            .map_or_else(|| "-".to_string(), |e| format!("{e:.1}")),
+        c.left_out_tiles
             .map_or_else(|| "-".to_string(), |e| format!("{e:.1}")),
     )
 }

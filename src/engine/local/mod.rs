@@ -17,6 +17,7 @@
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
 mod cache;
+mod cluster;
 mod relaxation;
 mod solve;
 mod sweep;
@@ -113,13 +114,20 @@ pub(crate) struct LocalRun {
 /// at most `max_steps` steps.
 pub(crate) fn run_local(model: &Model, tol: f64, threads: usize, max_steps: usize) -> LocalRun {
     let inertial = solve::InertialModel::new(model);
+    let coupled = model
+        .coupled_folds
+        .then(|| cluster::Coupled::new(model))
+        .flatten();
     let opts = solve::SolveOptions {
         tol,
         start_fraction: start_fraction(&model.geometry),
         max_steps,
         inertial: inertial.as_ref(),
-        rosenbrock: true,
-        rest_skip: true,
+        // a coupled joint's drive reads its velocity: RODAS4's Jacobian holds the drives
+        // fixed, and a unit at rest may be released by a fold anywhere
+        rosenbrock: coupled.is_none(),
+        rest_skip: coupled.is_none(),
+        coupled: coupled.as_ref(),
     };
     let chain = relaxation::solve_chain(model, opts, threads);
     let g = &model.geometry;

@@ -172,19 +172,14 @@ pub(crate) fn swing_drive(model: &Model, j: usize, t: f64, inputs: &Inputs) -> f
 #[allow(clippy::unwrap_used)] // tests may unwrap (CONTRIBUTING)
 mod tests {
     use crate::engine::local::run_local;
+    use crate::engine::local::test_support::{inertial_model, words};
     use crate::model::{Dynamics, Model, ModelOptions};
     use crate::reference::{run_reference, ReferenceOptions};
     use crate::timeline::TileDesigns;
     use crate::{Chain, Design};
 
     fn model(word: &str, s: f64, swung: u8) -> Model {
-        let chain = Chain::parse(word).unwrap();
-        let mut m = Model::new(
-            &chain,
-            &TileDesigns::global(Design::thesis().with_s(s)),
-            &ModelOptions::default().with_dynamics(Dynamics::Inertial),
-        )
-        .unwrap();
+        let mut m = inertial_model(word, s);
         m.swung_faces = swung > 0;
         m.swung_back = swung > 1;
         m
@@ -231,19 +226,6 @@ mod tests {
         folds.sort_unstable();
         let kind = run.1.split([' ', '{']).next().unwrap().to_string();
         (kind, folds, run.2)
-    }
-
-    fn words(max: usize) -> Vec<String> {
-        let mut all = Vec::new();
-        let mut level = vec![String::new()];
-        for _ in 0..max {
-            level = level
-                .iter()
-                .flat_map(|w| ['S', 'L', 'R'].map(|c| format!("{w}{c}")))
-                .collect();
-            all.extend(level.iter().cloned());
-        }
-        all
     }
 
     #[test]

@@ -45,6 +45,32 @@ pub(crate) fn solve_word(word: &str, o: Options) -> ChainSolution {
         inertial: inertial.as_ref(),
         rosenbrock: o.rosenbrock,
         rest_skip: o.rest_skip,
+        coupled: None,
     };
     solve_chain_with(&model, opts, o.reuse, o.threads)
+}
+
+/// Every word of 1 to `max` letters (S, L, R).
+pub(crate) fn words(max: usize) -> Vec<String> {
+    let mut all = Vec::new();
+    let mut level = vec![String::new()];
+    for _ in 0..max {
+        level = level
+            .iter()
+            .flat_map(|w| ['S', 'L', 'R'].map(|c| format!("{w}{c}")))
+            .collect();
+        all.extend(level.iter().cloned());
+    }
+    all
+}
+
+/// `word`'s model with the thesis design at `s` mm, inertial dynamics.
+pub(crate) fn inertial_model(word: &str, s: f64) -> Model {
+    let chain = Chain::parse(word).unwrap();
+    Model::new(
+        &chain,
+        &TileDesigns::global(Design::thesis().with_s(s)),
+        &ModelOptions::default().with_dynamics(Dynamics::Inertial),
+    )
+    .unwrap()
 }

@@ -152,6 +152,20 @@ impl<'a> UnitForces<'a> {
     /// Every track the unit reads (magnets and joints in the window, its own excluded).
     pub(crate) fn input_tracks(&self, inputs: &Inputs) -> Vec<Track> {
         let mut out = Vec::new();
+        if self.model.coupled_folds && self.vars.iter().any(|v| matches!(v, Var::Joint(_))) {
+            // a coupled joint reads the whole chain (`engine::local::cluster`)
+            for (k, &t) in inputs.magnets.iter().enumerate() {
+                if !self.vars.contains(&Var::Magnet(k)) {
+                    out.push(t);
+                }
+            }
+            for (jj, &t) in inputs.joints.iter().enumerate() {
+                if !self.vars.contains(&Var::Joint(jj)) {
+                    out.push(t);
+                }
+            }
+            return out;
+        }
         for k in self.lo..=self.hi {
             if !self.vars.contains(&Var::Magnet(k)) {
                 out.push(inputs.magnets[k]);

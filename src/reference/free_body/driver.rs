@@ -91,7 +91,7 @@ pub(crate) fn run_coupled(
 
 /// What stays the same over a run of `model` (the base's momentum held at zero when
 /// `zero_momentum`).
-fn setup(model: Model, im: InertialModel, zero_momentum: bool) -> Setup {
+pub(crate) fn setup(model: Model, im: InertialModel, zero_momentum: bool) -> Setup {
     let geometry = &model.geometry;
     let bodies = TileBodies::new(geometry, |t| geometry.design(t).magnet_mass * 1e-3);
     let oct = Octagon::new(geometry.w);

@@ -30,15 +30,15 @@
 //! ```
 
 mod driver;
-mod groups;
+pub(crate) mod groups;
 mod options;
 mod run;
 mod spatial;
-mod system;
+pub(crate) mod system;
 pub(crate) mod tile_body;
 
-pub(crate) use driver::run_coupled;
 pub use driver::run_free_body;
+pub(crate) use driver::{run_coupled, setup};
 pub use options::FreeBodyOptions;
 pub use run::FreeBodyRun;
 pub use system::Momentum;

@@ -211,7 +211,16 @@ impl Solver<'_> {
         if !at_wall(wall, v) {
             return;
         }
-        match im.bounce(g, wall, v, d[i]) {
+        // a coupled joint's drive holds its velocity's terms: what presses it on is its
+        // acceleration alone, as the coupled reference weighs its rebound
+        let press = match (self.opts.coupled, self.w.vars[i]) {
+            (Some(_), Var::Joint(_)) => {
+                let acc = im.acceleration(g, wall, d[i], v);
+                im.joint_drive_for(g, wall, 0.0, acc).unwrap_or(d[i])
+            }
+            _ => d[i],
+        };
+        match im.bounce(g, wall, v, press) {
             Some(rebound) => {
                 z[m + i] = rebound;
                 self.node(i, tau, wall, v);

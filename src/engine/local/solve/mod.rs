@@ -24,6 +24,7 @@ mod step;
 
 pub(crate) use crate::model::InertialModel;
 
+use crate::engine::local::cluster::{self, Coupled, CoupledScratch, Own, Reading};
 use crate::engine::local::trajectory::{Shape, Track};
 use crate::engine::local::unit_forces::{Inputs, Scratch, UnitForces, Var};
 use crate::model::{undecided_margin, Mode};
@@ -73,6 +74,10 @@ pub(crate) struct SolveOptions<'a> {
     /// Whether an inertial unit at rest checks its release past the input nodes where its
     /// release margin stays short (else at every input node: the tests compare the two).
     pub(crate) rest_skip: bool,
+    /// The coupled equations a folding joint turns by ([`Model::coupled_folds`]), if any.
+    ///
+    /// [`Model::coupled_folds`]: crate::model::Model
+    pub(crate) coupled: Option<&'a Coupled>,
 }
 
 /// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
@@ -117,6 +122,7 @@ pub(super) struct Solver<'a> {
     globals: [usize; M],
     modes: [Mode; M],
     scratch: Scratch,
+    coupled: CoupledScratch,
     rhs: u64,
     /// Whether each magnet's start (each joint's fold start) has been reported.
     reported: [bool; M],
@@ -161,6 +167,26 @@ impl Solver<'_> {
 
     fn drives(&mut self, tau: f64, z: &[f64; Z], out: &mut [f64; M]) {
         let m = self.m;
+        if let (Some(c), Some(im)) = (self.opts.coupled, self.opts.inertial) {
+            // a folding joint's coupled drive reads its velocity and its mode too
+            self.rhs += 1;
+            let t = self.t_ref + tau;
+            self.w
+                .drives(t, &z[..m], &self.inputs, &mut self.scratch, &mut out[..m]);
+            let own = self.own(z);
+            for (o, v) in out.iter_mut().zip(&self.w.vars) {
+                if let Var::Joint(j) = *v {
+                    let own = &own[..m];
+                    let at = Reading {
+                        t,
+                        own,
+                        inputs: &self.inputs,
+                    };
+                    *o = c.joint_drive(im, j, at, &mut self.coupled);
+                }
+            }
+            return;
+        }
         if let Some((t, x, d)) = &self.memo {
             // the drives depend on the time and the positions only (not on the modes)
             if *t == tau && x[..m] == z[..m] {
@@ -179,6 +205,50 @@ impl Solver<'_> {
         let mut x = [0.0; M];
         x[..m].copy_from_slice(&z[..m]);
         self.memo = Some((tau, x, *out));
+    }
+
+    /// The unit's unknowns at state `z`, for the coupled equations.
+    fn own(&self, z: &[f64; Z]) -> [Own; M] {
+        let m = self.m;
+        let mut own = [Own {
+            global: 0,
+            y: 0.0,
+            v: 0.0,
+            mode: Mode::AtStart,
+        }; M];
+        for (i, o) in own.iter_mut().enumerate().take(m) {
+            *o = Own {
+                global: self.globals[i],
+                y: z[i],
+                v: z[m + i],
+                mode: self.modes[i],
+            };
+        }
+        own
+    }
+
+    /// The unit's turning joint's rate changed by the impact of fold `k` at `tau` (its rate
+    /// changed by `dv`), as the coupled reference's impulse changes it.
+    fn impact(&mut self, tau: f64, (k, dv): (usize, f64), z: &mut [f64; Z]) {
+        let Some(c) = self.opts.coupled else {
+            return;
+        };
+        let m = self.m;
+        for i in 0..m {
+            if let (Var::Joint(j), Mode::Free) = (self.w.vars[i], self.modes[i]) {
+                let own = self.own(z);
+                let t = self.t_ref + tau;
+                let at = Reading {
+                    t,
+                    own: &own[..m],
+                    inputs: &self.inputs,
+                };
+                let ratio = c.impact_ratio(j, k, at, &mut self.coupled);
+                let v = z[m + i] + ratio * dv;
+                self.node(i, tau, z[i], v);
+                z[m + i] = v;
+            }
+        }
     }
 
     /// The state's time derivative at `(tau, z)`; the drives into `drive`.
@@ -302,6 +372,10 @@ struct Walk<'a> {
     stiff: bool,
     /// How many steps in a row asked for the other method.
     streak: usize,
+    /// The other folds' impacts on their walls (local time, joint, change of its rate)
+    /// when the unit's joint turns by the coupled equations, and the next to come.
+    impacts: Vec<(f64, usize, f64)>,
+    next_impact: usize,
 }
 
 impl<'a> Walk<'a> {
@@ -336,6 +410,7 @@ impl<'a> Walk<'a> {
             globals,
             modes: [Mode::AtStart; M],
             scratch: Scratch::default(),
+            coupled: CoupledScratch::default(),
             rhs: 0,
             reported: [false; M],
             closed: [false; M],
@@ -367,6 +442,13 @@ impl<'a> Walk<'a> {
             })
             .fold(scale, f64::max);
         let hints = vec![0; tracks.len()];
+        let impacts = match (opts.coupled, w.vars.last()) {
+            (Some(_), Some(&Var::Joint(j))) => cluster::impacts(model, j, &inputs)
+                .into_iter()
+                .map(|(t, k, dv)| (t - t_ref, k, dv))
+                .collect(),
+            _ => Vec::new(),
+        };
         Walk {
             s,
             input: InputWalk {
@@ -388,6 +470,8 @@ impl<'a> Walk<'a> {
             rest_prev: None,
             stiff: false,
             streak: 0,
+            impacts,
+            next_impact: 0,
         }
     }
 
@@ -501,7 +585,23 @@ impl<'a> Walk<'a> {
     fn step(&mut self, free: &[usize]) {
         let hmax = self.input.span(self.tau);
         self.h = self.h.min(hmax);
-        let (tau, h) = (self.tau, self.h);
+        let (tau, mut h) = (self.tau, self.h);
+        // a step ends at the next impact of another fold (its impulse changes this one's rate)
+        while self
+            .impacts
+            .get(self.next_impact)
+            .is_some_and(|&(ti, _, _)| ti <= tau)
+        {
+            self.next_impact += 1;
+        }
+        let impact = self
+            .impacts
+            .get(self.next_impact)
+            .copied()
+            .filter(|&(ti, _, _)| tau + h >= ti);
+        if let Some((ti, _, _)) = impact {
+            h = ti - tau;
+        }
         let st = if self.stiff {
             rodas(&mut self.s, tau, &self.z, h, free)
         } else {
@@ -529,7 +629,8 @@ impl<'a> Walk<'a> {
             return;
         }
         let grow = integral(err, st.exponent, true);
-        let (t1, z1, f1) = (tau + h, st.z1, st.f1);
+        let t1 = impact.map_or(tau + h, |(ti, _, _)| ti);
+        let (z1, f1) = (st.z1, st.f1);
         // an event inside the step?
         let mut d1 = [0.0; M];
         self.s.drives(t1, &z1, &mut d1);
@@ -542,7 +643,12 @@ impl<'a> Walk<'a> {
         }
         self.tau = t1;
         self.z = z1;
-        self.h *= grow;
+        if let Some((_, k, dv)) = impact {
+            self.s.impact(t1, (k, dv), &mut self.z);
+            self.next_impact += 1;
+        } else {
+            self.h *= grow;
+        }
     }
 
     /// The step over `(t0, t1)` from the current state (its derivative `f0`) to `z1` (its
