@@ -179,11 +179,14 @@ struct Tables {
 /// Best-cost buffers kept per thread: as many programmes as a caller holds at once.
 const KEPT: usize = 4;
 
+/// The buffers of a [`Solved`]'s best costs and back-pointers.
+type BestCosts = (Vec<f64>, Vec<(u32, bool)>);
+
 thread_local! {
     /// The table buffers of this thread's next programme.
     static TABLES: RefCell<Tables> = RefCell::new(Tables::default());
     /// Best-cost buffers given back by dropped [`Solved`]s.
-    static KEPT_SOLVED: RefCell<Vec<(Vec<f64>, Vec<(u32, bool)>)>> = const { RefCell::new(Vec::new()) };
+    static KEPT_SOLVED: RefCell<Vec<BestCosts>> = const { RefCell::new(Vec::new()) };
 }
 
 /// `v` cleared and refilled with `len` copies of `x`.
@@ -214,7 +217,7 @@ fn give_tables(tables: Tables) {
 }
 
 /// Best-cost buffers given back on this thread, or empty ones.
-fn take_solved() -> (Vec<f64>, Vec<(u32, bool)>) {
+fn take_solved() -> BestCosts {
     KEPT_SOLVED
         .try_with(|k| k.try_borrow_mut().ok().and_then(|mut k| k.pop()))
         .ok()
