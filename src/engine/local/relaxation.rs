@@ -40,12 +40,34 @@ use std::sync::Arc;
 use crate::engine::local::cache::{Cache, Entry};
 use crate::engine::local::solve::SolveOptions;
 use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut, SWEEP_TOLERANCE};
-use crate::engine::local::trajectory::{Shapes, Track};
+use crate::engine::local::trajectory::{Shapes, Track, MAX_STORED_SWEEPS};
 use crate::model::Model;
 use crate::timeline::{Event, EventKind};
 
 /// Most sweeps over the chain.
 pub(crate) const MAX_SWEEPS: usize = 8;
+
+/// Most sweeps over the chain when its folds turn by the coupled equations
+/// ([`Model::coupled_folds`]): folds turning at once settle a few sweeps apart each, 40.
+pub(crate) const COUPLED_MAX_SWEEPS: usize = 40;
+
+// every sweep's shapes are told apart in the store
+const _: () = assert!(COUPLED_MAX_SWEEPS <= MAX_STORED_SWEEPS && MAX_SWEEPS <= MAX_STORED_SWEEPS);
+
+/// With coupled folds, the sweeps stop after one that evaluated more than this many times
+/// the first sweep's: the relaxation is not settling (a fold released and put back on its
+/// wall over and over, each time a node that the next sweep's units step to), and its work
+/// would grow without bound.
+const COUPLED_RHS_GROWTH: u64 = 4;
+
+/// The most sweeps over `model`'s chain.
+fn max_sweeps(model: &Model) -> usize {
+    if model.coupled_folds {
+        COUPLED_MAX_SWEEPS
+    } else {
+        MAX_SWEEPS
+    }
+}
 
 /// The chain's solution.
 #[derive(Debug)]
@@ -165,6 +187,8 @@ const LAG_MARGIN: usize = 1;
 struct Done {
     solves_per_sweep: Vec<usize>,
     rhs: u64,
+    /// The first sweep's evaluations.
+    first_rhs: Option<u64>,
 }
 
 impl Done {
@@ -173,7 +197,9 @@ impl Done {
         debug_assert!(out.complete, "a sweep waited for stopped short");
         self.solves_per_sweep.push(out.solves);
         self.rhs += out.rhs;
-        self.solves_per_sweep.len() >= MAX_SWEEPS
+        let first = *self.first_rhs.get_or_insert(out.rhs);
+        self.solves_per_sweep.len() >= max_sweeps(model)
+            || (model.coupled_folds && out.rhs > COUPLED_RHS_GROWTH * first.max(1))
             || out.moved <= SWEEP_TOLERANCE * out.duration.max(model.time_scale)
     }
 }
@@ -209,7 +235,8 @@ fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
 /// ([`Gate`]); when `k` ends it is the last if it converged (then `k + 1` is cancelled),
 /// else `k + 2` is readied to trail `k + 1`.
 fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
-    let gates: Vec<Gate> = (0..=MAX_SWEEPS + 1).map(|_| Gate::default()).collect();
+    let most = max_sweeps(ctx.model);
+    let gates: Vec<Gate> = (0..=most + 1).map(|_| Gate::default()).collect();
     let gates = &gates;
     gates[1].open();
     std::thread::scope(|scope| {
@@ -232,7 +259,7 @@ fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
         let mut duration = 0.0;
         let mut k = 1;
         loop {
-            let next = (k < MAX_SWEEPS).then(|| {
+            let next = (k < most).then(|| {
                 let (out, next_rx) = channel();
                 let place = Place {
                     k: k + 1,

@@ -162,9 +162,15 @@ pub(crate) const REST: u32 = 0;
 
 /// A shape id's bits above this one number the sweep that made it (0: [`REST`]), those
 /// below number it among that sweep's shapes, in the order the sweep made them: ids that
-/// do not depend on how the sweeps are spread over threads. 2^28 shapes a sweep, and 15
-/// sweeps at most ([`MAX_SWEEPS`](crate::engine::local::relaxation::MAX_SWEEPS) is 8).
-const SWEEP_SHIFT: u32 = 28;
+/// do not depend on how the sweeps are spread over threads. 2^26 (67 million) shapes a
+/// sweep, and [`MAX_STORED_SWEEPS`] sweeps.
+const SWEEP_SHIFT: u32 = 26;
+
+/// The most sweeps whose shapes [`Shapes`] tells apart: 63 (the relaxation stops at
+/// [`MAX_SWEEPS`](crate::engine::local::relaxation::MAX_SWEEPS), or
+/// [`COUPLED_MAX_SWEEPS`](crate::engine::local::relaxation::COUPLED_MAX_SWEEPS) with
+/// coupled folds).
+pub(crate) const MAX_STORED_SWEEPS: usize = (1 << (32 - SWEEP_SHIFT)) - 1;
 
 /// A shape placed in time: the unknown's value at `t` is `shape.at(t - offset)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -206,7 +212,7 @@ impl Default for Shapes {
 impl Shapes {
     /// Stores `shape` as the next shape of sweep `sweep` (from 1); its id.
     pub(crate) fn add(&mut self, sweep: usize, shape: Arc<Shape>) -> u32 {
-        debug_assert!((1..1 << (32 - SWEEP_SHIFT)).contains(&sweep));
+        debug_assert!((1..=MAX_STORED_SWEEPS).contains(&sweep));
         if self.by_sweep.len() <= sweep {
             self.by_sweep.resize_with(sweep + 1, Vec::new);
         }
@@ -315,5 +321,30 @@ mod tests {
         assert!((shapes.value(tr, 10.7) - f(0.7)).abs() < 1e-12);
         assert_eq!(shapes.value(Track::REST, 3.0), 0.0);
         assert_eq!(shapes.last_move(tr), Some(13.0));
+    }
+
+    #[test]
+    fn every_sweeps_shapes_are_told_apart() {
+        // (a sweep past the 15th once wrapped its id onto sweep 0's: Shapes::get panicked)
+        let mut shapes = Shapes::default();
+        let mut ids = Vec::new();
+        for sweep in 1..=MAX_STORED_SWEEPS {
+            for i in 0..3 {
+                let y = (100 * sweep + i) as f64;
+                let shape = Shape {
+                    t: vec![0.0, 1.0],
+                    y: vec![0.0, y],
+                    dy: vec![0.0, 0.0],
+                };
+                ids.push((shapes.add(sweep, Arc::new(shape)), y));
+            }
+        }
+        assert_eq!(shapes.len(), 1 + 3 * MAX_STORED_SWEEPS);
+        for &(id, y) in &ids {
+            assert_eq!(shapes.get(id).y[1], y, "{id:x}");
+        }
+        let distinct: std::collections::HashSet<u32> = ids.iter().map(|p| p.0).collect();
+        assert_eq!(distinct.len(), ids.len());
+        assert!(!distinct.contains(&REST));
     }
 }
