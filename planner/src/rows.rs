@@ -17,6 +17,7 @@
 //! A solved programme is read back as a [`Serpentine`] ([`crate::row_chain`]): its rows in
 //! chain order, their tile centres and their folds.
 
+use std::cell::RefCell;
 use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
 
 use kurbo::{Point, Rect};
@@ -169,6 +170,87 @@ pub(crate) struct Solved {
     dp: Vec<f64>,
     /// Start column of the row, and whether it is the first row.
     back: Vec<(u32, bool)>,
+}
+
+/// The buffers of a programme's tables (see [`Tables`]) and of its best costs, kept per
+/// thread between programmes: a planner solves hundreds of thousands of programmes of a few
+/// thousand row ends each, and buffers allocated afresh each time cost about a tenth of its
+/// work (the allocator handing their pages back and faulting them in again). Every buffer
+/// is filled before it is read, so what a programme computes does not depend on what a
+/// buffer held before.
+#[derive(Default)]
+struct Tables {
+    pre: Vec<f64>,
+    turn: Vec<f64>,
+    gaps: Vec<(f64, f64)>,
+    /// Scratch of [`tile_cover`].
+    cover: Vec<f64>,
+    diff: Vec<f64>,
+    /// A row's lanes ([`lane_cover`]): zeros where lanes are not priced.
+    lane: Vec<f64>,
+}
+
+/// Best-cost buffers kept per thread: as many programmes as a caller holds at once.
+const KEPT: usize = 4;
+
+/// The buffers of a [`Solved`]'s best costs and back-pointers.
+type BestCosts = (Vec<f64>, Vec<(u32, bool)>);
+
+thread_local! {
+    /// The table buffers of this thread's next programme.
+    static TABLES: RefCell<Tables> = RefCell::new(Tables::default());
+    /// Best-cost buffers given back by dropped [`Solved`]s.
+    static KEPT_SOLVED: RefCell<Vec<BestCosts>> = const { RefCell::new(Vec::new()) };
+}
+
+/// `v` cleared and refilled with `len` copies of `x`.
+fn refill<T: Copy>(mut v: Vec<T>, len: usize, x: T) -> Vec<T> {
+    v.clear();
+    v.resize(len, x);
+    v
+}
+
+/// This thread's table buffers (empty ones if they are out).
+fn take_tables() -> Tables {
+    TABLES
+        .try_with(|t| {
+            t.try_borrow_mut()
+                .map(|mut t| std::mem::take(&mut *t))
+                .unwrap_or_default()
+        })
+        .unwrap_or_default()
+}
+
+/// Gives table buffers back to this thread.
+fn give_tables(tables: Tables) {
+    let _ = TABLES.try_with(|t| {
+        if let Ok(mut t) = t.try_borrow_mut() {
+            *t = tables;
+        }
+    });
+}
+
+/// Best-cost buffers given back on this thread, or empty ones.
+fn take_solved() -> BestCosts {
+    KEPT_SOLVED
+        .try_with(|k| k.try_borrow_mut().ok().and_then(|mut k| k.pop()))
+        .ok()
+        .flatten()
+        .unwrap_or_default()
+}
+
+impl Drop for Solved {
+    fn drop(&mut self) {
+        let pair = (std::mem::take(&mut self.dp), std::mem::take(&mut self.back));
+        // a thread being torn down keeps nothing
+        let _ = KEPT_SOLVED.try_with(|k| {
+            if let Ok(mut k) = k.try_borrow_mut() {
+                if k.len() < KEPT {
+                    k.push(pair);
+                }
+            }
+        });
+    }
 }
 
 /// Keeps `(v, at)` in `min` if `v` is less than its value.
@@ -568,21 +650,19 @@ pub(crate) fn solve_rows(
     solve_on(&lines, style, lat, fixed_start, blocked, usize::MAX)
 }
 
-/// The row tables of a programme: `pre[k * (cols + 1) + m]`, the cost of the tiles in
-/// columns `0..m` of row `k`; `turn[k * cols + j]`, the cost of the U-turn after row `k`
-/// ending at column `j`; `gaps[k * cols + j]`, the prices of row `k` ending at column `j`
-/// towards -x and towards +x.
-struct Tables {
-    pre: Vec<f64>,
-    turn: Vec<f64>,
-    gaps: Vec<(f64, f64)>,
-    /// The price of every row's lane ([`lane_cover`]) were no tile laid: a chain's first
-    /// row carries it, and each tile takes back the price of the lane it reaches.
-    lanes: f64,
-}
-
-/// The row tables of the programme on `lat` from the shape's `lines` (see [`solve_rows`]).
-fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<'_>>) -> Tables {
+/// The row tables of the programme on `lat` from the shape's `lines` (see [`solve_rows`]),
+/// into `t`'s buffers: `pre[k * (cols + 1) + m]`, the cost of the tiles in columns `0..m`
+/// of row `k`; `turn[k * cols + j]`, the cost of the U-turn after row `k` ending at column
+/// `j`; `gaps[k * cols + j]`, the prices of row `k` ending at column `j` towards -x and
+/// towards +x. Returns the price of every row's lane ([`lane_cover`]) were no tile laid: a
+/// chain's first row carries it, and each tile takes back the price of the lane it reaches.
+fn tables(
+    lines: &RowLines,
+    style: Style,
+    lat: Lattice,
+    blocked: Option<Blocked<'_>>,
+    t: &mut Tables,
+) -> f64 {
     let Lattice {
         x0,
         y0,
@@ -595,12 +675,12 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
     // a tile's cost: its area outside the shape, weighted, less the area it covers
     let tile_cost = |c: f64| k_out * (a - c) - c;
     let w1 = cols + 1;
-    let mut pre = vec![0.0; nrows * w1];
-    let mut turn = vec![0.0; nrows * cols];
-    let mut gaps = vec![(0.0, 0.0); nrows * cols];
-    let mut cover = vec![0.0; cols];
-    let mut lane = vec![0.0; cols];
-    let mut diff = vec![0.0; w1];
+    let mut pre = refill(std::mem::take(&mut t.pre), nrows * w1, 0.0);
+    let mut turn = refill(std::mem::take(&mut t.turn), nrows * cols, 0.0);
+    let mut gaps = refill(std::mem::take(&mut t.gaps), nrows * cols, (0.0, 0.0));
+    let mut cover = refill(std::mem::take(&mut t.cover), cols, 0.0);
+    let mut diff = refill(std::mem::take(&mut t.diff), w1, 0.0);
+    let mut lane = refill(std::mem::take(&mut t.lane), cols, 0.0);
     let (mut sa, mut sb) = (Vec::new(), Vec::new());
     let half = lane_half(p);
     let mut lanes = 0.0;
@@ -653,12 +733,15 @@ fn tables(lines: &RowLines, style: Style, lat: Lattice, blocked: Option<Blocked<
             }
         }
     }
-    Tables {
+    *t = Tables {
         pre,
         turn,
         gaps,
-        lanes,
-    }
+        cover,
+        diff,
+        lane,
+    };
+    lanes
 }
 
 /// [`solve_rows`] with the shape's lines given (their rows those of `lat`); with a free
@@ -673,15 +756,15 @@ fn solve_on(
 ) -> Solved {
     let Lattice { cols, nrows, .. } = lat;
     let w1 = cols + 1;
+    let mut t = take_tables();
+    let lanes = tables(lines, style, lat, blocked, &mut t);
     let Tables {
-        pre,
-        turn,
-        gaps,
-        lanes,
-    } = tables(lines, style, lat, blocked);
+        pre, turn, gaps, ..
+    } = &t;
     let inf = f64::INFINITY;
-    let mut dp = vec![inf; nrows * cols];
-    let mut back = vec![(0u32, true); nrows * cols];
+    let (dp, back) = take_solved();
+    let mut dp = refill(dp, nrows * cols, inf);
+    let mut back = refill(back, nrows * cols, (0u32, true));
     for k in 0..nrows {
         let pk = |m: usize| pre[k * w1 + m];
         let (done, todo) = dp.split_at_mut(k * cols);
@@ -745,6 +828,7 @@ fn solve_on(
             }
         }
     }
+    give_tables(t);
     Solved {
         cols,
         nrows,

@@ -203,8 +203,8 @@ const AXIS: f64 = 1.0 + 1e-6;
 const DIAGONAL: f64 = std::f64::consts::SQRT_2 + 1e-6;
 
 /// Whether tile `t` of `run` overlaps a tile before it in the final shape (exactly, as
-/// [`super::final_overlap`]), among the tiles of `near` (the runs that may hold one, the
-/// latest first; `run` among them).
+/// [`super::final_overlap`]), among the tiles of `near` (runs before `run` that may hold
+/// one, the latest first; the run's own pairs are [`overlaps_within`]'s).
 fn overlaps_before(near: &[&Run], run: &Run, t: usize) -> bool {
     let j = run.first + t;
     if j == 0 {
@@ -212,16 +212,60 @@ fn overlaps_before(near: &[&Run], run: &Run, t: usize) -> bool {
     }
     let (c, p) = (run.centres[t], run.poses[t]);
     let query = Rect::new(c.x - AXIS, c.y - AXIS, c.x + AXIS, c.y + AXIS);
-    let mut visit = |_, ci: Point, pi: ExactPose| {
-        let (dx, dy) = (c.x - ci.x, c.y - ci.y);
-        let apart = dx.abs() > AXIS
-            || dy.abs() > AXIS
-            || (dx + dy).abs() > DIAGONAL
-            || (dx - dy).abs() > DIAGONAL;
-        !apart && lattice_overlap(pi.centre, p.centre)
-    };
+    let mut visit =
+        |_, ci: Point, pi: ExactPose| !apart(c, ci) && lattice_overlap(pi.centre, p.centre);
     near.iter()
         .any(|r| r.for_each_in(j - 1, &query, &mut visit))
+}
+
+/// Whether the centres `a` and `b` are too far apart on an axis or a diagonal for their
+/// tiles to overlap (the f64 screen of the exact test).
+fn apart(a: Point, b: Point) -> bool {
+    let (dx, dy) = (a.x - b.x, a.y - b.y);
+    dx.abs() > AXIS || dy.abs() > AXIS || (dx + dy).abs() > DIAGONAL || (dx - dy).abs() > DIAGONAL
+}
+
+/// Whether two tiles of `run` overlap in the final shape (exactly, as
+/// [`super::final_overlap`]): the same pairs [`overlaps_before`] asks of the run's own tiles,
+/// each screened once, cell by cell of the run's grid. Centres that pass the screen are at
+/// most [`AXIS`] apart on either axis, less than a cell's side (at least 2), so they lie in
+/// the same cell or in neighbouring ones: each cell's pairs and those with the cells right,
+/// above and diagonally above it cover them all.
+fn overlaps_within(run: &Run) -> bool {
+    let g = &run.grid;
+    let tiles = |i: usize, j: usize| {
+        &g.ids[g.start[j * g.nx + i] as usize..g.start[j * g.nx + i + 1] as usize]
+    };
+    let meet = |a: u32, b: u32| {
+        let (a, b) = (a as usize, b as usize);
+        !apart(run.centres[a], run.centres[b])
+            && lattice_overlap(run.poses[a].centre, run.poses[b].centre)
+    };
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let here = tiles(i, j);
+            if here.is_empty() {
+                continue;
+            }
+            for (n, &a) in here.iter().enumerate() {
+                if here[n + 1..].iter().any(|&b| meet(a, b)) {
+                    return true;
+                }
+            }
+            // the neighbours not yet visited: right, and the row above from left to right
+            let right = (i + 1 < g.nx).then(|| tiles(i + 1, j));
+            let above = (j + 1 < g.ny).then(|| {
+                (i.saturating_sub(1)..=(i + 1).min(g.nx - 1)).map(move |k| tiles(k, j + 1))
+            });
+            let others = right.into_iter().chain(above.into_iter().flatten());
+            for other in others {
+                if here.iter().any(|&a| other.iter().any(|&b| meet(a, b))) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
 }
 
 impl Run {
@@ -487,14 +531,16 @@ impl PrefixCheck {
         if !self.collided {
             // only the runs whose box comes near the new run's can hold a tile it overlaps
             let reach = run.bbox.inflate(AXIS, AXIS);
-            let near: Vec<&Run> = self
-                .runs
+            // the run's own pairs by its grid, then each tile against the runs before it
+            let near: Vec<&Run> = self.runs[..self.runs.len() - 1]
                 .iter()
                 .rev()
                 .filter(|r| meets(&r.bbox, &reach))
                 .map(|r| &**r)
                 .collect();
-            self.collided = (0..run.poses.len()).any(|t| overlaps_before(&near, &run, t));
+            self.collided = overlaps_within(&run)
+                || (!near.is_empty()
+                    && (0..run.poses.len()).any(|t| overlaps_before(&near, &run, t)));
         }
     }
 
@@ -734,6 +780,60 @@ mod tests {
             }
             assert!(gridded > 50, "{gridded}");
         }
+    }
+
+    /// The final shape's overlaps found as runs are pushed (each run's own pairs cell by cell
+    /// of its grid, each of its tiles against the runs before it) are those that the whole
+    /// check finds in the final shape of the word, whether it comes in one run or in many.
+    #[test]
+    fn pushed_runs_overlap_as_the_whole_shape_does() {
+        let mut next = super::super::xorshift(0xD1B5_4A32_D192_ED03);
+        let (mut clean, mut overlapping, mut alone) = (0, 0, 0);
+        for round in 0..600 {
+            let letters = [Fold::L, Fold::R, Fold::S, Fold::S, Fold::S];
+            let w: Vec<Fold> = if round % 3 == 2 {
+                // a staircase with stray letters: a sparse box for the grid
+                (0..20 + next() % 200)
+                    .map(|i| match next() % 16 {
+                        0 => letters[(next() % 5) as usize],
+                        _ if i % 2 == 0 => Fold::L,
+                        _ => Fold::R,
+                    })
+                    .collect()
+            } else {
+                (0..2 + next() % 150)
+                    .map(|_| letters[(next() % 5) as usize])
+                    .collect()
+            };
+            let mut state = PrefixCheck::new();
+            state.push(&[]);
+            let mut at = 0;
+            while at < w.len() {
+                // every third word in one run
+                let step = if round % 3 == 0 {
+                    w.len()
+                } else {
+                    1 + (next() % 60) as usize
+                };
+                let end = (at + step).min(w.len());
+                state.push(&w[at..end]);
+                at = end;
+            }
+            let poses: Vec<ExactPose> = state.runs.iter().flat_map(|r| r.poses.clone()).collect();
+            assert_eq!(poses.len(), w.len() + 1);
+            let expected = super::super::final_overlap(&poses).is_some();
+            assert_eq!(state.collided, expected, "round {round}: {w:?}");
+            if expected {
+                overlapping += 1;
+                alone += usize::from(round % 3 == 0);
+            } else {
+                clean += 1;
+            }
+        }
+        assert!(
+            clean > 100 && overlapping > 100 && alone > 50,
+            "{clean} {overlapping} {alone}"
+        );
     }
 
     /// Grows random words (serpentines with stray letters, and mostly straight words) in
