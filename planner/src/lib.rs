@@ -49,6 +49,7 @@ mod flatten;
 mod frame;
 mod lobes;
 mod narrow;
+mod near_widths;
 mod options;
 mod parts;
 mod plan;

@@ -327,6 +327,10 @@ fn plan_styles(
             Err(e) if opts.tile_size.is_none() => {
                 serpentine_at_other_widths(shape, opts, styles, directions, name, progress, miss, e)
             }
+            // a small part left empty: the widths near its own (issue 26, planaudit13)
+            Ok(p) => Ok(crate::near_widths::fewer_empty(
+                shape, opts, styles, directions, name, progress, miss, p,
+            )),
             m => m,
         };
         match measured {
