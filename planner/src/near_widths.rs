@@ -16,7 +16,7 @@ use crate::empty::{note_empty, rank_key, MIN_EMPTY_TILES};
 use crate::options::PlanOptions;
 use crate::plan::Plan;
 use crate::rows::Style;
-use crate::serpentine::size_style;
+use crate::serpentine::{size_style, Sized};
 use crate::shape::Shape;
 use crate::Progress;
 
@@ -49,19 +49,11 @@ pub(crate) fn fewer_empty(
         .iter()
         .flat_map(|f| styles.iter().map(move |s| (f, s)))
     {
-        let at = PlanOptions {
-            tile_size: Some(w * f),
-            ..opts.clone()
-        };
-        let Ok(sz) = size_style(shape, &at, style, directions, progress) else {
+        let Some((p, sz)) =
+            serpentine_at(shape, opts, w * f, style, directions, name, progress, miss)
+        else {
             continue;
         };
-        let Some(p) = sz.best_unchecked(shape, name) else {
-            continue;
-        };
-        if miss(&p) != 0 {
-            continue;
-        }
         // a part too large to keep the plan for is no better
         let Ok(p) = note_empty(shape, p, near) else {
             continue;
@@ -72,11 +64,7 @@ pub(crate) fn fewer_empty(
             continue;
         }
         // the fold check (the costly part on long chains) only for a plan that would be kept
-        if sz
-            .all
-            .first()
-            .is_none_or(|c| check_folds(&c.word(style)).is_err())
-        {
+        if !folds(&sz, style) {
             continue;
         }
         best = p;
@@ -85,4 +73,34 @@ pub(crate) fn fewer_empty(
         }
     }
     best
+}
+
+/// The best serpentine of turn style `style` at the tile width `w` (unchecked), with its
+/// sizing, if its count is within the band (`miss` 0).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn serpentine_at(
+    shape: &Shape,
+    opts: &PlanOptions,
+    w: f64,
+    style: Style,
+    directions: &[f64],
+    name: &str,
+    progress: Progress<'_>,
+    miss: &dyn Fn(&Plan) -> usize,
+) -> Option<(Plan, Sized)> {
+    let at = PlanOptions {
+        tile_size: Some(w),
+        ..opts.clone()
+    };
+    let sz = size_style(shape, &at, style, directions, progress).ok()?;
+    let p = sz.best_unchecked(shape, name)?;
+    (miss(&p) == 0).then_some((p, sz))
+}
+
+/// True if the best serpentine of the sizing `sz` (turn style `style`) folds without
+/// collision.
+pub(crate) fn folds(sz: &Sized, style: Style) -> bool {
+    sz.all
+        .first()
+        .is_some_and(|c| check_folds(&c.word(style)).is_ok())
 }

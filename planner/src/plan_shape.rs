@@ -8,7 +8,6 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, centres_inside, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
-use crate::check::check_folds;
 use crate::empty::{note_empty, rank_key, EmptyPart};
 use crate::error::{PlanError, Rejected};
 use crate::narrow;
@@ -463,30 +462,25 @@ fn serpentine_at_other_widths(
         .iter()
         .flat_map(|f| styles.iter().map(move |s| (f, s)))
     {
-        let at = PlanOptions {
-            tile_size: Some(w * f),
-            ..opts.clone()
-        };
-        let Ok(sz) = size_style(shape, &at, style, directions, progress) else {
-            continue;
-        };
-        let Some(p) = sz.best_unchecked(shape, name) else {
-            continue;
-        };
         // the count and the part left empty first, the fold check (the costly part on long
         // chains) only for a plan that would be kept
-        if miss(&p) != 0 {
+        let Some((p, sz)) = crate::near_widths::serpentine_at(
+            shape,
+            opts,
+            w * f,
+            style,
+            directions,
+            name,
+            progress,
+            miss,
+        ) else {
             continue;
-        }
+        };
         let m = note_empty(shape, p, near);
         if m.as_ref().is_err_and(|e| e.0.tiles >= best.0.tiles) {
             continue;
         }
-        if sz
-            .all
-            .first()
-            .is_none_or(|c| check_folds(&c.word(style)).is_err())
-        {
+        if !crate::near_widths::folds(&sz, style) {
             continue;
         }
         match m {

@@ -23,7 +23,11 @@ fn leaves_less_than(name: &str, n: usize, most: f64) {
         plan.tiles,
         plan.u_turns
     );
-    assert!(plan.tiles.abs_diff(n) * 100 <= 3 * n, "{name} at {n}: {} tiles", plan.tiles);
+    assert!(
+        plan.tiles.abs_diff(n) * 100 <= 3 * n,
+        "{name} at {n}: {} tiles",
+        plan.tiles
+    );
 }
 
 #[test]
