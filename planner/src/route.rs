@@ -173,15 +173,12 @@ fn ends(
     far_y: Option<f64>,
 ) -> Vec<(f64, f64, usize, usize)> {
     let to_axis = frame.to_axis();
-    // the strip of the next cell an end's distance from it costs per tile width (worked out
-    // once: the tile's area is a sum over its lines)
-    let strip = toward.map_or(0.0, |t| t.width().max(t.height()) * tile_area() / pitch);
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
     let apart = |t: Rect, k: usize, e: usize| {
         let q = to_axis * Point::new(lat.x0 + e as f64, lat.y0 + k as f64 * pitch);
         let dx = (t.x0 - q.x).max(q.x - t.x1).max(0.0);
         let dy = (t.y0 - q.y).max(q.y - t.y1).max(0.0);
-        (strip, dx, dy)
+        (t.width().max(t.height()) * tile_area() / pitch, dx, dy)
     };
     let look = |k: usize, e: usize| match toward {
         Some(t) => {
@@ -200,22 +197,10 @@ fn ends(
         }
         None => 0.0,
     };
-    // and a bound on it along a row: the rows are axis-aligned (one of `d`'s components is
-    // zero), so the coordinate across the row is the same at every end of it, and the
-    // hypotenuse is at least the distance across
-    let across = |k: usize| match toward {
-        Some(t) if frame.d.x == 0.0 || frame.d.y == 0.0 => {
-            let (strip, dx, dy) = apart(t, k, 0);
-            let d = if frame.d.x == 0.0 { dx } else { dy };
-            strip * d * (1.0 - 1e-12)
-        }
-        _ => 0.0,
-    };
     let mut out: Vec<(f64, f64, usize, usize)> = Vec::new();
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
-        let near =
-            toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, (&across, &look_lower), look));
+        let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look_lower, look));
         // and the other exits of the near end's row that lie beside the next cell: where
         // along the last row the chain leaves sets the phase of the next cell's rows (a
         // key's head ends its last column where the shaft's first row runs along the
@@ -240,7 +225,7 @@ fn ends(
             } else {
                 top.checked_sub(1)?
             };
-            sol.best_end_with(|r| r == k, (|_| 0.0, |_, _| 0.0), look)
+            sol.best_end_with(|r| r == k, |_, _| 0.0, look)
         });
         // (only those, when asked)
         let (plain, near) = if far_y.is_some() {

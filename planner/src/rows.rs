@@ -720,10 +720,6 @@ fn tables(
             p,
             &mut gaps[k * cols..(k + 1) * cols],
         );
-        // the U-turn after the last row leads nowhere: the programme never reads its costs
-        if k + 1 == nrows {
-            continue;
-        }
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
@@ -905,24 +901,16 @@ impl Solved {
     /// in the order of rows and columns where several do. `lower(row, column)` is a cheap
     /// bound that the penalty never falls below: the penalty is not asked where the cost plus
     /// the bound cannot beat the best so far (floating-point addition is monotone, so the
-    /// cost plus the penalty could not either). `row_lower(row)` is a bound that `lower` never
-    /// falls below along the row: a row whose least cost plus it cannot beat the best so far
-    /// is passed over whole (no end of it could).
+    /// cost plus the penalty could not either).
     pub(crate) fn best_end_with(
         &self,
         row_ok: impl Fn(usize) -> bool,
-        (row_lower, lower): (impl Fn(usize) -> f64, impl Fn(usize, usize) -> f64),
+        lower: impl Fn(usize, usize) -> f64,
         penalty: impl Fn(usize, usize) -> f64,
     ) -> Option<(f64, usize, usize)> {
         let mut best: Option<(f64, f64, usize, usize)> = None;
         for k in (0..self.nrows).filter(|&k| row_ok(k)) {
             let row = &self.dp[k * self.cols..(k + 1) * self.cols];
-            if let Some(b) = best {
-                let least = row.iter().fold(f64::INFINITY, |m, &c| m.min(c));
-                if least + row_lower(k) >= b.0 {
-                    continue;
-                }
-            }
             for (e, &c) in row.iter().enumerate() {
                 if !c.is_finite() || best.is_some_and(|b| c + lower(k, e) >= b.0) {
                     continue;
