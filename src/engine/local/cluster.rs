@@ -416,6 +416,30 @@ mod probe {
             for e in run.events.iter().filter(|e| e.time >= lo && e.time <= hi) {
                 println!("  eng ev {:.6} {:?} {}", e.time, e.kind, e.index);
             }
+            if std::env::var("PROBE_TRACKS").is_ok() {
+                let ch = &run.solved.chain;
+                let sh = &ch.shapes;
+                for (name, tracks) in [("magnet", &ch.magnets), ("joint", &ch.joints)] {
+                    for (k, &tr) in tracks.iter().enumerate() {
+                        let shape = sh.get(tr.shape);
+                        println!(
+                            "  {name} {k}: moves {:?}..{:?}, nodes {}, at 0.7 {:?} 1.0 {:?} 1.9 {:?}",
+                            sh.first_move(tr),
+                            sh.last_move(tr),
+                            shape.t.len(),
+                            sh.motion(tr, 0.7),
+                            sh.motion(tr, 1.0),
+                            sh.motion(tr, 1.9)
+                        );
+                    }
+                }
+                for (u, (e, t0)) in ch.units.iter().enumerate() {
+                    println!(
+                        "  unit {u} t_ref {t0:.5} modes {:?} y {:?} drive {:?}",
+                        e.solution.modes, e.solution.y, e.solution.drive
+                    );
+                }
+            }
             let ro = ro.with_record(crate::reference::Recording::Grid { max_states: 400 });
             let c = run_reference(&chain, &d, &ro).unwrap();
             let js: Vec<usize> = c.folds.iter().map(|f| f.joint).collect();

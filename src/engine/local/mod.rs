@@ -17,6 +17,7 @@
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
 mod cache;
+mod causal;
 mod cluster;
 mod relaxation;
 mod solve;

@@ -15,7 +15,8 @@ use std::sync::mpsc::{Receiver, Sender};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 
 use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
-use crate::engine::local::solve::{solve, SolveOptions};
+use crate::engine::local::causal::solve_causal;
+use crate::engine::local::solve::SolveOptions;
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
 use crate::model::Model;
@@ -252,7 +253,12 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         }
         let j = u as isize - 1;
         let w = UnitForces::new(model, j, cutoff);
-        let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
+        // (a coupled joint reads the whole chain: every unit of the sweep before)
+        let need = if model.coupled_folds {
+            tiles
+        } else {
+            (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles)
+        };
         if !before.read_to(model, need, k, &mut shapes, &mut magnets, &mut joints) {
             complete = false;
             break;
@@ -403,7 +409,7 @@ fn solve_unit(
         magnets,
         joints,
     };
-    let (t0, mut sol) = solve(w, inputs, ctx.opts);
+    let (t0, mut sol) = solve_causal(w, inputs, ctx.opts);
     debug_assert_eq!(t0, t_start);
     // local times from the unit's origin
     let d = t0 - t_ref;
