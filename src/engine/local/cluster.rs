@@ -328,7 +328,11 @@ mod tests {
         // wall while 3 turns (the reference 1@..0.45772, 2@0.45772-1.21102,
         // 3@0.45772-0.76563, settled in 13 sweeps); SLSRS: 1@0.13982-0.40240,
         // 3@0.15999-0.43864
-        for w in ["SLRS", "LL", "SLLLS", "SLSRS"] {
+        // SLSRSL: three folds at once (1@0.13982-0.40533, 3@0.14924-0.44217,
+        // 5@0.29517-0.45441); SLSSSL: folds 1 and 5, four joints apart (1@..0.49360,
+        // 5@0.34270-0.52175), past the window of the sweep before a unit once read (fold 5
+        // was read at rest by fold 1: 1@..0.48917)
+        for w in ["SLRS", "LL", "SLLLS", "SLSRS", "SLSRSL", "SLSSSL"] {
             let (e, c) = folds(w);
             assert_eq!(e.len(), c.len(), "{w}: {e:?} {c:?}");
             for (a, b) in e.iter().zip(&c) {
@@ -344,6 +348,18 @@ mod tests {
         // without the flag, the one-joint engine of before
         let e = engine("SLRS", 0.3, false);
         assert!((e.2 - 0.5226).abs() < 1e-3, "{e:?}");
+    }
+
+    #[test]
+    fn a_train_that_follows_a_later_start_does_not_start_it() {
+        // LLRS: the coupled reference stalls at 0.68347 s when fold 2 closes; the sweeps
+        // once walked magnets 6, 7, 8 later by 0.037 s each (each sweep's magnet 6 pulled
+        // off its rest by the sweep before's magnet 7, which had followed it), completed at
+        // 2.02 s after 40 sweeps
+        let (e, c) = (engine("LLRS", 0.3, true), reference("LLRS", 0.3));
+        assert_eq!((&e.0, &e.1), (&c.0, &c.1), "{e:?} {c:?}");
+        assert_eq!(c.0, "Stalled");
+        assert!((e.2 - c.2).abs() < 1e-4, "{e:?} {c:?}");
     }
 
     #[test]

@@ -198,15 +198,6 @@ impl Done {
         self.solves_per_sweep.push(out.solves);
         self.rhs += out.rhs;
         let first = *self.first_rhs.get_or_insert(out.rhs);
-        if std::env::var("DBG_SWEEPS").is_ok() {
-            let mut last: Vec<String> = Vec::new();
-            for (u, (e, t0)) in out.units.iter().enumerate() {
-                if let Some(ev) = e.solution.events.last() {
-                    last.push(format!("u{u}:{:?}@{:.4}", ev.kind, t0 + ev.time));
-                }
-            }
-            eprintln!("sweep {} moved {:.3e} dur {:.5} rhs {} {}", self.solves_per_sweep.len(), out.moved, out.duration, out.rhs, last.join(" "));
-        }
         self.solves_per_sweep.len() >= max_sweeps(model)
             || (model.coupled_folds && out.rhs > COUPLED_RHS_GROWTH * first.max(1))
             || out.moved <= SWEEP_TOLERANCE * out.duration.max(model.time_scale)
