@@ -17,7 +17,6 @@
 //! [`crate::timeline::S0_START_FRACTION`] of its path, as the reference reports it.
 
 mod cache;
-mod causal;
 mod cluster;
 mod relaxation;
 mod solve;

@@ -15,8 +15,7 @@ use std::sync::mpsc::{Receiver, Sender};
 use std::sync::{Arc, Condvar, Mutex, PoisonError};
 
 use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
-use crate::engine::local::causal::solve_causal;
-use crate::engine::local::solve::SolveOptions;
+use crate::engine::local::solve::{solve, SolveOptions};
 use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
 use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
 use crate::model::Model;
@@ -409,7 +408,7 @@ fn solve_unit(
         magnets,
         joints,
     };
-    let (t0, mut sol) = solve_causal(w, inputs, ctx.opts);
+    let (t0, mut sol) = solve(w, inputs, ctx.opts);
     debug_assert_eq!(t0, t_start);
     // local times from the unit's origin
     let d = t0 - t_ref;
