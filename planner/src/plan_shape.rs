@@ -186,7 +186,12 @@ fn walks(
         .best
         .iter()
         .map(|b| found.asked.plan_shortfall(b))
-        .chain(found.rejected.iter().map(|r| found.asked.rejected_shortfall(r)))
+        .chain(
+            found
+                .rejected
+                .iter()
+                .map(|r| found.asked.rejected_shortfall(r)),
+        )
         .fold(f64::INFINITY, f64::min);
     if short <= WALK_SHORTFALL_SHARE * tiles_est as f64 {
         return;
@@ -211,9 +216,15 @@ fn walks(
         ));
         return;
     }
-    if check_folds(&p.fold_word().unwrap_or_else(|_| foldchain::FoldWord::straight(1))).is_err()
+    if check_folds(
+        &p.fold_word()
+            .unwrap_or_else(|_| foldchain::FoldWord::straight(1)),
+    )
+    .is_err()
     {
-        found.failures.push("a walk along the strokes does not fold".into());
+        found
+            .failures
+            .push("a walk along the strokes does not fold".into());
         return;
     }
     match note_empty(shape, p, crate::empty::near(opts.turns)) {

@@ -51,7 +51,7 @@ const START_DIRECTIONS: usize = 4;
 /// far it falls short of the asked chain (`asked`): its count's miss and the part it leaves
 /// empty. `None` when no walk lays a tile.
 pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str) -> Option<Plan> {
-    if target < 2 || target > MAX_WALK_TILES {
+    if !(2..=MAX_WALK_TILES).contains(&target) {
         return None;
     }
     // a single file reaches a band about 2 * NEAR wide: tiles of width w cover about
@@ -295,7 +295,7 @@ fn walk(raster: &Raster, work: &Shape, to_work: Affine, target: usize) -> Vec<Fo
             })
             .collect();
         // most reached first; straight before folds among equals
-        options.sort_by(|a, b| b.0.cmp(&a.0));
+        options.sort_by_key(|o| std::cmp::Reverse(o.0));
         if options.first().is_none_or(|o| o.0 == 0) {
             break;
         }
@@ -336,7 +336,10 @@ const CLOSE: f64 = 0.999;
 /// followed by an R one, or the reverse, would need an LR tile, which the model has not).
 fn allowed(last: Option<Fold>) -> impl Iterator<Item = Fold> {
     [Fold::S, Fold::L, Fold::R].into_iter().filter(move |&f| {
-        !matches!((last, f), (Some(Fold::L), Fold::R) | (Some(Fold::R), Fold::L))
+        !matches!(
+            (last, f),
+            (Some(Fold::L), Fold::R) | (Some(Fold::R), Fold::L)
+        )
     })
 }
 
@@ -419,5 +422,81 @@ impl Look<'_> {
         }
         fresh.truncate(mark);
         Some(g)
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::shape::Ring;
+
+    fn word(s: &str) -> Vec<Fold> {
+        FoldWord::parse(s).unwrap().folds().to_vec()
+    }
+
+    /// A U-turn is two folds the same way in a row; other folds are quarter turns.
+    #[test]
+    fn turns_are_counted_as_the_plans_count_them() {
+        assert_eq!(
+            (u_turns(&word("SLLS")), quarter_turns(&word("SLLS"))),
+            (1, 0)
+        );
+        assert_eq!(
+            (u_turns(&word("SLSRS")), quarter_turns(&word("SLSRS"))),
+            (0, 2)
+        );
+        assert_eq!(
+            (u_turns(&word("LLLS")), quarter_turns(&word("LLLS"))),
+            (1, 1)
+        );
+    }
+
+    /// No tile folds both ways: after an L joint no R, after an R no L.
+    #[test]
+    fn a_fold_is_never_followed_by_the_opposite_fold() {
+        assert!(!allowed(Some(Fold::L)).any(|f| f == Fold::R));
+        assert!(!allowed(Some(Fold::R)).any(|f| f == Fold::L));
+        assert_eq!(allowed(None).count(), 3);
+    }
+
+    /// The walk's poses are foldchain's kinematics.
+    #[test]
+    fn poses_follow_the_exact_kinematics() {
+        let folds = word("SSLSLLSRSS");
+        let mine = centres(&folds, Affine::IDENTITY);
+        let exact = FoldWord::from_folds(folds).final_poses();
+        for (p, e) in mine.iter().zip(&exact) {
+            let (x, y) = e.centre.to_f64(1.0);
+            assert!((p.x - x).abs() < 1e-12 && (p.y - y).abs() < 1e-12);
+        }
+    }
+
+    /// A band one and a half tiles wide round a square hole (a thin square ring of side 40,
+    /// physical frame, tile width about 1): the walk lays a lap of about the count with every
+    /// centre on the band, a word without LR tiles that folds in sequence.
+    #[test]
+    fn a_thin_square_ring_is_walked_round_its_hole() {
+        let outer = Ring::rect(0.0, 0.0, 40.0, 40.0);
+        let mut inner = Ring::rect(1.5, 1.5, 38.5, 38.5);
+        inner.points.reverse();
+        let shape = Shape::from_rings(vec![outer, inner]);
+        let target = 100;
+        let asked = Asked::new(
+            &crate::PlanOptions::default().with_tiles(target),
+            shape.area(),
+            target,
+        );
+        let p = best_walk(&shape, target, &asked, "ring").unwrap();
+        assert!(p.tiles >= 90, "{} tiles", p.tiles);
+        let word = p.fold_word().unwrap();
+        assert!(word.first_opposite_pair().is_none());
+        assert!(crate::check::check_folds(&word).is_ok());
+        let inside = p
+            .poses
+            .iter()
+            .filter(|q| shape.contains(Point::new(q.x, -q.y)))
+            .count();
+        assert_eq!(inside, p.tiles, "centres off the band");
     }
 }
