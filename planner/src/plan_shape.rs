@@ -208,6 +208,21 @@ fn walks(
         .chain(found.rejected.iter().map(|r| &r.plan))
         .map(|q| q.metrics.fit_error())
         .fold(f64::INFINITY, f64::min);
+    // nor misses the count by more than they do (issue 26: the count within the tolerance)
+    let least_miss = found
+        .best
+        .iter()
+        .chain(found.rejected.iter().map(|r| &r.plan))
+        .map(|q| miss(q))
+        .min()
+        .unwrap_or(usize::MAX);
+    if miss(&p) > least_miss {
+        found.failures.push(format!(
+            "a walk along the strokes lays {} tiles, further from the count",
+            p.tiles
+        ));
+        return;
+    }
     if p.metrics.fit_error() > fit {
         found.failures.push(format!(
             "a walk along the strokes fits worse ({:.0}% of the shape covered, {:.0}% of the chain outside)",

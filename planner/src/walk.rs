@@ -20,7 +20,7 @@ use kurbo::{Affine, Point, Vec2};
 use rayon::prelude::*;
 
 use crate::assembly::Assembly;
-use crate::empty::{largest_empty_part, DeepLine};
+use crate::empty::{largest_empty_part, DeepLine, OrdF64};
 use crate::frame::Orientation;
 use crate::plan::Plan;
 use crate::rank::Asked;
@@ -47,9 +47,9 @@ const ANGLES: [f64; 2] = [0.0, std::f64::consts::FRAC_PI_4];
 /// Start points tried: the deepest raster cells nearest each of these directions' extremes.
 const START_DIRECTIONS: usize = 4;
 
-/// The best walk plan of about `target` tiles over `shape` (physical frame), ranked by how
-/// far it falls short of the asked chain (`asked`): its count's miss and the part it leaves
-/// empty. `None` when no walk lays a tile.
+/// The best walk plan of about `target` tiles over `shape` (physical frame): a count within
+/// the tolerance first, then the least shortfall of the asked chain (`asked`: its count's
+/// miss and the part it leaves empty). `None` when no walk lays a tile.
 pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str) -> Option<Plan> {
     if !(2..=MAX_WALK_TILES).contains(&target) {
         return None;
@@ -64,13 +64,13 @@ pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str)
         .iter()
         .flat_map(|&f| ANGLES.iter().map(move |&a| (w0 * f, a)))
         .collect();
-    let plans: Vec<(f64, Plan)> = jobs
+    let plans: Vec<((usize, OrdF64), Plan)> = jobs
         .par_iter()
         .filter_map(|&(w, a)| {
             let orient = Orientation::along(a);
             let work = orient.work_shape(shape, w);
             let raster = Raster::new(&work)?;
-            let mut best: Option<(f64, Vec<Fold>, Affine)> = None;
+            let mut best: Option<((usize, OrdF64), Vec<Fold>, Affine)> = None;
             for start in raster.starts() {
                 for h in 0..4 {
                     let phi = h as f64 * std::f64::consts::FRAC_PI_2;
@@ -79,7 +79,11 @@ pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str)
                     let centres = centres(&folds, to_work);
                     let empty = largest_empty_part(&work, &centres, crate::empty::NEAR)
                         .map_or(0.0, |e| e.0);
-                    let short = asked.shortfall(folds.len() + 1, w, empty);
+                    // the count within the tolerance first, then the shortfall
+                    let short = (
+                        asked.miss(folds.len() + 1),
+                        OrdF64(asked.shortfall(folds.len() + 1, w, empty)),
+                    );
                     if best.as_ref().is_none_or(|b| short < b.0) {
                         best = Some((short, folds, to_work));
                     }
@@ -104,7 +108,7 @@ pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str)
         .collect();
     plans
         .into_iter()
-        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .min_by(|a, b| a.0.cmp(&b.0))
         .map(|(_, p)| p)
 }
 
