@@ -8,6 +8,7 @@
 //! number of tiles ([`crate::sizing`]), and the best few are checked by sequential folding.
 
 use std::f64::consts::PI;
+use std::sync::{Arc, Mutex};
 
 use foldchain::FoldWord;
 use kurbo::Affine;
@@ -263,9 +264,68 @@ fn coarse_orientation(shape: &Shape, style: Style, directions: &[f64], w: f64) -
     }
 }
 
+/// Solves over more orientations than this are remembered ([`LargeSolve`]).
+const REMEMBERED_ORIENTATIONS: usize = KEPT_ORIENTATIONS;
+/// Large solves remembered at most (the latest).
+const REMEMBERED_SOLVES: usize = 4;
+
+/// A solve over many orientations ([`solve_all`]) with its inputs: the first width of a
+/// size search over every orientation and the coarse choice of orientation
+/// ([`coarse_orientation`]) solve the same programmes, and the serpentine retried at other
+/// widths chooses its orientation on the same coarse plan at every width it tries
+/// (libsi-A at 3000 tiles solved 64 orientations at the same width four times). A
+/// remembered solve is returned only for equal inputs, so it is what solving again gives.
+struct LargeSolve {
+    shape: Shape,
+    style: Style,
+    tasks: Vec<Orientation>,
+    w: u64,
+    all: Vec<Candidate>,
+}
+
+impl LargeSolve {
+    /// True if the solve had these inputs.
+    fn is(&self, shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> bool {
+        self.w == w.to_bits() && self.style == style && self.tasks == tasks && self.shape == *shape
+    }
+}
+
+/// The latest large solves, newest last.
+static LARGE_SOLVES: Mutex<Vec<Arc<LargeSolve>>> = Mutex::new(Vec::new());
+
 /// Every serpentine over the orientations (directions and corners) and phases at tile
-/// width `w`, lowest cost first (solved in parallel; the order is deterministic).
+/// width `w`, lowest cost first (solved in parallel; the order is deterministic); a solve
+/// over more than [`REMEMBERED_ORIENTATIONS`] is remembered ([`LargeSolve`]).
 fn solve_all(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<Candidate> {
+    if tasks.len() <= REMEMBERED_ORIENTATIONS {
+        return solve_fresh(shape, style, tasks, w);
+    }
+    let known = LARGE_SOLVES.lock().ok().and_then(|l| {
+        l.iter()
+            .find(|s| s.is(shape, style, tasks, w))
+            .map(Arc::clone)
+    });
+    if let Some(s) = known {
+        return s.all.clone();
+    }
+    let all = solve_fresh(shape, style, tasks, w);
+    if let Ok(mut l) = LARGE_SOLVES.lock() {
+        if l.len() >= REMEMBERED_SOLVES {
+            l.remove(0);
+        }
+        l.push(Arc::new(LargeSolve {
+            shape: shape.clone(),
+            style,
+            tasks: tasks.to_vec(),
+            w: w.to_bits(),
+            all: all.clone(),
+        }));
+    }
+    all
+}
+
+/// [`solve_all`] without the memory of large solves.
+fn solve_fresh(shape: &Shape, style: Style, tasks: &[Orientation], w: f64) -> Vec<Candidate> {
     let area = shape.area() / (w * w);
     let mut out: Vec<Candidate> = tasks
         .par_iter()
