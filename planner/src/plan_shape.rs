@@ -213,7 +213,7 @@ fn walks(
         .best
         .iter()
         .chain(found.rejected.iter().map(|r| &r.plan))
-        .map(|q| miss(q))
+        .map(miss)
         .min()
         .unwrap_or(usize::MAX);
     if miss(&p) > least_miss {
