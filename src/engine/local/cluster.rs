@@ -328,7 +328,11 @@ mod tests {
         // wall while 3 turns (the reference 1@..0.45772, 2@0.45772-1.21102,
         // 3@0.45772-0.76563, settled in 13 sweeps); SLSRS: 1@0.13982-0.40240,
         // 3@0.15999-0.43864
-        for w in ["SLRS", "LL", "SLLLS", "SLSRS"] {
+        // SLSRSL: three folds at once (1@0.13982-0.40533, 3@0.14924-0.44217,
+        // 5@0.29517-0.45441); SLSSSL: folds 1 and 5, four joints apart (1@..0.49360,
+        // 5@0.34270-0.52175), past the window of the sweep before a unit once read (fold 5
+        // was read at rest by fold 1: 1@..0.48917)
+        for w in ["SLRS", "LL", "SLLLS", "SLSRS", "SLSRSL", "SLSSSL"] {
             let (e, c) = folds(w);
             assert_eq!(e.len(), c.len(), "{w}: {e:?} {c:?}");
             for (a, b) in e.iter().zip(&c) {
@@ -415,6 +419,30 @@ mod probe {
             }
             for e in run.events.iter().filter(|e| e.time >= lo && e.time <= hi) {
                 println!("  eng ev {:.6} {:?} {}", e.time, e.kind, e.index);
+            }
+            if std::env::var("PROBE_TRACKS").is_ok() {
+                let ch = &run.solved.chain;
+                let sh = &ch.shapes;
+                for (name, tracks) in [("magnet", &ch.magnets), ("joint", &ch.joints)] {
+                    for (k, &tr) in tracks.iter().enumerate() {
+                        let shape = sh.get(tr.shape);
+                        println!(
+                            "  {name} {k}: moves {:?}..{:?}, nodes {}, at 0.7 {:?} 1.0 {:?} 1.9 {:?}",
+                            sh.first_move(tr),
+                            sh.last_move(tr),
+                            shape.t.len(),
+                            sh.motion(tr, 0.7),
+                            sh.motion(tr, 1.0),
+                            sh.motion(tr, 1.9)
+                        );
+                    }
+                }
+                for (u, (e, t0)) in ch.units.iter().enumerate() {
+                    println!(
+                        "  unit {u} t_ref {t0:.5} modes {:?} y {:?} drive {:?}",
+                        e.solution.modes, e.solution.y, e.solution.drive
+                    );
+                }
             }
             let ro = ro.with_record(crate::reference::Recording::Grid { max_states: 400 });
             let c = run_reference(&chain, &d, &ro).unwrap();

@@ -252,7 +252,12 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         }
         let j = u as isize - 1;
         let w = UnitForces::new(model, j, cutoff);
-        let need = (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles);
+        // (a coupled joint reads the whole chain: every unit of the sweep before)
+        let need = if model.coupled_folds {
+            tiles
+        } else {
+            (u + ctx.cache.lag()).max(unit_of_magnet(w.hi)).min(tiles)
+        };
         if !before.read_to(model, need, k, &mut shapes, &mut magnets, &mut joints) {
             complete = false;
             break;
