@@ -112,25 +112,19 @@ pub(crate) fn best_walk(shape: &Shape, target: usize, asked: &Asked, name: &str)
         .map(|(_, p)| p)
 }
 
-/// Two folds the same way in a row: a U-turn.
+/// The U-turns of a walk, as [`crate::pockets`] finds them (`LL`, `RR`, `LSL`, `RSR`).
 fn u_turns(folds: &[Fold]) -> usize {
-    let mut n = 0;
-    let mut i = 0;
-    while i + 1 < folds.len() {
-        if folds[i] != Fold::S && folds[i] == folds[i + 1] {
-            n += 1;
-            i += 2;
-        } else {
-            i += 1;
-        }
-    }
-    n
+    crate::pockets::u_turns(folds).len()
 }
 
 /// Folds not part of a U-turn.
 fn quarter_turns(folds: &[Fold]) -> usize {
     let folded = folds.iter().filter(|&&f| f != Fold::S).count();
-    folded - 2 * u_turns(folds)
+    let in_u: usize = crate::pockets::u_turns(folds)
+        .iter()
+        .map(|&(j, g)| folds[j..j + g].iter().filter(|&&f| f != Fold::S).count())
+        .sum();
+    folded - in_u
 }
 
 /// The tile centres of a chain of `folds` (chain frame: tile 0 at the origin heading +x,
@@ -439,9 +433,14 @@ mod tests {
         FoldWord::parse(s).unwrap().folds().to_vec()
     }
 
-    /// A U-turn is two folds the same way in a row; other folds are quarter turns.
+    /// A U-turn is two folds the same way in a row, or with one straight joint between
+    /// ([`crate::pockets`]' rule, not part of a longer run); other folds are quarter turns.
     #[test]
     fn turns_are_counted_as_the_plans_count_them() {
+        assert_eq!(
+            (u_turns(&word("SLSLS")), quarter_turns(&word("SLSLS"))),
+            (1, 0)
+        );
         assert_eq!(
             (u_turns(&word("SLLS")), quarter_turns(&word("SLLS"))),
             (1, 0)
@@ -452,7 +451,7 @@ mod tests {
         );
         assert_eq!(
             (u_turns(&word("LLLS")), quarter_turns(&word("LLLS"))),
-            (1, 1)
+            (0, 3)
         );
     }
 
