@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use crate::cap_plan::{cap_axes, centres_inside, plan_by_caps, start_width};
 use crate::caps::{self, CapPlan};
 use crate::cell_plan::CellFailure;
+use crate::check::check_folds;
 use crate::empty::{note_empty, rank_key, EmptyPart};
 use crate::error::{PlanError, Rejected};
 use crate::narrow;
