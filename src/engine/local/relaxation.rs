@@ -271,8 +271,10 @@ fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
             gate: &open,
             next: &open,
             duration: 0.0,
-            horizon: done.horizon,
         };
+        // (the solves stop at the window's horizon)
+        let mut ctx = ctx;
+        ctx.opts.horizon = done.horizon;
         let out = sweep(ctx, place, base);
         if done.add(ctx.model, &out) {
             return out;
@@ -304,7 +306,6 @@ fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
             gate: &gates[1],
             next: &gates[2],
             duration: 0.0,
-            horizon: f64::INFINITY,
         };
         let mut running = scope.spawn(move || sweep(ctx, place, Shapes::default()));
         // the shapes of the sweeps before the one running, and the run's duration in the
@@ -322,7 +323,6 @@ fn pipelined(ctx: Ctx, done: &mut Done) -> SweepOut {
                     gate: &gates[k + 1],
                     next: &gates[k + 2],
                     duration,
-                    horizon: f64::INFINITY,
                 };
                 let base = std::mem::take(&mut base);
                 scope.spawn(move || sweep(ctx, place, base))

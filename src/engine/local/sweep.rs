@@ -222,8 +222,6 @@ pub(crate) struct Place<'a> {
     pub(crate) next: &'a Gate,
     /// The run's duration in the last sweep that ended (0: none yet).
     pub(crate) duration: f64,
-    /// Where the sweep's solves stop, s (infinite: none).
-    pub(crate) horizon: f64,
 }
 
 /// Sweep `place.k` of `ctx`'s chain: `shapes` holds every shape of the sweeps before
@@ -236,11 +234,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         gate,
         next,
         duration: known,
-        horizon,
     } = place;
-    let mut ctx = ctx;
-    ctx.opts.horizon = horizon;
-    let mut cut = false;
     let model = ctx.model;
     let g = &model.geometry;
     let n = g.magnets();
@@ -329,7 +323,6 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
             next.open();
             go = true;
         }
-        cut |= entry.solution.cut;
         units.push((entry.clone(), t_ref));
         chunk.push(UnitOut { entry, t_ref, made });
         if solved || chunk.len() >= CHUNK {
@@ -344,13 +337,13 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         shapes,
         magnets,
         joints,
+        cut: units.iter().any(|u| u.0.solution.cut),
         units,
         moved,
         duration,
         solves,
         rhs,
         complete,
-        cut,
     }
 }
 
