@@ -178,7 +178,6 @@ fn largest<T>(items: Vec<T>, size: impl Fn(&T) -> f64) -> Option<T> {
 }
 
 /// The largest empty part of [`all_empty_parts`], if any.
-#[cfg(test)]
 pub(crate) fn largest_empty_part(
     work: &Shape,
     centres: &[Point],

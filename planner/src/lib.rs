@@ -66,6 +66,7 @@ mod simplify;
 mod sizing;
 mod slabs;
 mod units;
+mod walk;
 
 /// kurbo, whose [`kurbo::Point`], [`kurbo::Rect`] and [`kurbo::Affine`] the [`Shape`] API
 /// takes and returns (re-exported so that callers use the same version).

@@ -111,6 +111,7 @@ pub(crate) fn plan_shape(
             break;
         }
     }
+    walks(shape, opts, tiles_est, name, &miss, &mut found);
     let Found {
         best,
         failures,
@@ -165,6 +166,99 @@ pub(crate) fn plan_shape(
     plan.warnings.extend(island_warning);
     Ok(plan)
 }
+
+/// Single-file walks along thin strokes ([`crate::walk`]), tried where the plans found fall
+/// short of the asked chain by more than [`WALK_SHORTFALL_SHARE`] of it (a count far off, or
+/// a large part left empty: a thin ring or letter at a low count), for counts up to
+/// [`crate::walk::MAX_WALK_TILES`]; the best walk is offered as the other plans are.
+fn walks(
+    shape: &Shape,
+    opts: &PlanOptions,
+    tiles_est: usize,
+    name: &str,
+    miss: &dyn Fn(&Plan) -> usize,
+    found: &mut Found,
+) {
+    if opts.tile_size.is_some() || tiles_est > crate::walk::MAX_WALK_TILES {
+        return;
+    }
+    let short = found
+        .best
+        .iter()
+        .map(|b| found.asked.plan_shortfall(b))
+        .chain(
+            found
+                .rejected
+                .iter()
+                .map(|r| found.asked.rejected_shortfall(r)),
+        )
+        .fold(f64::INFINITY, f64::min);
+    if short <= WALK_SHORTFALL_SHARE * tiles_est as f64 {
+        return;
+    }
+    let Some(p) = crate::walk::best_walk(shape, tiles_est, &found.asked, name) else {
+        return;
+    };
+    // a walk draws the shape no worse than the plans found (the area-true fit: a single
+    // file along one edge of a band three tiles wide splits what it leaves empty into
+    // smaller parts, but covers less of the shape)
+    let fit = found
+        .best
+        .iter()
+        .chain(found.rejected.iter().map(|r| &r.plan))
+        .map(|q| q.metrics.fit_error())
+        .fold(f64::INFINITY, f64::min);
+    // nor misses the count by more than they do (issue 26: the count within the tolerance)
+    let least_miss = found
+        .best
+        .iter()
+        .chain(found.rejected.iter().map(|r| &r.plan))
+        .map(miss)
+        .min()
+        .unwrap_or(usize::MAX);
+    if miss(&p) > least_miss {
+        found.failures.push(format!(
+            "a walk along the strokes lays {} tiles, further from the count",
+            p.tiles
+        ));
+        return;
+    }
+    if p.metrics.fit_error() > fit {
+        found.failures.push(format!(
+            "a walk along the strokes fits worse ({:.0}% of the shape covered, {:.0}% of the chain outside)",
+            100.0 * p.metrics.covered_share,
+            100.0 * p.metrics.outside_share
+        ));
+        return;
+    }
+    if check_folds(
+        &p.fold_word()
+            .unwrap_or_else(|_| foldchain::FoldWord::straight(1)),
+    )
+    .is_err()
+    {
+        found
+            .failures
+            .push("a walk along the strokes does not fold".into());
+        return;
+    }
+    match note_empty(shape, p, crate::empty::near(opts.turns)) {
+        Ok(p) => {
+            let rank = |q: &Plan| (miss(q), rank_key(q, opts.turn_cost));
+            if found.best.as_ref().is_none_or(|b| rank(&p) < rank(b)) {
+                found.best = Some(p);
+            }
+        }
+        Err(e) => {
+            let (part, plan) = *e;
+            found.reject(Box::new(Rejected { plan, empty: part }));
+        }
+    }
+}
+
+/// Walks are tried where the plans found fall short of the asked chain ([`Asked::shortfall`])
+/// by more than this share of the count.
+const WALK_SHORTFALL_SHARE: f64 = 0.1;
 
 /// Under `auto`, whether the tight plans found leave the loose ones nothing to win: no plan
 /// kept, but a route rejected for an empty part with a count within the tolerance that

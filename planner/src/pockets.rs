@@ -170,7 +170,7 @@ fn all_parts_cost(shape: &Shape, plan: &Plan, opts: &PlanOptions, reach: f64) ->
 /// chain back (two like folds, `LL` or `RR`, or two with a straight joint between, `LSL`,
 /// `RSR`), not part of a longer run of like folds. Tile `j` is the last of the row before
 /// the turn, tile `j + g` the first of the row after it.
-fn u_turns(folds: &[Fold]) -> Vec<(usize, usize)> {
+pub(crate) fn u_turns(folds: &[Fold]) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
     let mut j = 0;
     while j + 1 < folds.len() {
