@@ -128,6 +128,7 @@ pub(crate) fn run_local(model: &Model, tol: f64, threads: usize, max_steps: usiz
         rosenbrock: coupled.is_none(),
         rest_skip: coupled.is_none(),
         coupled: coupled.as_ref(),
+        horizon: f64::INFINITY,
     };
     let chain = relaxation::solve_chain(model, opts, threads);
     let g = &model.geometry;

@@ -2,7 +2,8 @@
 //! first, every unit sees the units before it on their solved tracks and the units after it
 //! at rest; each later sweep solves every unit again with the units after it on their
 //! tracks of the sweep before (a Gauss-Seidel waveform relaxation), until no event moves by
-//! more than [`SWEEP_TOLERANCE`](crate::engine::local::sweep::SWEEP_TOLERANCE) of the run's duration, or [`MAX_SWEEPS`] sweeps.
+//! more than [`SWEEP_TOLERANCE`](crate::engine::local::sweep::SWEEP_TOLERANCE) of the run's duration, or [`MAX_SWEEPS`] sweeps. With
+//! coupled folds the sweeps settle a window of time at a time ([`COUPLED_WINDOW`]).
 //!
 //! **Relative placement.** In a later sweep the units after unit `u` are placed against `u`
 //! as they were in the sweep before: their tracks move by as much as `u`'s time origin moved
@@ -41,6 +42,10 @@ use crate::engine::local::cache::{Cache, Entry};
 use crate::engine::local::solve::SolveOptions;
 use crate::engine::local::sweep::{sweep, Ctx, Gate, Place, SweepOut, SWEEP_TOLERANCE};
 use crate::engine::local::trajectory::{Shapes, Track, MAX_STORED_SWEEPS};
+
+// every sweep's shapes are told apart in the store (the coupled folds' later sweeps share
+// the first ones' slots: `engine::local::sweep`)
+const _: () = assert!(MAX_SWEEPS <= MAX_STORED_SWEEPS);
 use crate::model::Model;
 use crate::timeline::{Event, EventKind};
 
@@ -48,17 +53,26 @@ use crate::timeline::{Event, EventKind};
 pub(crate) const MAX_SWEEPS: usize = 8;
 
 /// Most sweeps over the chain when its folds turn by the coupled equations
-/// ([`Model::coupled_folds`]): folds turning at once settle a few sweeps apart each, 40.
-pub(crate) const COUPLED_MAX_SWEEPS: usize = 40;
+/// ([`Model::coupled_folds`]), over all its windows of time: 400.
+pub(crate) const COUPLED_MAX_SWEEPS: usize = 400;
 
-// every sweep's shapes are told apart in the store
-const _: () = assert!(COUPLED_MAX_SWEEPS <= MAX_STORED_SWEEPS && MAX_SWEEPS <= MAX_STORED_SWEEPS);
+/// With coupled folds the sweeps solve the run a window of time at a time: each sweep
+/// stops its solves at a horizon, which moves on by a window once two sweeps agree up to
+/// it within [`COUPLED_TOLERANCE`] (or after [`WINDOW_SWEEPS`] in one window). The first
+/// window, s: 0.05; a window that took at most 3 sweeps doubles the next, one that took
+/// [`WINDOW_SWEEPS`] halves it (down to a quarter of the first). Over a long window the
+/// relaxation of strongly coupled folds grows its errors for many sweeps before they shrink
+/// (a closed fold pulled open by the sweep before's wrong tracks of the folds after it,
+/// which then turn wrongly in turn: `LLRL`'s evaluations grew 1.7 times a sweep and it
+/// never settled); over a short one they shrink from the first.
+pub(crate) const COUPLED_WINDOW: f64 = 0.05;
 
-/// With coupled folds, the sweeps stop after one that evaluated more than this many times
-/// the first sweep's: the relaxation is not settling (a fold released and put back on its
-/// wall over and over, each time a node that the next sweep's units step to), and its work
-/// would grow without bound.
-const COUPLED_RHS_GROWTH: u64 = 4;
+/// Most sweeps in one window of time: 12.
+const WINDOW_SWEEPS: usize = 12;
+
+/// With coupled folds, two sweeps agree when no event moved by more than this fraction of
+/// the run's duration: 1e-5 (their solves' own scatter is some 1e-6).
+const COUPLED_TOLERANCE: f64 = 1e-5;
 
 /// The most sweeps over `model`'s chain.
 fn max_sweeps(model: &Model) -> usize {
@@ -160,7 +174,7 @@ pub(crate) fn solve_chain_with(
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         t => t,
     };
-    let mut done = Done::default();
+    let mut done = Done::new(model);
     let last = if threads >= 2 {
         pipelined(ctx, &mut done)
     } else {
@@ -183,24 +197,62 @@ pub(crate) fn solve_chain_with(
 const LAG_MARGIN: usize = 1;
 
 /// The sweeps made so far.
-#[derive(Default)]
 struct Done {
     solves_per_sweep: Vec<usize>,
     rhs: u64,
-    /// The first sweep's evaluations.
-    first_rhs: Option<u64>,
+    /// Where the next sweep's solves stop (coupled folds; else infinite).
+    horizon: f64,
+    /// The sweeps made in the current window of time.
+    in_window: usize,
+    /// The current window's length, s.
+    window: f64,
 }
 
 impl Done {
-    /// Counts sweep `out`; whether it is the last (converged, or the last allowed).
+    /// No sweep made yet on `model`'s chain.
+    fn new(model: &Model) -> Done {
+        Done {
+            solves_per_sweep: Vec::new(),
+            rhs: 0,
+            horizon: if model.coupled_folds {
+                COUPLED_WINDOW
+            } else {
+                f64::INFINITY
+            },
+            in_window: 0,
+            window: COUPLED_WINDOW,
+        }
+    }
+
+    /// Counts sweep `out`; whether it is the last (converged with no solve stopped at its
+    /// horizon, or the last allowed). With coupled folds, moves the horizon on when the
+    /// sweeps agree up to it (at least two sweeps in a window).
     fn add(&mut self, model: &Model, out: &SweepOut) -> bool {
         debug_assert!(out.complete, "a sweep waited for stopped short");
         self.solves_per_sweep.push(out.solves);
         self.rhs += out.rhs;
-        let first = *self.first_rhs.get_or_insert(out.rhs);
-        self.solves_per_sweep.len() >= max_sweeps(model)
-            || (model.coupled_folds && out.rhs > COUPLED_RHS_GROWTH * first.max(1))
-            || out.moved <= SWEEP_TOLERANCE * out.duration.max(model.time_scale)
+        self.in_window += 1;
+        let scale = out.duration.max(model.time_scale);
+        if self.solves_per_sweep.len() >= max_sweeps(model) {
+            return true;
+        }
+        if !model.coupled_folds {
+            return out.moved <= SWEEP_TOLERANCE * scale;
+        }
+        let converged = out.moved <= COUPLED_TOLERANCE * scale;
+        if (converged && self.in_window >= 2) || self.in_window >= WINDOW_SWEEPS {
+            if !out.cut {
+                return true;
+            }
+            if self.in_window <= 3 {
+                self.window *= 2.0;
+            } else if self.in_window >= WINDOW_SWEEPS {
+                self.window = (0.5 * self.window).max(0.25 * COUPLED_WINDOW);
+            }
+            self.horizon += self.window;
+            self.in_window = 0;
+        }
+        false
     }
 }
 
@@ -220,6 +272,9 @@ fn one_by_one(ctx: Ctx, done: &mut Done) -> SweepOut {
             next: &open,
             duration: 0.0,
         };
+        // (the solves stop at the window's horizon)
+        let mut ctx = ctx;
+        ctx.opts.horizon = done.horizon;
         let out = sweep(ctx, place, base);
         if done.add(ctx.model, &out) {
             return out;

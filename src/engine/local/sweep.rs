@@ -16,7 +16,7 @@ use std::sync::{Arc, Condvar, Mutex, PoisonError};
 
 use crate::engine::local::cache::{Anchors, Cache, Entry, Library};
 use crate::engine::local::solve::{solve, SolveOptions};
-use crate::engine::local::trajectory::{Shape, Shapes, Track, REST};
+use crate::engine::local::trajectory::{Shape, Shapes, Track, MAX_STORED_SWEEPS, REST};
 use crate::engine::local::unit_forces::{unit_vars, Inputs, UnitForces, Var};
 use crate::model::Model;
 
@@ -82,6 +82,8 @@ pub(crate) struct SweepOut {
     pub(crate) rhs: u64,
     /// Whether every unit was solved (not cancelled).
     pub(crate) complete: bool,
+    /// Whether a unit's solve stopped at the horizon with an unknown still moving.
+    pub(crate) cut: bool,
 }
 
 /// When a sweep that may not be needed starts, and whether it stops short: it is needed
@@ -176,7 +178,7 @@ impl Before {
             };
             for unit in chunk {
                 for shape in unit.made {
-                    shapes.add(k - 1, shape);
+                    shapes.add(slot(k - 1), shape);
                 }
                 let j = self.units.len() as isize - 1;
                 write_tracks(
@@ -191,6 +193,14 @@ impl Before {
         }
         true
     }
+}
+
+/// Where sweep `k`'s shapes are stored: the sweeps after the store's last (the coupled
+/// folds' windows of time) share its slots with the first ones, which no sweep reads any
+/// more (a sweep reads its own shapes and the sweep before's; without the cache no shape
+/// is shared with an older sweep).
+fn slot(k: usize) -> usize {
+    (k - 1) % MAX_STORED_SWEEPS + 1
 }
 
 /// The unit whose unknowns include magnet `m`.
@@ -327,6 +337,7 @@ pub(crate) fn sweep(ctx: Ctx, place: Place, mut shapes: Shapes) -> SweepOut {
         shapes,
         magnets,
         joints,
+        cut: units.iter().any(|u| u.0.solution.cut),
         units,
         moved,
         duration,
@@ -442,7 +453,7 @@ fn solve_unit(
             found.unwrap_or_else(|| {
                 let end = shape.end();
                 let shape = Arc::new(shape);
-                let id = store.shapes.add(k, shape.clone());
+                let id = store.shapes.add(slot(k), shape.clone());
                 store.made.push(shape);
                 store
                     .library

@@ -46,6 +46,7 @@ pub(crate) fn solve_word(word: &str, o: Options) -> ChainSolution {
         rosenbrock: o.rosenbrock,
         rest_skip: o.rest_skip,
         coupled: None,
+        horizon: f64::INFINITY,
     };
     solve_chain_with(&model, opts, o.reuse, o.threads)
 }

@@ -78,6 +78,8 @@ pub(crate) struct SolveOptions<'a> {
     ///
     /// [`Model::coupled_folds`]: crate::model::Model
     pub(crate) coupled: Option<&'a Coupled>,
+    /// The solve stops here, s (the sweeps' window of time, [`crate::engine::local::relaxation`]; infinite: none).
+    pub(crate) horizon: f64,
 }
 
 /// An event of a unit, its index relative to the unit (magnets: `k - 2j`; joints: 0).
@@ -110,6 +112,8 @@ pub(crate) struct Solution {
     pub(crate) stopped: Option<String>,
     /// Right-hand sides evaluated.
     pub(crate) rhs: u64,
+    /// Whether the solve stopped at its horizon with an unknown still moving.
+    pub(crate) cut: bool,
 }
 
 /// A local solve in progress.
@@ -586,6 +590,8 @@ impl<'a> Walk<'a> {
         let hmax = self.input.span(self.tau);
         self.h = self.h.min(hmax);
         let (tau, mut h) = (self.tau, self.h);
+        // (a step ends at the horizon)
+        h = h.min(self.s.opts.horizon - self.s.t_ref - tau);
         // a step ends at the next impact of another fold (its impulse changes this one's rate)
         while self
             .impacts
@@ -738,6 +744,11 @@ pub(crate) fn solve(w: &UnitForces, inputs: Inputs, opts: SolveOptions) -> (f64,
         let free = walk.switch();
         walk.steps += 1;
         if walk.out_of_budget(&free) {
+            break;
+        }
+        let at = walk.s.t_ref + walk.tau;
+        if opts.horizon.is_finite() && at >= opts.horizon - 1e-12 * opts.horizon.abs().max(1.0) {
+            walk.s.sol.cut = !free.is_empty();
             break;
         }
         if free.is_empty() {
