@@ -441,7 +441,6 @@ fn next_legs(
         .filter(|&q| cell_box.contains(q))
         .collect();
     let laid = &laid[..];
-    let grid = CentreGrid::new(laid);
     let p = style.pitch;
     let (e, h, side) = prev.end();
     let mut out = Vec::new();
@@ -462,15 +461,16 @@ fn next_legs(
             let work = frame.work(shape);
             let (lat, c0) = Lattice::from_origin(work.bbox(), p);
             // tiles of the leg may not overlap those laid before, nor the join's (a box
-            // around them rejects most lattice tiles at once)
+            // around them rejects most lattice tiles at once); each is asked only about the
+            // lattice sites near it (see [`Blocked::test`])
             let to_axis = frame.to_axis();
             let reach = near_box.inflate(1.0, 1.0);
-            let test = |q: Point| {
+            let tiles: Vec<Point> = laid.iter().chain(&join.tiles).copied().collect();
+            let test = |q: Point, t: usize| {
                 let q = to_axis * q;
-                reach.contains(q)
-                    && (grid.any_near(q, |t| laid[t].distance(q) < MIN_GAP)
-                        || join.tiles.iter().any(|t| t.distance(q) < MIN_GAP))
+                reach.contains(q) && tiles[t].distance(q) < MIN_GAP
             };
+            let cell_tiles: Vec<Point> = tiles.iter().map(|&q| frame.axis_to_cell() * q).collect();
             // `reach` in the cell frame, widened far beyond the rounding of either map: the
             // sites outside it are not blocked, so the test is not asked there
             let within = frame
@@ -479,6 +479,7 @@ fn next_legs(
                 .inflate(WITHIN_MARGIN, WITHIN_MARGIN);
             let blocked = Blocked {
                 within,
+                tiles: &cell_tiles,
                 test: &test,
             };
             let sol = solve_rows(&work, style, lat, Some(c0), Some(blocked));

@@ -188,6 +188,9 @@ struct Tables {
     diff: Vec<f64>,
     /// A row's lanes ([`lane_cover`]): zeros where lanes are not priced.
     lane: Vec<f64>,
+    /// The blocked row and U-turn sites ([`blocked_sites`]), empty when none is.
+    blocked_rows: Vec<bool>,
+    blocked_turns: Vec<bool>,
 }
 
 /// Best-cost buffers kept per thread: as many programmes as a caller holds at once.
@@ -601,23 +604,83 @@ fn edge_gaps(iv: &[(f64, f64)], x0: f64, pitch: f64, gaps: &mut [(f64, f64)]) {
     }
 }
 
-/// The tiles (work frame) that would overlap tiles laid before: `test` holds where a tile
-/// centred at the point would, and never outside `within` (a box around the tiles laid
-/// near the cell), so the lattice sites outside it are passed over without asking.
+/// The tiles (work frame) that would overlap tiles laid before, never outside `within` (a
+/// box around the tiles laid near the cell): the lattice sites outside it are passed over
+/// without asking.
 #[derive(Clone, Copy)]
 pub(crate) struct Blocked<'a> {
     /// No site outside this box (closed) is blocked.
     pub within: Rect,
-    /// True where a tile centred at the point would overlap a tile laid before.
-    pub test: &'a (dyn Fn(Point) -> bool + Sync),
+    /// The tiles laid before: their centres in the work frame, to within far less than a
+    /// tile width.
+    pub tiles: &'a [Point],
+    /// True if a tile centred at the point would overlap the `i`-th of `tiles`: a tile
+    /// overlaps only tiles centred within a tile width of it on both axes, so only the
+    /// lattice sites near each are asked of it ([`blocked_sites`]).
+    pub test: &'a (dyn Fn(Point, usize) -> bool + Sync),
 }
 
 impl Blocked<'_> {
-    /// True if a tile centred at `q` would overlap a tile laid before.
+    /// True if `q` lies in `within`.
     #[inline]
-    fn at(&self, q: Point) -> bool {
+    fn may_block(&self, q: Point) -> bool {
         let w = &self.within;
-        q.x >= w.x0 && q.x <= w.x1 && q.y >= w.y0 && q.y <= w.y1 && (self.test)(q)
+        q.x >= w.x0 && q.x <= w.x1 && q.y >= w.y0 && q.y <= w.y1
+    }
+}
+
+/// Sets `rows[k * cols + j]` to whether the tile of row `k` in column `j` of `lat` (centre
+/// `(x0 + j, y0 + k p)`) is blocked, and `turns[(k * heights + i) * cols + j]` to whether the
+/// U-turn tile after row `k` at the style's `i`-th height is (centre `(x0 + j -+ 1/sqrt2,
+/// y0 + k p + h)`, its side the row's direction). Each tile laid before is asked about the
+/// sites within two tile widths of it on both axes only, not the lattice's every site: a
+/// site farther from every tile on one axis than a tile width (however the maps between
+/// the frames round, far below it) is blocked by none.
+fn blocked_sites(
+    lat: Lattice,
+    style: Style,
+    b: Blocked<'_>,
+    rows: &mut [bool],
+    turns: &mut [bool],
+) {
+    let Lattice {
+        x0,
+        y0,
+        cols,
+        nrows,
+    } = lat;
+    let p = style.pitch;
+    let heights = style.turn_heights.len();
+    let dir = |k: usize| if k % 2 == 0 { 1.0 } else { -1.0 };
+    // the sites' centres, as the programme's tables place them
+    let row_site = |k: usize, j: usize| Point::new(x0 + j as f64, y0 + k as f64 * p);
+    let turn_site = |k: usize, h: f64, j: usize| {
+        let xt = x0 + dir(k) * FRAC_1_SQRT_2;
+        Point::new(xt + j as f64, (y0 + k as f64 * p) + h)
+    };
+    // the indices from floor(lo) to ceil(hi) that lie in 0..n (none when lo > hi)
+    let span = |lo: f64, hi: f64, n: usize| {
+        (floor_i64(lo).max(0)..=ceil_i64(hi).min(n as i64 - 1)).map(|v| v as usize)
+    };
+    for (t, c) in b.tiles.iter().enumerate() {
+        let u = c.x - x0;
+        for k in span((c.y - 2.0 - y0) / p, (c.y + 2.0 - y0) / p, nrows) {
+            for j in span(u - 2.0, u + 2.0, cols) {
+                let at = &mut rows[k * cols + j];
+                let q = row_site(k, j);
+                *at = *at || (b.may_block(q) && (b.test)(q, t));
+            }
+        }
+        for (i, &h) in style.turn_heights.iter().enumerate() {
+            for k in span((c.y - h - 2.0 - y0) / p, (c.y - h + 2.0 - y0) / p, nrows) {
+                let v = u - dir(k) * FRAC_1_SQRT_2;
+                for j in span(v - 2.0, v + 2.0, cols) {
+                    let at = &mut turns[(k * heights + i) * cols + j];
+                    let q = turn_site(k, h, j);
+                    *at = *at || (b.may_block(q) && (b.test)(q, t));
+                }
+            }
+        }
     }
 }
 
@@ -665,7 +728,7 @@ fn tables(
 ) -> f64 {
     let Lattice {
         x0,
-        y0,
+        y0: _,
         cols,
         nrows,
     } = lat;
@@ -681,11 +744,19 @@ fn tables(
     let mut cover = refill(std::mem::take(&mut t.cover), cols, 0.0);
     let mut diff = refill(std::mem::take(&mut t.diff), w1, 0.0);
     let mut lane = refill(std::mem::take(&mut t.lane), cols, 0.0);
+    let heights = style.turn_heights.len();
+    let sites = |v: Vec<bool>, len: usize| refill(v, if blocked.is_some() { len } else { 0 }, false);
+    let mut blocked_rows = sites(std::mem::take(&mut t.blocked_rows), nrows * cols);
+    let mut blocked_turns = sites(std::mem::take(&mut t.blocked_turns), nrows * heights * cols);
+    if let Some(b) = blocked {
+        blocked_sites(lat, style, b, &mut blocked_rows, &mut blocked_turns);
+    }
+    // a site is blocked only where there are blocked sites
+    let taken = |sites: &[bool], i: usize| !sites.is_empty() && sites[i];
     let (mut sa, mut sb) = (Vec::new(), Vec::new());
     let half = lane_half(p);
     let mut lanes = 0.0;
     for k in 0..nrows {
-        let y = y0 + k as f64 * p;
         let first = lines.row(k);
         tile_cover(lines, first, x0, &mut cover, &mut diff);
         if lines.lanes {
@@ -705,8 +776,7 @@ fn tables(
         // the running sum in a register: pr[j + 1] = pr[j] + cost, the same additions
         let mut run = pr[0];
         for (j, (p, (&c, &l))) in pr[1..].iter_mut().zip(cover.iter().zip(&lane)).enumerate() {
-            let taken = blocked.is_some_and(|b| b.at(Point::new(x0 + j as f64, y)));
-            run += if taken {
+            run += if taken(&blocked_rows, k * cols + j) {
                 BLOCKED
             } else {
                 tile_cost(c) - LANE_PRICE * l
@@ -723,12 +793,12 @@ fn tables(
         let dir = if k % 2 == 0 { 1.0 } else { -1.0 };
         let t = &mut turn[k * cols..(k + 1) * cols];
         t.iter_mut().for_each(|v| *v = style.turn_price);
-        for (i, h) in style.turn_heights.iter().enumerate() {
+        for i in 0..heights {
             let xt = x0 + dir * FRAC_1_SQRT_2;
             let at = row_line + 1 + i * AREA_LINES.len();
             tile_cover(lines, at, xt, &mut cover, &mut diff);
             for (j, (tj, c)) in t.iter_mut().zip(&cover).enumerate() {
-                let taken = blocked.is_some_and(|b| b.at(Point::new(xt + j as f64, y + h)));
+                let taken = taken(&blocked_turns, (k * heights + i) * cols + j);
                 *tj += if taken { BLOCKED } else { tile_cost(*c) };
             }
         }
@@ -740,6 +810,8 @@ fn tables(
         cover,
         diff,
         lane,
+        blocked_rows,
+        blocked_turns,
     };
     lanes
 }
@@ -899,7 +971,7 @@ impl Solved {
     /// The end `(cost, row, column)` among rows that `row_ok` accepts that minimises its
     /// cost plus `penalty(row, column)` (the cost returned leaves the penalty out), the first
     /// in the order of rows and columns where several do. `lower(row, column)` is a cheap
-    /// bound that the penalty never falls below: the penalty is not asked where the cost plus
+    /// bound, never negative, that the penalty never falls below: the penalty is not asked where the cost plus
     /// the bound cannot beat the best so far (floating-point addition is monotone, so the
     /// cost plus the penalty could not either).
     pub(crate) fn best_end_with(
@@ -912,7 +984,9 @@ impl Solved {
         for k in (0..self.nrows).filter(|&k| row_ok(k)) {
             let row = &self.dp[k * self.cols..(k + 1) * self.cols];
             for (e, &c) in row.iter().enumerate() {
-                if !c.is_finite() || best.is_some_and(|b| c + lower(k, e) >= b.0) {
+                // the bound is never negative: a cost at or above the best so far cannot beat
+                // it, whatever the bound (asked only below it)
+                if !c.is_finite() || best.is_some_and(|b| c >= b.0 || c + lower(k, e) >= b.0) {
                     continue;
                 }
                 let t = c + penalty(k, e);
@@ -1053,9 +1127,14 @@ mod tests {
             cols: 19,
             nrows: 3,
         };
-        let middle = |q: Point| (q.y - SQRT_2).abs() < 0.1;
+        // tiles along the middle row, each blocking the sites of that row beside it
+        let tiles: Vec<Point> = (-4..18).map(|x| Point::new(x as f64, SQRT_2)).collect();
+        let middle = |q: Point, t: usize| {
+            (q.y - SQRT_2).abs() < 0.1 && (q.x - tiles[t].x).abs() < 0.5
+        };
         let blocked = Blocked {
             within: Rect::new(-10.0, -10.0, 30.0, 10.0),
+            tiles: &tiles,
             test: &middle,
         };
         let best = |style: Style, b: Option<Blocked<'_>>| {
