@@ -745,7 +745,8 @@ fn tables(
     let mut diff = refill(std::mem::take(&mut t.diff), w1, 0.0);
     let mut lane = refill(std::mem::take(&mut t.lane), cols, 0.0);
     let heights = style.turn_heights.len();
-    let sites = |v: Vec<bool>, len: usize| refill(v, if blocked.is_some() { len } else { 0 }, false);
+    let sites =
+        |v: Vec<bool>, len: usize| refill(v, if blocked.is_some() { len } else { 0 }, false);
     let mut blocked_rows = sites(std::mem::take(&mut t.blocked_rows), nrows * cols);
     let mut blocked_turns = sites(std::mem::take(&mut t.blocked_turns), nrows * heights * cols);
     if let Some(b) = blocked {
@@ -1129,9 +1130,8 @@ mod tests {
         };
         // tiles along the middle row, each blocking the sites of that row beside it
         let tiles: Vec<Point> = (-4..18).map(|x| Point::new(x as f64, SQRT_2)).collect();
-        let middle = |q: Point, t: usize| {
-            (q.y - SQRT_2).abs() < 0.1 && (q.x - tiles[t].x).abs() < 0.5
-        };
+        let middle =
+            |q: Point, t: usize| (q.y - SQRT_2).abs() < 0.1 && (q.x - tiles[t].x).abs() < 0.5;
         let blocked = Blocked {
             within: Rect::new(-10.0, -10.0, 30.0, 10.0),
             tiles: &tiles,
