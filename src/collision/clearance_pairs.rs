@@ -435,7 +435,19 @@ impl Search {
                 }
             }
             (pt, qt) => {
-                let split_p = qt.is_some() || (pt.is_none() && rp >= rq);
+                // where the joints looked at between p's first tile and q's last lie: all
+                // inside q, the tiles of q before the first are rigid with p (a pair of them
+                // is looked at when it changes), so q is split and its part before that
+                // joint dropped; all inside p, likewise p and its part after the last. Else
+                // the larger run is split.
+                let (a, b) = (self.rank(pf), self.rank(ql));
+                let split_p = if qt.is_none() && self.active[a] >= qf {
+                    false
+                } else if pt.is_none() && self.active[b - 1] < pl {
+                    true
+                } else {
+                    qt.is_some() || (pt.is_none() && rp >= rq)
+                };
                 if split_p {
                     for (node, pose) in self.tree.children(p.node, &p.pose) {
                         stack.push((Run { node, pose }, q, false));
