@@ -134,15 +134,18 @@ impl OutputDir {
         &self.written
     }
 
-    /// Writes the file `name` in the directory, atomically, and records it; a file there
-    /// that no tool wrote is refused ([`OutputDir::claim`]).
+    /// Records the file `name` and writes it in the directory, atomically; a file there that
+    /// no tool wrote is refused ([`OutputDir::claim`]).
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<(), WriteError> {
         self.claim([name])?;
-        let path = self.dir.join(name);
-        write_atomic(&path, bytes)?;
+        // the name goes into the record before the file is renamed into place: a run killed
+        // between the two then leaves a listed name with no file (harmless) rather than a file
+        // no record lists, which the next run would take for a user's and keep
         self.record
             .note(name)
             .map_err(|e| WriteError::new(&self.dir.join(crate::record::RECORD), e))?;
+        let path = self.dir.join(name);
+        write_atomic(&path, bytes)?;
         self.written.push(name.to_string());
         Ok(())
     }
@@ -265,6 +268,25 @@ mod tests {
             assert_eq!(std::fs::read_to_string(dir.join(f)).unwrap(), body, "{f}");
         }
         assert_eq!(out.written(), ["step-0000.svg"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A run killed between a file's rename and its line in the record left a file no
+    /// record listed; the next run into the directory took it for a user's and kept it (a
+    /// frame of the interrupted run mixed into the earlier one, CI of 1422951). The name is
+    /// now recorded first: a write that fails once its name is recorded leaves the name
+    /// listed and no file, which nothing takes for a user's.
+    #[test]
+    fn a_name_is_recorded_before_its_file_is_put_in_place() {
+        let dir = scratch("order");
+        let mut out = OutputDir::create(&dir).unwrap();
+        out.write("a.txt", b"one").unwrap();
+        // the temporary file cannot be made: no such subdirectory
+        assert!(out.write("sub/b.txt", b"two").is_err());
+        let record = crate::record::Record::read(&dir);
+        assert!(record.lists("a.txt") && record.lists("sub/b.txt"));
+        assert!(!record.foreign("sub/b.txt"));
+        assert_eq!(out.written(), ["a.txt"]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
