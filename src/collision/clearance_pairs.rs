@@ -407,26 +407,32 @@ impl Search {
             }
             return;
         }
-        if !self.any(pf, ql) {
+        // the joints looked at from p's first tile to q's last: active[a..d]
+        let (a, d) = (self.rank(pf), self.rank(ql));
+        if d <= a {
             return;
         }
         let (cp, rp) = self.disc(&p);
         let (cq, rq) = self.disc(&q);
-        // how far q moves seen from p's first tile, and p's tiles seen from it: along
-        // the chain first, then from where the turning joints' hinges lie
-        let (ep, eq) = (
-            2.0 * self.radius * dt * self.lever(pf, pl, pl),
-            2.0 * self.radius * dt * self.lever(pf, ql, ql),
-        );
         let dist = (cp - cq).hypot();
         let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
-        // the pair is dropped when it stays apart by more than the cutoff
+        // the pair is dropped when it stays apart by more than the cutoff (never when the
+        // discs come within it already: both bounds on the motion are at least 0)
         let room = dist - rp - rq - round - self.cutoff;
-        if room > ep + eq {
-            return;
-        }
-        if room > 0.0 && self.reach([pf, pl, qf, ql], (rp, rq), (cq, dist), (ep, eq), dt) < room {
-            return;
+        if room > 0.0 {
+            let (b, c) = (self.rank(pl), self.rank(qf));
+            // how far q moves seen from p's first tile, and p's tiles seen from it: along
+            // the chain first, then from where the turning joints' hinges lie
+            let (ep, eq) = (
+                2.0 * self.radius * dt * self.lever(a, b, pl),
+                2.0 * self.radius * dt * self.lever(a, d, ql),
+            );
+            if room > ep + eq {
+                return;
+            }
+            if self.reach([a, b, c, d], (rp, rq), (cq, dist), (ep, eq), dt) < room {
+                return;
+            }
         }
         match (self.tree.tile(p.node), self.tree.tile(q.node)) {
             (Some(i), Some(j)) => {
@@ -440,10 +446,9 @@ impl Search {
                 // is looked at when it changes), so q is split and its part before that
                 // joint dropped; all inside p, likewise p and its part after the last. Else
                 // the larger run is split.
-                let (a, b) = (self.rank(pf), self.rank(ql));
                 let split_p = if qt.is_none() && self.active[a] >= qf {
                     false
-                } else if pt.is_none() && self.active[b - 1] < pl {
+                } else if pt.is_none() && self.active[d - 1] < pl {
                     true
                 } else {
                     qt.is_some() || (pt.is_none() && rp >= rq)
@@ -472,16 +477,15 @@ impl Search {
     /// last of `q` moves at most that much seen from `p`'s first tile), and likewise for the
     /// joints inside `p` moving its own tiles. Each part is never taken above its bound along
     /// the chain (`ep`, `eq`); the joints between are summed only until that bound is
-    /// reached.
+    /// reached. `[a, b, c, d]` are the ranks ([`Search::rank`]) of `pf`, `pl`, `qf`, `ql`.
     fn reach(
         &self,
-        [pf, pl, qf, ql]: [usize; 4],
+        [a, b, c, d]: [usize; 4],
         (rp, rq): (f64, f64),
         (cq, dist): (Point, f64),
         (ep, eq): (f64, f64),
         dt: f64,
     ) -> f64 {
-        let (a, b, c, d) = (self.rank(pf), self.rank(pl), self.rank(qf), self.rank(ql));
         // the joints inside p, between, inside q: active[a..b], [b..c], [c..d]
         let spin = |u: usize, v: usize| self.spin[v] - self.spin[u];
         let inside_p = spin(a, b) * (dist + rp + rq + 2.0 * eq);
@@ -513,9 +517,9 @@ impl Search {
         a < self.active.len() && self.active[a] < hi
     }
 
-    /// `sum |rate_k| (to - k)` over the joints looked at in `lo..hi`.
-    fn lever(&self, lo: usize, hi: usize, to: usize) -> f64 {
-        let (a, b) = (self.rank(lo), self.rank(hi));
+    /// `sum |rate_k| (to - k)` over the joints looked at `active[a..b]` (those in `lo..hi`
+    /// for `a` and `b` their ranks).
+    fn lever(&self, a: usize, b: usize, to: usize) -> f64 {
         if b <= a {
             return 0.0;
         }
