@@ -16,7 +16,7 @@ use crate::frame::Orientation;
 use crate::options::{PlanOptions, DEFAULT_TILES};
 use crate::plan::Plan;
 use crate::rank::Asked;
-use crate::route::{route_sequence, Need, Routed};
+use crate::route::{route_sequence, LegMemo, Need, Routed};
 use crate::rows::Style;
 use crate::shape::Shape;
 use crate::sizing::{width_for, Attempt, SizeSearch};
@@ -88,13 +88,14 @@ const RETRIES: [f64; 6] = [0.995, 1.005, 0.99, 1.01, 0.985, 1.015];
 
 /// The routes at tile width `w` of every axis with its cap decompositions (found at width
 /// `w0`), cheapest first, with their axis; with `spread`, routed with more exits per cell
-/// ([`route_sequence`]). `memo` keeps the prefix fold checks for the next call.
+/// ([`route_sequence`]). `memo` keeps the prefix fold checks and the legs found for the next
+/// call.
 fn routes_at(
     shape: &Shape,
     axes: &[(f64, Vec<CapPlan>, f64)],
     style: Style,
     w: f64,
-    memo: &CheckMemo,
+    memo: (&CheckMemo, &LegMemo),
     spread: bool,
 ) -> Vec<(f64, Arc<Routed>)> {
     let mut routes: Vec<(f64, Arc<Routed>)> = axes
@@ -582,9 +583,9 @@ fn size_group(
             return Attempt::Nothing;
         }
         solved += 1;
-        let memo = CheckMemo::default();
+        let (memo, legs) = (CheckMemo::default(), LegMemo::default());
         let routed = |spread: bool| {
-            let mut routes = routes_at(shape, axes, style, w, &memo, spread);
+            let mut routes = routes_at(shape, axes, style, w, (&memo, &legs), spread);
             if opts.tile_size.is_none() {
                 routes.sort_by_key(|(_, r)| miss(r.word.tiles()));
             }

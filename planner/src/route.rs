@@ -19,9 +19,9 @@
 //! (octagons of width 1 then overlap), or whose prefix collides when folded in sequence
 //! from tile 0, is dropped as it grows.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::FRAC_1_SQRT_2;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use foldchain::collision::PrefixCheck;
 use foldchain::{Fold, FoldWord};
@@ -133,6 +133,9 @@ pub(crate) struct Route {
     boxes: Vec<Rect>,
     /// The sequential fold check of the route so far (its tiles shared between routes).
     check: PrefixCheck,
+    /// Each leg as [`LegMemo`] knows it: the call that offered it and its place among the
+    /// offers.
+    ids: Vec<(u64, usize)>,
 }
 
 /// A complete route made concrete: the fold word and where its first tile lies.
@@ -161,17 +164,17 @@ pub(crate) struct Routed {
 /// per unit of area (`a` the tile area). A ring's top cell filled in rows ends a cell's
 /// height away from the last cell and loses all of it; in columns it ends beside it.
 ///
-/// With `spread`, also the cheapest other exits of the near end's row beside the next cell
-/// (see [`beside`]).
+/// Returned without and with the spread exits: the cheapest other exits of the near end's
+/// row beside the next cell (see [`beside`]). An end's cost and look-ahead are those of its
+/// row and column, so the ends of the first are among those of the second.
 fn ends(
     sol: &Solved,
     lat: Lattice,
     pitch: f64,
     frame: Frame,
     toward: Option<Rect>,
-    spread: bool,
     far_y: Option<f64>,
-) -> Vec<(f64, f64, usize, usize)> {
+) -> [Vec<(f64, f64, usize, usize)>; 2] {
     let to_axis = frame.to_axis();
     // the distance penalty of an end: a look-ahead for ranking, not part of the cost
     let apart = |t: Rect, k: usize, e: usize| {
@@ -197,7 +200,7 @@ fn ends(
         }
         None => 0.0,
     };
-    let mut out: Vec<(f64, f64, usize, usize)> = Vec::new();
+    let mut out: [Vec<(f64, f64, usize, usize)>; 2] = [Vec::new(), Vec::new()];
     for par in [0, 1] {
         let plain = sol.best_end(|k| k % 2 == par);
         let near = toward.and_then(|_| sol.best_end_with(|k| k % 2 == par, look_lower, look));
@@ -206,8 +209,8 @@ fn ends(
         // key's head ends its last column where the shaft's first row runs along the
         // shaft's middle, so that the rows below it can reach into the teeth), which the
         // look-ahead cannot see; the route's cost chooses among them
-        let others = match (spread, toward, near) {
-            (true, Some(t), Some((_, k, _))) => beside(sol, lat, pitch, frame, t, k),
+        let others = match (toward, near) {
+            (Some(t), Some((_, k, _))) => beside(sol, lat, pitch, frame, t, k),
             _ => Vec::new(),
         };
         // and, for a cell whose rows must span it (`far_y`, a grown cell's lobes beyond its
@@ -233,13 +236,60 @@ fn ends(
         } else {
             (plain, near)
         };
-        for (c, k, e) in plain.into_iter().chain(near).chain(others).chain(far) {
-            if !out.iter().any(|o| o.2 == k && o.3 == e) {
-                out.push((c, look(k, e), k, e));
+        for (spread, out) in out.iter_mut().enumerate() {
+            let others = if spread == 1 { &others[..] } else { &[] };
+            let found = plain.into_iter().chain(near).chain(others.iter().copied());
+            for (c, k, e) in found.chain(far) {
+                if !out.iter().any(|o| o.2 == k && o.3 == e) {
+                    out.push((c, look(k, e), k, e));
+                }
             }
         }
     }
     out
+}
+
+/// What a cell offers the routes that reach it ([`first_legs`], [`next_legs`]): its legs,
+/// and the order in which a routing without and with the spread exits ([`ends`]) takes them.
+struct Offers<T> {
+    legs: Vec<T>,
+    ways: [Vec<usize>; 2],
+}
+
+impl<T> Default for Offers<T> {
+    fn default() -> Offers<T> {
+        Offers {
+            legs: Vec::new(),
+            ways: [Vec::new(), Vec::new()],
+        }
+    }
+}
+
+impl<T> Offers<T> {
+    /// Adds the ends of one programme ([`ends`]), each end once, as `leg` makes it.
+    fn add(
+        &mut self,
+        found: [Vec<(f64, f64, usize, usize)>; 2],
+        leg: impl Fn(f64, f64, usize, usize) -> T,
+    ) {
+        let [plain, spread] = found;
+        let at = self.legs.len();
+        for &(c, look, k, e) in &spread {
+            self.ways[1].push(self.legs.len());
+            self.legs.push(leg(c, look, k, e));
+        }
+        // each end of the first is one of the second (the same row and column)
+        for &(c, look, k, e) in &plain {
+            let i = match spread.iter().position(|o| o.2 == k && o.3 == e) {
+                Some(i) => at + i,
+                None => {
+                    self.legs.push(leg(c, look, k, e));
+                    self.legs.len() - 1
+                }
+            };
+            self.ways[0].push(i);
+        }
+    }
 }
 
 /// Exits tried per row beside the next cell (see [`ends`]): a bound on the route's work.
@@ -311,17 +361,22 @@ fn overlaps(old: &[Arc<Vec<Point>>], boxes: &[Rect], new: &[Point]) -> bool {
         .any(|&p| grid.any_near(p, |t| (new[t].x - p.x).hypot(new[t].y - p.y) < MIN_GAP))
 }
 
+/// A leg with its cost and look-ahead.
+type FirstLeg = (f64, f64, Leg);
+/// A leg with its cost and look-ahead, and the tiles its join lays.
+type NextLeg = (f64, f64, Leg, Vec<Point>);
+
 /// The first leg: a free serpentine over the cell, rows along either axis, any corner and
-/// phase; the best few by cost.
+/// phase; the best few by cost, for either routing ([`ends`]).
 fn first_legs(
     shape: &Shape,
     style: Style,
     toward: Option<Rect>,
     need: Need,
-    (spread, span): (bool, bool),
-) -> Vec<(f64, f64, Leg)> {
+    span: bool,
+) -> Offers<FirstLeg> {
     let p = style.pitch;
-    let mut out = Vec::new();
+    let mut out = Offers::default();
     for d in [
         Vec2::new(1.0, 0.0),
         Vec2::new(-1.0, 0.0),
@@ -345,24 +400,26 @@ fn first_legs(
                 Phased::new(&work, style).solve(style).collect()
             };
             for (lat, sol) in solved {
-                for (cost, look, k, e) in ends(&sol, lat, p, frame, toward, spread, None) {
+                let found = ends(&sol, lat, p, frame, toward, None);
+                out.add(found, |cost, look, k, e| {
                     let serp = sol.serpentine(lat, p, k, e);
-                    out.push((
-                        cost,
-                        look,
-                        Leg {
-                            frame,
-                            serp,
-                            join: Vec::new(),
-                            quarter: false,
-                        },
-                    ));
-                }
+                    let join = Vec::new();
+                    let leg = Leg {
+                        frame,
+                        serp,
+                        join,
+                        quarter: false,
+                    };
+                    (cost, look, leg)
+                });
             }
         }
     }
-    out.sort_by(|a, b| (a.0 + a.1).total_cmp(&(b.0 + b.1)));
-    out.truncate(BEAM);
+    let legs = &out.legs;
+    for way in &mut out.ways {
+        way.sort_by(|&a, &b| (legs[a].0 + legs[a].1).total_cmp(&(legs[b].0 + legs[b].1)));
+        way.truncate(BEAM);
+    }
     out
 }
 
@@ -423,7 +480,8 @@ fn joins(e: Point, h: Vec2, side: Vec2, style: Style) -> Vec<Join> {
 }
 
 /// The legs that can follow `prev` into the cell `shape`: every join and stacking side, each
-/// with the best end of either parity, with the tiles the join lays.
+/// with the best end of either parity, with the tiles the join lays; for either routing
+/// ([`ends`]).
 fn next_legs(
     prev: &Leg,
     laid: &[Point],
@@ -431,8 +489,8 @@ fn next_legs(
     style: Style,
     toward: Option<Rect>,
     need: Need,
-    (spread, span): (bool, bool),
-) -> Vec<(f64, f64, Leg, Vec<Point>)> {
+    span: bool,
+) -> Offers<NextLeg> {
     // only tiles near the cell can block its rows
     let cell_box = shape.bbox().inflate(2.0, 2.0);
     let laid: Vec<Point> = laid
@@ -443,7 +501,7 @@ fn next_legs(
     let laid = &laid[..];
     let p = style.pitch;
     let (e, h, side) = prev.end();
-    let mut out = Vec::new();
+    let mut out = Offers::default();
     for join in joins(e, h, side, style) {
         let near_box = laid
             .iter()
@@ -484,7 +542,8 @@ fn next_legs(
             };
             let sol = solve_rows(&work, style, lat, Some(c0), Some(blocked));
             let far = span.then(|| work.bbox().y1 - 0.5);
-            for (cost, look, k, end) in ends(&sol, lat, p, frame, toward, spread, far) {
+            let found = ends(&sol, lat, p, frame, toward, far);
+            out.add(found, |cost, look, k, end| {
                 let leg = Leg {
                     frame,
                     serp: sol.serpentine(lat, p, k, end),
@@ -496,8 +555,8 @@ fn next_legs(
                 } else {
                     0.0
                 };
-                out.push((cost + price, look, leg, join.tiles.clone()));
-            }
+                (cost + price, look, leg, join.tiles.clone())
+            });
         }
     }
     out
@@ -525,6 +584,122 @@ fn allows(need: Need, n: Vec2) -> bool {
     }
 }
 
+/// The legs the cells offer at one tile width, by what fixes them, kept for both routings
+/// there ([`route_sequence`] without and with the spread exits): where the cheapest routes
+/// leave a part empty, the second routing meets the first's first legs, and many of its
+/// next ones, again. A call is known by its cell (bit for bit), the style, what the cell needs,
+/// the next cell's box and, after the first cell, the route's legs so far, each known by
+/// the call that offered it and its place among the offers: they fix the tiles laid before
+/// and where the route ends, and so the legs offered. The extensions the first routing
+/// tried are kept too ([`extended`]: the fold check of the longer route and its verdict),
+/// and given up as the second meets them. The first routing keeps, the second reads: what
+/// is kept lasts one width. It only saves work.
+#[derive(Default)]
+pub(crate) struct LegMemo {
+    kept: Mutex<Kept>,
+}
+
+/// What a [`LegMemo`] holds: cells by their bits, and the offers of each call with its id.
+#[derive(Default)]
+struct Kept {
+    cells: HashMap<Vec<u64>, u64>,
+    first: HashMap<Vec<u64>, (u64, Arc<Offers<FirstLeg>>)>,
+    next: HashMap<Vec<u64>, (u64, Arc<Offers<NextLeg>>)>,
+    calls: u64,
+    /// Each route (its legs' ids) with a leg added, as [`extended`] found it.
+    tried: HashMap<Vec<u64>, Extended>,
+}
+
+impl LegMemo {
+    fn kept(&self) -> std::sync::MutexGuard<'_, Kept> {
+        // a thread that panicked left whole entries only
+        self.kept.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The id of the cell `shape` (the same for shapes the same bit for bit).
+    fn cell(&self, shape: &Shape) -> u64 {
+        let bits = shape.bits();
+        let mut kept = self.kept();
+        let n = kept.cells.len() as u64;
+        *kept.cells.entry(bits).or_insert(n)
+    }
+
+    /// The offers of the call `key` (see [`LegMemo`]) and its id: kept, or made and kept.
+    /// The offers of the call `key` (see [`LegMemo`]) and its id: kept, or made (and kept
+    /// with `keep`; made and not kept, they take an id no call kept has).
+    fn offers<T>(
+        &self,
+        (key, keep): (Vec<u64>, bool),
+        map: fn(&mut Kept) -> &mut HashMap<Vec<u64>, (u64, Arc<Offers<T>>)>,
+        make: impl FnOnce() -> Offers<T>,
+    ) -> (u64, Arc<Offers<T>>) {
+        {
+            let mut kept = self.kept();
+            if let Some(found) = map(&mut kept).get(&key) {
+                return (found.0, Arc::clone(&found.1));
+            }
+        }
+        let made = Arc::new(make());
+        let mut kept = self.kept();
+        let id = kept.calls;
+        kept.calls += 1;
+        if !keep {
+            return (id, made);
+        }
+        // another thread may have made them meanwhile: the same offers, its id kept
+        map(&mut kept).entry(key).or_insert((id, made)).clone()
+    }
+
+    /// [`extended`] of the route whose legs' ids, and the added leg's, are `key`: kept, or
+    /// worked out (the tiles, the fold check and its verdict are those of the legs, which
+    /// the ids fix). With `keep` what is worked out is kept; without, what was kept is
+    /// given up (each extension is tried once a routing).
+    fn tried(&self, (key, keep): (Vec<u64>, bool), make: impl FnOnce() -> Extended) -> Extended {
+        if keep {
+            if let Some(found) = self.kept().tried.get(&key) {
+                return found.clone();
+            }
+            let made = make();
+            return self.kept().tried.entry(key).or_insert(made).clone();
+        }
+        let found = self.kept().tried.remove(&key);
+        found.unwrap_or_else(make)
+    }
+}
+
+/// The bits of what fixes a cell's offers besides the route before it (see [`LegMemo`]).
+fn call_key(
+    kind: u64,
+    cell: u64,
+    style: Style,
+    toward: Option<Rect>,
+    need: Need,
+    span: bool,
+) -> Vec<u64> {
+    let mut key = vec![kind, cell, style.turns as u64, style.pitch.to_bits()];
+    key.extend(style.turn_heights.iter().map(|h| h.to_bits()));
+    key.extend([
+        style.turn_price.to_bits(),
+        u64::from(style.lanes),
+        u64::from(span),
+    ]);
+    match toward {
+        Some(t) => key.extend([
+            1,
+            t.x0.to_bits(),
+            t.y0.to_bits(),
+            t.x1.to_bits(),
+            t.y1.to_bits(),
+        ]),
+        None => key.push(0),
+    }
+    match need {
+        Some((n, either)) => key.extend([1, n.x.to_bits(), n.y.to_bits(), u64::from(either)]),
+        None => key.push(0),
+    }
+    key
+}
+
 /// The best routes through the cells `seq` in this order, each cell's rows stacked as its
 /// [`Need`] says (and, where its flag is set, also made to span it: started at its near
 /// side if first, ended at its far side, see [`ends`]), cheapest first; with `spread`, each cell followed by another also tries
@@ -534,16 +709,50 @@ fn allows(need: Need, n: Vec2) -> bool {
 pub(crate) fn route_sequence(
     seq: &[(&Shape, Need, bool)],
     style: Style,
-    memo: &CheckMemo,
+    (memo, legs): (&CheckMemo, &LegMemo),
     spread: bool,
 ) -> Vec<Route> {
     let Some(&(first, need0, span0)) = seq.first() else {
         return Vec::new();
     };
     let root = memo.take();
-    let beam = route_beam(seq, (first, need0, span0), style, &root, spread);
+    let beam = route_beam(seq, (first, need0, span0), style, (&root, legs), spread);
     memo.give(root);
     beam
+}
+
+/// The routes of one leg each through the first cell (`shape`, its id in `memo`, what it
+/// needs and whether its rows span it), the next cell's box `toward`; see [`first_legs`].
+fn first_beam(
+    (shape, cell, need, span): (&Shape, u64, Need, bool),
+    toward: Option<Rect>,
+    style: Style,
+    (root, memo): (&PrefixCheck, &LegMemo),
+    spread: bool,
+) -> Vec<Route> {
+    let key = call_key(0, cell, style, toward, need, span);
+    let (call, offers) = memo.offers(
+        (key, !spread),
+        |k| &mut k.first,
+        || first_legs(shape, style, toward, need, span),
+    );
+    offers.ways[usize::from(spread)]
+        .iter()
+        .map(|&i| {
+            let (cost, _, leg) = &offers.legs[i];
+            let c = leg.centres(style);
+            let mut check = root.emptied();
+            check.push(&leg_folds(leg, style));
+            Route {
+                cost: *cost,
+                legs: vec![Arc::new(leg.clone())],
+                boxes: vec![bbox_of(&c)],
+                centres: vec![Arc::new(c)],
+                check,
+                ids: vec![(call, i)],
+            }
+        })
+        .collect()
 }
 
 /// [`route_sequence`] with an empty fold check whose memo the routes share.
@@ -551,25 +760,21 @@ fn route_beam(
     seq: &[(&Shape, Need, bool)],
     (first, need0, span0): (&Shape, Need, bool),
     style: Style,
-    root: &PrefixCheck,
+    (root, memo): (&PrefixCheck, &LegMemo),
     spread: bool,
 ) -> Vec<Route> {
     let centre = |i: usize| seq.get(i).map(|c| c.0.bbox());
-    let mut beam: Vec<Route> = first_legs(first, style, centre(1), need0, (spread, span0))
-        .into_iter()
-        .map(|(cost, _, leg)| {
-            let c = leg.centres(style);
-            let mut check = root.emptied();
-            check.push(&leg_folds(&leg, style));
-            Route {
-                cost,
-                legs: vec![Arc::new(leg)],
-                boxes: vec![bbox_of(&c)],
-                centres: vec![Arc::new(c)],
-                check,
-            }
-        })
-        .collect();
+    let way = usize::from(spread);
+    let cells: Vec<u64> = seq.iter().map(|c| memo.cell(c.0)).collect();
+    // the first routing keeps what it finds, the second (with the spread exits) reads it
+    let keep = !spread;
+    let mut beam = first_beam(
+        (first, cells[0], need0, span0),
+        centre(1),
+        style,
+        (root, memo),
+        spread,
+    );
     for (at, &(shape, need, span)) in seq.iter().enumerate().skip(1) {
         let toward = centre(at + 1);
         // only tiles near the cell can block its rows (see [`next_legs`]): the pieces of a
@@ -577,67 +782,80 @@ fn route_beam(
         let cell_box = shape.bbox().inflate(2.0, 2.0);
         // every extension, cheapest first; the overlap test (the costly part) runs only
         // until the beam is full
-        let mut cands: Vec<(f64, f64, usize, Leg, Vec<Point>)> = Vec::new();
+        let key = call_key(1, cells[at], style, toward, need, span);
+        // each route's offers (with their call's id), and every extension: (cost, look-ahead,
+        // route, offer)
+        let mut offered: Vec<(u64, Arc<Offers<NextLeg>>)> = Vec::new();
+        let mut cands: Vec<(f64, f64, usize, usize)> = Vec::new();
         for (i, r) in beam.iter().enumerate() {
-            let Some(prev) = r.legs.last() else { continue };
-            let laid: Vec<Point> = r
-                .centres
-                .iter()
-                .zip(&r.boxes)
-                .filter(|(_, &b)| !far_apart(b, cell_box, 0.0))
-                .flat_map(|(v, _)| v.iter().copied())
-                .collect();
-            for (cost, look, leg, join_tiles) in
-                next_legs(prev, &laid, shape, style, toward, need, (spread, span))
-            {
-                cands.push((r.cost + cost, look, i, leg, join_tiles));
+            let Some(prev) = r.legs.last() else {
+                offered.push((u64::MAX, Arc::new(Offers::default())));
+                continue;
+            };
+            let mut key = key.clone();
+            key.extend(r.id_bits());
+            let (call, offers) = memo.offers(
+                (key, keep),
+                |k| &mut k.next,
+                || {
+                    next_legs(
+                        prev,
+                        &r.laid_near(cell_box),
+                        shape,
+                        style,
+                        toward,
+                        need,
+                        span,
+                    )
+                },
+            );
+            for &j in &offers.ways[way] {
+                let (cost, look, ..) = offers.legs[j];
+                cands.push((r.cost + cost, look, i, j));
             }
+            offered.push((call, offers));
         }
         // ranked with the look-ahead to the next cell; the route keeps the cost alone
         cands.sort_by(|a, b| (a.0 + a.1).total_cmp(&(b.0 + b.1)));
         let mut next: Vec<Route> = Vec::new();
         let mut seen: HashSet<EndKey> = HashSet::new();
-        for (cost, _, i, leg, join_tiles) in cands {
+        for (cost, _, i, j) in cands {
             if next.len() >= BEAM {
                 break;
             }
+            let (call, offers) = &offered[i];
+            let (_, _, leg, join_tiles) = &offers.legs[j];
             // routes that end in the same pose have the same ways on; the cheapest is kept
             // (near-copies would fill the beam with one end: a ring's top cell all in rows
             // ending far from the last cell, none in columns ending at it)
-            let key = end_key(&leg);
+            let key = end_key(leg);
             if seen.contains(&key) {
                 continue;
             }
             let r = &mut beam[i];
-            let mut c = join_tiles;
-            c.extend(leg.centres(style));
-            if overlaps(&r.centres, &r.boxes, &c) {
+            let mut tried = r.id_bits();
+            tried.extend([*call, j as u64]);
+            let extend = || extended(r, leg, join_tiles, style);
+            let Some(took) = memo.tried((tried, keep), extend) else {
                 continue;
-            }
-            // folding is sequential from tile 0: a prefix that collides stays colliding,
-            // so routes are checked as they grow, not only when complete; the check of the
-            // route so far is kept, and only what the leg changes is checked (the parent's
-            // joints are cleared for the longer chain first, once for all its extensions)
-            let folds = leg_folds(&leg, style);
-            r.check.clear_to(r.check.tiles() + folds.len());
-            let mut check = r.check.clone();
-            check.push(&folds);
-            if !check.folds_cleanly() {
-                continue;
-            }
+            };
+            let (check, c, b) = &*took;
             let mut legs = r.legs.clone();
-            legs.push(Arc::new(leg));
+            legs.push(Arc::new(leg.clone()));
             seen.insert(key);
             let mut boxes = r.boxes.clone();
-            boxes.push(bbox_of(&c));
+            boxes.push(*b);
             let mut centres = r.centres.clone();
-            centres.push(Arc::new(c));
+            centres.push(Arc::clone(c));
+            let mut ids = r.ids.clone();
+            ids.push((*call, j));
             next.push(Route {
                 cost,
                 legs,
                 boxes,
                 centres,
-                check,
+                check: check.clone(),
+                ids,
             });
         }
         beam = next;
@@ -646,6 +864,33 @@ fn route_beam(
         }
     }
     beam
+}
+
+/// What route `r` becomes with `leg` (and its join's tiles) added: the fold check of the
+/// longer chain and the leg's tiles with their box; `None` where the leg's tiles overlap
+/// the route's or the longer chain collides when folded in sequence.
+type Extended = Option<Arc<(PrefixCheck, Arc<Vec<Point>>, Rect)>>;
+
+/// [`Extended`] worked out.
+fn extended(r: &mut Route, leg: &Leg, join_tiles: &[Point], style: Style) -> Extended {
+    let mut c = join_tiles.to_vec();
+    c.extend(leg.centres(style));
+    if overlaps(&r.centres, &r.boxes, &c) {
+        return None;
+    }
+    // folding is sequential from tile 0: a prefix that collides stays colliding, so routes
+    // are checked as they grow, not only when complete; the check of the route so far is
+    // kept, and only what the leg changes is checked (the parent's joints are cleared for
+    // the longer chain first, once for all its extensions)
+    let folds = leg_folds(leg, style);
+    r.check.clear_to(r.check.tiles() + folds.len());
+    let mut check = r.check.clone();
+    check.push(&folds);
+    if !check.folds_cleanly() {
+        return None;
+    }
+    let b = bbox_of(&c);
+    Some(Arc::new((check, Arc::new(c), b)))
 }
 
 /// The folds of a leg, its join included.
@@ -665,6 +910,21 @@ fn route_folds(legs: &[Arc<Leg>], style: Style) -> Vec<Fold> {
 }
 
 impl Route {
+    /// The tiles of the pieces of the route whose box meets `near`.
+    fn laid_near(&self, near: Rect) -> Vec<Point> {
+        self.centres
+            .iter()
+            .zip(&self.boxes)
+            .filter(|(_, &b)| !far_apart(b, near, 0.0))
+            .flat_map(|(v, _)| v.iter().copied())
+            .collect()
+    }
+
+    /// The ids of the route's legs ([`LegMemo`]) as bits.
+    fn id_bits(&self) -> Vec<u64> {
+        self.ids.iter().flat_map(|&(c, j)| [c, j as u64]).collect()
+    }
+
     /// The route as a fold word with its frame and counts.
     pub(crate) fn to_routed(&self, style: Style) -> Option<Routed> {
         let first = self.legs.first()?;

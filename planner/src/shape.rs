@@ -63,6 +63,22 @@ pub struct Shape {
     index: std::sync::OnceLock<EdgeIndex>,
 }
 
+impl Shape {
+    /// The shape bit for bit (each path's fill rule, rings and vertices): the same for two
+    /// shapes only if every row query answers them alike.
+    pub(crate) fn bits(&self) -> Vec<u64> {
+        let mut out = Vec::new();
+        for p in &self.paths {
+            out.extend([u64::from(p.even_odd), p.rings.len() as u64]);
+            for r in &p.rings {
+                out.push(r.points.len() as u64);
+                out.extend(r.points.iter().flat_map(|q| [q.x.to_bits(), q.y.to_bits()]));
+            }
+        }
+        out
+    }
+}
+
 impl PartialEq for Shape {
     fn eq(&self, other: &Shape) -> bool {
         self.paths == other.paths
