@@ -599,12 +599,15 @@ pub(crate) struct LegMemo {
     kept: Mutex<Kept>,
 }
 
+/// Calls by their bits (see [`LegMemo`]), each with its id and offers.
+type Calls<T> = HashMap<Vec<u64>, (u64, Arc<Offers<T>>)>;
+
 /// What a [`LegMemo`] holds: cells by their bits, and the offers of each call with its id.
 #[derive(Default)]
 struct Kept {
     cells: HashMap<Vec<u64>, u64>,
-    first: HashMap<Vec<u64>, (u64, Arc<Offers<FirstLeg>>)>,
-    next: HashMap<Vec<u64>, (u64, Arc<Offers<NextLeg>>)>,
+    first: Calls<FirstLeg>,
+    next: Calls<NextLeg>,
     calls: u64,
     /// Each route (its legs' ids) with a leg added, as [`extended`] found it.
     tried: HashMap<Vec<u64>, Extended>,
@@ -630,7 +633,7 @@ impl LegMemo {
     fn offers<T>(
         &self,
         (key, keep): (Vec<u64>, bool),
-        map: fn(&mut Kept) -> &mut HashMap<Vec<u64>, (u64, Arc<Offers<T>>)>,
+        map: fn(&mut Kept) -> &mut Calls<T>,
         make: impl FnOnce() -> Offers<T>,
     ) -> (u64, Arc<Offers<T>>) {
         {
