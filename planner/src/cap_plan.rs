@@ -240,6 +240,11 @@ pub(crate) fn plan_by_caps(
         groups.push(g);
         groups.len() - 1
     });
+    // the slabs cut into their pieces ([`crate::pieces`]), made and sized last, only where
+    // every plan so far leaves a large part empty
+    groups.push(Vec::new());
+    let pieces_at = groups.len() - 1;
+    let mut made: Vec<(f64, Vec<CapPlan>, f64)>;
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
     let mut best: Option<Plan> = None;
@@ -251,7 +256,21 @@ pub(crate) fn plan_by_caps(
                 .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
                 .fold(known_empty, f64::min)
         };
-        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j);
+        let extra = |j: usize| {
+            joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j) || j == pieces_at
+        };
+        let axes = if i == pieces_at {
+            if least() <= large {
+                continue;
+            }
+            made = crate::pieces::piece_group(shape, all_axes, style).unwrap_or_default();
+            &made
+        } else {
+            axes
+        };
+        if axes.is_empty() {
+            continue;
+        }
         if extra(i) {
             // sized where every plan so far leaves a part empty (issue 26's measure)
             if least() <= MIN_EMPTY_TILES {
