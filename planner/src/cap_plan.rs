@@ -203,47 +203,14 @@ pub(crate) fn plan_by_caps(
     (known_empty, known_inside): (f64, f64),
 ) -> Result<Plan, CellFailure> {
     let min_inside = MIN_SLAB_INSIDE.min(known_inside.max(LEAST_SLAB_INSIDE));
-    let (caps, slabs) = caps_and_slabs(all_axes);
-    // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
-    // last like the other added groups
-    let grown = crate::lobes::grown_group(&caps);
-    // the decompositions chosen with their joins priced: the cheapest of them (over the
-    // axes) sized in a slot of its own, after the first slab groups
-    let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
-    joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
-    slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
-    // the cheapest decomposition of an axis that none of the first groups sweeps, taken
-    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`]);
-    // the others truncated as without it
-    let other = other_axis(&mut slabs);
-    let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
-    let first_slab = usize::from(!caps.is_empty());
-    if !caps.is_empty() {
-        groups.push(caps);
-    }
-    let first = slabs.len().min(SLAB_GROUPS);
-    let rest = slabs.split_off(first);
-    groups.extend(slabs.into_iter().map(|g| vec![g]));
-    // the cheapest and the next (the cheapest's laid in the order their joins were priced
-    // for, sized only where they leave less empty, see [`crate::slabs`])
-    // and the cheapest on an axis neither of those sweeps, sized after them like them
-    let taken = JOINED_GROUPS + usize::from(other_joined(&mut joined));
-    let joined_at = groups.len()..groups.len() + joined.len().min(taken);
-    groups.extend(joined.into_iter().take(taken).map(|g| vec![g]));
-    groups.extend(rest.into_iter().map(|g| vec![g]));
-    // the other axis' last: offered only where it leaves less empty than every plan found
-    let other_at = other.map(|g| {
-        groups.push(vec![g]);
-        groups.len() - 1
-    });
-    let grown_at = grown.map(|g| {
-        groups.push(g);
-        groups.len() - 1
-    });
-    // the slabs cut into their pieces ([`crate::pieces`]), made and sized last, only where
-    // every plan so far leaves a large part empty
-    groups.push(Vec::new());
-    let pieces_at = groups.len() - 1;
+    let (groups, slots) = group_slots(all_axes);
+    let Slots {
+        first_slab,
+        joined_at,
+        other_at,
+        grown_at,
+        pieces_at,
+    } = slots;
     let mut made: Vec<(f64, Vec<CapPlan>, f64)>;
     let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
     let mut failed = Failed::new(asked);
@@ -330,6 +297,78 @@ pub(crate) fn plan_by_caps(
             None => Err(("no cap decomposition".into(), None)),
         },
     }
+}
+
+/// Where [`plan_by_caps`]'s groups of decompositions added for the part left empty sit.
+struct Slots {
+    /// The first slab group's index (after the caps' group, if any).
+    first_slab: usize,
+    /// The join-priced slab groups.
+    joined_at: std::ops::Range<usize>,
+    /// The other axis' group.
+    other_at: Option<usize>,
+    /// The caps grown over their lobes.
+    grown_at: Option<usize>,
+    /// The slabs cut into their pieces ([`crate::pieces`]): an empty slot, filled when
+    /// it is reached and sized.
+    pieces_at: usize,
+}
+
+/// The groups [`plan_by_caps`] sizes in turn, from `all_axes`, and where the added ones sit.
+fn group_slots(
+    all_axes: &[(f64, Vec<CapPlan>, f64)],
+) -> (Vec<Vec<(f64, Vec<CapPlan>, f64)>>, Slots) {
+    let (caps, slabs) = caps_and_slabs(all_axes);
+    // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
+    // last like the other added groups
+    let grown = crate::lobes::grown_group(&caps);
+    // the decompositions chosen with their joins priced: the cheapest of them (over the
+    // axes) sized in a slot of its own, after the first slab groups
+    let (mut joined, mut slabs): (Vec<_>, Vec<_>) = slabs.into_iter().partition(|g| g.1[0].joined);
+    joined.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
+    slabs.sort_by(|x, y| x.1[0].cost.total_cmp(&y.1[0].cost));
+    // the cheapest decomposition of an axis that none of the first groups sweeps, taken
+    // out to be sized in a slot of its own after all the others ([`OTHER_AXIS_GROUPS`]);
+    // the others truncated as without it
+    let other = other_axis(&mut slabs);
+    let mut groups: Vec<Vec<(f64, Vec<CapPlan>, f64)>> = Vec::new();
+    let first_slab = usize::from(!caps.is_empty());
+    if !caps.is_empty() {
+        groups.push(caps);
+    }
+    let first = slabs.len().min(SLAB_GROUPS);
+    let rest = slabs.split_off(first);
+    groups.extend(slabs.into_iter().map(|g| vec![g]));
+    // the cheapest and the next (the cheapest's laid in the order their joins were priced
+    // for, sized only where they leave less empty, see [`crate::slabs`])
+    // and the cheapest on an axis neither of those sweeps, sized after them like them
+    let taken = JOINED_GROUPS + usize::from(other_joined(&mut joined));
+    let joined_at = groups.len()..groups.len() + joined.len().min(taken);
+    groups.extend(joined.into_iter().take(taken).map(|g| vec![g]));
+    groups.extend(rest.into_iter().map(|g| vec![g]));
+    // the other axis' last: offered only where it leaves less empty than every plan found
+    let other_at = other.map(|g| {
+        groups.push(vec![g]);
+        groups.len() - 1
+    });
+    let grown_at = grown.map(|g| {
+        groups.push(g);
+        groups.len() - 1
+    });
+    // the slabs cut into their pieces ([`crate::pieces`]), made and sized last, only where
+    // every plan so far leaves a large part empty
+    groups.push(Vec::new());
+    let pieces_at = groups.len() - 1;
+    (
+        groups,
+        Slots {
+            first_slab,
+            joined_at,
+            other_at,
+            grown_at,
+            pieces_at,
+        },
+    )
 }
 
 /// What a group's width search `found` is offered as, after the rules of

@@ -175,3 +175,53 @@ pub(crate) fn piece_group(
         .collect();
     (!group.is_empty()).then_some(group)
 }
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use crate::rows::TIGHT;
+    use crate::shape::Ring;
+    use crate::slabs::tests::poly;
+    use kurbo::{Point, Rect};
+
+    /// A square frame, 30 tile widths across around a hole of 10: the slabs beside the
+    /// hole are cut into the parts above and below it, each a cell of its own, and the
+    /// cells cover the frame once (no two overlap, none holds the hole).
+    #[test]
+    fn a_frame_is_cut_into_the_pieces_beside_its_hole() {
+        let ring = |p: &[(f64, f64)]| Ring {
+            points: p.iter().map(|&q| Point::from(q)).collect(),
+        };
+        let frame = Shape::from_rings(vec![
+            ring(&[(0.0, 0.0), (30.0, 0.0), (30.0, 30.0), (0.0, 30.0)]),
+            ring(&[(10.0, 10.0), (10.0, 20.0), (20.0, 20.0), (20.0, 10.0)]),
+        ]);
+        assert!((frame.area() - 800.0).abs() < 1e-6, "{}", frame.area());
+        let plans = piece_plans(&frame, TIGHT);
+        assert!(!plans.is_empty());
+        for p in &plans {
+            assert!(p.cells.len() >= 4, "{p:?}");
+            let area: f64 = p.cells.iter().map(|c| frame.clipped(c.rect).area()).sum();
+            assert!(
+                (area - 800.0).abs() < 20.0,
+                "the cells cover it once: {area} {p:?}"
+            );
+            for c in &p.cells {
+                let hole = Rect::new(10.5, 10.5, 19.5, 19.5);
+                assert!(c.rect.intersect(hole).area() < 1e-9, "{c:?}");
+            }
+        }
+        // each decomposition in both orders
+        let rev: Vec<_> = plans[1].cells.iter().rev().map(|c| c.rect).collect();
+        let fwd: Vec<_> = plans[0].cells.iter().map(|c| c.rect).collect();
+        assert_eq!(rev, fwd);
+    }
+
+    /// A convex shape has no slab of two pieces.
+    #[test]
+    fn a_square_has_no_pieces() {
+        let s = poly(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)]);
+        assert!(piece_plans(&s, TIGHT).is_empty());
+    }
+}
