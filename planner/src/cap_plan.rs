@@ -265,6 +265,7 @@ pub(crate) fn plan_by_caps(
             before,
             min_inside,
             budgeted: slabs || grown_at == Some(i),
+            pieces: i == pieces_at,
         };
         let found = size_group(shape, opts, style, name, axes, bar, &mut here);
         let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
@@ -524,6 +525,9 @@ struct SlabBar {
     /// The group's width search is held to the slab groups' budget
     /// ([`SLAB_SEARCH_TILES`]): a group of slabs, or of caps grown over their lobes.
     budgeted: bool,
+    /// The group is of slabs cut into their pieces ([`crate::pieces`]): given up at its
+    /// first width like a grown group ([`SlabBar::grown_hopeless`]).
+    pieces: bool,
 }
 
 impl SlabBar {
@@ -547,7 +551,7 @@ impl SlabBar {
             .map(|p| p.metrics.largest_empty_tiles)
             .chain(least_empty)
             .fold(f64::INFINITY, f64::min);
-        self.budgeted && !self.slabs && least >= self.before
+        self.budgeted && (!self.slabs || self.pieces) && least >= self.before
     }
 
     /// Whether a plan of the group whose largest part left empty is `empty` (its own tile
@@ -687,7 +691,8 @@ fn size_group(
         let hopeless_above = |above: f64| {
             least_empty.is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(above))
         };
-        if slabs && std::mem::take(&mut at_start) && plans.is_empty() {
+        let first_width = std::mem::take(&mut at_start);
+        if slabs && first_width && plans.is_empty() {
             let before = if bar.joined || bar.before.is_finite() {
                 bar.before
             } else {
@@ -700,7 +705,7 @@ fn size_group(
             // searched on for that alone: a few widths more ([`RESCUED_WIDTHS`])
             rescued = hopeless_above(if bar.joined { bar.before } else { 0.0 });
         }
-        if !slabs && std::mem::take(&mut at_start) && bar.grown_hopeless(&plans, least_empty) {
+        if (!slabs || bar.pieces) && first_width && bar.grown_hopeless(&plans, least_empty) {
             failed.merge(here);
             return Attempt::Nothing;
         }
