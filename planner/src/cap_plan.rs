@@ -300,6 +300,9 @@ pub(crate) fn plan_by_caps(
     }
 }
 
+/// A group of decompositions sized together: `(axis, decompositions, width)` per axis.
+type Group = Vec<(f64, Vec<CapPlan>, f64)>;
+
 /// Where [`plan_by_caps`]'s groups of decompositions added for the part left empty sit.
 struct Slots {
     /// The first slab group's index (after the caps' group, if any).
@@ -316,9 +319,7 @@ struct Slots {
 }
 
 /// The groups [`plan_by_caps`] sizes in turn, from `all_axes`, and where the added ones sit.
-fn group_slots(
-    all_axes: &[(f64, Vec<CapPlan>, f64)],
-) -> (Vec<Vec<(f64, Vec<CapPlan>, f64)>>, Slots) {
+fn group_slots(all_axes: &[(f64, Vec<CapPlan>, f64)]) -> (Vec<Group>, Slots) {
     let (caps, slabs) = caps_and_slabs(all_axes);
     // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
     // last like the other added groups
