@@ -98,10 +98,13 @@ fn check_reference(run: &ReferenceRun, check: &CheckOptions) -> Result<Summary, 
         })
         .collect();
     let schedule = FoldSchedule { tracks };
-    let (collision, undecided) =
-        schedule_verdict(&word, &schedule, check, w).map_err(ReferenceError::Schedule)?;
+    let (verdict, clearance) = rayon::join(
+        || schedule_verdict(&word, &schedule, check, w),
+        || clearance(&word, &schedule, check, w),
+    );
+    let (collision, undecided) = verdict.map_err(ReferenceError::Schedule)?;
     summary = overrule(summary, collision, undecided);
-    summary.clearance = clearance(&word, &schedule, check, w);
+    summary.clearance = clearance;
     Ok(summary)
 }
 
@@ -233,7 +236,11 @@ fn check_timeline(tl: &Timeline, check: &CheckOptions) -> Result<Checked, Engine
         return Ok((None, None, None));
     }
     let (word, schedule, w) = (folded_word(tl), fold_schedule(tl), tl.geometry.w);
-    let (collision, undecided) =
-        schedule_verdict(&word, &schedule, check, w).map_err(EngineError::Schedule)?;
-    Ok((collision, undecided, clearance(&word, &schedule, check, w)))
+    // the verdict and the clearance side by side (on two cores where there are two)
+    let (verdict, clearance) = rayon::join(
+        || schedule_verdict(&word, &schedule, check, w),
+        || clearance(&word, &schedule, check, w),
+    );
+    let (collision, undecided) = verdict.map_err(EngineError::Schedule)?;
+    Ok((collision, undecided, clearance))
 }

@@ -22,6 +22,8 @@
 //! of tiles. The cost is the number of runs near the turning joints, times the segments: about
 //! linear in the chain, times the joints turning at once.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use kurbo::Point;
 use rustc_hash::FxHashSet;
 
@@ -44,6 +46,10 @@ const WINDOW_TURN: f64 = 1.0 / 256.0;
 /// The joints looked at are counted below every multiple of `1 << RANK_SHIFT` tiles once a
 /// look ([`Search::rank`]): 64.
 const RANK_SHIFT: u32 = 6;
+
+/// A look's visits between two offers of its remaining pairs of runs to a second core: 1,024
+/// (some tens of microseconds, far above what [`rayon::join`] costs).
+const SPLIT_VISITS: usize = 1024;
 
 /// The pairs `(i, j)`, `j >= i + 2`, ascending, that may come within `cutoff` tile widths
 /// of each other (signed distance, negative for an overlap) at some moment from `t0` to the
@@ -316,75 +322,148 @@ impl Search {
             node: 1,
             pose: Rigid::IDENTITY,
         };
-        // (p, q, whether p == q)
-        let mut stack: Vec<(Run, Run, bool)> = vec![(root, root, true)];
-        while let Some((p, q, same)) = stack.pop() {
-            self.work += 1;
-            if self.work > self.budget {
-                return None;
-            }
-            let (pf, pl) = (self.tree.first(p.node), self.tree.last(p.node));
-            let (qf, ql) = (self.tree.first(q.node), self.tree.last(q.node));
-            if same {
-                if self.tree.tile(p.node).is_some() || !self.any(pf, pl) {
-                    continue;
+        let total = AtomicUsize::new(self.work);
+        let mut found = std::mem::take(&mut self.found);
+        let done = self.descend(vec![(root, root, true)], dt, &total, &mut found);
+        self.found = found;
+        self.work = total.into_inner();
+        (done.is_some() && self.work <= self.budget).then_some(())
+    }
+
+    /// Adds to `found` the pairs of tiles found below the pairs of runs `stack` (`(p, q,
+    /// whether p == q)`), each pair of runs visited counted into `total`; `None` once
+    /// `total` passes the budget. Every [`SPLIT_VISITS`] visits the runs still to visit are
+    /// dealt out to two halves visited by [`rayon::join`] (on a second core where there is
+    /// one): which pairs of runs are visited, and so what is found and counted, does not
+    /// depend on the order.
+    fn descend(
+        &self,
+        mut stack: Vec<(Run, Run, bool)>,
+        dt: f64,
+        total: &AtomicUsize,
+        found: &mut FxHashSet<u64>,
+    ) -> Option<()> {
+        let mut visits = 0;
+        while let Some(entry) = stack.pop() {
+            visits += 1;
+            if visits == SPLIT_VISITS {
+                let before = total.fetch_add(visits, Ordering::Relaxed);
+                if before + visits > self.budget {
+                    return None;
                 }
-                let kids: Vec<Run> = self
-                    .tree
-                    .children(p.node, &p.pose)
-                    .map(|(node, pose)| Run { node, pose })
-                    .collect();
-                for (x, &a) in kids.iter().enumerate() {
-                    stack.push((a, a, true));
-                    for &b in &kids[x + 1..] {
-                        stack.push((a, b, false));
+                visits = 0;
+                if stack.len() >= 2 && rayon::current_num_threads() > 1 {
+                    self.visit(entry, dt, &mut stack, found);
+                    // alternate entries: both halves take some of the runs near the root
+                    let (mut a, mut b) = (Vec::new(), Vec::new());
+                    for (x, e) in stack.drain(..).enumerate() {
+                        if x % 2 == 0 {
+                            a.push(e)
+                        } else {
+                            b.push(e)
+                        }
                     }
+                    let mut other = FxHashSet::default();
+                    let (da, db) = rayon::join(
+                        || self.descend(a, dt, total, found),
+                        || self.descend(b, dt, total, &mut other),
+                    );
+                    found.extend(other);
+                    return da.and(db);
                 }
-                continue;
             }
-            if !self.any(pf, ql) {
-                continue;
+            self.visit(entry, dt, &mut stack, found);
+        }
+        let before = total.fetch_add(visits, Ordering::Relaxed);
+        (before + visits <= self.budget).then_some(())
+    }
+
+    /// Visits the pair of runs `(p, q, whether p == q)`: drops it, records it (two tiles
+    /// not neighbours) into `found`, or pushes its halves onto `stack`.
+    #[inline(always)]
+    fn visit(
+        &self,
+        (p, q, same): (Run, Run, bool),
+        dt: f64,
+        stack: &mut Vec<(Run, Run, bool)>,
+        found: &mut FxHashSet<u64>,
+    ) {
+        let (pf, pl) = (self.tree.first(p.node), self.tree.last(p.node));
+        let (qf, ql) = (self.tree.first(q.node), self.tree.last(q.node));
+        if same {
+            if self.tree.tile(p.node).is_some() || !self.any(pf, pl) {
+                return;
             }
-            let (cp, rp) = self.disc(&p);
-            let (cq, rq) = self.disc(&q);
+            let kids: Vec<Run> = self
+                .tree
+                .children(p.node, &p.pose)
+                .map(|(node, pose)| Run { node, pose })
+                .collect();
+            for (x, &a) in kids.iter().enumerate() {
+                stack.push((a, a, true));
+                for &b in &kids[x + 1..] {
+                    stack.push((a, b, false));
+                }
+            }
+            return;
+        }
+        // the joints looked at from p's first tile to q's last: active[a..d]
+        let (a, d) = (self.rank(pf), self.rank(ql));
+        if d <= a {
+            return;
+        }
+        let (cp, rp) = self.disc(&p);
+        let (cq, rq) = self.disc(&q);
+        let dist = (cp - cq).hypot();
+        let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
+        // the pair is dropped when it stays apart by more than the cutoff (never when the
+        // discs come within it already: both bounds on the motion are at least 0)
+        let room = dist - rp - rq - round - self.cutoff;
+        if room > 0.0 {
+            let (b, c) = (self.rank(pl), self.rank(qf));
             // how far q moves seen from p's first tile, and p's tiles seen from it: along
             // the chain first, then from where the turning joints' hinges lie
             let (ep, eq) = (
-                2.0 * self.radius * dt * self.lever(pf, pl, pl),
-                2.0 * self.radius * dt * self.lever(pf, ql, ql),
+                2.0 * self.radius * dt * self.lever(a, b, pl),
+                2.0 * self.radius * dt * self.lever(a, d, ql),
             );
-            let dist = (cp - cq).hypot();
-            let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
-            // the pair is dropped when it stays apart by more than the cutoff
-            let room = dist - rp - rq - round - self.cutoff;
             if room > ep + eq {
-                continue;
+                return;
             }
-            if room > 0.0 && self.reach([pf, pl, qf, ql], (rp, rq), (cq, dist), (ep, eq), dt) < room
-            {
-                continue;
+            if self.reach([a, b, c, d], (rp, rq), (cq, dist), (ep, eq), dt) < room {
+                return;
             }
-            match (self.tree.tile(p.node), self.tree.tile(q.node)) {
-                (Some(i), Some(j)) => {
-                    if j >= i + 2 {
-                        self.found.insert(((i as u64) << 32) | j as u64);
-                    }
+        }
+        match (self.tree.tile(p.node), self.tree.tile(q.node)) {
+            (Some(i), Some(j)) => {
+                if j >= i + 2 {
+                    found.insert(((i as u64) << 32) | j as u64);
                 }
-                (pt, qt) => {
-                    let split_p = qt.is_some() || (pt.is_none() && rp >= rq);
-                    if split_p {
-                        for (node, pose) in self.tree.children(p.node, &p.pose) {
-                            stack.push((Run { node, pose }, q, false));
-                        }
-                    } else {
-                        for (node, pose) in self.tree.children(q.node, &q.pose) {
-                            stack.push((p, Run { node, pose }, false));
-                        }
+            }
+            (pt, qt) => {
+                // where the joints looked at between p's first tile and q's last lie: all
+                // inside q, the tiles of q before the first are rigid with p (a pair of them
+                // is looked at when it changes), so q is split and its part before that
+                // joint dropped; all inside p, likewise p and its part after the last. Else
+                // the larger run is split.
+                let split_p = if qt.is_none() && self.active[a] >= qf {
+                    false
+                } else if pt.is_none() && self.active[d - 1] < pl {
+                    true
+                } else {
+                    qt.is_some() || (pt.is_none() && rp >= rq)
+                };
+                if split_p {
+                    for (node, pose) in self.tree.children(p.node, &p.pose) {
+                        stack.push((Run { node, pose }, q, false));
+                    }
+                } else {
+                    for (node, pose) in self.tree.children(q.node, &q.pose) {
+                        stack.push((p, Run { node, pose }, false));
                     }
                 }
             }
         }
-        Some(())
     }
 
     /// How far the tiles of run `q` can move towards those of run `p` over `dt` seconds
@@ -398,16 +477,15 @@ impl Search {
     /// last of `q` moves at most that much seen from `p`'s first tile), and likewise for the
     /// joints inside `p` moving its own tiles. Each part is never taken above its bound along
     /// the chain (`ep`, `eq`); the joints between are summed only until that bound is
-    /// reached.
+    /// reached. `[a, b, c, d]` are the ranks ([`Search::rank`]) of `pf`, `pl`, `qf`, `ql`.
     fn reach(
         &self,
-        [pf, pl, qf, ql]: [usize; 4],
+        [a, b, c, d]: [usize; 4],
         (rp, rq): (f64, f64),
         (cq, dist): (Point, f64),
         (ep, eq): (f64, f64),
         dt: f64,
     ) -> f64 {
-        let (a, b, c, d) = (self.rank(pf), self.rank(pl), self.rank(qf), self.rank(ql));
         // the joints inside p, between, inside q: active[a..b], [b..c], [c..d]
         let spin = |u: usize, v: usize| self.spin[v] - self.spin[u];
         let inside_p = spin(a, b) * (dist + rp + rq + 2.0 * eq);
@@ -439,9 +517,9 @@ impl Search {
         a < self.active.len() && self.active[a] < hi
     }
 
-    /// `sum |rate_k| (to - k)` over the joints looked at in `lo..hi`.
-    fn lever(&self, lo: usize, hi: usize, to: usize) -> f64 {
-        let (a, b) = (self.rank(lo), self.rank(hi));
+    /// `sum |rate_k| (to - k)` over the joints looked at `active[a..b]` (those in `lo..hi`
+    /// for `a` and `b` their ranks).
+    fn lever(&self, a: usize, b: usize, to: usize) -> f64 {
         if b <= a {
             return 0.0;
         }
