@@ -394,15 +394,17 @@ impl Search {
             if self.tree.tile(p.node).is_some() || !self.any(pf, pl) {
                 return;
             }
-            let kids: Vec<Run> = self
+            // an inner node's children: its left one and, unless past the chain's end, its
+            // right one (no allocation: a look splits some hundreds of runs)
+            let mut kids = self
                 .tree
                 .children(p.node, &p.pose)
-                .map(|(node, pose)| Run { node, pose })
-                .collect();
-            for (x, &a) in kids.iter().enumerate() {
+                .map(|(node, pose)| Run { node, pose });
+            if let Some(a) = kids.next() {
                 stack.push((a, a, true));
-                for &b in &kids[x + 1..] {
+                if let Some(b) = kids.next() {
                     stack.push((a, b, false));
+                    stack.push((b, b, true));
                 }
             }
             return;
