@@ -204,6 +204,123 @@ pub(crate) fn plan_by_caps(
     (known_empty, known_inside): (f64, f64),
 ) -> Result<Plan, CellFailure> {
     let min_inside = MIN_SLAB_INSIDE.min(known_inside.max(LEAST_SLAB_INSIDE));
+    let (groups, slots) = group_slots(all_axes);
+    let Slots {
+        first_slab,
+        joined_at,
+        other_at,
+        grown_at,
+        pieces_at,
+    } = slots;
+    let mut made: Vec<(f64, Vec<CapPlan>, f64)>;
+    let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
+    let mut failed = Failed::new(asked);
+    let mut best: Option<Plan> = None;
+    let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
+    for (i, axes) in groups.iter().enumerate() {
+        let least = || {
+            best.iter()
+                .map(|b| b.metrics.largest_empty_tiles)
+                .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
+                .fold(known_empty, f64::min)
+        };
+        let extra = |j: usize| {
+            joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j) || j == pieces_at
+        };
+        let axes = if i == pieces_at {
+            if least() <= large {
+                continue;
+            }
+            made = crate::pieces::piece_group(shape, all_axes, style).unwrap_or_default();
+            &made
+        } else {
+            axes
+        };
+        if axes.is_empty() {
+            continue;
+        }
+        if extra(i) {
+            // sized where every plan so far leaves a part empty (issue 26's measure)
+            if least() <= MIN_EMPTY_TILES {
+                continue;
+            }
+        } else if i >= first_slab + SLAB_GROUPS + (0..i).filter(|&j| extra(j)).count()
+            && least() <= large
+        {
+            // (least() only falls: the later slab groups are passed over too)
+            continue;
+        }
+        let slabs = axes
+            .iter()
+            .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
+        let mut here = Failed::new(asked);
+        let before = least();
+        // its routes rejected for an empty part rank by how far they fall short of the
+        // asked chain, the count's miss and the part left empty in one price ([`Asked`]);
+        // a slab group is given up at its first width only if it leaves more empty than
+        // every plan so far too, and its plans under the inside bar are weighed against
+        // that least part ([`SlabBar`])
+        let bar = SlabBar {
+            slabs,
+            joined: joined_at.contains(&i),
+            before,
+            min_inside,
+            budgeted: slabs || grown_at == Some(i),
+            pieces: i == pieces_at,
+        };
+        let found = size_group(shape, opts, style, name, axes, bar, &mut here);
+        let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
+        failed.merge(here);
+        if let Some(p) = found {
+            if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
+                best = Some(p);
+            }
+        }
+    }
+    // a plan off the count yields to a rejected one nearer it that falls less short of
+    // the asked chain ([`Asked::prefers_rejected`])
+    let best = best.filter(|b| {
+        !failed
+            .rejected
+            .as_ref()
+            .is_some_and(|(_, r)| asked.prefers_rejected(r, b))
+    });
+    match best {
+        Some(p) => Ok(p),
+        None => match failed.rejected {
+            Some((text, r)) => Err((text, Some(r))),
+            None if !failed.collide.is_empty() => Err((
+                format!(
+                    "every cap route collides when folded (first: {})",
+                    failed.collide
+                ),
+                None,
+            )),
+            None => Err(("no cap decomposition".into(), None)),
+        },
+    }
+}
+
+/// A group of decompositions sized together: `(axis, decompositions, width)` per axis.
+type Group = Vec<(f64, Vec<CapPlan>, f64)>;
+
+/// Where [`plan_by_caps`]'s groups of decompositions added for the part left empty sit.
+struct Slots {
+    /// The first slab group's index (after the caps' group, if any).
+    first_slab: usize,
+    /// The join-priced slab groups.
+    joined_at: std::ops::Range<usize>,
+    /// The other axis' group.
+    other_at: Option<usize>,
+    /// The caps grown over their lobes.
+    grown_at: Option<usize>,
+    /// The slabs cut into their pieces ([`crate::pieces`]): an empty slot, filled when
+    /// it is reached and sized.
+    pieces_at: usize,
+}
+
+/// The groups [`plan_by_caps`] sizes in turn, from `all_axes`, and where the added ones sit.
+fn group_slots(all_axes: &[(f64, Vec<CapPlan>, f64)]) -> (Vec<Group>, Slots) {
     let (caps, slabs) = caps_and_slabs(all_axes);
     // the caps with a row cell grown over the lobes beside it ([`crate::lobes`]), sized
     // last like the other added groups
@@ -241,77 +358,20 @@ pub(crate) fn plan_by_caps(
         groups.push(g);
         groups.len() - 1
     });
-    let asked = Asked::new(opts, shape.area(), opts.tiles.unwrap_or(DEFAULT_TILES));
-    let mut failed = Failed::new(asked);
-    let mut best: Option<Plan> = None;
-    let large = MORE_SLABS_EMPTY * opts.tiles.unwrap_or(DEFAULT_TILES) as f64;
-    for (i, axes) in groups.iter().enumerate() {
-        let least = || {
-            best.iter()
-                .map(|b| b.metrics.largest_empty_tiles)
-                .chain(failed.rejected.iter().map(|r| r.1.empty.tiles))
-                .fold(known_empty, f64::min)
-        };
-        let extra = |j: usize| joined_at.contains(&j) || other_at == Some(j) || grown_at == Some(j);
-        if extra(i) {
-            // sized where every plan so far leaves a part empty (issue 26's measure)
-            if least() <= MIN_EMPTY_TILES {
-                continue;
-            }
-        } else if i >= first_slab + SLAB_GROUPS + (0..i).filter(|&j| extra(j)).count()
-            && least() <= large
-        {
-            // (least() only falls: the later slab groups are passed over too)
-            continue;
-        }
-        let slabs = axes
-            .iter()
-            .any(|(_, plans, _)| plans.iter().any(|q| q.slabs));
-        let mut here = Failed::new(asked);
-        let before = least();
-        // its routes rejected for an empty part rank by how far they fall short of the
-        // asked chain, the count's miss and the part left empty in one price ([`Asked`]);
-        // a slab group is given up at its first width only if it leaves more empty than
-        // every plan so far too, and its plans under the inside bar are weighed against
-        // that least part ([`SlabBar`])
-        let bar = SlabBar {
-            slabs,
-            joined: joined_at.contains(&i),
-            before,
-            min_inside,
-            budgeted: slabs || grown_at == Some(i),
-        };
-        let found = size_group(shape, opts, style, name, axes, bar, &mut here);
-        let found = offered(shape, opts, found, &mut here, (extra(i), slabs, before));
-        failed.merge(here);
-        if let Some(p) = found {
-            if best.as_ref().is_none_or(|b| rank(opts, &p, b).is_lt()) {
-                best = Some(p);
-            }
-        }
-    }
-    // a plan off the count yields to a rejected one nearer it that falls less short of
-    // the asked chain ([`Asked::prefers_rejected`])
-    let best = best.filter(|b| {
-        !failed
-            .rejected
-            .as_ref()
-            .is_some_and(|(_, r)| asked.prefers_rejected(r, b))
-    });
-    match best {
-        Some(p) => Ok(p),
-        None => match failed.rejected {
-            Some((text, r)) => Err((text, Some(r))),
-            None if !failed.collide.is_empty() => Err((
-                format!(
-                    "every cap route collides when folded (first: {})",
-                    failed.collide
-                ),
-                None,
-            )),
-            None => Err(("no cap decomposition".into(), None)),
+    // the slabs cut into their pieces ([`crate::pieces`]), made and sized last, only where
+    // every plan so far leaves a large part empty
+    groups.push(Vec::new());
+    let pieces_at = groups.len() - 1;
+    (
+        groups,
+        Slots {
+            first_slab,
+            joined_at,
+            other_at,
+            grown_at,
+            pieces_at,
         },
-    }
+    )
 }
 
 /// What a group's width search `found` is offered as, after the rules of
@@ -467,6 +527,12 @@ struct SlabBar {
     /// The group's width search is held to the slab groups' budget
     /// ([`SLAB_SEARCH_TILES`]): a group of slabs, or of caps grown over their lobes.
     budgeted: bool,
+    /// The group is of slabs cut into their pieces ([`crate::pieces`]): given up at its
+    /// first width like a grown group ([`SlabBar::grown_hopeless`]), and its cells routed
+    /// once (not again with more exits per cell: its decompositions are many, up to 24,
+    /// of up to 16 cells; routed again too, the gear at 3000 tiles leaves 435 tile areas
+    /// empty where it leaves 510, at twice the group's CPU).
+    pieces: bool,
 }
 
 impl SlabBar {
@@ -490,7 +556,7 @@ impl SlabBar {
             .map(|p| p.metrics.largest_empty_tiles)
             .chain(least_empty)
             .fold(f64::INFINITY, f64::min);
-        self.budgeted && !self.slabs && least >= self.before
+        self.budgeted && (!self.slabs || self.pieces) && least >= self.before
     }
 
     /// Whether a plan of the group whose largest part left empty is `empty` (its own tile
@@ -619,7 +685,7 @@ fn size_group(
         // too: added to the cheapest routes, never in their place, and routed only where
         // those leave a part empty (the work doubles there at most)
         let fills = |p: &Plan| miss(p.tiles) == 0 && p.metrics.largest_empty_tiles == 0.0;
-        if !plans.iter().any(fills) {
+        if !bar.pieces && !plans.iter().any(fills) {
             let mut more = routed(true);
             more.retain(|(a, r)| !routes.iter().any(|(b, q)| a == b && q.word == r.word));
             plans.extend(check(&more, &mut here));
@@ -630,7 +696,8 @@ fn size_group(
         let hopeless_above = |above: f64| {
             least_empty.is_none_or(|e| e > (SLAB_HOPELESS_EMPTY * target as f64).max(above))
         };
-        if slabs && std::mem::take(&mut at_start) && plans.is_empty() {
+        let first_width = std::mem::take(&mut at_start);
+        if slabs && first_width && plans.is_empty() {
             let before = if bar.joined || bar.before.is_finite() {
                 bar.before
             } else {
@@ -643,7 +710,7 @@ fn size_group(
             // searched on for that alone: a few widths more ([`RESCUED_WIDTHS`])
             rescued = hopeless_above(if bar.joined { bar.before } else { 0.0 });
         }
-        if !slabs && std::mem::take(&mut at_start) && bar.grown_hopeless(&plans, least_empty) {
+        if (!slabs || bar.pieces) && first_width && bar.grown_hopeless(&plans, least_empty) {
             failed.merge(here);
             return Attempt::Nothing;
         }

@@ -52,6 +52,7 @@ mod narrow;
 mod near_widths;
 mod options;
 mod parts;
+mod pieces;
 mod plan;
 mod plan_shape;
 mod pockets;

@@ -247,7 +247,7 @@ fn assemble(
 /// cut: where the runs of a line differ in number from the line before or an end moves by
 /// more than a tile; at most [`MAX_CUTS`], the largest changes, at least a tile from the
 /// box's sides and from each other, in order.
-fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool, middles: bool) -> Vec<usize> {
+pub(crate) fn critical_cuts(s: &Search<'_>, b: PBox, across_x: bool, middles: bool) -> Vec<usize> {
     let tile = s.raster().per_tile();
     let min = tile.ceil() as usize;
     let (lo, hi, alo, ahi) = if across_x {
@@ -369,7 +369,12 @@ fn entry_price(s: &Search<'_>, across_x: bool, cut: usize, a: (PBox, Dir), b: (P
 /// (the stacking direction of its rows): the row programme's least cost over the lattice
 /// phases, plus the area the rows of `style` would cover were they perfect (so that a slab
 /// filled as well as rows can fill costs about its turns), in tile areas.
-fn slab_price(axis_shape: &Shape, s: &Search<'_>, t: PBox, style: Style) -> Vec<(f64, Dir)> {
+pub(crate) fn slab_price(
+    axis_shape: &Shape,
+    s: &Search<'_>,
+    t: PBox,
+    style: Style,
+) -> Vec<(f64, Dir)> {
     let cell = axis_shape.clipped(s.rect(t));
     let ideal = cell.area() * tile_area() / style.pitch;
     let mut out: Vec<(f64, Dir)> = Vec::new();

@@ -416,24 +416,30 @@ impl Search {
         }
         let (cp, rp) = self.disc(&p);
         let (cq, rq) = self.disc(&q);
-        let dist = (cp - cq).hypot();
-        let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
-        // the pair is dropped when it stays apart by more than the cutoff (never when the
-        // discs come within it already: both bounds on the motion are at least 0)
-        let room = dist - rp - rq - round - self.cutoff;
-        if room > 0.0 {
-            let (b, c) = (self.rank(pl), self.rank(qf));
-            // how far q moves seen from p's first tile, and p's tiles seen from it: along
-            // the chain first, then from where the turning joints' hinges lie
-            let (ep, eq) = (
-                2.0 * self.radius * dt * self.lever(a, b, pl),
-                2.0 * self.radius * dt * self.lever(a, d, ql),
-            );
-            if room > ep + eq {
-                return;
-            }
-            if self.reach([a, b, c, d], (rp, rq), (cq, dist), (ep, eq), dt) < room {
-                return;
+        // the pair is dropped when it stays apart by more than the cutoff, never when the
+        // discs come within it already (both bounds on the motion are at least 0): those
+        // are told first without a square root (a split is always safe, so a pair on the
+        // rounding's edge may be split where it could have been dropped)
+        let near = rp + rq + SLACK + self.cutoff;
+        let d2 = (cp - cq).hypot2();
+        if !(near >= 0.0 && d2 <= near * near) {
+            let dist = d2.sqrt();
+            let round = SLACK + 1e-12 * (cp.to_vec2().hypot() + cq.to_vec2().hypot());
+            let room = dist - rp - rq - round - self.cutoff;
+            if room > 0.0 {
+                let (b, c) = (self.rank(pl), self.rank(qf));
+                // how far q moves seen from p's first tile, and p's tiles seen from it: along
+                // the chain first, then from where the turning joints' hinges lie
+                let (ep, eq) = (
+                    2.0 * self.radius * dt * self.lever(a, b, pl),
+                    2.0 * self.radius * dt * self.lever(a, d, ql),
+                );
+                if room > ep + eq {
+                    return;
+                }
+                if self.reach([a, b, c, d], (rp, rq), (cq, dist), (ep, eq), dt) < room {
+                    return;
+                }
             }
         }
         match (self.tree.tile(p.node), self.tree.tile(q.node)) {
